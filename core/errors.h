@@ -1,0 +1,34 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace papernet {
+
+/// The input cannot be read: a missing file, a malformed or truncated stream, an unsupported
+/// format, or a size over a configured limit.
+class IOException : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The input was read but is not a mesh we can unfold (non-manifold, degenerate, empty, ...).
+/// The message names the fault.
+class InvalidInputException : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// An operation would break the mesh's connectivity (an illegal collapse, a broken tree).
+class TopologyException : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+/// A long computation was stopped through its Progress hook.
+class CancelledException : public std::runtime_error {
+ public:
+  CancelledException() : std::runtime_error("cancelled") {}
+};
+
+}  // namespace papernet

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace papernet {
+
+enum class MeshFormat { Unknown, Obj, Off, Ply, Stl, Gltf, Glb, Draco };
+
+/// Name of a format as users write it ("obj", "glb", ...).
+std::string format_name(MeshFormat format);
+
+/// Format from a file name's extension (case-insensitive); Unknown when there is none we read.
+MeshFormat format_from_extension(std::string_view path);
+
+/// Limits and inputs for loading. Limits are checked before large allocations.
+struct LoadOptions {
+  std::size_t max_bytes = std::size_t{256} << 20;  ///< size of the mesh file itself
+  std::size_t max_faces = 2'000'000;               ///< faces after triangulation
+  /// Files that came with a .gltf (its external buffers), by the relative URI the glTF uses.
+  /// A .gltf never reads anything from disk by itself: a URI not found here is an error.
+  std::map<std::string, std::string> external_files;
+};
+
+/// What was loaded, and what loading had to do to it.
+struct LoadedMesh {
+  Mesh mesh;  ///< welded: vertices with equal positions merged
+  MeshFormat format = MeshFormat::Unknown;
+  std::size_t raw_vertices = 0;    ///< vertex count before welding
+  bool triangulated = false;       ///< polygons were split into triangles
+  std::vector<std::string> notes;  ///< what loading did (triangulation, skipped primitives, ...)
+};
+
+/// Loads a mesh from bytes in memory. `format` may be Unknown: it is then sniffed from content.
+/// \throw IOException naming the fault (unreadable, unsupported, truncated, over a limit).
+LoadedMesh load_mesh(std::string_view bytes, MeshFormat format, const LoadOptions& options = {});
+
+/// Loads a mesh file. For .gltf, sibling files named by the glTF are read only when they are
+/// listed in `options.external_files`; the command-line tool fills that map from the folder.
+/// \throw IOException naming the fault.
+LoadedMesh load_mesh_file(const std::string& path, const LoadOptions& options = {});
+
+}  // namespace papernet

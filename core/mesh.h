@@ -1,0 +1,27 @@
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/vec.h"
+
+namespace papernet {
+
+/// An indexed triangle mesh. Faces are counter-clockwise seen from outside (right-hand rule
+/// gives the outward normal). This is the exchange type between all of papernet's algorithms;
+/// algorithms that need connectivity build it themselves.
+struct Mesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> faces;
+};
+
+/// Unnormalised normal of face f (twice its area in length).
+Vec3 face_normal(const Mesh& mesh, int f);
+
+/// Area of face f.
+double face_area(const Mesh& mesh, int f);
+
+/// Length of the diagonal of the mesh's axis-aligned bounding box (0 for an empty mesh).
+double bounding_box_diagonal(const Mesh& mesh);
+
+}  // namespace papernet

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace papernet {
+
+struct Mesh;
+struct Net;
+
+/// Where a long computation stands. `faces` is the face count being worked on now (it grows
+/// during uncollapse), `input_faces` the count of the mesh handed in.
+struct ProgressInfo {
+  std::string phase;  // "collapse", "unfold", "uncollapse"
+  std::size_t faces = 0;
+  std::size_t input_faces = 0;
+  std::size_t overlaps = 0;
+  std::size_t iterations = 0;
+  double elapsed_seconds = 0;
+};
+
+/// Hook through which long algorithms report progress, hand out intermediate overlap-free
+/// nets and learn that they should stop. Algorithms never print; they call this. The default
+/// implementation ignores everything and never cancels.
+class Progress {
+ public:
+  virtual ~Progress() = default;
+  virtual void report(const ProgressInfo&) {}
+  /// An overlap-free net of `mesh` (possibly a coarser approximation of the input).
+  virtual void intermediate(const Mesh&, const Net&) {}
+  /// Polled often (at least every few milliseconds of work); true stops the algorithm, which
+  /// then throws CancelledException.
+  virtual bool cancelled() { return false; }
+};
+
+}  // namespace papernet

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages papernet builds, tests and runs with, if any are missing.
+# Used by `make`, by CI and by the Dockerfile, so all three install the same things.
+#   scripts/install-deps.sh          build + run + test dependencies
+#   scripts/install-deps.sh runtime  only what the papernet binary needs to run
+set -euo pipefail
+
+runtime=(libopenmesh1 libdraco7 libsqlite3-0 libcairo2 ca-certificates)
+build=(build-essential cmake pkg-config git clang-format
+  libopenmesh-dev libdraco-dev libtinygltf-dev nlohmann-json3-dev libcpp-httplib-dev
+  libgtest-dev libsqlite3-dev libcairo2-dev)
+# Tools the tests call: SVG rendering and PDF inspection.
+test_tools=(librsvg2-bin poppler-utils)
+
+case "${1:-all}" in
+  runtime) wanted=("${runtime[@]}") ;;
+  build) wanted=("${build[@]}") ;;
+  all) wanted=("${runtime[@]}" "${build[@]}" "${test_tools[@]}") ;;
+  *) echo "usage: $0 [runtime|build|all]" >&2; exit 2 ;;
+esac
+
+missing=()
+for pkg in "${wanted[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'install ok installed'; then
+    missing+=("$pkg")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "installing missing Debian packages: ${missing[*]}"
+sudo=()
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null; then sudo=(sudo); else
+    echo "error: missing packages and not root: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -qq
+"${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
