@@ -15,6 +15,7 @@ struct Command {
 
 constexpr Command kCommands[] = {
     {"info", papernet::cli::info, "describe a mesh and every problem found in it"},
+    {"serve", papernet::cli::serve, "run the HTTP job service (papernet serve --help)"},
 };
 
 int usage(std::ostream& out, int code) {
