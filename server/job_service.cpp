@@ -345,6 +345,10 @@ void JobService::run_one(const std::string& id) {
            nullptr);
   } catch (...) {
     record.finished = now_seconds();
+    {
+      std::lock_guard lock(mutex_);
+      if (live->progress) record.input_faces = live->progress->input_faces;
+    }
     if (abort_running_ && !live->cancel) {
       store_.requeue(id);
       log_("job " + id + " running -> queued (server stopping)");

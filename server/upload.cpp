@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdint>
-#include <cstring>
 
 #include "server/problem.h"
 
@@ -15,12 +13,6 @@ std::string lower(std::string_view s) {
   std::transform(out.begin(), out.end(), out.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   return out;
-}
-
-bool starts_with_word(std::string_view text, std::string_view word) {
-  return text.substr(0, word.size()) == word &&
-         (text.size() == word.size() ||
-          std::isspace(static_cast<unsigned char>(text[word.size()])));
 }
 
 // A .gltf's buffers are named by relative URIs; a name is only a key into the upload, never a
@@ -69,50 +61,6 @@ MeshFormat format_from_media_type(std::string_view media_type) {
                      "' is no mesh format papernet reads (model/gltf-binary, model/gltf+json, "
                      "model/x-draco, model/obj, model/x-off, model/x-ply, model/stl, or "
                      "application/octet-stream to have it sniffed)");
-}
-
-MeshFormat sniff_mesh_format(std::string_view bytes) {
-  if (bytes.substr(0, 4) == "glTF") return MeshFormat::Glb;
-  if (bytes.substr(0, 5) == "DRACO") return MeshFormat::Draco;
-  if (bytes.substr(0, 4) == "ply\n" || bytes.substr(0, 5) == "ply\r\n") return MeshFormat::Ply;
-  // Binary STL: 80-byte header, triangle count, 50 bytes per triangle.
-  if (bytes.size() >= 84) {
-    std::uint32_t n = 0;
-    std::memcpy(&n, bytes.data() + 80, 4);
-    if (84 + std::uint64_t{n} * 50 == bytes.size()) return MeshFormat::Stl;
-  }
-  std::string_view text = bytes.substr(0, 4096);
-  if (std::any_of(text.begin(), text.end(), [](unsigned char c) {
-        return c == 0 || (c < 0x20 && c != '\n' && c != '\r' && c != '\t');
-      }))
-    return MeshFormat::Unknown;
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first == std::string_view::npos) return MeshFormat::Unknown;
-  text = text.substr(first);
-  if (text.front() == '{') return MeshFormat::Gltf;
-  if (starts_with_word(text, "solid") && bytes.find("facet") != std::string_view::npos)
-    return MeshFormat::Stl;
-  for (std::string_view head : {"OFF", "COFF", "NOFF", "CNOFF", "STOFF", "4OFF"})
-    if (starts_with_word(text, head)) return MeshFormat::Off;
-  // OBJ: text made of its statements; a vertex line must be among them.
-  bool vertex = false;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    std::size_t end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(pos, end - pos);
-    pos = end + 1;
-    const auto start = line.find_first_not_of(" \t\r");
-    if (start == std::string_view::npos) continue;
-    line = line.substr(start);
-    if (starts_with_word(line, "v")) vertex = true;
-    bool known = line.front() == '#';
-    for (std::string_view key :
-         {"v", "vt", "vn", "vp", "f", "l", "p", "o", "g", "s", "usemtl", "mtllib"})
-      known = known || starts_with_word(line, key);
-    if (!known && end != text.size()) return MeshFormat::Unknown;
-  }
-  return vertex ? MeshFormat::Obj : MeshFormat::Unknown;
 }
 
 std::string media_type_of(MeshFormat format) {
@@ -182,7 +130,7 @@ ParsedUpload parse_upload(UploadRequest request, const OptionsLimits& limits) {
                        "both");
   if (!options_part) out.options = parse_options_query(request.query, limits);
   if (out.input.mesh.empty()) throw ApiError("missing_mesh", "the request carries no mesh");
-  if (format == MeshFormat::Unknown) format = sniff_mesh_format(out.input.mesh);
+  if (format == MeshFormat::Unknown) format = sniff_format(out.input.mesh);
   if (format == MeshFormat::Unknown)
     throw ApiError("unsupported_format",
                    "cannot tell the mesh format from the content; send a Content-Type such as "

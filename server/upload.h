@@ -34,16 +34,14 @@ struct ParsedUpload {
 };
 
 /// Turns a request into a job's input and options: format from the `format` query parameter,
-/// the part's file name, the Content-Type, or else the content itself.
+/// the part's Content-Type or file name, the request's Content-Type, or else the content
+/// itself (core's sniff_format).
 /// \throw ApiError (missing_mesh, malformed_request, unsupported_format) or OptionsError.
 ParsedUpload parse_upload(UploadRequest request, const OptionsLimits& limits);
 
 /// The format a media type names; Unknown for generic types (octet-stream, text/plain, none).
 /// \throw ApiError unsupported_format for a media type that is clearly no mesh we read.
 MeshFormat format_from_media_type(std::string_view media_type);
-
-/// The format of mesh bytes by their content (magic numbers, keywords); Unknown if none fits.
-MeshFormat sniff_mesh_format(std::string_view bytes);
 
 /// The media type a client should send for a format.
 std::string media_type_of(MeshFormat format);

@@ -32,21 +32,33 @@ std::string problem_code(const UploadRequest& request) {
 
 }  // namespace
 
-TEST(UploadTest, SniffsTheFormatsWeRead) {
-  EXPECT_EQ(sniff_mesh_format(read("sample.obj")), MeshFormat::Obj);
-  EXPECT_EQ(sniff_mesh_format(read("Duck.glb")), MeshFormat::Glb);
-  EXPECT_EQ(sniff_mesh_format(read("mirror.ply")), MeshFormat::Ply);
-  EXPECT_EQ(sniff_mesh_format(read("thingi10k_65004.stl")), MeshFormat::Stl);
-  EXPECT_EQ(sniff_mesh_format("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), MeshFormat::Off);
-  EXPECT_EQ(sniff_mesh_format("solid x\nfacet normal 0 0 1\n"), MeshFormat::Stl);
-  EXPECT_EQ(sniff_mesh_format(" {\"asset\":{\"version\":\"2.0\"}}"), MeshFormat::Gltf);
-  EXPECT_EQ(sniff_mesh_format(std::string("DRACO\x02\x02", 7)), MeshFormat::Draco);
+TEST(UploadTest, UndeclaredFormatIsSniffed) {
+  for (const auto& [file, format] :
+       std::vector<std::pair<std::string, MeshFormat>>{{"sample.obj", MeshFormat::Obj},
+                                                       {"Duck.glb", MeshFormat::Glb},
+                                                       {"mirror.ply", MeshFormat::Ply},
+                                                       {"thingi10k_65004.stl", MeshFormat::Stl}}) {
+    UploadRequest r;
+    r.content_type = "application/octet-stream";
+    r.body = read(file);
+    EXPECT_EQ(parse_upload(r, {}).input.format, format) << file;
+  }
 }
 
-TEST(UploadTest, DoesNotMistakeOtherContentForAMesh) {
-  EXPECT_EQ(sniff_mesh_format("\x89PNG\r\n\x1a\n...."), MeshFormat::Unknown);
-  EXPECT_EQ(sniff_mesh_format("hello world\nthis is text\n"), MeshFormat::Unknown);
-  EXPECT_EQ(sniff_mesh_format(""), MeshFormat::Unknown);
+TEST(UploadTest, DeclaredFormatWinsOverContent) {
+  UploadRequest r;
+  r.content_type = "model/stl";
+  r.body = read("sample.obj");
+  EXPECT_EQ(parse_upload(r, {}).input.format, MeshFormat::Stl);
+  r.query = {{"format", "off"}};
+  EXPECT_EQ(parse_upload(r, {}).input.format, MeshFormat::Off);
+}
+
+TEST(UploadTest, ContentThatIsNoMeshIsUnsupported) {
+  UploadRequest png;
+  png.content_type = "application/octet-stream";
+  png.body = std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16);
+  EXPECT_EQ(problem_code(png), "unsupported_format");
 }
 
 TEST(UploadTest, MediaTypes) {
