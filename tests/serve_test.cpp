@@ -53,10 +53,10 @@ class Server {
  public:
   explicit Server(std::vector<std::string> flags, fs::path data = {})
       : flags_(std::move(flags)),
-        data_(data.empty() ? fs::temp_directory_path() /
-                                 ("papernet_serve_" + std::to_string(::getpid()) + "_" +
-                                  std::to_string(counter_++))
-                           : data) {
+        data_(data.empty()
+                  ? fs::temp_directory_path() / ("papernet_serve_" + std::to_string(::getpid()) +
+                                                 "_" + std::to_string(counter_++))
+                  : data) {
     fs::create_directories(data_);
     start();
   }
@@ -67,8 +67,9 @@ class Server {
 
   void start() {
     port_ = free_port();
-    std::vector<std::string> args = {"papernet", "serve", "--port", std::to_string(port_),
-                                     "--data", data_.string(), "--access-log", "false"};
+    std::vector<std::string> args = {
+        "papernet", "serve",        "--port",       std::to_string(port_),
+        "--data",   data_.string(), "--access-log", "false"};
     args.insert(args.end(), flags_.begin(), flags_.end());
     pid_ = fork();
     if (pid_ == 0) {
