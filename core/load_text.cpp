@@ -191,8 +191,10 @@ RawMesh read_stl(std::string_view bytes, const LoadOptions& options) {
   const std::uint64_t binary_size = 84 + 50 * std::uint64_t{count};
   std::string_view text = bytes;
   while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
-  const bool ascii =
-      text.substr(0, 5) == "solid" && (bytes.size() < 84 || binary_size != bytes.size());
+  // "solid" starts many binary headers too: text is ascii only if its start has no NUL byte.
+  const bool ascii = text.substr(0, 5) == "solid" &&
+                     (bytes.size() < 84 || binary_size != bytes.size()) &&
+                     bytes.substr(0, 1024).find('\0') == std::string_view::npos;
   if (!ascii) {
     if (bytes.size() < 84)
       throw IOException("stl: " + std::to_string(bytes.size()) +
