@@ -6,5 +6,6 @@ namespace papernet::cli {
 /// Returns the process exit code.
 int info(int argc, char** argv);
 int serve(int argc, char** argv);
+int unfold(int argc, char** argv);
 
 }  // namespace papernet::cli
