@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "core/errors.h"
 
@@ -51,7 +52,20 @@ Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text
       break;
     }
   }
+  // Read upright on the page where possible: turning the text half a turn keeps its box.
+  if (std::cos(label.angle) < -1e-9) label.angle += std::numbers::pi;
   return label;
+}
+
+/// "6" and "9" (and "16" and "91", ...) read as each other upside down: mark those with a dot.
+std::string label_text(int number) {
+  std::string text = std::to_string(number), turned;
+  for (auto it = text.rbegin(); it != text.rend(); ++it) {
+    const char c = *it;
+    if (c != '0' && c != '1' && c != '6' && c != '8' && c != '9') return text;
+    turned += c == '6' ? '9' : c == '9' ? '6' : c;
+  }
+  return turned == text ? text : text + ".";
 }
 
 }  // namespace
@@ -117,8 +131,8 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
         out.cut.push_back(side_segment(s));
       }
       if (options.labels && edge.cut_index >= 0) {
-        Label l = make_label(out.faces[s.face], s, std::to_string(edge.cut_index + 1),
-                             options.max_label_mm);
+        Label l =
+            make_label(out.faces[s.face], s, label_text(edge.cut_index + 1), options.max_label_mm);
         l.edge = e;
         out.labels.push_back(std::move(l));
       }

@@ -32,7 +32,8 @@ struct Segment {
 };
 
 /// A number printed inside a face next to one side of a cut edge; its twin carries the same
-/// text. The text's baseline runs along the edge, its top pointing into the face.
+/// text. The text's baseline runs parallel to the edge, turned to read upright on the page
+/// where it can; numbers that read as another number upside down (6, 9, 16, ...) end in a dot.
 struct Label {
   Vec2 at;           ///< centre of the text box
   double angle = 0;  ///< direction of the baseline, radians counter-clockwise from +x
