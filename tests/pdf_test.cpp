@@ -152,5 +152,29 @@ TEST(Output, WritesByExtensionAndOneSvgPerPage) {
   for (const char* ext : {".svg", ".PDF", ".glb"}) std::filesystem::remove(base + ext);
 }
 
+TEST(Output, CommandLineOptionsFillTheOptionsOrNameTheBadValue) {
+  OutputOptions o;
+  EXPECT_TRUE(apply_output_option("--size", "15cm", o));
+  EXPECT_DOUBLE_EQ(o.print.size_mm, 150);
+  EXPECT_TRUE(apply_output_option("--paper", "letter", o));
+  EXPECT_EQ(o.page.paper.name, "Letter");
+  EXPECT_TRUE(apply_output_option("--margin", "0", o));
+  EXPECT_DOUBLE_EQ(o.page.margin_mm, 0);
+  EXPECT_TRUE(apply_output_option("--tab-height", "4mm", o));
+  EXPECT_DOUBLE_EQ(o.print.tab_height_mm, 4);
+  EXPECT_TRUE(apply_output_option("--labels", "off", o));
+  EXPECT_FALSE(o.print.labels);
+  EXPECT_TRUE(apply_output_option("--paper", "none", o));
+  EXPECT_FALSE(o.paper);
+  EXPECT_FALSE(apply_output_option("--strategy", "QQ", o));
+  try {
+    apply_output_option("--flat-angle", "lots", o);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--flat-angle"), std::string::npos);
+  }
+  EXPECT_THROW(apply_output_option("--labels", "maybe", o), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace papernet
