@@ -57,6 +57,29 @@ Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text
   return label;
 }
 
+/// Places and sizes every label; labels that share a face shrink together until they are apart.
+void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Label>& labels,
+                 double max_size) {
+  std::vector<std::vector<int>> by_face(faces.size());
+  for (int i = 0; i < static_cast<int>(labels.size()); ++i)
+    by_face[labels[i].side.face].push_back(i);
+  for (const std::vector<int>& group : by_face) {
+    double cap = max_size;
+    for (int attempt = 0; attempt < 30; ++attempt, cap *= 0.8) {
+      for (int i : group) {
+        Label placed = make_label(faces[labels[i].side.face], labels[i].side, labels[i].text, cap);
+        placed.edge = labels[i].edge;
+        labels[i] = std::move(placed);
+      }
+      bool apart = true;
+      for (std::size_t a = 0; a < group.size() && apart; ++a)
+        for (std::size_t b = a + 1; b < group.size() && apart; ++b)
+          apart = !convex_overlap(label_box(labels[group[a]]), label_box(labels[group[b]]), 0);
+      if (apart) break;
+    }
+  }
+}
+
 /// "6" and "9" (and "16" and "91", ...) read as each other upside down: mark those with a dot.
 std::string label_text(int number) {
   std::string text = std::to_string(number), turned;
@@ -131,13 +154,12 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
         out.cut.push_back(side_segment(s));
       }
       if (options.labels && edge.cut_index >= 0) {
-        Label l =
-            make_label(out.faces[s.face], s, label_text(edge.cut_index + 1), options.max_label_mm);
-        l.edge = e;
-        out.labels.push_back(std::move(l));
+        out.labels.push_back({{}, 0, 0, label_text(edge.cut_index + 1), e, s});
       }
     }
   }
+
+  size_labels(out.faces, out.labels, options.max_label_mm);
 
   // Translate so that everything starts at the origin.
   constexpr double inf = std::numeric_limits<double>::infinity();

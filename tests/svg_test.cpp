@@ -152,6 +152,17 @@ TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
       }
     }
     for (const auto& [text, n] : texts) EXPECT_EQ(n, 1) << name << ": label " << text << " reused";
+    // Labels sharing a face (a face with two or three cut edges) stay apart.
+    std::map<int, std::vector<const Label*>> by_face;
+    for (const Label& l : layout.labels) by_face[l.side.face].push_back(&l);
+    for (const auto& [f, labels] : by_face)
+      for (std::size_t i = 0; i < labels.size(); ++i)
+        for (std::size_t j = i + 1; j < labels.size(); ++j) {
+          const auto a = label_box(*labels[i]), b = label_box(*labels[j]);
+          EXPECT_LE(intersection_area({a.begin(), a.end()}, {b.begin(), b.end()}), 1e-9)
+              << name << ": labels " << labels[i]->text << " and " << labels[j]->text
+              << " collide in face " << f;
+        }
   }
 }
 
