@@ -35,9 +35,11 @@ namespace {
 Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text, double max_size) {
   const Vec2 p0 = tri[side.k], p1 = tri[(side.k + 1) % 3], p2 = tri[(side.k + 2) % 3];
   const double len = norm(p1 - p0);
-  const Vec2 d = (1 / len) * (p1 - p0), up{-d.y, d.x};
+  const Vec2 d = len > 0 ? (1 / len) * (p1 - p0) : Vec2{1, 0}, up{-d.y, d.x};
   const double ht = dot(p2 - p0, up), a2 = dot(p2 - p0, d);  // apex height and offset
   const double chars = static_cast<double>(text.size());
+  if (!(len > 0 && ht > 0))  // a degenerate face: an empty label at its centroid
+    return {(1.0 / 3) * (p0 + p1 + p2), 0, 0, std::move(text), -1, side};
   Label label{{}, std::atan2(d.y, d.x), std::min(max_size, 0.3 * ht), std::move(text), -1, side};
   for (int i = 0; i < 40; ++i, label.size *= 0.85) {
     const double s = label.size;
@@ -98,6 +100,16 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   if (net.points.size() != mesh.faces.size() || net.parent.size() != mesh.faces.size())
     throw InvalidInputException("the net has " + std::to_string(net.points.size()) +
                                 " faces but the mesh has " + std::to_string(mesh.faces.size()));
+  const auto nv = static_cast<int>(mesh.vertices.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (const int v : mesh.faces[f])
+      if (v < 0 || v >= nv)
+        throw InvalidInputException("mesh face " + std::to_string(f) + " refers to vertex " +
+                                    std::to_string(v) + " of " + std::to_string(nv));
+  for (std::size_t f = 0; f < net.points.size(); ++f)
+    for (const Vec2 p : net.points[f])
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        throw InvalidInputException("net face " + std::to_string(f) + " has a non-finite point");
   PrintLayout out;
   out.metrics = net_metrics(mesh, net);
 

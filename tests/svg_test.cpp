@@ -180,6 +180,11 @@ TEST(Layout, ScaleMakesTheLongestModelSideTheTargetSize) {
   EXPECT_NEAR(longest, std::hypot(150.0, 50.0), 1e-9);  // the quad diagonals
   options.scale = 2;
   EXPECT_DOUBLE_EQ(layout_net(m, testing::bfs_net(m), options).scale, 2);
+  Net broken = testing::bfs_net(m);
+  broken.points[3][1].y = std::nan("");
+  EXPECT_THROW(layout_net(m, broken, options), std::invalid_argument);
+  broken.points.pop_back();
+  EXPECT_THROW(layout_net(m, broken, options), std::invalid_argument);
   options.tab_angle_deg = 0;
   EXPECT_THROW(layout_net(m, testing::bfs_net(m), options), std::invalid_argument);
 }
