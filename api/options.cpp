@@ -85,13 +85,13 @@ void apply(JobOptions& o, const std::string& name, const json& v) {
   } else if (name == "paper") {
     const std::string s = upper(text(name, v));
     if (s == "A4")
-      o.paper = Paper::A4;
+      o.paper = PaperSize::A4;
     else if (s == "LETTER")
-      o.paper = Paper::Letter;
+      o.paper = PaperSize::Letter;
     else if (s == "A3")
-      o.paper = Paper::A3;
+      o.paper = PaperSize::A3;
     else if (s == "NONE")
-      o.paper = Paper::None;
+      o.paper = PaperSize::None;
     else
       bad_value(name, v, "one of A4, Letter, A3, none");
   } else if (name == "margin_mm") {
@@ -130,15 +130,15 @@ std::string strategy_name(Strategy strategy) {
   return "QQ";
 }
 
-std::string paper_name(Paper paper) {
+std::string paper_name(PaperSize paper) {
   switch (paper) {
-    case Paper::A4:
+    case PaperSize::A4:
       return "A4";
-    case Paper::Letter:
+    case PaperSize::Letter:
       return "Letter";
-    case Paper::A3:
+    case PaperSize::A3:
       return "A3";
-    case Paper::None:
+    case PaperSize::None:
       return "none";
   }
   return "A4";

@@ -14,10 +14,10 @@ namespace papernet {
 enum class Strategy { QQ, SEMP, SEQ, TU };
 
 /// Paper sheet the SVG/PDF is tiled onto.
-enum class Paper { A4, Letter, A3, None };
+enum class PaperSize { A4, Letter, A3, None };
 
 std::string strategy_name(Strategy strategy);
-std::string paper_name(Paper paper);
+std::string paper_name(PaperSize paper);
 
 /// Everything a client may choose about one unfolding job. Defaults are what a user who says
 /// nothing gets. Parsed and validated before any geometry runs.
@@ -32,11 +32,11 @@ struct JobOptions {
   std::optional<double> size_mm;
   /// Millimetres per mesh unit (exclusive with `size_mm`); neither set means 1.
   std::optional<double> scale;
-  Paper paper = Paper::A4;
+  PaperSize paper = PaperSize::A4;
   double margin_mm = 10;
   bool tabs = true;
   /// Folds flatter than this many degrees are not drawn.
-  double flat_fold_degrees = 0.5;
+  double flat_fold_degrees = 1;
   bool keep_largest_component = false;
 };
 

@@ -28,7 +28,7 @@ TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   EXPECT_EQ(o.seed, 1u);
   EXPECT_FALSE(o.target_faces);
   EXPECT_FALSE(o.time_limit);
-  EXPECT_EQ(o.paper, Paper::A4);
+  EXPECT_EQ(o.paper, PaperSize::A4);
   EXPECT_TRUE(o.tabs);
   EXPECT_FALSE(o.keep_largest_component);
 }
@@ -48,7 +48,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_EQ(o.target_faces, 500u);
   EXPECT_DOUBLE_EQ(*o.time_limit, 2.5);
   EXPECT_DOUBLE_EQ(*o.size_mm, 120);
-  EXPECT_EQ(o.paper, Paper::Letter);
+  EXPECT_EQ(o.paper, PaperSize::Letter);
   EXPECT_DOUBLE_EQ(o.margin_mm, 5);
   EXPECT_FALSE(o.tabs);
   EXPECT_TRUE(o.keep_largest_component);
@@ -60,7 +60,7 @@ TEST(OptionsTest, JsonObjectIsParsedWithTypedValues) {
   EXPECT_EQ(o.strategy, Strategy::TU);
   EXPECT_EQ(o.seed, 7u);
   EXPECT_DOUBLE_EQ(*o.scale, 2.0);
-  EXPECT_EQ(o.paper, Paper::None);
+  EXPECT_EQ(o.paper, PaperSize::None);
   EXPECT_FALSE(o.tabs);
   EXPECT_FALSE(o.time_limit);
 }
