@@ -221,7 +221,6 @@ LoadedMesh load_mesh(std::string_view bytes, MeshFormat format, const LoadOption
       throw IOException(
           "unsupported or unrecognised format (expected glb, gltf, drc, obj, off, ply or stl)");
   }
-  if (raw.triangulated) raw.notes.insert(raw.notes.begin(), "polygons were split into triangles");
   return weld(std::move(raw), format);
 }
 

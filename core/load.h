@@ -37,7 +37,7 @@ struct LoadedMesh {
   MeshFormat format = MeshFormat::Unknown;
   std::size_t raw_vertices = 0;    ///< vertex count before welding
   bool triangulated = false;       ///< polygons were split into triangles
-  std::vector<std::string> notes;  ///< what loading did (triangulation, skipped primitives, ...)
+  std::vector<std::string> notes;  ///< what else loading did (skipped lines, points, primitives)
 };
 
 /// Loads a mesh from bytes in memory. `format` may be Unknown: it is then sniffed from content.
