@@ -26,6 +26,7 @@ MeshFormat sniff_format(std::string_view bytes);
 struct LoadOptions {
   std::size_t max_bytes = std::size_t{256} << 20;  ///< size of the mesh file itself
   std::size_t max_faces = 2'000'000;               ///< faces after triangulation
+  std::size_t max_vertices = 6'000'000;            ///< positions read, before welding
   /// Files that came with a .gltf (its external buffers), by the relative URI the glTF uses.
   /// A .gltf never reads anything from disk by itself: a URI not found here is an error.
   std::map<std::string, std::string> external_files;

@@ -242,6 +242,7 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
     }
     if (is_vertex && (ix < 0 || iy < 0 || iz < 0))
       throw IOException("ply: the vertex element lacks x, y or z");
+    if (is_vertex) check_vertices(e.count, options, "ply header");
     if (is_vertex) out.vertices.reserve(e.count);
     if (is_face) check_declared_faces(e.count, options, "ply header");
     for (std::uint64_t r = 0; r < e.count; ++r) {

@@ -71,6 +71,7 @@ RawMesh read_obj(std::string_view bytes, const LoadOptions& options) {
       if (!parse_double(next_token(line), p.x) || !parse_double(next_token(line), p.y) ||
           !parse_double(next_token(line), p.z))
         throw IOException(at_line("obj", number) + ": a vertex needs three numbers");
+      check_vertices(out.vertices.size() + 1, options, "obj");
       out.vertices.push_back(p);
     } else if (keyword == "f") {
       poly.clear();
@@ -151,6 +152,7 @@ RawMesh read_off(std::string_view bytes, const LoadOptions& options) {
                       std::to_string(nf) + " faces but the file has only " +
                       std::to_string(lines.size()) + " lines");
   check_declared_faces(static_cast<std::size_t>(nf), options, "off header");
+  check_vertices(static_cast<std::size_t>(nv), options, "off header");
   if (next + nv + nf > lines.size())
     throw IOException("off: the file ends before its " + std::to_string(nv) + " vertices and " +
                       std::to_string(nf) + " faces");
@@ -204,6 +206,7 @@ RawMesh read_stl(std::string_view bytes, const LoadOptions& options) {
                         std::to_string(binary_size) + " bytes) but the file has " +
                         std::to_string(bytes.size()) + " bytes");
     check_declared_faces(count, options, "stl header");
+    check_vertices(3 * std::size_t{count}, options, "stl header");
     if (binary_size < bytes.size())
       out.notes.push_back(std::to_string(bytes.size() - binary_size) +
                           " bytes after the last triangle were ignored");
@@ -235,6 +238,7 @@ RawMesh read_stl(std::string_view bytes, const LoadOptions& options) {
         throw IOException("stl: a vertex needs three numbers");
       if (!in_facet) throw IOException("stl: a vertex outside a facet");
       poly.push_back(static_cast<long long>(out.vertices.size()));
+      check_vertices(out.vertices.size() + 1, options, "stl");
       out.vertices.push_back(v);
     } else if (tok == "endfacet") {
       if (poly.size() < 3) ++short_facets;

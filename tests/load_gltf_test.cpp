@@ -156,6 +156,16 @@ TEST(LoadGltf, AccessorsThatOverrunTheirBufferViewAreRefused) {
   EXPECT_FALSE(error_of(v1.dump()).empty());
 }
 
+TEST(LoadGltf, JsonFloodsAndDeepNestingAreRefusedBeforeParsing) {
+  json g = square_gltf(data_uri());
+  g["extras"] = std::vector<int>(3'000'000, 0);
+  EXPECT_NE(error_of(g.dump()).find("more than 2000000 values"), std::string::npos);
+  std::string deep = square_gltf(data_uri()).dump();
+  deep.pop_back();
+  deep += ",\"extras\":" + std::string(100000, '[') + std::string(100000, ']') + "}";
+  EXPECT_NE(error_of(deep).find("deeper than 64"), std::string::npos) << error_of(deep);
+}
+
 TEST(LoadGltf, NoSceneTakesAllMeshes) {
   json g = square_gltf(data_uri());
   g.erase("scene");

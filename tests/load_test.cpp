@@ -220,6 +220,11 @@ TEST(LoadLimits, BytesAndFaces) {
   LoadOptions small;
   small.max_bytes = 100;
   EXPECT_NE(message_of(ascii_stl(), MeshFormat::Stl, small).find("limit"), std::string::npos);
+  LoadOptions few_vertices;
+  few_vertices.max_vertices = 3;
+  for (const auto& bytes : {tetra_obj(), tetra_off(), ascii_ply(), binary_stl(), ascii_stl()})
+    EXPECT_NE(message_of(bytes, MeshFormat::Unknown, few_vertices).find("limit of 3"),
+              std::string::npos);
   LoadOptions few;
   few.max_faces = 3;
   for (const auto& bytes : {tetra_obj(), tetra_off(), ascii_ply(), binary_ply(false), binary_stl()})
