@@ -204,9 +204,16 @@ void check_mesh(const Mesh& m, const ValidateOptions& opt, ValidationReport& r) 
     }
     return it->second;
   };
-  for (std::size_t f = 0; f < nf; ++f) ++chi[comp_of_face(int(f))];
+  // Faces with a repeated vertex and vertices only they use stay out of V - E + F, as out of E.
+  std::vector<char> in_surface(nv, 0);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const int c = comp_of_face(int(f));
+    if (collapsed(f)) continue;
+    ++chi[c];
+    for (int v : m.faces[f]) in_surface[v] = 1;
+  }
   for (std::size_t v = 0; v < nv; ++v)
-    if (vertex_face[v] >= 0) ++chi[comp_of_face(vertex_face[v])];
+    if (in_surface[v]) ++chi[comp_of_face(vertex_face[v])];
   std::vector<char> loop_seen(nv, 0);
   for (const auto& [key, e] : edges) {
     const int c = comp_of_face(e.faces[0]);
