@@ -176,7 +176,9 @@ std::vector<Vec3> read_positions(const tinygltf::Model& model, int index) {
 }
 
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index) {
-  const tinygltf::Accessor& a = model.accessors.at(std::size_t(index));
+  if (index < 0 || std::size_t(index) >= model.accessors.size())
+    throw IOException("gltf: indices accessor " + std::to_string(index) + " does not exist");
+  const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
   if (a.type != TINYGLTF_TYPE_SCALAR) throw IOException("gltf: indices are not SCALAR");
   const int type = a.componentType;
   const std::size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
