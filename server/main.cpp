@@ -15,6 +15,7 @@ struct Command {
 
 constexpr Command kCommands[] = {
     {"info", papernet::cli::info, "describe a mesh and every problem found in it"},
+    {"unfold", papernet::cli::unfold, "unfold a mesh into a net (papernet.net/1 JSON)"},
 };
 
 int usage(std::ostream& out, int code) {
