@@ -174,6 +174,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       t.phase = "uncollapse";
       t.input_faces = input_faces;
       t.time_limit_seconds = options.split_time_limit_seconds;
+      if (options.split_iterations > 0) t.max_iterations = options.split_iterations;
       if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
       if (limit > 0 && t.time_limit_seconds <= 0) {
         failed = true;

@@ -21,6 +21,8 @@ struct ProgressiveOptions {
   /// Time limit of the Tabu Unfolder after one split (the whole run's limit applies too); when
   /// a split's overlaps cannot be removed within it, the result is approximate.
   double split_time_limit_seconds = 10;
+  /// Iteration limit of the Tabu Unfolder after one split; 0 means tabu.max_iterations.
+  std::size_t split_iterations = 0;
 };
 
 /// Outcome of progressive unfolding.
