@@ -58,6 +58,9 @@ struct Applied {
   std::size_t iterations = 0;  // 0: no overlaps appeared
 };
 
+// Local moves tried after a split before the Tabu Unfolder runs.
+constexpr int kLocalTrials = 16;
+
 std::uint64_t split_seed(std::uint64_t seed, std::size_t index) {
   return seed ^ (0x9e3779b97f4a7c15ULL * (index + 1));
 }
@@ -101,6 +104,55 @@ void apply_split(State& st, const VertexSplit& s, std::uint64_t seed) {
       u.attach(f, options[rng.below(static_cast<std::uint64_t>(n))]);
     }
   }
+}
+
+// Applies a split and lays it out. When faces of the split's neighbourhood overlap, moving one
+// of them (with its subtree) to another neighbour is tried first, a few cheap updates each, before
+// the caller falls back on the Tabu Unfolder: most new overlaps are local. Returns the overlap
+// count.
+std::size_t place_split(State& st, const VertexSplit& s, std::uint64_t seed) {
+  apply_split(st, s, seed);
+  Unfolding& u = st.unfolding;
+  std::size_t overlaps = u.update();
+  if (overlaps == 0) return 0;
+  std::vector<int> local;
+  for (const SplitFace& nf : s.new_faces) local.push_back(st.face[nf.face]);
+  for (int f : s.reshaped) local.push_back(st.face[f]);
+  const auto in_subtree = [&u](int q, int f) {
+    for (int x = q; x >= 0; x = u.parent(x))
+      if (x == f) return true;
+    return false;
+  };
+  int trials = 0;
+  for (int f : local) {
+    if (overlaps == 0 || trials >= kLocalTrials) break;
+    const auto& list = u.overlapping_faces();
+    if (std::find(list.begin(), list.end(), f) == list.end()) continue;
+    for (int k = 0; k < 3 && overlaps > 0 && trials < kLocalTrials; ++k) {
+      const int q = u.neighbour(f, k);
+      const int before = u.parent(f);
+      if (q < 0 || q == before || before < 0 || in_subtree(q, f)) continue;
+      ++trials;
+      u.attach(f, q);
+      const std::size_t now = u.update();
+      if (now < overlaps) {
+        overlaps = now;
+        continue;
+      }
+      // Undo: update() may have re-rooted the tree, so restore the link f-before whichever
+      // way the link f-q now points.
+      if (u.parent(f) == q) {
+        u.attach(f, before);
+      } else {
+        std::vector<int> path;  // before, ..., q: q's subtree holds `before`
+        for (int x = before; x != f; x = u.parent(x)) path.push_back(x);
+        for (std::size_t i = path.size() - 1; i > 0; --i) u.attach(path[i], path[i - 1]);
+        u.attach(before, f);
+      }
+      u.update();
+    }
+  }
+  return overlaps;
 }
 
 Net net_in_input_ids(const State& st, std::size_t faces) {
@@ -166,9 +218,8 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   while (!failed && pm.splits_left() > 0) {
     if (progress.cancelled()) throw CancelledException();
     Applied step{pm.split(), split_seed(options.tabu.seed, index++), 0};
-    apply_split(st, step.split, step.seed);
     relay.context.faces = pm.face_count();
-    if (st.unfolding.update() > 0) {
+    if (place_split(st, step.split, step.seed) > 0) {
       TabuOptions t = options.tabu;
       t.seed = step.seed;
       t.phase = "uncollapse";
@@ -207,8 +258,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       st = *checkpoint;
       std::size_t i = 0;
       for (; i < upto; ++i) {
-        apply_split(st, log[i].split, log[i].seed);
-        if (st.unfolding.update() == 0) continue;
+        if (place_split(st, log[i].split, log[i].seed) == 0) continue;
         TabuOptions t = options.tabu;
         t.seed = log[i].seed;
         t.max_iterations = log[i].iterations;
