@@ -24,7 +24,7 @@ test: build format-check
 
 # Starts the HTTP job service with its defaults (127.0.0.1:8080, SQLite store under ./var).
 run: build
-	@echo "papernet serve: try  curl -s -i --data-binary @$(SAMPLE) -H 'Content-Type: model/obj' 'http://127.0.0.1:8080/v1/jobs?strategy=TU'"
+	@echo "papernet serve: try  curl -s -i --data-binary @$(SAMPLE) -H 'Content-Type: model/obj' 'http://127.0.0.1:8080/v1/jobs'"
 	@echo "                (README.md, section 'HTTP service', has the whole session; Ctrl-C stops)"
 	$(BUILD)/server/papernet serve
 

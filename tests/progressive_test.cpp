@@ -97,8 +97,9 @@ TEST(Progressive, ReportsArriveInOrderAndEndAtTheInputFaceCount) {
   }
 }
 
-// Tabu runs of a single iteration after each split make some split's overlaps unresolvable: the result is then
-// the last overlap-free state, which must be exactly the mesh after that many splits.
+// Tabu runs of a single iteration after each split make some split's overlaps unresolvable: the
+// result is then the last overlap-free state, which must be exactly the mesh after that many
+// splits.
 TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
   const Mesh input = load_test_mesh("sample.obj");
   int approximations = 0;

@@ -205,15 +205,61 @@ TEST(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(glb->body.substr(0, 4), "glTF");
 }
 
-// The default strategy needs progressive unfolding: until this build has it, the job says so.
-TEST(ServeTest, DefaultStrategyUnfoldsOrSaysWhyNot) {
+// Progressive unfolding (the default, QQ): while the job runs, the result URLs serve the latest
+// overlap-free intermediate, said so in a header and in the body; then the complete net.
+TEST(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
   Server s({"--workers", "1"});
-  const json job = wait_final(s, submit(s, test_mesh("mirror.ply"), "model/x-ply"));
+  const std::string id = submit(s, test_mesh("Duck.glb"), "model/gltf-binary");
+  auto c = s.client();
+  bool intermediate = false, not_ready = false;
+  for (int i = 0; i < 3000 && !intermediate; ++i) {
+    auto res = c.Get("/v1/jobs/" + id + "/net.json");
+    ASSERT_TRUE(res);
+    if (res->status == 409) {
+      not_ready = true;
+      EXPECT_EQ(json::parse(res->body)["code"], "result_not_ready");
+      EXPECT_FALSE(res->get_header_value("Retry-After").empty());
+    } else if (res->get_header_value("X-Papernet-Level").rfind("intermediate", 0) == 0) {
+      intermediate = true;
+      const json doc = json::parse(res->body);
+      EXPECT_EQ(doc["level"]["kind"], "intermediate");
+      EXPECT_LT(doc["mesh"]["faces"].size(), 4212u);
+      const papernet::NetDocument net = papernet::read_net_json(res->body);
+      EXPECT_TRUE(papernet::check_net(net.mesh, net.net).ok()) << "intermediate nets are valid";
+      EXPECT_EQ(c.Get("/v1/jobs/" + id + "/net.svg")->status, 200);
+      EXPECT_NE(body(c.Get("/v1/jobs/" + id))["links"].value("net.json", ""), "");
+    } else {
+      break;  // finished before we saw an intermediate
+    }
+    std::this_thread::sleep_for(2ms);
+  }
+  EXPECT_TRUE(not_ready || intermediate);
+  EXPECT_TRUE(intermediate) << "no intermediate was served while the job ran";
+  const json job = wait_final(s, id);
+  ASSERT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
   EXPECT_EQ(job["options"]["strategy"], "QQ");
-  if (job["status"] == "failed")
-    EXPECT_EQ(job["error"]["code"], "pipeline_unavailable") << job.dump();
-  else
-    EXPECT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
+  auto net = c.Get("/v1/jobs/" + id + "/net.json");
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["result"], job["result"]["kind"]);
+  EXPECT_FALSE(doc.contains("level"));
+  EXPECT_EQ(net->get_header_value("X-Papernet-Level").rfind(job["result"]["kind"], 0), 0u);
+}
+
+// A time limit too short to finish the uncollapse gives the last overlap-free approximation.
+TEST(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
+  Server s({"--workers", "1"});
+  const json job =
+      wait_final(s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?time_limit=0.5"));
+  ASSERT_EQ(job["status"], "approximated") << job.dump();
+  EXPECT_EQ(job["result"]["kind"], "approximate");
+  EXPECT_LT(job["result"]["faces"].get<int>(), 4212);
+  EXPECT_EQ(job["result"]["input_faces"], 4212);
+  auto net = s.client().Get("/v1/jobs/" + job["id"].get<std::string>() + "/net.json");
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["result"], "approximate");
+  EXPECT_GT(doc["metrics"]["hausdorff"].get<double>(), 0);
+  EXPECT_EQ(net->get_header_value("X-Papernet-Level").rfind("approximate", 0), 0u);
 }
 
 TEST(ServeTest, SubmitGlbDracoAndMultipartGltf) {
