@@ -194,6 +194,14 @@ TEST(ServeTest, SubmitPollAndFetchObj) {
   const papernet::NetCheckReport check = papernet::check_net(net_doc.mesh, net_doc.net);
   EXPECT_TRUE(check.ok()) << check.summary();
   EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
+
+  // The same mesh with the same options is answered from the stored result at once.
+  auto again = c.Post("/v1/jobs?strategy=TU&seed=3", test_mesh("sample.obj"), "model/obj");
+  ASSERT_EQ(again->status, 202);
+  EXPECT_EQ(body(again)["status"], "succeeded");
+  EXPECT_EQ(body(again)["result"]["metrics"]["reused_from"], id);
+  EXPECT_EQ(c.Get("/v1/jobs/" + body(again)["id"].get<std::string>() + "/net.json")->body,
+            net->body);
   auto svg = c.Get("/v1/jobs/" + id + "/net.svg");
   ASSERT_EQ(svg->status, 200);
   EXPECT_NE(svg->body.find("<svg"), std::string::npos);
@@ -395,6 +403,23 @@ TEST(ServeTest, QueueFullCancelAndShutdown) {
   std::this_thread::sleep_for(200ms);
   expect_problem(s.client().Post("/v1/jobs", mesh, "model/obj"), 503, "shutting_down");
   expect_problem(s.client().Get("/readyz"), 503, "shutting_down");
+}
+
+// SIGTERM with no grace: the running job is stopped, stays queued, and runs after a restart.
+TEST(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
+  auto server = std::make_unique<Server>(std::vector<std::string>{"--shutdown-grace", "0"});
+  const fs::path data = server->data();
+  const std::string id = submit(*server, test_mesh("sample.obj"), "model/obj", "?strategy=TU");
+  std::this_thread::sleep_for(300ms);
+  EXPECT_EQ(body(server->client().Get("/v1/jobs/" + id))["status"], "running");
+  server->keep_data();
+  const int status = server->stop(SIGTERM);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  server.reset();
+  Server restarted({}, data);
+  const json job = wait_final(restarted, id);
+  EXPECT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
+  EXPECT_NE(restarted.log().find("running -> queued (server stopping)"), std::string::npos);
 }
 
 // kill -9 with jobs queued and running; a restart finishes every one and loses no result.
