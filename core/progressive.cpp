@@ -58,6 +58,9 @@ struct Applied {
   std::size_t iterations = 0;  // 0: no overlaps appeared
 };
 
+// Hausdorff refinement budget per direction for approximate results (a few tenths of a second).
+constexpr std::size_t kHausdorffRefinements = 20000;
+
 // Local moves tried after a split before the Tabu Unfolder runs.
 constexpr int kLocalTrials = 16;
 // Above this face count, several splits share one update() (whose cost grows with the mesh).
@@ -299,7 +302,13 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     result.face_ids.assign(st.unfolding.face_count(), -1);
     for (std::size_t f = 0; f < input_faces; ++f)
       if (st.face[f] >= 0) result.face_ids[st.face[f]] = static_cast<int>(f);
-    result.hausdorff = hausdorff_distance(mesh, result.mesh).distance;
+    if (result.overlap_free) {
+      // A bounded amount of refinement: CAD meshes kept exactly by the quadrics would
+      // otherwise refine their flat sides towards the absolute accuracy for a long time.
+      HausdorffOptions accuracy;
+      accuracy.max_refinements = kHausdorffRefinements;
+      result.hausdorff = hausdorff_distance(mesh, result.mesh, accuracy).distance;
+    }
   }
   relay.context.faces = result.mesh.faces.size();
   ProgressInfo last;
