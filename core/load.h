@@ -18,6 +18,10 @@ std::string format_name(MeshFormat format);
 /// Format from a file name's extension (case-insensitive); Unknown when there is none we read.
 MeshFormat format_from_extension(std::string_view path);
 
+/// Format from the content: glTF/Draco magic, JSON, "ply", "OFF", binary STL (size matches its
+/// triangle count), "solid", OBJ keywords. Unknown when none fits.
+MeshFormat sniff_format(std::string_view bytes);
+
 /// Limits and inputs for loading. Limits are checked before large allocations.
 struct LoadOptions {
   std::size_t max_bytes = std::size_t{256} << 20;  ///< size of the mesh file itself
@@ -37,8 +41,16 @@ struct LoadedMesh {
 };
 
 /// Loads a mesh from bytes in memory. `format` may be Unknown: it is then sniffed from content.
+/// Polygons are fanned into triangles; vertices used by no face are dropped; lines and points
+/// are skipped (and noted); a file with nothing triangular left loads as an empty mesh unless the
+/// only content was a refused kind (glTF line/point primitives, Draco point clouds).
 /// \throw IOException naming the fault (unreadable, unsupported, truncated, over a limit).
 LoadedMesh load_mesh(std::string_view bytes, MeshFormat format, const LoadOptions& options = {});
+
+/// Relative URIs of the external buffers a .gltf names (data URIs left out), as written in the
+/// file, so that a caller can supply them in `LoadOptions::external_files`.
+/// \throw IOException when the text is not glTF JSON.
+std::vector<std::string> gltf_external_uris(std::string_view gltf_json);
 
 /// Loads a mesh file. For .gltf, sibling files named by the glTF are read only when they are
 /// listed in `options.external_files`; the command-line tool fills that map from the folder.
