@@ -60,8 +60,8 @@ struct PrintLayout {
   std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) that got no tab
   std::vector<Label> labels;
   Vec2 size;
-  NetMetrics metrics;  ///< of the net itself, in model units
-  int cut_edges = 0;   ///< interior cut edges (label numbers run 1..cut_edges)
+  NetBoxMetrics metrics;  ///< of the net itself, in model units
+  int cut_edges = 0;      ///< interior cut edges (label numbers run 1..cut_edges)
 };
 
 /// Lays out a net for printing.

@@ -14,7 +14,9 @@ struct Command {
 };
 
 constexpr Command kCommands[] = {
+    {"bench", papernet::cli::bench, "benchmark unfolding strategies over a folder of meshes"},
     {"info", papernet::cli::info, "describe a mesh and every problem found in it"},
+    {"unfold", papernet::cli::unfold, "unfold a mesh into a net (papernet.net/1 JSON)"},
 };
 
 int usage(std::ostream& out, int code) {

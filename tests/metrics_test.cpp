@@ -89,7 +89,7 @@ TEST(Metrics, CoverageAndAspectRatioOfRealNetsMatchIndependentComputation) {
   ASSERT_GE(meshes.size(), 10u);
   for (const auto& [name, mesh] : meshes) {
     const Net net = testing::bfs_net(mesh);
-    const NetMetrics m = net_metrics(mesh, net);
+    const NetBoxMetrics m = net_metrics(mesh, net);
     const std::vector<Vec2> pts = net_points(net);
     const Sweep ref = brute_force(pts);
     double area2d = 0;  // face area from the 2D triangles: unfolding preserves it
