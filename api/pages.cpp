@@ -91,7 +91,12 @@ void turn_quarter(PrintLayout& layout) {
     for (Vec2& p : t.corners) turn(p);
   for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
     for (Segment& s : *list) turn(s.a), turn(s.b);
-  for (Label& l : layout.labels) turn(l.at), l.angle += std::numbers::pi / 2;
+  for (Label& l : layout.labels) {
+    turn(l.at);
+    // Keep labels reading upright: half a turn more where a quarter turn put them upside down.
+    l.angle += std::cos(l.angle + std::numbers::pi / 2) < -1e-9 ? 1.5 * std::numbers::pi
+                                                                : std::numbers::pi / 2;
+  }
   layout.size = {layout.size.y, layout.size.x};
 }
 

@@ -71,6 +71,7 @@ TEST(Pages, TilesCoverTheNetWithOverlapAndUseTheCheaperOrientation) {
     print.size_mm = size;
     PrintLayout layout = layout_net(mesh, testing::bfs_net(mesh), print);
     const Vec2 before = layout.size;
+    const auto labels_before = layout.labels;
     PageOptions o;  // A4, 10 mm margins, 10 mm overlap
     const PageLayout pages = paginate(layout, o);
     const int grid = std::min(tiles(before.x, 190, 10) * tiles(before.y, 277, 10),
@@ -87,6 +88,14 @@ TEST(Pages, TilesCoverTheNetWithOverlapAndUseTheCheaperOrientation) {
                   p.y <= pg.hi.y + 1e-9;
         EXPECT_TRUE(seen);
       }
+    // Labels still read upright (or vertically) and still fit their faces after any turn.
+    ASSERT_EQ(layout.labels.size(), labels_before.size());
+    for (const Label& l : layout.labels) {
+      EXPECT_GE(std::cos(l.angle), -1e-9) << size;
+      const auto& tri = layout.faces[l.side.face];
+      for (Vec2 p : label_box(l))
+        for (int k = 0; k < 3; ++k) EXPECT_GE(cross(tri[(k + 1) % 3] - tri[k], p - tri[k]), -1e-9);
+    }
     for (const Page& a : pages.pages)
       for (const Page& b : pages.pages) {
         if (a.row == b.row && b.col == a.col + 1) {
