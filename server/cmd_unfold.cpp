@@ -165,8 +165,12 @@ int unfold(int argc, char** argv) {
   for (const std::string& output : outputs) {
     if (is_print_output(output)) {
       try {
-        for (const std::string& written : write_output_file(output, doc.mesh, doc.net, print))
+        const WrittenOutput w = write_output_file(output, doc.mesh, doc.net, print);
+        for (const std::string& written : w.files)
           std::cerr << "papernet unfold: wrote " << written << "\n";
+        if (w.pages > 0)
+          std::cerr << "papernet unfold: " << output << ": " << w.pages << " page(s), " << w.tabs
+                    << " glue tabs, " << w.tabs_omitted << " cut edges without a tab (no room)\n";
       } catch (const std::exception& e) {
         std::cerr << "papernet unfold: " << output << ": " << e.what() << "\n";
         return 1;

@@ -140,6 +140,9 @@ TEST(Pdf, HasTheExpectedPageCountAndRenders) {
     const auto at = info.out.find("Pages:");
     ASSERT_NE(at, std::string::npos);
     EXPECT_EQ(std::stoi(info.out.substr(at + 6)), static_cast<int>(pages.pages.size()));
+    EXPECT_NE(info.out.find(std::to_string(layout.omitted_tabs.size()) + " tabs omitted"),
+              std::string::npos)
+        << info.out;
     if (size == 60) {
       EXPECT_EQ(pages.pages.size(), 1u);
     }
@@ -161,7 +164,7 @@ TEST(Output, WritesByExtensionAndOneSvgPerPage) {
   OutputOptions o;
   o.print.size_mm = 300;  // several A4 pages
   const std::string base = temp_path("out");
-  const auto svgs = write_output_file(base + ".svg", mesh, net, o);
+  const auto svgs = write_output_file(base + ".svg", mesh, net, o).files;
   ASSERT_GT(svgs.size(), 1u);
   EXPECT_EQ(svgs[0], base + "-1.svg");
   for (const auto& f : svgs) {
@@ -172,10 +175,13 @@ TEST(Output, WritesByExtensionAndOneSvgPerPage) {
     std::filesystem::remove(f);
   }
   o.print.size_mm = 40;  // one page
-  EXPECT_EQ(write_output_file(base + ".svg", mesh, net, o).size(), 1u);
+  EXPECT_EQ(write_output_file(base + ".svg", mesh, net, o).files.size(), 1u);
   EXPECT_TRUE(std::filesystem::exists(base + ".svg"));
-  EXPECT_EQ(write_output_file(base + ".PDF", mesh, net, o).size(), 1u);
-  EXPECT_EQ(write_output_file(base + ".glb", mesh, net, o).size(), 1u);
+  const WrittenOutput pdf = write_output_file(base + ".PDF", mesh, net, o);
+  EXPECT_EQ(pdf.files.size(), 1u);
+  EXPECT_EQ(pdf.pages, 1);
+  EXPECT_EQ(pdf.tabs + pdf.tabs_omitted, 7u);  // a cube net has 18 - 11 cut edges
+  EXPECT_EQ(write_output_file(base + ".glb", mesh, net, o).files.size(), 1u);
   EXPECT_THROW(write_output_file(base + ".docx", mesh, net, o), std::invalid_argument);
   for (const char* ext : {".svg", ".PDF", ".glb"}) std::filesystem::remove(base + ext);
 }
