@@ -97,6 +97,7 @@ std::string label_text(int number) {
 
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options) {
   if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  if (mesh.faces.empty()) throw InvalidInputException("nothing to print: the mesh has no faces");
   if (net.points.size() != mesh.faces.size() || net.parent.size() != mesh.faces.size())
     throw InvalidInputException("the net has " + std::to_string(net.points.size()) +
                                 " faces but the mesh has " + std::to_string(mesh.faces.size()));

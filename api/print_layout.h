@@ -65,7 +65,8 @@ struct PrintLayout {
 };
 
 /// Lays out a net for printing.
-/// \throw InvalidInputException for invalid options or a net that does not match the mesh.
+/// \throw InvalidInputException for invalid options, an empty mesh, or a net that does not
+///        match the mesh (sizes, non-finite points, vertex indices out of range).
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {});
 
 }  // namespace papernet

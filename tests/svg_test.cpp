@@ -225,6 +225,7 @@ TEST(Layout, ScaleMakesTheLongestModelSideTheTargetSize) {
   EXPECT_THROW(layout_net(m, broken, options), std::invalid_argument);
   broken.points.pop_back();
   EXPECT_THROW(layout_net(m, broken, options), std::invalid_argument);
+  EXPECT_THROW(layout_net(Mesh{}, Net{}, options), std::invalid_argument);
   options.tab_angle_deg = 0;
   EXPECT_THROW(layout_net(m, testing::bfs_net(m), options), std::invalid_argument);
 }
