@@ -142,10 +142,16 @@ TEST(Tabs, NeverOverlapFacesOrTabsAndEveryCutEdgeHasOneTabOrIsCounted) {
       const bool on_a = tab.side.face == e.a.face && tab.side.k == e.a.k;
       const bool on_b = tab.side.face == e.b.face && tab.side.k == e.b.k;
       EXPECT_TRUE(on_a || on_b) << name;
-      // The tab's base is exactly the side it hangs from.
+      // The tab's base lies on the side it hangs from, and covers at least a third of it.
       const auto& tri = layout.faces[tab.side.face];
-      EXPECT_NEAR(norm(tab.corners[1] - tri[tab.side.k]), 0, 1e-9);
-      EXPECT_NEAR(norm(tab.corners[0] - tri[(tab.side.k + 1) % 3]), 0, 1e-9);
+      const Vec2 e0 = tri[tab.side.k], e1 = tri[(tab.side.k + 1) % 3];
+      const double len = norm(e1 - e0);
+      for (Vec2 c : {tab.corners[0], tab.corners[1]}) {
+        EXPECT_NEAR(cross(e1 - e0, c - e0) / len, 0, 1e-9) << name;
+        EXPECT_GE(dot(c - e0, e1 - e0) / len, -1e-9) << name;
+        EXPECT_LE(dot(c - e0, e1 - e0) / len, len + 1e-9) << name;
+      }
+      EXPECT_GE(norm(tab.corners[0] - tab.corners[1]), len / 3) << name;
     }
     for (int e : layout.omitted_tabs) ++tabs_per_edge[e];
     int cut_edges = 0;
