@@ -169,6 +169,30 @@ TEST(Tabs, NeverOverlapFacesOrTabsAndEveryCutEdgeHasOneTabOrIsCounted) {
   }
 }
 
+TEST(Layout, EveryCutSideIsCutOrHingedAlongItsWholeLength) {
+  for (const auto& [name, mesh, net] : all_nets()) {
+    const PrintLayout layout = layout_net(mesh, net, {});
+    std::vector<Segment> lines = layout.cut;
+    lines.insert(lines.end(), layout.mountain.begin(), layout.mountain.end());
+    for (const NetEdge& e : layout.edges) {
+      if (e.kind != EdgeKind::Cut) continue;
+      for (EdgeSide s : {e.a, e.b}) {
+        if (s.face < 0) continue;
+        const Vec2 p0 = layout.faces[s.face][s.k], p1 = layout.faces[s.face][(s.k + 1) % 3];
+        const double len = norm(p1 - p0);
+        auto on_side = [&](Vec2 q) {
+          const double t = dot(q - p0, p1 - p0) / (len * len);
+          return std::abs(cross(p1 - p0, q - p0)) / len < 1e-9 && t > -1e-9 && t < 1 + 1e-9;
+        };
+        double covered = 0;
+        for (const Segment& l : lines)
+          if (on_side(l.a) && on_side(l.b)) covered += norm(l.b - l.a);
+        ASSERT_GE(covered, len - 1e-9) << name << ": a cut side is not cut along all its length";
+      }
+    }
+  }
+}
+
 TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
   for (const auto& [name, mesh, net] : all_nets()) {
     const PrintLayout layout = layout_net(mesh, net, {});
