@@ -24,6 +24,12 @@ void check_declared_faces(std::size_t count, const LoadOptions& options, std::st
                       " faces, more than the limit of " + std::to_string(options.max_faces));
 }
 
+void check_vertices(std::size_t count, const LoadOptions& options, std::string_view what) {
+  if (count > options.max_vertices)
+    throw IOException(std::string(what) + " has " + std::to_string(count) +
+                      " vertices, more than the limit of " + std::to_string(options.max_vertices));
+}
+
 void add_polygon(RawMesh& out, const std::vector<long long>& poly, const LoadOptions& options,
                  std::string_view where) {
   const long long n = static_cast<long long>(out.vertices.size());
@@ -221,7 +227,6 @@ LoadedMesh load_mesh(std::string_view bytes, MeshFormat format, const LoadOption
       throw IOException(
           "unsupported or unrecognised format (expected glb, gltf, drc, obj, off, ply or stl)");
   }
-  if (raw.triangulated) raw.notes.insert(raw.notes.begin(), "polygons were split into triangles");
   return weld(std::move(raw), format);
 }
 

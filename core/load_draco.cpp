@@ -124,6 +124,7 @@ void check_header(std::string_view bytes, const LoadOptions& options) {
   if (points > 3 * faces + 3)
     throw IOException("drc: the header declares " + std::to_string(points) + " points for " +
                       std::to_string(faces) + " faces");
+  check_vertices(points, options, "drc header");
 }
 
 }  // namespace

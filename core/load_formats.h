@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +29,9 @@ void add_polygon(RawMesh& out, const std::vector<long long>& poly, const LoadOpt
 
 /// Throws IOException when `count` declared faces exceed the limit.
 void check_declared_faces(std::size_t count, const LoadOptions& options, std::string_view what);
+
+/// Throws IOException when `count` vertices (declared or read so far) exceed the limit.
+void check_vertices(std::size_t count, const LoadOptions& options, std::string_view what);
 
 RawMesh read_obj(std::string_view bytes, const LoadOptions& options);
 RawMesh read_off(std::string_view bytes, const LoadOptions& options);
@@ -58,6 +62,10 @@ using DracoPrimitives = std::map<std::pair<int, int>, RawMesh>;
 std::string url_decode(const std::string& uri);
 bool is_data_uri(const std::string& uri);
 bool decode_data_uri(const std::string& uri, std::vector<unsigned char>& out);
+
+/// Parses glTF JSON into a DOM, refusing (IOException) more than `max_values` values or nesting
+/// deeper than 64 before the DOM grows past that; a syntax error gives a discarded value.
+nlohmann::json parse_gltf_json(std::string_view json, std::size_t max_values = 2'000'000);
 
 DracoPrimitives predecode_gltf_draco(std::string_view json, std::string_view glb_bin,
                                      const LoadOptions& options);

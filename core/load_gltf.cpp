@@ -176,7 +176,9 @@ std::vector<Vec3> read_positions(const tinygltf::Model& model, int index) {
 }
 
 std::vector<std::uint32_t> read_indices(const tinygltf::Model& model, int index) {
-  const tinygltf::Accessor& a = model.accessors.at(std::size_t(index));
+  if (index < 0 || std::size_t(index) >= model.accessors.size())
+    throw IOException("gltf: indices accessor " + std::to_string(index) + " does not exist");
+  const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
   if (a.type != TINYGLTF_TYPE_SCALAR) throw IOException("gltf: indices are not SCALAR");
   const int type = a.componentType;
   const std::size_t size = type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
@@ -240,6 +242,8 @@ struct Collector {
       if (i >= positions.size())
         throw IOException("gltf: index " + std::to_string(i) + " out of range (" +
                           std::to_string(positions.size()) + " positions)");
+    // Instances copy positions: the limit bounds what a small file can make us allocate.
+    check_vertices(out.vertices.size() + positions.size(), options, "the glTF");
     const int base = static_cast<int>(out.vertices.size());
     for (const Vec3& p : positions) out.vertices.push_back(transform(world, p));
     // A mirroring transform turns counter-clockwise faces clockwise: swap two corners back.
@@ -402,7 +406,7 @@ bool decode_data_uri(const std::string& uri, std::vector<unsigned char>& out) {
 }  // namespace detail
 
 std::vector<std::string> gltf_external_uris(std::string_view gltf_json) {
-  nlohmann::json doc = nlohmann::json::parse(gltf_json, nullptr, false);
+  const nlohmann::json doc = detail::parse_gltf_json(gltf_json);
   if (doc.is_discarded() || !doc.is_object()) throw IOException("gltf: not JSON");
   std::vector<std::string> uris;
   const auto buffers = doc.find("buffers");

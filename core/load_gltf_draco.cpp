@@ -1,6 +1,4 @@
 // The Draco pre-pass of the glTF reader (see predecode_gltf_draco in load_formats.h).
-#include <nlohmann/json.hpp>
-
 #include <cstdint>
 
 #include "core/errors.h"
@@ -61,10 +59,25 @@ std::string buffer_bytes(const Json& buffers, std::size_t index, std::string_vie
 
 }  // namespace
 
+Json parse_gltf_json(std::string_view json, std::size_t max_values) {
+  // Real glTF JSON holds thousands of values (buffers are binary or one base64 string each);
+  // a DOM costs tens of bytes per value, so a flood of tiny values is refused while counting.
+  std::size_t values = 0;
+  auto guard = [&](int depth, Json::parse_event_t event, Json&) {
+    if (depth > 64) throw IOException("gltf: the JSON nests deeper than 64 levels");
+    if (event == Json::parse_event_t::value || event == Json::parse_event_t::object_start ||
+        event == Json::parse_event_t::array_start)
+      if (++values > max_values)
+        throw IOException("gltf: the JSON has more than " + std::to_string(max_values) + " values");
+    return true;
+  };
+  return Json::parse(json, guard, false);
+}
+
 DracoPrimitives predecode_gltf_draco(std::string_view json, std::string_view glb_bin,
                                      const LoadOptions& options) {
   DracoPrimitives out;
-  const Json doc = Json::parse(json, nullptr, false);
+  const Json doc = parse_gltf_json(json);
   if (doc.is_discarded() || !doc.is_object()) return out;  // tinygltf reports the syntax error
   const auto meshes = doc.find("meshes");
   if (meshes == doc.end() || !meshes->is_array()) return out;

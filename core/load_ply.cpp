@@ -134,6 +134,24 @@ class Reader {
   int encoding_;  // 0 ascii, 1 little endian, 2 big endian
 };
 
+/// Triangle strips as PLY writes them: -1 ends a strip; every other triangle is turned so that
+/// all keep the strip's orientation; triangles with a repeated vertex (joins) are skipped.
+void add_strips(RawMesh& out, const std::vector<long long>& strips, const LoadOptions& options) {
+  std::vector<long long> tri(3);
+  std::size_t start = 0;
+  for (std::size_t i = 0; i + 2 < strips.size(); ++i) {
+    if (strips[i] < 0 || strips[i + 1] < 0 || strips[i + 2] < 0) {
+      if (strips[i] < 0) start = i + 1;
+      continue;
+    }
+    const bool odd = (i - start) % 2 == 1;
+    tri = {strips[i], strips[odd ? i + 2 : i + 1], strips[odd ? i + 1 : i + 2]};
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;
+    add_polygon(out, tri, options, "ply tristrips");
+  }
+  out.triangulated = true;
+}
+
 }  // namespace
 
 RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
@@ -211,7 +229,8 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
                         " records but only " + std::to_string(in.remaining()) +
                         " bytes of data are left");
     const bool is_vertex = e.name == "vertex";
-    const bool is_face = e.name == "face";
+    const bool is_strips = e.name == "tristrips";
+    const bool is_face = e.name == "face" || is_strips;
     int ix = -1, iy = -1, iz = -1, ilist = -1;
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
       const Property& p = e.properties[k];
@@ -223,6 +242,7 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
     }
     if (is_vertex && (ix < 0 || iy < 0 || iz < 0))
       throw IOException("ply: the vertex element lacks x, y or z");
+    if (is_vertex) check_vertices(e.count, options, "ply header");
     if (is_vertex) out.vertices.reserve(e.count);
     if (is_face) check_declared_faces(e.count, options, "ply header");
     for (std::uint64_t r = 0; r < e.count; ++r) {
@@ -251,7 +271,9 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
       }
       in.end_record();
       if (is_vertex) out.vertices.push_back(v);
-      if (is_face && ilist >= 0) {
+      if (is_strips && ilist >= 0) {
+        add_strips(out, poly, options);
+      } else if (is_face && ilist >= 0) {
         if (poly.size() < 3) ++short_faces;
         add_polygon(out, poly, options, "ply face " + std::to_string(r));
       }

@@ -71,6 +71,7 @@ RawMesh read_obj(std::string_view bytes, const LoadOptions& options) {
       if (!parse_double(next_token(line), p.x) || !parse_double(next_token(line), p.y) ||
           !parse_double(next_token(line), p.z))
         throw IOException(at_line("obj", number) + ": a vertex needs three numbers");
+      check_vertices(out.vertices.size() + 1, options, "obj");
       out.vertices.push_back(p);
     } else if (keyword == "f") {
       poly.clear();
@@ -115,16 +116,39 @@ RawMesh read_obj(std::string_view bytes, const LoadOptions& options) {
 
 RawMesh read_off(std::string_view bytes, const LoadOptions& options) {
   // Line based: a vertex is the first three numbers of its line and a face "n i1 .. in" followed
-  // by optional colours, which is how COFF/NOFF/CNOFF files carry their extras.
-  std::vector<std::pair<std::string_view, std::size_t>> lines;
-  for_each_line(bytes, [&](std::string_view line, std::size_t number) {
-    const std::size_t hash = line.find('#');
-    if (hash != std::string_view::npos) line = line.substr(0, hash);
-    std::string_view rest = line;
-    if (!next_token(rest).empty()) lines.emplace_back(line, number);
-  });
-  if (lines.empty()) throw IOException("off: the file has no header");
-  std::string_view header = lines[0].first;
+  // by optional colours, which is how COFF/NOFF/CNOFF files carry their extras. Lines are read
+  // lazily: nothing is stored per line.
+  struct Lines {
+    std::string_view rest;
+    std::size_t number = 0;
+    /// The next line with content (comments cut), or false at the end.
+    bool next(std::string_view& line, std::size_t& at) {
+      while (!rest.empty()) {
+        const std::size_t eol = rest.find('\n');
+        line = rest.substr(0, eol);
+        rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
+        ++number;
+        line = line.substr(0, line.find('#'));
+        std::string_view probe = line;
+        if (!next_token(probe).empty()) {
+          at = number;
+          return true;
+        }
+      }
+      return false;
+    }
+  };
+  std::size_t content_lines = 0;
+  {
+    Lines count{bytes};
+    std::string_view line;
+    std::size_t at = 0;
+    while (count.next(line, at)) ++content_lines;
+  }
+  Lines lines{bytes};
+  std::string_view header;
+  std::size_t number = 0;
+  if (!lines.next(header, number)) throw IOException("off: the file has no header");
   std::string_view keyword = next_token(header);
   const std::size_t off = keyword.find("OFF");
   if (off == std::string_view::npos) throw IOException("off: the file does not start with OFF");
@@ -132,32 +156,29 @@ RawMesh read_off(std::string_view bytes, const LoadOptions& options) {
     throw IOException("off: 4D OFF files are not supported");
   std::string counts_text(keyword.substr(off + 3));  // "OFF8 6 12": counts glued to the keyword
   counts_text.append(" ").append(header);
-  std::size_t next = 1;
   std::string_view counts = counts_text;
   std::string_view first = next_token(counts);
   if (first.empty()) {
-    if (lines.size() < 2) throw IOException("off: the vertex and face counts are missing");
-    counts = lines[1].first;
+    if (!lines.next(counts, number))
+      throw IOException("off: the vertex and face counts are missing");
     first = next_token(counts);
-    next = 2;
   }
   long long nv = 0, nf = 0;
   if (!parse_int(first, nv) || !parse_int(next_token(counts), nf) || nv < 0 || nf < 0)
     throw IOException("off: bad vertex and face counts");
   // Each vertex and face needs a line of its own: counts beyond that are lies, refused before
   // anything is allocated for them.
-  if (static_cast<std::size_t>(nv) > lines.size() || static_cast<std::size_t>(nf) > lines.size())
+  if (static_cast<unsigned long long>(nv) + static_cast<unsigned long long>(nf) > content_lines)
     throw IOException("off: the header declares " + std::to_string(nv) + " vertices and " +
                       std::to_string(nf) + " faces but the file has only " +
-                      std::to_string(lines.size()) + " lines");
+                      std::to_string(content_lines) + " lines");
   check_declared_faces(static_cast<std::size_t>(nf), options, "off header");
-  if (next + nv + nf > lines.size())
-    throw IOException("off: the file ends before its " + std::to_string(nv) + " vertices and " +
-                      std::to_string(nf) + " faces");
+  check_vertices(static_cast<std::size_t>(nv), options, "off header");
   RawMesh out;
   out.vertices.reserve(static_cast<std::size_t>(nv));
+  std::string_view line;
   for (long long i = 0; i < nv; ++i) {
-    auto [line, number] = lines[next++];
+    if (!lines.next(line, number)) throw IOException("off: the file ends inside its vertices");
     Vec3 p;
     if (!parse_double(next_token(line), p.x) || !parse_double(next_token(line), p.y) ||
         !parse_double(next_token(line), p.z))
@@ -167,7 +188,7 @@ RawMesh read_off(std::string_view bytes, const LoadOptions& options) {
   std::size_t short_faces = 0;
   std::vector<long long> poly;
   for (long long i = 0; i < nf; ++i) {
-    auto [line, number] = lines[next++];
+    if (!lines.next(line, number)) throw IOException("off: the file ends inside its faces");
     long long n = 0;
     if (!parse_int(next_token(line), n) || n < 0 || n > 1'000'000)
       throw IOException(at_line("off", number) + ": bad face size");
@@ -204,6 +225,7 @@ RawMesh read_stl(std::string_view bytes, const LoadOptions& options) {
                         std::to_string(binary_size) + " bytes) but the file has " +
                         std::to_string(bytes.size()) + " bytes");
     check_declared_faces(count, options, "stl header");
+    check_vertices(3 * std::size_t{count}, options, "stl header");
     if (binary_size < bytes.size())
       out.notes.push_back(std::to_string(bytes.size() - binary_size) +
                           " bytes after the last triangle were ignored");
@@ -235,6 +257,7 @@ RawMesh read_stl(std::string_view bytes, const LoadOptions& options) {
         throw IOException("stl: a vertex needs three numbers");
       if (!in_facet) throw IOException("stl: a vertex outside a facet");
       poly.push_back(static_cast<long long>(out.vertices.size()));
+      check_vertices(out.vertices.size() + 1, options, "stl");
       out.vertices.push_back(v);
     } else if (tok == "endfacet") {
       if (poly.size() < 3) ++short_facets;

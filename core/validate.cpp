@@ -100,10 +100,15 @@ void check_mesh(const Mesh& m, const ValidateOptions& opt, ValidationReport& r) 
   // Edges: which faces use each, and in which direction.
   std::unordered_map<std::uint64_t, EdgeUse> edges;
   edges.reserve(nf * 2);
+  // Faces with a repeated vertex are reported as degenerate and left out of the topology, so
+  // that they do not also show up as non-manifold edges or pinched vertices.
+  auto collapsed = [&](std::size_t f) {
+    const auto& t = m.faces[f];
+    return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+  };
   for (std::size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3 && !collapsed(f); ++k) {
       const int a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
-      if (a == b) continue;
       EdgeUse& e = edges[edge_key(a, b)];
       if (e.count < 2) {
         e.faces[e.count] = int(f);
@@ -115,6 +120,7 @@ void check_mesh(const Mesh& m, const ValidateOptions& opt, ValidationReport& r) 
   std::vector<int> nm_edges, misoriented;
   std::size_t nm_count = 0, mis_count = 0;
   UnionFind boundary(nv), fans(3 * nf), components(nf);
+  std::vector<char> on_nm_edge(nv, 0);
   auto corner = [&](int f, int v) {
     for (int k = 0; k < 3; ++k)
       if (m.faces[f][k] == v) return 3 * f + k;
@@ -126,6 +132,7 @@ void check_mesh(const Mesh& m, const ValidateOptions& opt, ValidationReport& r) 
       ++r.boundary_edges;
       boundary.unite(a, b);
     } else if (e.count > 2) {
+      on_nm_edge[a] = on_nm_edge[b] = 1;
       if (++nm_count <= opt.max_listed) nm_edges.insert(nm_edges.end(), {a, b});
     } else {
       if (e.forward[0] == e.forward[1] && ++mis_count <= opt.max_listed)
@@ -148,11 +155,12 @@ void check_mesh(const Mesh& m, const ValidateOptions& opt, ValidationReport& r) 
             edge_list(nm_edges, nm_count),
         nm_edges);
 
-  // A vertex is manifold when its faces form one fan joined across manifold edges.
+  // A vertex is manifold when its faces form one fan joined across manifold edges. Vertices
+  // on non-manifold edges are already reported with those edges.
   std::vector<int> fan_root(nv, -1);
   std::vector<char> pinched(nv, 0);
   for (std::size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3 && !collapsed(f); ++k) {
       const int v = m.faces[f][k];
       const int root = fans.find(int(3 * f + k));
       if (fan_root[v] < 0)
@@ -163,7 +171,8 @@ void check_mesh(const Mesh& m, const ValidateOptions& opt, ValidationReport& r) 
   std::vector<int> nm_vertices;
   std::size_t nmv_count = 0;
   for (std::size_t v = 0; v < nv; ++v)
-    if (pinched[v] && ++nmv_count <= opt.max_listed) nm_vertices.push_back(int(v));
+    if (pinched[v] && !on_nm_edge[v] && ++nmv_count <= opt.max_listed)
+      nm_vertices.push_back(int(v));
   if (nmv_count)
     add("non_manifold_vertices",
         plural(nmv_count, "vertex joins", "vertices join") +
@@ -195,9 +204,16 @@ void check_mesh(const Mesh& m, const ValidateOptions& opt, ValidationReport& r) 
     }
     return it->second;
   };
-  for (std::size_t f = 0; f < nf; ++f) ++chi[comp_of_face(int(f))];
+  // Faces with a repeated vertex and vertices only they use stay out of V - E + F, as out of E.
+  std::vector<char> in_surface(nv, 0);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const int c = comp_of_face(int(f));
+    if (collapsed(f)) continue;
+    ++chi[c];
+    for (int v : m.faces[f]) in_surface[v] = 1;
+  }
   for (std::size_t v = 0; v < nv; ++v)
-    if (vertex_face[v] >= 0) ++chi[comp_of_face(vertex_face[v])];
+    if (in_surface[v]) ++chi[comp_of_face(vertex_face[v])];
   std::vector<char> loop_seen(nv, 0);
   for (const auto& [key, e] : edges) {
     const int c = comp_of_face(e.faces[0]);
@@ -296,9 +312,11 @@ ValidationReport validate(const LoadedMesh& loaded, const ValidateOptions& optio
                                       std::to_string(loaded.raw_vertices) +
                                       " vertices but no triangles (a point cloud or lines)";
   if (loaded.triangulated)
-    report.problems.insert(
-        report.problems.begin(),
-        {"triangulated", "the file has polygons; they were split into triangles", false, {}});
+    report.problems.insert(report.problems.begin(),
+                           {"triangulated",
+                            "the file has polygons or strips; they were split into triangles",
+                            false,
+                            {}});
   return report;
 }
 

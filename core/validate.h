@@ -49,6 +49,9 @@ struct ValidationReport {
 
 /// Judges a triangle mesh: emptiness, finite coordinates, degenerate faces, manifold edges and
 /// vertices, consistent orientation, connected components; counts genus and boundary loops.
+/// Components are faces joined through shared vertices. Every problem is listed (not only the
+/// first); faces with a repeated vertex are reported as degenerate and left out of the rest.
+/// \pre every face index names an existing vertex (load_mesh guarantees it).
 ValidationReport validate(const Mesh& mesh, const ValidateOptions& options = {});
 
 /// As above, and notes what loading did (polygons triangulated).

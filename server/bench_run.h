@@ -12,6 +12,7 @@ struct ChildResult {
   int signal = 0;          ///< the signal that ended it, 0 if none
   bool timed_out = false;  ///< killed after `timeout_seconds`
   double seconds = 0;      ///< wall-clock time
+  double cpu_seconds = 0;  ///< user + system time of the child
   std::string out;         ///< what it wrote on stdout
   std::string err;         ///< what it wrote on stderr (last 4 KiB)
 };

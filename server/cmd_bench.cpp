@@ -39,7 +39,7 @@ struct Run {
   std::string status, check = "-";
   int faces = 0;
   long long overlaps = -1;
-  double seconds = 0;
+  double seconds = 0, cpu_seconds = 0;
   std::string note;
 };
 
@@ -67,6 +67,7 @@ void execute(Run& run, const std::string& exe, const std::string& file, unsigned
                 limit + 30 + limit * 0.5);
   std::remove(tmp.c_str());
   run.seconds = r.seconds;
+  run.cpu_seconds = r.cpu_seconds;
   if (!summary_value(r.out, "seconds").empty())
     run.seconds = std::stod(summary_value(r.out, "seconds"));
   if (!summary_value(r.out, "faces").empty()) run.faces = std::stoi(summary_value(r.out, "faces"));
@@ -223,11 +224,11 @@ int bench(int argc, char** argv) {
 
   if (!csv.empty()) {
     std::ofstream out(csv);
-    out << "mesh,faces,strategy,seed,status,seconds,overlaps,net_check,note\n";
+    out << "mesh,faces,strategy,seed,status,seconds,cpu_seconds,overlaps,net_check,note\n";
     for (const Run& r : runs)
       out << csv_field(r.mesh) << "," << (r.faces ? r.faces : r.faces_dir) << "," << r.strategy
-          << "," << seed << "," << r.status << "," << r.seconds << "," << r.overlaps << ","
-          << r.check << "," << csv_field(r.note) << "\n";
+          << "," << seed << "," << r.status << "," << r.seconds << "," << r.cpu_seconds << ","
+          << r.overlaps << "," << r.check << "," << csv_field(r.note) << "\n";
     if (!out) {
       std::cerr << "papernet bench: cannot write " << csv << "\n";
       return 1;
@@ -236,22 +237,29 @@ int bench(int argc, char** argv) {
 
   // Per strategy and face count: success rate; seconds of every run (a failed run counts with
   // the time it took, at least the limit), and of the successful ones.
-  std::cout << "strategy  faces  runs  success   median    mean     max   median(ok)\n";
+  std::cout << "seconds: wall-clock of the unfold itself (load to net check); cpu: user+system "
+               "time of the whole child process\n"
+            << "strategy  faces  runs  success   median    mean     max  med(ok)  med-cpu  "
+               "max-cpu\n";
   std::map<std::pair<std::string, int>, std::vector<const Run*>> groups;
   for (const Run& r : runs) groups[{r.strategy, r.faces_dir}].push_back(&r);
   for (const auto& [key, group] : groups) {
-    std::vector<double> all, ok;
+    std::vector<double> all, ok, cpu;
+    double max_cpu = 0;
     for (const Run* r : group) {
       all.push_back(r->seconds);
+      cpu.push_back(r->cpu_seconds);
+      max_cpu = std::max(max_cpu, r->cpu_seconds);
       if (r->status == "ok") ok.push_back(r->seconds);
     }
     double sum = 0, max = 0;
     for (double s : all) sum += s, max = std::max(max, s);
     char line[256];
-    std::snprintf(line, sizeof line, "%-8s %6d %5zu  %6.1f%% %8.3f %8.3f %8.3f %8.3f\n",
+    std::snprintf(line, sizeof line, "%-8s %6d %5zu  %6.1f%% %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n",
                   key.first.c_str(), key.second, group.size(),
                   100.0 * static_cast<double>(ok.size()) / static_cast<double>(group.size()),
-                  median(all), sum / static_cast<double>(all.size()), max, median(ok));
+                  median(all), sum / static_cast<double>(all.size()), max, median(ok), median(cpu),
+                  max_cpu);
     std::cout << line;
   }
   return 0;

@@ -85,7 +85,7 @@ int info(int argc, char** argv) {
   LoadedMesh loaded;
   try {
     loaded = load_mesh_file(path, lopt);
-  } catch (const IOException& e) {
+  } catch (const std::exception& e) {  // IOException; anything else is a bug, still reported
     if (json) std::cout << nlohmann::json{{"file", path}, {"error", e.what()}}.dump(2) << "\n";
     std::cerr << "papernet: " << path << ": " << e.what() << "\n";
     return 1;

@@ -156,6 +156,41 @@ TEST(LoadGltf, AccessorsThatOverrunTheirBufferViewAreRefused) {
   EXPECT_FALSE(error_of(v1.dump()).empty());
 }
 
+TEST(LoadGltf, JsonFloodsAndDeepNestingAreRefusedBeforeParsing) {
+  json g = square_gltf(data_uri());
+  g["extras"] = std::vector<int>(3'000'000, 0);
+  EXPECT_NE(error_of(g.dump()).find("more than 2000000 values"), std::string::npos);
+  std::string deep = square_gltf(data_uri()).dump();
+  deep.pop_back();
+  deep += ",\"extras\":" + std::string(100000, '[') + std::string(100000, ']') + "}";
+  EXPECT_NE(error_of(deep).find("deeper than 64"), std::string::npos) << error_of(deep);
+}
+
+TEST(LoadGltf, DracoPayloadCountsAreCheckedBeforeTinygltfDecodesThem) {
+  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb", std::ios::binary);
+  const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t draco = glb.find("DRACO");
+  ASSERT_NE(draco, std::string::npos);
+  // A sequential stream: 11 header bytes, then the face and point counts as varints (12, 24).
+  ASSERT_EQ(glb[draco + 11], 12);
+  ASSERT_EQ(glb[draco + 12], 24);
+  auto error = [&](std::size_t at, char value, std::size_t max_faces) {
+    std::string patched = glb;
+    patched[draco + at] = value;
+    LoadOptions options;
+    options.max_faces = max_faces;
+    try {
+      load_mesh(patched, MeshFormat::Glb, options);
+    } catch (const IOException& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error(11, 127, 100), "drc header declares 127 faces, more than the limit of 100");
+  EXPECT_EQ(error(12, 127, 100), "drc: the header declares 127 points for 12 faces");
+  EXPECT_EQ(error(11, 12, 11), "drc header declares 12 faces, more than the limit of 11");
+}
+
 TEST(LoadGltf, NoSceneTakesAllMeshes) {
   json g = square_gltf(data_uri());
   g.erase("scene");

@@ -180,6 +180,18 @@ TEST(Load, OffWithCountsGluedToTheKeyword) {
   EXPECT_TRUE(m.triangulated);
 }
 
+TEST(Load, PlyTriangleStripsKeepOneOrientation) {
+  // A unit square as the strip 0 1 3 2, then a restart and a strip with a join (repeated 2).
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement tristrips 1\nproperty list int int vertex_indices\n"
+      "end_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n9 0 1 2 -1 1 3 2 2 2\n";
+  const LoadedMesh m = load_mesh(ply, MeshFormat::Ply);
+  ASSERT_EQ(m.mesh.faces.size(), 2u);
+  EXPECT_TRUE(m.triangulated);
+  for (int f = 0; f < 2; ++f) EXPECT_GT(face_normal(m.mesh, f).z, 0) << f;
+}
+
 TEST(Load, MalformedTextNamesTheFault) {
   EXPECT_THROW(load_mesh("v 1 2\nf 1 2 3\n", MeshFormat::Obj), IOException);
   try {
@@ -208,6 +220,11 @@ TEST(LoadLimits, BytesAndFaces) {
   LoadOptions small;
   small.max_bytes = 100;
   EXPECT_NE(message_of(ascii_stl(), MeshFormat::Stl, small).find("limit"), std::string::npos);
+  LoadOptions few_vertices;
+  few_vertices.max_vertices = 3;
+  for (const auto& bytes : {tetra_obj(), tetra_off(), ascii_ply(), binary_stl(), ascii_stl()})
+    EXPECT_NE(message_of(bytes, MeshFormat::Unknown, few_vertices).find("limit of 3"),
+              std::string::npos);
   LoadOptions few;
   few.max_faces = 3;
   for (const auto& bytes : {tetra_obj(), tetra_off(), ascii_ply(), binary_ply(false), binary_stl()})

@@ -144,8 +144,9 @@ TEST(SharedData, EveryThingiLikeMeshLoadsIsUnfoldableAndMatchesStats) {
 
 /// Loads and validates one file in a child process limited to `limit` bytes of address space
 /// above what it already uses and 30 s, so that a crash, hang or huge allocation fails the test
-/// instead of the test run. Returns "<status>\t<message>".
-std::string judge_in_child(const fs::path& file, std::size_t limit) {
+/// instead of the test run. Returns "<status>\t<message>"; raises `max_rss_kb` to the child's
+/// peak resident set.
+std::string judge_in_child(const fs::path& file, std::size_t limit, long& max_rss_kb) {
   int fds[2];
   if (pipe(fds) != 0) return "pipe failed";
   const pid_t pid = fork();
@@ -181,7 +182,9 @@ std::string judge_in_child(const fs::path& file, std::size_t limit) {
   for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) > 0;) out.append(buf, std::size_t(n));
   close(fds[0]);
   int status = 0;
-  waitpid(pid, &status, 0);
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  max_rss_kb = std::max(max_rss_kb, usage.ru_maxrss);
   if (WIFSIGNALED(status)) return "CRASHED\tsignal " + std::to_string(WTERMSIG(status));
   return out;
 }
@@ -190,9 +193,10 @@ TEST(SharedData, EveryBadFileIsRefusedWithAReasonOrLoadsWithinBounds) {
   const fs::path dir = kMeshes / "bad";
   if (!fs::is_directory(dir)) GTEST_SKIP() << "needs ../shared/data: " << dir << " is absent";
   std::map<std::string, int> tally;
+  long max_rss_kb = 0;
   for (const fs::path& file : mesh_files(dir)) {
     const std::string name = fs::relative(file, dir).string();
-    const std::string result = judge_in_child(file, std::size_t{384} << 20);
+    const std::string result = judge_in_child(file, std::size_t{384} << 20, max_rss_kb);
     const std::string status = result.substr(0, result.find('\t'));
     const std::string message = result.substr(result.find('\t') + 1);
     EXPECT_TRUE(status == "loaded" || status == "invalid" || status == "refused")
@@ -203,6 +207,7 @@ TEST(SharedData, EveryBadFileIsRefusedWithAReasonOrLoadsWithinBounds) {
   }
   EXPECT_GT(tally["invalid"] + tally["refused"], tally["loaded"]);
   for (const auto& [status, n] : tally) std::cout << "bad: " << n << " " << status << "\n";
+  std::cout << "bad: largest resident set of a child: " << max_rss_kb / 1024 << " MB\n";
 }
 
 /// Faces the glTF itself declares for its default scene: per instanced triangle primitive, its

@@ -107,6 +107,17 @@ TEST(Validate, DegenerateFacesAreCountedAndNamed) {
   EXPECT_FALSE(r.unfoldable());
 }
 
+TEST(Validate, FacesWithARepeatedVertexStayOutOfTheTopology) {
+  Mesh m = tetrahedron();
+  m.faces.push_back({0, 0, 3});
+  const ValidationReport r = validate(m);
+  ASSERT_EQ(r.problems.size(), 1u) << r.problems[1].message;
+  EXPECT_EQ(r.problems[0].code, "degenerate_faces");
+  EXPECT_EQ(r.genus, 0);
+  EXPECT_EQ(r.boundary_loops, 0u);
+  EXPECT_EQ(r.edges, 6u);
+}
+
 TEST(Validate, SmallButWellShapedFacesAreNotDegenerate) {
   Mesh m = tetrahedron();
   for (auto& v : m.vertices) v = 1e-6 * v;
