@@ -126,13 +126,15 @@ PageLayout tile(const PrintLayout& layout, double pw, double ph, const PageOptio
 
 PageLayout paginate(PrintLayout& layout, const PageOptions& options) {
   if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
-  // Candidates: portrait page / net as is, portrait / turned, landscape / as is, landscape /
-  // turned. Fewest printed pages wins; ties keep the earlier (portrait first, net as is).
+  // Candidates: portrait pages with the net's long side along the page's long side, portrait
+  // with it across, then the same on landscape pages. Fewest printed pages wins; ties keep the
+  // earlier.
   PrintLayout turned = layout;
   turn_quarter(turned);
+  const bool wide = layout.size.x > layout.size.y;
   PageLayout best;
   for (int c = 0; c < 4; ++c) {
-    const bool landscape = c >= 2, turn = c % 2 == 1;
+    const bool landscape = c >= 2, turn = (c % 2 == 1) != (wide != landscape);
     const double pw = landscape ? options.paper.height : options.paper.width;
     const double ph = landscape ? options.paper.width : options.paper.height;
     PageLayout candidate = tile(turn ? turned : layout, pw, ph, options);

@@ -47,7 +47,8 @@ struct PageLayout {
 };
 
 /// Splits a layout onto pages, choosing orientation (page portrait or landscape, net turned or
-/// not) to use the fewest pages; ties prefer portrait pages. Turns `layout` by a quarter when
+/// not) to use the fewest pages; ties prefer portrait pages, then the net's long side along
+/// the page's long side. Turns `layout` by a quarter when
 /// that is the choice. A layout that fits one page is centred on it. Tiles of the rows x cols
 /// grid that show nothing of the net are left out of `pages`.
 /// \throw InvalidInputException for invalid options (e.g. margins that leave no room).

@@ -123,6 +123,18 @@ TEST(Pages, EmptyTilesAreNotPrinted) {
   EXPECT_NE(pages.pages[0].col, pages.pages[1].col);
 }
 
+TEST(Pages, AWideNetThatFitsEitherWayRunsAlongThePortraitPage) {
+  PrintLayout layout;
+  layout.faces = {{Vec2{0, 0}, Vec2{150, 0}, Vec2{0, 50}}};
+  layout.size = {150, 50};
+  const PageLayout pages = paginate(layout, {});
+  ASSERT_EQ(pages.pages.size(), 1u);
+  EXPECT_LT(pages.width, pages.height);  // portrait
+  EXPECT_TRUE(pages.quarter_turn);
+  EXPECT_DOUBLE_EQ(layout.size.x, 50);
+  EXPECT_DOUBLE_EQ(layout.size.y, 150);
+}
+
 TEST(Pdf, HasTheExpectedPageCountAndRenders) {
   const Mesh mesh = testing::octahedron(-0.4);
   for (double size : {60.0, 400.0}) {
