@@ -212,6 +212,9 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   bool failed = !coarse_ok;
   std::vector<Applied> log;  // splits applied since the checkpoint
   std::size_t logged_splits = 0;
+  Clock::time_point last_checkpoint = Clock::now();
+  const auto checkpoint_period =
+      std::chrono::duration<double>(limit > 0 ? std::max(0.25, limit / 20) : 1.0);
   std::optional<State> checkpoint;
   if (coarse_ok) {
     progress.intermediate(st.unfolding.mesh(), st.unfolding.net());
@@ -253,10 +256,13 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     }
     logged_splits += step.splits.size();
     log.push_back(std::move(step));
-    if (logged_splits >= checkpoint_every) {
+    // Also by time: replaying costs about the time spent since the checkpoint, which must stay
+    // a small part of the time limit.
+    if (logged_splits >= checkpoint_every || Clock::now() - last_checkpoint > checkpoint_period) {
       checkpoint = st;
       log.clear();
       logged_splits = 0;
+      last_checkpoint = Clock::now();
     }
     if (Clock::now() - last_output > std::chrono::milliseconds(100)) {
       last_output = Clock::now();

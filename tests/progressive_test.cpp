@@ -160,15 +160,22 @@ TEST(Progressive, BadInputIsRefused) {
 }
 
 // `papernet unfold` with the progressive strategies, as a user runs it.
-int run_unfold(const std::string& args) {
-  const int status = std::system(
-      (std::string(PAPERNET_BINARY) + " unfold " + args + " >/dev/null 2>/dev/null").c_str());
+// Exit code; `output` receives what it printed (for failure messages).
+int run_unfold(const std::string& args, std::string* output = nullptr) {
+  FILE* p = popen((std::string(PAPERNET_BINARY) + " unfold " + args + " 2>&1").c_str(), "r");
+  std::string text;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) text.append(buf, n);
+  const int status = pclose(p);
+  if (output) *output = text;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 TEST(UnfoldCli, QQIsTheDefaultAndWritesACompleteNet) {
   const std::string out = testing::TempDir() + "papernet_progressive_cli.json";
-  ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/sample.obj -o " + out), 0);
+  std::string said;
+  ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/sample.obj -o " + out, &said), 0)
+      << said;
   std::stringstream text;
   text << std::ifstream(out).rdbuf();
   const auto j = nlohmann::json::parse(text.str());
@@ -178,8 +185,10 @@ TEST(UnfoldCli, QQIsTheDefaultAndWritesACompleteNet) {
   EXPECT_EQ(j["net"]["faces"].size(), 1000u);
   EXPECT_EQ(j["metrics"]["hausdorff"], 0.0);
   ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/mirror.ply --strategy se/mp " +
-                       "--target-faces 100 -o " + out),
-            0);
+                           "--target-faces 100 -o " + out,
+                       &said),
+            0)
+      << said;
   text.str("");
   text << std::ifstream(out).rdbuf();
   EXPECT_EQ(nlohmann::json::parse(text.str())["strategy"], "SEMP");
