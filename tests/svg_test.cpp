@@ -179,9 +179,17 @@ TEST(Tabs, NeverOverlapFacesOrTabsOneTabPerCutEdgeOrCountedOutlineClosed) {
     for (int e : layout.omitted_tabs) ++tabs_per_edge[e];
     int cut_edges = 0;
     for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
-      if (layout.edges[e].cut_index < 0) continue;
+      const NetEdge& edge = layout.edges[e];
+      if (edge.cut_index < 0) continue;
       ++cut_edges;
       EXPECT_EQ(tabs_per_edge[e], 1) << name << " edge " << e;
+      // A cut edge (tabbed or omitted) never has its two sides on each other: those are folds.
+      const auto& fa = layout.faces[edge.a.face];
+      const auto& fb = layout.faces[edge.b.face];
+      const Vec2 a0 = fa[edge.a.k], a1 = fa[(edge.a.k + 1) % 3];
+      const Vec2 b0 = fb[edge.b.k], b1 = fb[(edge.b.k + 1) % 3];
+      EXPECT_GT(std::max(norm(a0 - b1), norm(a1 - b0)), 1e-6 * norm(a1 - a0))
+          << name << ": cut edge " << e << " has coincident sides";
     }
     EXPECT_EQ(cut_edges, layout.cut_edges);
     EXPECT_EQ(layout.tabs.size() + layout.omitted_tabs.size(), std::size_t(cut_edges)) << name;
