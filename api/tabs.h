@@ -36,7 +36,10 @@ struct TabPlacement {
 /// turn on both sides: the whole edge, the whole edge with steeper slants, then bases on part of
 /// the edge (the middle, either end), which fit into wedge-shaped gaps of the net. Edges where
 /// nothing fits are listed as omitted. Faces are the net's triangles in layout coordinates,
-/// counter-clockwise.
+/// counter-clockwise. Edges whose two sides lie on each other in the net are folds
+/// (classify_edges), never cut edges, so they are never omitted; what is omitted are mostly
+/// near-slits, whose two sides lie a fraction of a millimetre apart with faces on both sides.
+/// Heights are not floored: a tab may be far lower than `height` (under 1 mm on dense nets).
 TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
                         const std::vector<NetEdge>& edges, const TabOptions& options = {});
 
