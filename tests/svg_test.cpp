@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -198,6 +199,35 @@ TEST(Tabs, NeverOverlapFacesOrTabsOneTabPerCutEdgeOrCountedOutlineClosed) {
     std::printf("%s: %zu faces, %d cut edges, %zu tabs, %zu omitted\n", name.c_str(),
                 layout.faces.size(), cut_edges, layout.tabs.size(), layout.omitted_tabs.size());
   }
+}
+
+TEST(Tabs, MinimumHeightDropsOnlyLowerTabs) {
+  const auto& nets = all_nets();
+  const auto it = std::find_if(nets.begin(), nets.end(),
+                               [](const NamedNet& n) { return n.name == "sample.obj (TU)"; });
+  ASSERT_NE(it, nets.end());
+  const auto& [name, mesh, net] = *it;
+  PrintOptions options;
+  const PrintLayout any = layout_net(mesh, net, options);
+  options.min_tab_height_mm = 2;
+  const PrintLayout tall = layout_net(mesh, net, options);
+  auto height = [](const Tab& t) {
+    const Vec2 e = t.corners[0] - t.corners[1];
+    return std::abs(cross(e, t.corners[2] - t.corners[1])) / norm(e);
+  };
+  std::size_t low = 0;
+  for (const Tab& t : any.tabs) low += height(t) < 2 - 1e-9;
+  for (const Tab& t : tall.tabs) EXPECT_GE(height(t), 2 - 1e-9) << name;
+  EXPECT_EQ(tall.tabs.size() + tall.omitted_tabs.size(), any.tabs.size() + any.omitted_tabs.size());
+  // This dense net has tabs lower than 2 mm, and the floor leaves some of their edges bare.
+  EXPECT_GT(low, 0u) << name;
+  EXPECT_GT(tall.omitted_tabs.size(), any.omitted_tabs.size()) << name;
+  std::printf("%s: %zu of %zu tabs lower than 2 mm; omitted %zu, with a 2 mm floor %zu\n",
+              name.c_str(), low, any.tabs.size(), any.omitted_tabs.size(),
+              tall.omitted_tabs.size());
+  PrintOptions bad;
+  bad.min_tab_height_mm = -1;
+  EXPECT_NE(bad.validate(), "");
 }
 
 TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
