@@ -6,6 +6,7 @@ namespace papernet::cli {
 /// Returns the process exit code.
 int bench(int argc, char** argv);
 int info(int argc, char** argv);
+int serve(int argc, char** argv);
 int unfold(int argc, char** argv);
 
 }  // namespace papernet::cli
