@@ -17,6 +17,8 @@ std::string PrintOptions::validate() const {
     return "flat fold angle must be between 0 and 180 degrees";
   if (!std::isfinite(tab_height_mm) || tab_height_mm < 0) return "tab height must be >= 0";
   if (!(tab_angle_deg > 0 && tab_angle_deg <= 90)) return "tab angle must be in (0, 90] degrees";
+  if (!std::isfinite(min_tab_height_mm) || min_tab_height_mm < 0)
+    return "minimum tab height must be >= 0";
   if (!positive(max_label_mm)) return "label size must be positive";
   return {};
 }
@@ -132,7 +134,8 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       out.faces[f][k] = out.scale * rotate(net.points[f][k], out.metrics.box.angle);
 
   out.edges = classify_edges(mesh, net, {options.flat_angle_deg});
-  TabOptions tab_options{options.tab_height_mm, options.tab_angle_deg, 1e-6};
+  TabOptions tab_options{options.tab_height_mm, options.tab_angle_deg, options.min_tab_height_mm,
+                         1e-6};
   TabPlacement placed =
       options.tab_height_mm > 0 ? place_tabs(out.faces, out.edges, tab_options) : TabPlacement{};
   out.tabs = std::move(placed.tabs);

@@ -20,6 +20,7 @@ struct PrintOptions {
   bool draw_flat_folds = false;  ///< draw Flat folds (as mountain/valley by their sign)
   double tab_height_mm = 6;
   double tab_angle_deg = 45;
+  double min_tab_height_mm = 0;  ///< lower tabs are not drawn (their edges count as omitted)
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
 

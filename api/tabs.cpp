@@ -134,7 +134,7 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
       for (const Shape& shape : kShapes) {
         if (placed) break;
         for (EdgeSide side : {edge.a, edge.b}) {
-          if (h0 <= 0) continue;
+          if (h0 <= 0 || s * h0 * (shape.to - shape.from) < options.min_height) continue;
           // Along side b the edge runs the other way: mirror the span so both sides mean the
           // same stretch of the edge.
           const bool b = side.face == edge.b.face && side.k == edge.b.k;

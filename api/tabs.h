@@ -21,6 +21,7 @@ struct Tab {
 struct TabOptions {
   double height = 6;      ///< tallest tab, in layout units; never more than half the edge's length
   double angle_deg = 45;  ///< slant of the tab's sides against the edge
+  double min_height = 0;  ///< lowest tab worth printing; edges with no room for it are omitted
   double tolerance = 1e-6;  ///< penetration depth below which polygons only touch
 };
 
@@ -36,7 +37,11 @@ struct TabPlacement {
 /// turn on both sides: the whole edge, the whole edge with steeper slants, then bases on part of
 /// the edge (the middle, either end), which fit into wedge-shaped gaps of the net. Edges where
 /// nothing fits are listed as omitted. Faces are the net's triangles in layout coordinates,
-/// counter-clockwise.
+/// counter-clockwise. Edges whose two sides lie on each other in the net are folds
+/// (classify_edges), never cut edges, so they are never omitted; what is omitted are mostly
+/// near-slits, whose two sides lie a fraction of a millimetre apart with faces on both sides.
+/// Heights are floored only by `min_height`: with the default 0 a tab may be far lower than
+/// `height` (under 1 mm on dense nets).
 TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
                         const std::vector<NetEdge>& edges, const TabOptions& options = {});
 

@@ -61,7 +61,10 @@ std::vector<NetEdge> classify_edges(const Mesh& mesh, const Net& net, const Fold
   for (NetEdge& e : edges) {
     if (e.b.face < 0) continue;  // boundary: cut, no partner, no label
     const int f = e.a.face, g = e.b.face;
-    const bool glued = (net.parent[f] == g || net.parent[g] == f) && coincide(net, e.a, e.b);
+    // A tree link whose sides meet, or two faces that meet along this edge in the net although
+    // no tree link joins them ("glued without a tree link"): the paper is one piece there, so
+    // it is folded, not cut, and needs no tab and no label.
+    const bool glued = coincide(net, e.a, e.b);
     if (!glued) {
       e.cut_index = cuts++;
       continue;

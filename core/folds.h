@@ -9,7 +9,7 @@ namespace papernet {
 
 /// What happens to the paper along one mesh edge of a net.
 enum class EdgeKind {
-  Cut,       ///< not glued in the unfold tree: both sides are cut apart (boundary edges too)
+  Cut,       ///< the two sides lie apart in the net: cut apart (boundary edges too)
   Mountain,  ///< glued, convex seen from the printed (outside) side: folds away from the viewer
   Valley,    ///< glued, concave seen from the printed side: folds towards the viewer
   Flat,      ///< glued, folds less than the flat threshold (may be left undrawn)
@@ -36,7 +36,11 @@ struct FoldOptions {
   double flat_angle_deg = 1.0;
 };
 
-/// Every mesh edge of a net, classified. Interior cut edges are numbered in order of appearance.
+/// Every mesh edge of a net, classified. An edge is glued (a fold) exactly when its two sides
+/// lie on each other in the net (same end points within 1e-6 of its length, faces on opposite
+/// sides): a tree link, or two faces that happen to meet there without a tree link; such an
+/// edge stays joined in the print and needs no tab or label. Every other interior edge is cut;
+/// cut edges are numbered in order of appearance.
 /// \pre mesh is manifold (each edge in at most two faces) and net belongs to it.
 /// \throw TopologyException when an edge has more than two faces.
 std::vector<NetEdge> classify_edges(const Mesh& mesh, const Net& net,

@@ -151,6 +151,46 @@ TEST(Folds, DentedOctahedronHasValleysExactlyAroundTheDent) {
   }
 }
 
+TEST(Folds, SidesThatMeetInTheNetWithoutATreeLinkAreGluedNotCut) {
+  // A fan of six triangles around vertex 0 at height z over a flat hexagon. A BFS tree links
+  // five of the six spokes; the sixth spoke's two sides meet in the net only when the fan is flat
+  // (angle sum 360 degrees), and then the paper stays joined there: a fold without a tree link.
+  for (double z : {0.0, 0.3}) {
+    Mesh m;
+    m.vertices.push_back({0, 0, z});
+    for (int i = 0; i < 6; ++i) {
+      const double t = i * std::numbers::pi / 3;
+      m.vertices.push_back({std::cos(t), std::sin(t), 0});
+    }
+    for (int i = 0; i < 6; ++i) m.faces.push_back({0, i + 1, (i + 1) % 6 + 1});
+    const Net net = testing::bfs_net(m);
+    int linked = 0, unlinked_glued = 0, cuts = 0, boundary = 0;
+    for (const NetEdge& e : classify_edges(m, net)) {
+      if (e.b.face < 0) {
+        ++boundary;
+        EXPECT_EQ(e.cut_index, -1);
+        continue;
+      }
+      const bool link = net.parent[e.a.face] == e.b.face || net.parent[e.b.face] == e.a.face;
+      linked += link;
+      if (e.kind == EdgeKind::Cut) {
+        EXPECT_FALSE(link);
+        EXPECT_EQ(e.cut_index, cuts++);
+        continue;
+      }
+      EXPECT_EQ(e.cut_index, -1);
+      if (!link) ++unlinked_glued;
+      if (z == 0) {
+        EXPECT_EQ(e.kind, EdgeKind::Flat);
+      }
+    }
+    EXPECT_EQ(boundary, 6);
+    EXPECT_EQ(linked, 5);
+    EXPECT_EQ(unlinked_glued, z == 0 ? 1 : 0) << "z = " << z;
+    EXPECT_EQ(cuts, z == 0 ? 0 : 1) << "z = " << z;
+  }
+}
+
 TEST(Folds, CoplanarDiagonalsOfACubeAreFlatAndCubeEdgesRightAngles) {
   const Mesh m = testing::cube();
   const Net net = testing::bfs_net(m);

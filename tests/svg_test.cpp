@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -179,9 +180,17 @@ TEST(Tabs, NeverOverlapFacesOrTabsOneTabPerCutEdgeOrCountedOutlineClosed) {
     for (int e : layout.omitted_tabs) ++tabs_per_edge[e];
     int cut_edges = 0;
     for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
-      if (layout.edges[e].cut_index < 0) continue;
+      const NetEdge& edge = layout.edges[e];
+      if (edge.cut_index < 0) continue;
       ++cut_edges;
       EXPECT_EQ(tabs_per_edge[e], 1) << name << " edge " << e;
+      // A cut edge (tabbed or omitted) never has its two sides on each other: those are folds.
+      const auto& fa = layout.faces[edge.a.face];
+      const auto& fb = layout.faces[edge.b.face];
+      const Vec2 a0 = fa[edge.a.k], a1 = fa[(edge.a.k + 1) % 3];
+      const Vec2 b0 = fb[edge.b.k], b1 = fb[(edge.b.k + 1) % 3];
+      EXPECT_GT(std::max(norm(a0 - b1), norm(a1 - b0)), 1e-6 * norm(a1 - a0))
+          << name << ": cut edge " << e << " has coincident sides";
     }
     EXPECT_EQ(cut_edges, layout.cut_edges);
     EXPECT_EQ(layout.tabs.size() + layout.omitted_tabs.size(), std::size_t(cut_edges)) << name;
@@ -190,6 +199,35 @@ TEST(Tabs, NeverOverlapFacesOrTabsOneTabPerCutEdgeOrCountedOutlineClosed) {
     std::printf("%s: %zu faces, %d cut edges, %zu tabs, %zu omitted\n", name.c_str(),
                 layout.faces.size(), cut_edges, layout.tabs.size(), layout.omitted_tabs.size());
   }
+}
+
+TEST(Tabs, MinimumHeightDropsOnlyLowerTabs) {
+  const auto& nets = all_nets();
+  const auto it = std::find_if(nets.begin(), nets.end(),
+                               [](const NamedNet& n) { return n.name == "sample.obj (TU)"; });
+  ASSERT_NE(it, nets.end());
+  const auto& [name, mesh, net] = *it;
+  PrintOptions options;
+  const PrintLayout any = layout_net(mesh, net, options);
+  options.min_tab_height_mm = 2;
+  const PrintLayout tall = layout_net(mesh, net, options);
+  auto height = [](const Tab& t) {
+    const Vec2 e = t.corners[0] - t.corners[1];
+    return std::abs(cross(e, t.corners[2] - t.corners[1])) / norm(e);
+  };
+  std::size_t low = 0;
+  for (const Tab& t : any.tabs) low += height(t) < 2 - 1e-9;
+  for (const Tab& t : tall.tabs) EXPECT_GE(height(t), 2 - 1e-9) << name;
+  EXPECT_EQ(tall.tabs.size() + tall.omitted_tabs.size(), any.tabs.size() + any.omitted_tabs.size());
+  // This dense net has tabs lower than 2 mm, and the floor leaves some of their edges bare.
+  EXPECT_GT(low, 0u) << name;
+  EXPECT_GT(tall.omitted_tabs.size(), any.omitted_tabs.size()) << name;
+  std::printf("%s: %zu of %zu tabs lower than 2 mm; omitted %zu, with a 2 mm floor %zu\n",
+              name.c_str(), low, any.tabs.size(), any.omitted_tabs.size(),
+              tall.omitted_tabs.size());
+  PrintOptions bad;
+  bad.min_tab_height_mm = -1;
+  EXPECT_NE(bad.validate(), "");
 }
 
 TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
