@@ -112,16 +112,15 @@ class Unfolding {
   /// largest part that did not change, re-lays out every other face and tests exactly those
   /// for overlaps. Returns the overlap count.
   /// \throw TopologyException naming the fault when the edits left a non-manifold mesh, a face
-  ///        outside the tree or a link between faces that share no edge.
+  ///        outside the tree or a link between faces that share no edge; the state is then
+  ///        unusable (keep a copy of the last good one: Unfolding is copyable).
   std::size_t update();
 
  private:
   // unfolding.cpp: construction, editing, update.
-  void link_edges(int f);
   void set_adjacency(int f);
   int edge_to(int f, int other) const;
   void reroot(int r);
-  void insert_face_index(int f);
   void add_pair(int a, int b);
   void remove_pair(int a, int b);
   void test_moved(const std::vector<int>& moved);
