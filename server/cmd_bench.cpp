@@ -40,6 +40,7 @@ struct Run {
   int faces = 0;
   long long overlaps = -1;
   double seconds = 0, cpu_seconds = 0;
+  double hausdorff = 0;  // of an approximate result (status "approx")
   std::string note;
 };
 
@@ -81,7 +82,9 @@ void execute(Run& run, const std::string& exe, const std::string& file, unsigned
     run.status = "crash";
     run.note = "signal " + std::to_string(r.signal);
   } else if (r.exit_code == 0) {
-    run.status = "ok";
+    run.status = summary_value(r.out, "result") == "approximate" ? "approx" : "ok";
+    if (!summary_value(r.out, "hausdorff").empty())
+      run.hausdorff = std::stod(summary_value(r.out, "hausdorff"));
   } else if (r.exit_code == 2) {
     run.status = "invalid";
   } else if (r.exit_code == 3) {
@@ -224,11 +227,12 @@ int bench(int argc, char** argv) {
 
   if (!csv.empty()) {
     std::ofstream out(csv);
-    out << "mesh,faces,strategy,seed,status,seconds,cpu_seconds,overlaps,net_check,note\n";
+    out << "mesh,faces,strategy,seed,status,seconds,cpu_seconds,overlaps,net_check,note,"
+           "hausdorff\n";
     for (const Run& r : runs)
       out << csv_field(r.mesh) << "," << (r.faces ? r.faces : r.faces_dir) << "," << r.strategy
           << "," << seed << "," << r.status << "," << r.seconds << "," << r.cpu_seconds << ","
-          << r.overlaps << "," << r.check << "," << csv_field(r.note) << "\n";
+          << r.overlaps << "," << r.check << "," << csv_field(r.note) << "," << r.hausdorff << "\n";
     if (!out) {
       std::cerr << "papernet bench: cannot write " << csv << "\n";
       return 1;
@@ -260,6 +264,27 @@ int bench(int argc, char** argv) {
                   100.0 * static_cast<double>(ok.size()) / static_cast<double>(group.size()),
                   median(all), sum / static_cast<double>(all.size()), max, median(ok), median(cpu),
                   max_cpu);
+    std::cout << line;
+  }
+  // Progressive strategies: approximate results (a net of a coarser mesh) next to complete ones.
+  std::cout << "\nstrategy  faces  complete  incl.approx   p95(s)  mean-hausdorff(approx)\n";
+  for (const auto& [key, group] : groups) {
+    std::vector<double> all;
+    std::size_t complete = 0, approx = 0;
+    double hausdorff = 0;
+    for (const Run* r : group) {
+      all.push_back(r->seconds);
+      complete += r->status == "ok";
+      if (r->status == "approx") ++approx, hausdorff += r->hausdorff;
+    }
+    std::sort(all.begin(), all.end());
+    const double n = static_cast<double>(group.size());
+    const double p95 = all[std::min(all.size() - 1, static_cast<std::size_t>(0.95 * n))];
+    char line[256];
+    std::snprintf(line, sizeof line, "%-8s %6d  %7.1f%%  %10.1f%% %8.3f  %s\n", key.first.c_str(),
+                  key.second, 100.0 * static_cast<double>(complete) / n,
+                  100.0 * static_cast<double>(complete + approx) / n, p95,
+                  approx ? std::to_string(hausdorff / static_cast<double>(approx)).c_str() : "-");
     std::cout << line;
   }
   return 0;
