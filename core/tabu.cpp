@@ -40,6 +40,9 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
   const std::size_t tabu_length =
       val > 1.01 && nf > 1 ? static_cast<std::size_t>(std::ceil(val * std::log(nf) / std::log(val)))
                            : 1;
+  // A dual graph that is itself a tree (open, heavily decimated meshes: every interior edge is a
+  // bridge) has a single spanning tree: no move exists, so overlaps cannot be resolved.
+  const bool no_moves = twice_edges / 2 + 1 == static_cast<std::size_t>(nf);
   std::deque<std::pair<int, int>> tabu;
   const auto is_tabu = [&tabu](int a, int b) {
     return std::find(tabu.begin(), tabu.end(), dual_edge(a, b)) != tabu.end();
@@ -71,7 +74,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
     }
     if (pair_count_ < fewest) fewest = pair_count_, fewest_at = st.iterations;
     if (options.stall_iterations && st.iterations - fewest_at >= options.stall_iterations) break;
-    if (options.max_iterations && st.iterations >= options.max_iterations) break;
+    if (no_moves || (options.max_iterations && st.iterations >= options.max_iterations)) break;
     const Clock::time_point now = Clock::now();
     if (options.time_limit_seconds > 0 &&
         std::chrono::duration<double>(now - start).count() >= options.time_limit_seconds)
@@ -147,7 +150,7 @@ UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress&
     result.stats.iterations += st.iterations;
     result.stats.evaluations += st.evaluations;
     if (!best || unfolding.overlap_count() < best->overlap_count()) best = std::move(unfolding);
-    if (ok) break;
+    if (ok || st.iterations == 0) break;  // 0: no move exists, or the budget is spent
     if (options.max_iterations) {
       iterations_left -= std::min(iterations_left, st.iterations);
       if (iterations_left == 0) break;
