@@ -14,8 +14,8 @@ bool separates(Vec2 p, Vec2 q, const Triangle2& t, double tolerance) {
   return m * m <= tolerance * tolerance * dot(e, e);
 }
 
-// Largest number of cells a face may cover before it goes to the list of big faces.
-constexpr int kMaxCells = 64;
+// Largest number of cells a face may cover in its level.
+constexpr double kMaxCells = 16;
 
 }  // namespace
 
@@ -32,60 +32,71 @@ bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance)
 }
 
 void OverlapGrid::reset(double cell_size) {
-  inv_cell_ = 1.0 / cell_size;
-  buckets_.assign(1024, {});
-  mask_ = buckets_.size() - 1;
-  count_ = 0;
+  double inv = 1.0 / cell_size;
+  for (Level& l : levels_) {
+    l.inv_cell = inv;
+    l.buckets.clear();
+    l.mask = 0;
+    l.members.clear();
+    inv *= 0.25;
+  }
   range_.clear();
-  big_.clear();
 }
 
 void OverlapGrid::place(int f) {
   const Range& r = range_[f];
+  Level& l = levels_[r.level];
   for (int x = r.x0; x <= r.x1; ++x)
-    for (int y = r.y0; y <= r.y1; ++y) buckets_[bucket(x, y)].push_back(f);
+    for (int y = r.y0; y <= r.y1; ++y) l.buckets[bucket(l, x, y)].push_back(f);
 }
 
-void OverlapGrid::grow() {
-  buckets_.assign(2 * buckets_.size(), {});
-  mask_ = buckets_.size() - 1;
-  for (std::size_t f = 0; f < range_.size(); ++f)
-    if (range_[f].valid && !range_[f].big) place(static_cast<int>(f));
+void OverlapGrid::grow(Level& l) {
+  l.buckets.assign(std::max<std::size_t>(64, 2 * l.buckets.size()), {});
+  l.mask = l.buckets.size() - 1;
+  for (int f : l.members) place(f);
 }
 
 void OverlapGrid::insert(int f, const Box2& box) {
   if (f >= static_cast<int>(range_.size())) range_.resize(f + 1);
   Range& r = range_[f];
-  r = {cell(box.lo.x), cell(box.lo.y), cell(box.hi.x), cell(box.hi.y), true, false};
-  ++count_;
-  const long long cells =
-      static_cast<long long>(r.x1 - r.x0 + 1) * static_cast<long long>(r.y1 - r.y0 + 1);
-  if (cells > kMaxCells || r.x1 < r.x0 || r.y1 < r.y0) {
-    r.big = true;
-    big_.push_back(f);
-    return;
+  r.valid = true;
+  r.level = kLevels;
+  for (int i = 0; i < kLevels; ++i) {
+    const Level& l = levels_[i];
+    const int x0 = cell(l, box.lo.x), x1 = cell(l, box.hi.x), y0 = cell(l, box.lo.y),
+              y1 = cell(l, box.hi.y);
+    if (x1 < x0 || y1 < y0) break;  // not a number
+    const double cells = (static_cast<double>(x1) - x0 + 1) * (static_cast<double>(y1) - y0 + 1);
+    if (cells <= kMaxCells) {
+      r.x0 = x0, r.x1 = x1, r.y0 = y0, r.y1 = y1, r.level = i;
+      break;
+    }
   }
-  if (4 * count_ > buckets_.size())
-    grow();  // grow() places f too
+  Level& l = levels_[r.level];
+  r.slot = static_cast<int>(l.members.size());
+  l.members.push_back(f);
+  if (r.level == kLevels) return;
+  if (4 * l.members.size() > l.buckets.size())
+    grow(l);  // grow() places f too
   else
     place(f);
 }
 
 void OverlapGrid::remove(int f) {
   Range& r = range_[f];
-  const auto erase = [f](std::vector<int>& v) {
-    const auto it = std::find(v.begin(), v.end(), f);
-    *it = v.back();
-    v.pop_back();
-  };
-  if (r.big) {
-    erase(big_);
-  } else {
+  Level& l = levels_[r.level];
+  range_[l.members.back()].slot = r.slot;
+  l.members[r.slot] = l.members.back();
+  l.members.pop_back();
+  if (r.level < kLevels)
     for (int x = r.x0; x <= r.x1; ++x)
-      for (int y = r.y0; y <= r.y1; ++y) erase(buckets_[bucket(x, y)]);
-  }
+      for (int y = r.y0; y <= r.y1; ++y) {
+        std::vector<int>& v = l.buckets[bucket(l, x, y)];
+        const auto it = std::find(v.begin(), v.end(), f);
+        *it = v.back();
+        v.pop_back();
+      }
   r.valid = false;
-  --count_;
 }
 
 }  // namespace papernet

@@ -31,13 +31,16 @@ inline Box2 triangle_box(const Triangle2& t) {
 /// exact for convex polygons in the plane.
 bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance);
 
-/// Uniform hash grid over face boxes, updated incrementally: the spatial index of a net.
-/// Cells hash into a power-of-two table of buckets without keys (cells that collide share a
-/// bucket, which only adds candidates), so a query is a few array lookups. Faces much larger
-/// than a cell are kept in a short list that every query returns.
+/// Hierarchical hash grid over face boxes, updated incrementally: the spatial index of a net.
+/// Level L has cells `cell_size * 4^L` wide; a face goes to the finest level where its box
+/// covers at most a few cells, so faces of very different sizes (CAD meshes with edges from 1 to
+/// 10,000 units) all cost a few cells. In each level cells hash into a power-of-two table of
+/// buckets without keys (cells that collide share a bucket, which only adds candidates), so a
+/// query is a few array lookups per non-empty level; a level where the query box covers more
+/// cells than the level has faces is scanned as a list instead.
 class OverlapGrid {
  public:
-  /// Empties the grid and sets its cell size (> 0), typically about an average edge length.
+  /// Empties the grid and sets its finest cell size (> 0), typically about an edge length.
   void reset(double cell_size);
   /// Inserts face f (not in the grid) with box `box`.
   void insert(int f, const Box2& box);
@@ -52,31 +55,50 @@ class OverlapGrid {
  private:
   struct Range {
     int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-    bool valid = false, big = false;
+    int level = 0, slot = 0;  // level (kLevels: the list of unbounded faces), place in members
+    bool valid = false;
   };
-  std::size_t bucket(int x, int y) const {
+  struct Level {
+    double inv_cell = 1;
+    std::size_t mask = 0;
+    std::vector<std::vector<int>> buckets;
+    std::vector<int> members;
+  };
+  static constexpr int kLevels = 24;
+  static std::size_t bucket(const Level& l, int x, int y) {
     const std::uint64_t h = static_cast<std::uint32_t>(x) * 0x9e3779b1u ^
                             static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0x85ebca6bu;
-    return static_cast<std::size_t>((h ^ (h >> 15)) & mask_);
+    return static_cast<std::size_t>((h ^ (h >> 15)) & l.mask);
   }
-  int cell(double v) const { return static_cast<int>(std::floor(v * inv_cell_)); }
+  static int cell(const Level& l, double v) {
+    const double c = std::floor(v * l.inv_cell);
+    return c < -1e9 ? -1000000000 : c > 1e9 ? 1000000000 : static_cast<int>(c);
+  }
   void place(int f);
-  void grow();
+  void grow(Level& l);
 
-  double inv_cell_ = 1;
-  std::size_t mask_ = 0, count_ = 0;
-  std::vector<std::vector<int>> buckets_;
+  std::array<Level, kLevels + 1> levels_;
   std::vector<Range> range_;
-  std::vector<int> big_;
 };
 
 template <class Visit>
 void OverlapGrid::query(const Box2& box, Visit&& visit) const {
-  for (int f : big_) visit(f);
-  const int x0 = cell(box.lo.x), x1 = cell(box.hi.x), y0 = cell(box.lo.y), y1 = cell(box.hi.y);
-  for (int x = x0; x <= x1; ++x)
-    for (int y = y0; y <= y1; ++y)
-      for (int f : buckets_[bucket(x, y)]) visit(f);
+  for (int i = 0; i <= kLevels; ++i) {
+    const Level& l = levels_[i];
+    if (l.members.empty()) continue;
+    if (i < kLevels) {
+      const int x0 = cell(l, box.lo.x), x1 = cell(l, box.hi.x), y0 = cell(l, box.lo.y),
+                y1 = cell(l, box.hi.y);
+      const double cells = (static_cast<double>(x1) - x0 + 1) * (static_cast<double>(y1) - y0 + 1);
+      if (cells <= static_cast<double>(l.members.size()) && x1 >= x0 && y1 >= y0) {
+        for (int x = x0; x <= x1; ++x)
+          for (int y = y0; y <= y1; ++y)
+            for (int f : l.buckets[bucket(l, x, y)]) visit(f);
+        continue;
+      }
+    }
+    for (int f : l.members) visit(f);
+  }
 }
 
 }  // namespace papernet

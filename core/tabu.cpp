@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <deque>
+#include <optional>
 #include <utility>
 
 #include "core/errors.h"
@@ -39,6 +40,9 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
   const std::size_t tabu_length =
       val > 1.01 && nf > 1 ? static_cast<std::size_t>(std::ceil(val * std::log(nf) / std::log(val)))
                            : 1;
+  // A dual graph that is itself a tree (open, heavily decimated meshes: every interior edge is a
+  // bridge) has a single spanning tree: no move exists, so overlaps cannot be resolved.
+  const bool no_moves = twice_edges / 2 + 1 == static_cast<std::size_t>(nf);
   std::deque<std::pair<int, int>> tabu;
   const auto is_tabu = [&tabu](int a, int b) {
     return std::find(tabu.begin(), tabu.end(), dual_edge(a, b)) != tabu.end();
@@ -59,6 +63,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
   Clock::time_point last_report = Clock::now();
 
   bool moved = false;
+  std::size_t fewest = pair_count_, fewest_at = 0;
   for (;;) {
     if (pair_count_ == 0) {
       // Moves are rigid motions, which round; lay the net out exactly from its tree again.
@@ -67,7 +72,9 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
       moved = false;
       continue;
     }
-    if (options.max_iterations && st.iterations >= options.max_iterations) break;
+    if (pair_count_ < fewest) fewest = pair_count_, fewest_at = st.iterations;
+    if (options.stall_iterations && st.iterations - fewest_at >= options.stall_iterations) break;
+    if (no_moves || (options.max_iterations && st.iterations >= options.max_iterations)) break;
     const Clock::time_point now = Clock::now();
     if (options.time_limit_seconds > 0 &&
         std::chrono::duration<double>(now - start).count() >= options.time_limit_seconds)
@@ -85,6 +92,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
     bool blocked = false, improved = false;
     for (int g = f; parent_[g] != -1 && !improved; g = parent_[g]) {
       cut(g);
+      long long crossing = -1;  // computed once per cut, when a move is evaluated
       for (int k = 0; k < 3 && !improved; ++k) {
         const int q = adj_[g][k];
         if (q < 0 || (links_[g] >> k & 1) || in_subtree(q)) continue;
@@ -92,7 +100,8 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
           blocked = true;
           continue;
         }
-        const long long delta = evaluate_move(g, k, best_delta);
+        if (crossing < 0) crossing = crossing_pairs();
+        const long long delta = evaluate_move(g, k, crossing, best_delta);
         ++st.evaluations;
         if (delta < best_delta) best_delta = delta, best_g = g, best_k = k;
         if (delta < 0) improved = true;
@@ -119,15 +128,39 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
 
 UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress) {
   const Clock::time_point start = Clock::now();
-  Unfolding unfolding = Unfolding::steepest_edge(mesh, options.seed);
   UnfoldResult result;
-  TabuOptions rest = options;
-  if (options.time_limit_seconds > 0)
-    rest.time_limit_seconds = std::max(1e-3, options.time_limit_seconds - seconds_since(start));
-  result.overlap_free = unfolding.resolve_overlaps(rest, progress, &result.stats);
-  result.overlaps = unfolding.overlap_count();
+  std::optional<Unfolding> best;
+  std::size_t iterations_left = options.max_iterations;
+  for (std::uint64_t attempt = 0;; ++attempt) {
+    // Attempt 0 is the plain run from options.seed; later ones start from other directions.
+    const std::uint64_t seed =
+        attempt == 0 ? options.seed : options.seed ^ (attempt * 0x9e3779b97f4a7c15ull);
+    Unfolding unfolding = Unfolding::steepest_edge(mesh, seed);
+    TabuOptions rest = options;
+    rest.seed = seed;
+    rest.max_iterations = iterations_left;
+    // Allowed stall: generous on the first attempt, growing each restart.
+    const std::size_t nf = unfolding.face_count();
+    rest.stall_iterations = std::max<std::size_t>(20'000, 20 * nf)
+                            << std::min<std::uint64_t>(attempt, 20);
+    if (options.time_limit_seconds > 0)
+      rest.time_limit_seconds = std::max(1e-3, options.time_limit_seconds - seconds_since(start));
+    TabuStats st;
+    const bool ok = unfolding.resolve_overlaps(rest, progress, &st);
+    result.stats.iterations += st.iterations;
+    result.stats.evaluations += st.evaluations;
+    if (!best || unfolding.overlap_count() < best->overlap_count()) best = std::move(unfolding);
+    if (ok || st.iterations == 0) break;  // 0: no move exists, or the budget is spent
+    if (options.max_iterations) {
+      iterations_left -= std::min(iterations_left, st.iterations);
+      if (iterations_left == 0) break;
+    }
+    if (options.time_limit_seconds > 0 && seconds_since(start) >= options.time_limit_seconds) break;
+  }
+  result.overlap_free = best->overlap_count() == 0;
+  result.overlaps = best->overlap_count();
   result.stats.seconds = seconds_since(start);
-  result.net = unfolding.net();
+  result.net = best->net();
   return result;
 }
 

@@ -32,6 +32,9 @@ struct TabuOptions {
   double time_limit_seconds = 60;           ///< wall-clock budget (<= 0: no limit)
   std::string phase = "unfold";             ///< ProgressInfo::phase of the reports
   std::size_t input_faces = 0;              ///< ProgressInfo::input_faces (0: current faces)
+  /// resolve_overlaps stops (returns false) when the fewest overlaps seen have not dropped for
+  /// this many iterations (0: never); unfold_tabu then restarts from another start.
+  std::size_t stall_iterations = 0;
 };
 
 /// What one Tabu Unfolder run did.
@@ -112,16 +115,15 @@ class Unfolding {
   /// largest part that did not change, re-lays out every other face and tests exactly those
   /// for overlaps. Returns the overlap count.
   /// \throw TopologyException naming the fault when the edits left a non-manifold mesh, a face
-  ///        outside the tree or a link between faces that share no edge.
+  ///        outside the tree or a link between faces that share no edge; the state is then
+  ///        unusable (keep a copy of the last good one: Unfolding is copyable).
   std::size_t update();
 
  private:
   // unfolding.cpp: construction, editing, update.
-  void link_edges(int f);
   void set_adjacency(int f);
   int edge_to(int f, int other) const;
   void reroot(int r);
-  void insert_face_index(int f);
   void add_pair(int a, int b);
   void remove_pair(int a, int b);
   void test_moved(const std::vector<int>& moved);
@@ -134,7 +136,8 @@ class Unfolding {
   }
   bool in_small(int x) const { return in_subtree(x) == small_is_subtree_; }
   int move_anchor(int g, int k, Triangle2& anchor_pos, Rigid& motion) const;
-  long long evaluate_move(int g, int k, long long cutoff);
+  long long crossing_pairs() const;  // overlapping pairs between the two sides of the cut
+  long long evaluate_move(int g, int k, long long crossing, long long cutoff);
   void apply_move(int g, int k);
   void relayout_all();
   std::uint32_t next_seen_epoch();
@@ -178,7 +181,11 @@ struct UnfoldResult {
 };
 
 /// Plain Tabu Unfolding (strategy `TU`): steepest-edge start from `options.seed`, then
-/// resolve_overlaps. The net is of `mesh` itself.
+/// resolve_overlaps. When the overlap count stalls (no new minimum for a number of iterations
+/// that grows with the mesh and with each restart) the walk restarts from the steepest-edge tree
+/// of another direction derived from the seed, within the same budget; the result is the state
+/// with the fewest overlaps seen at the end of an attempt. Deterministic for a seed (up to the
+/// time limit). The net is of `mesh` itself.
 /// \throw InvalidInputException when the mesh cannot be unfolded as one piece.
 UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress);
 

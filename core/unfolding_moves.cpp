@@ -65,12 +65,29 @@ int Unfolding::move_anchor(int g, int k, Triangle2& anchor_pos, Rigid& motion) c
   return a;
 }
 
-long long Unfolding::evaluate_move(int g, int k, long long cutoff) {
-  long long delta = 0;
-  for (int a : overlapping_)
-    if (in_small(a))
-      for (int b : overlaps_[a])
-        if (!in_small(b)) --delta;
+long long Unfolding::crossing_pairs() const {
+  long long count = 0;
+  const auto from = [&](int a) {
+    for (int b : overlaps_[a])
+      if (!in_small(b)) ++count;
+  };
+  const int nf = static_cast<int>(face_count());
+  const std::size_t small = small_is_subtree_ ? static_cast<std::size_t>(cut_hi_ - cut_lo_)
+                                              : face_count() - (cut_hi_ - cut_lo_);
+  if (small >= overlapping_.size()) {
+    for (int a : overlapping_)
+      if (in_small(a)) from(a);
+  } else if (small_is_subtree_) {
+    for (int i = cut_lo_; i < cut_hi_; ++i) from(order_[i]);
+  } else {
+    for (int i = 0; i < cut_lo_; ++i) from(order_[i]);
+    for (int i = cut_hi_; i < nf; ++i) from(order_[i]);
+  }
+  return count;
+}
+
+long long Unfolding::evaluate_move(int g, int k, long long crossing, long long cutoff) {
+  long long delta = -crossing;
   Triangle2 anchor_pos;
   Rigid motion;
   const int anchor = move_anchor(g, k, anchor_pos, motion);
@@ -104,10 +121,21 @@ void Unfolding::apply_move(int g, int k) {
   const int p = parent_[g];
   const int nf = static_cast<int>(face_count());
   crossing_.clear();
-  for (int a : overlapping_)
-    if (in_small(a))
-      for (int b : overlaps_[a])
-        if (!in_small(b)) crossing_.push_back({a, b});
+  const auto from = [&](int a) {
+    for (int b : overlaps_[a])
+      if (!in_small(b)) crossing_.push_back({a, b});
+  };
+  const std::size_t small = small_is_subtree_ ? static_cast<std::size_t>(cut_hi_ - cut_lo_)
+                                              : face_count() - (cut_hi_ - cut_lo_);
+  if (small >= overlapping_.size()) {
+    for (int a : overlapping_)
+      if (in_small(a)) from(a);
+  } else if (small_is_subtree_) {
+    for (int i = cut_lo_; i < cut_hi_; ++i) from(order_[i]);
+  } else {
+    for (int i = 0; i < cut_lo_; ++i) from(order_[i]);
+    for (int i = cut_hi_; i < nf; ++i) from(order_[i]);
+  }
   for (const auto& [a, b] : crossing_) remove_pair(a, b);
 
   Triangle2 anchor_pos;

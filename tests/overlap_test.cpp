@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace papernet {
@@ -72,6 +74,40 @@ TEST(OverlapGrid, FindsInsertedFacesAndForgetsRemovedOnes) {
   EXPECT_TRUE(grid.contains(1));
   EXPECT_EQ(found({{0.5, 0.5}, {0.6, 0.6}}), std::vector<int>{});
   EXPECT_EQ(found({{-1, -1}, {10, 10}}), std::vector<int>{1});
+}
+
+// Faces from 0.01 to 10,000 units wide land in different levels of the grid; a query must still
+// return every face whose box meets the query box (checked against all pairs).
+TEST(OverlapGrid, FindsEveryMeetingBoxAcrossSizes) {
+  OverlapGrid grid;
+  grid.reset(1.0);
+  std::vector<Box2> boxes;
+  std::uint64_t s = 12345;
+  const auto next = [&s] {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(s >> 11) / 9007199254740992.0;
+  };
+  for (int f = 0; f < 400; ++f) {
+    const double size = std::pow(10.0, -2 + 6 * next());
+    const Vec2 lo{-500 + 1000 * next(), -500 + 1000 * next()};
+    boxes.push_back({lo, {lo.x + size, lo.y + size * next()}});
+    grid.insert(f, boxes.back());
+  }
+  for (int f = 0; f < 400; f += 3) grid.remove(f);
+  const auto meets = [](const Box2& a, const Box2& b) {
+    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y;
+  };
+  for (int f = 0; f < 400; ++f) {
+    std::vector<char> seen(400, 0);
+    grid.query(boxes[f], [&](int c) { seen[c] = 1; });
+    for (int c = 0; c < 400; ++c) {
+      if (c % 3 == 0) {
+        EXPECT_FALSE(seen[c]) << "removed face " << c << " returned";
+      } else if (meets(boxes[f], boxes[c])) {
+        EXPECT_TRUE(seen[c]) << "face " << c << " missed by the query of " << f;
+      }
+    }
+  }
 }
 
 }  // namespace
