@@ -9,8 +9,8 @@ runtime=(libopenmesh1 libdraco7 libsqlite3-0 libcairo2 ca-certificates)
 build=(build-essential cmake pkg-config git clang-format
   libopenmesh-dev libdraco-dev libtinygltf-dev nlohmann-json3-dev libcpp-httplib-dev
   libgtest-dev libsqlite3-dev libcairo2-dev)
-# Tools the tests call: SVG rendering and PDF inspection.
-test_tools=(librsvg2-bin poppler-utils)
+# Tools the tests call: SVG rendering and XML checking, PDF inspection.
+test_tools=(librsvg2-bin poppler-utils libxml2-utils)
 
 case "${1:-all}" in
   runtime) wanted=("${runtime[@]}") ;;

@@ -1,0 +1,181 @@
+#include "api/pages.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.h"
+
+namespace papernet {
+
+namespace {
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// Parses a leading number; returns the rest of the string in `rest`.
+bool leading_number(std::string_view s, double& value, std::string_view& rest) {
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (ec != std::errc() || end == s.data()) return false;
+  rest = s.substr(static_cast<std::size_t>(end - s.data()));
+  return std::isfinite(value);
+}
+
+}  // namespace
+
+Paper parse_paper(std::string_view text) {
+  const std::string t = lower(text);
+  if (t == "a4") return {"A4", 210, 297};
+  if (t == "a3") return {"A3", 297, 420};
+  if (t == "letter") return {"Letter", 215.9, 279.4};
+  double w = 0, h = 0;
+  std::string_view rest;
+  const std::string_view s = t;
+  if (leading_number(s, w, rest) && rest.starts_with("x") &&
+      leading_number(rest.substr(1), h, rest) && (rest.empty() || rest == "mm") && w > 0 && h > 0 &&
+      w < 1e5 && h < 1e5)
+    return {std::string(text), std::min(w, h), std::max(w, h)};
+  throw InvalidInputException("unknown paper '" + std::string(text) +
+                              "': use A4, A3, Letter or WxHmm (e.g. 300x200mm)");
+}
+
+double parse_length_mm(std::string_view text) {
+  const std::string t = lower(text);
+  double v = 0;
+  std::string_view unit;
+  if (leading_number(t, v, unit) && v > 0) {
+    if (unit.empty() || unit == "mm") return v;
+    if (unit == "cm") return 10 * v;
+    if (unit == "in") return 25.4 * v;
+    if (unit == "pt") return 25.4 / 72 * v;
+  }
+  throw InvalidInputException("bad length '" + std::string(text) +
+                              "': use a positive number with mm, cm, in or pt (e.g. 200mm)");
+}
+
+std::string PageOptions::validate() const {
+  if (!std::isfinite(margin_mm) || margin_mm < 0) return "margin must be >= 0 mm";
+  if (!std::isfinite(overlap_mm) || overlap_mm < 0) return "overlap must be >= 0 mm";
+  const double w = paper.width - 2 * margin_mm, h = paper.height - 2 * margin_mm;
+  if (w <= 0 || h <= 0) return "margins leave no printable area on " + paper.name + " paper";
+  if (overlap_mm >= 0.5 * std::min(w, h)) return "overlap must be less than half the page";
+  return {};
+}
+
+void turn_quarter(PrintLayout& layout) {
+  const double h = layout.size.y;
+  auto turn = [h](Vec2& p) { p = {h - p.y, p.x}; };
+  for (auto& f : layout.faces)
+    for (Vec2& p : f) turn(p);
+  for (Tab& t : layout.tabs)
+    for (Vec2& p : t.corners) turn(p);
+  for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
+    for (Segment& s : *list) turn(s.a), turn(s.b);
+  for (Label& l : layout.labels) turn(l.at), l.angle += std::numbers::pi / 2;
+  layout.size = {layout.size.y, layout.size.x};
+}
+
+PageLayout paginate(PrintLayout& layout, const PageOptions& options) {
+  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  const double m = options.margin_mm, ov = options.overlap_mm;
+  auto tiles = [ov](double content, double room) {
+    return content <= room ? 1 : static_cast<int>(std::ceil((content - ov) / (room - ov)));
+  };
+  // Candidates: portrait page / net as is, portrait / turned, landscape / as is, landscape /
+  // turned. Fewest pages wins; ties keep the earlier (portrait first).
+  PageLayout best;
+  int best_count = 0;
+  for (int c = 0; c < 4; ++c) {
+    const bool landscape = c >= 2, turned = c % 2 == 1;
+    const double pw = landscape ? options.paper.height : options.paper.width;
+    const double ph = landscape ? options.paper.width : options.paper.height;
+    const Vec2 content = turned ? Vec2{layout.size.y, layout.size.x} : layout.size;
+    const int cols = tiles(content.x, pw - 2 * m), rows = tiles(content.y, ph - 2 * m);
+    if (c == 0 || rows * cols < best_count) {
+      best_count = rows * cols;
+      best = {pw, ph, m, ov, turned, rows, cols, {}};
+    }
+  }
+  if (best.quarter_turn) turn_quarter(layout);
+  const double w = best.width - 2 * m, h = best.height - 2 * m;
+  // The tiles together cover (cols * (w - ov) + ov) x (rows * (h - ov) + ov); centre the net.
+  const double tw = best.cols * (w - ov) + ov, th = best.rows * (h - ov) + ov;
+  const Vec2 off{0.5 * (std::max(tw, w) - layout.size.x), 0.5 * (std::max(th, h) - layout.size.y)};
+  for (int r = 0; r < best.rows; ++r)
+    for (int c = 0; c < best.cols; ++c) {
+      const double x0 = (best.cols == 1 ? 0 : c * (w - ov)) - off.x;
+      const double y1 = (best.rows == 1 ? h : th - r * (h - ov)) - off.y;
+      best.pages.push_back({r, c, {x0, y1 - h}, {x0 + w, y1}});
+    }
+  return best;
+}
+
+namespace {
+
+bool box_meets(const std::vector<Vec2>& pts, Vec2 lo, Vec2 hi) {
+  Vec2 a = pts[0], b = pts[0];
+  for (Vec2 p : pts)
+    a = {std::min(a.x, p.x), std::min(a.y, p.y)}, b = {std::max(b.x, p.x), std::max(b.y, p.y)};
+  return a.x <= hi.x && b.x >= lo.x && a.y <= hi.y && b.y >= lo.y;
+}
+
+/// Adds the layout's shapes inside window [lo, hi] (layout coordinates), mapped to the page with
+/// the window's top-left corner at `at`.
+void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawing& d) {
+  auto map = [&](Vec2 p) { return Vec2{at.x + (p.x - lo.x), at.y + (hi.y - p.y)}; };
+  auto add = [&](Layer layer, std::vector<Vec2> pts, bool closed) {
+    if (!box_meets(pts, lo, hi)) return;
+    for (Vec2& p : pts) p = map(p);
+    d.shapes.push_back({layer, std::move(pts), closed, {}, 0, 0});
+  };
+  for (const auto& f : layout.faces) add(Layer::Faces, {f[0], f[1], f[2]}, true);
+  for (const Tab& t : layout.tabs) add(Layer::Tabs, {t.corners.begin(), t.corners.end()}, true);
+  for (const Segment& s : layout.cut) add(Layer::Cut, {s.a, s.b}, false);
+  for (const Segment& s : layout.mountain) add(Layer::Mountain, {s.a, s.b}, false);
+  for (const Segment& s : layout.valley) add(Layer::Valley, {s.a, s.b}, false);
+  for (const Label& l : layout.labels) {
+    const auto box = label_box(l);
+    if (!box_meets({box.begin(), box.end()}, lo, hi)) continue;
+    d.shapes.push_back(
+        {Layer::Labels, {map(l.at)}, false, l.text, l.size, -l.angle * 180 / std::numbers::pi});
+  }
+}
+
+}  // namespace
+
+PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index) {
+  const Page& page = pages.pages.at(static_cast<std::size_t>(index));
+  const double m = pages.margin;
+  PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}};
+  add_layout(layout, page.lo, page.hi, {m, m}, d);
+  auto mark = [&](Vec2 a, Vec2 b) { d.shapes.push_back({Layer::Marks, {a, b}, false, {}, 0, 0}); };
+  const double ov = pages.overlap, x1 = pages.width - m, y1 = pages.height - m;
+  // Overlap marks: where the neighbouring tile's window begins, with ticks in the margin so the
+  // sheets can be aligned after cutting the margins.
+  if (page.col + 1 < pages.cols) mark({x1 - ov, m - 0.8 * m}, {x1 - ov, y1 + 0.8 * m});
+  if (page.col > 0) mark({m + ov, m - 0.8 * m}, {m + ov, y1 + 0.8 * m});
+  if (page.row + 1 < pages.rows) mark({m - 0.8 * m, y1 - ov}, {x1 + 0.8 * m, y1 - ov});
+  if (page.row > 0) mark({m - 0.8 * m, m + ov}, {x1 + 0.8 * m, m + ov});
+  const double fs = std::clamp(0.4 * m, 1.5, 3.5);
+  std::string name = "page " + std::to_string(index + 1) + "/" + std::to_string(pages.pages.size());
+  if (pages.pages.size() > 1)
+    name +=
+        " (row " + std::to_string(page.row + 1) + ", column " + std::to_string(page.col + 1) + ")";
+  d.shapes.push_back(
+      {Layer::Marks, {{0.5 * pages.width, pages.height - 0.5 * m}}, false, name, fs, 0});
+  return d;
+}
+
+PageDrawing draw_unpaged(const PrintLayout& layout, double margin_mm) {
+  const double m = std::max(0.0, margin_mm);
+  PageDrawing d{layout.size.x + 2 * m, layout.size.y + 2 * m, {0, 0}, {}, {}};
+  d.clip_hi = {d.width, d.height};
+  add_layout(layout, {-m, -m}, {layout.size.x + m, layout.size.y + m}, {0, 0}, d);
+  return d;
+}
+
+}  // namespace papernet

@@ -1,0 +1,71 @@
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "api/tabs.h"
+#include "core/folds.h"
+#include "core/mesh.h"
+#include "core/metrics.h"
+#include "core/net.h"
+
+namespace papernet {
+
+/// How a net is drawn on paper. Lengths are millimetres.
+struct PrintOptions {
+  double size_mm = 200;          ///< longest side of the model's bounding box, as folded
+  double scale = 0;              ///< millimetres per model unit; > 0 overrides size_mm
+  double flat_angle_deg = 1;     ///< folds flatter than this are Flat
+  bool draw_flat_folds = false;  ///< draw Flat folds (as mountain/valley by their sign)
+  double tab_height_mm = 6;
+  double tab_angle_deg = 45;
+  bool labels = true;
+  double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
+
+  /// Empty when valid, else a message naming the bad option.
+  std::string validate() const;
+};
+
+struct Segment {
+  Vec2 a, b;
+};
+
+/// A number printed inside a face next to one side of a cut edge; its twin carries the same
+/// text. The text's baseline runs parallel to the edge, turned to read upright on the page
+/// where it can; numbers that read as another number upside down (6, 9, 16, ...) end in a dot.
+struct Label {
+  Vec2 at;           ///< centre of the text box
+  double angle = 0;  ///< direction of the baseline, radians counter-clockwise from +x
+  double size = 0;   ///< text height (font size) in mm
+  std::string text;
+  int edge = -1;
+  EdgeSide side;
+};
+
+/// Corners (counter-clockwise) of the box a label's text occupies, for an average digit width
+/// of 0.6 of the font size.
+std::array<Vec2, 4> label_box(const Label& label);
+
+/// A net ready to draw: millimetres, y up, rotated into its minimum-area box, everything (faces,
+/// tabs) inside [0, size.x] x [0, size.y].
+struct PrintLayout {
+  double scale = 1;  ///< millimetres per model unit
+  std::vector<std::array<Vec2, 3>> faces;
+  std::vector<NetEdge> edges;
+  std::vector<Segment> cut;       ///< cut edges without a tab, tab outlines, boundary edges
+  std::vector<Segment> mountain;  ///< mountain folds and tab hinges (tabs fold backwards)
+  std::vector<Segment> valley;
+  std::vector<Tab> tabs;
+  std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) that got no tab
+  std::vector<Label> labels;
+  Vec2 size;
+  NetMetrics metrics;  ///< of the net itself, in model units
+  int cut_edges = 0;   ///< interior cut edges (label numbers run 1..cut_edges)
+};
+
+/// Lays out a net for printing.
+/// \throw InvalidInputException for invalid options or a net that does not match the mesh.
+PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {});
+
+}  // namespace papernet

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "api/pages.h"
+#include "api/print_layout.h"
+#include "core/mesh.h"
+#include "core/net.h"
+
+namespace papernet {
+
+/// Everything the print writers need, as the command line and the service fill it.
+struct OutputOptions {
+  PrintOptions print;
+  PageOptions page;
+  bool paper = true;  ///< false: one SVG sized to the net (PDF always uses paper)
+};
+
+/// Writes one output file, the format chosen by the extension of `path` (case-insensitive):
+/// `.svg` (one page when it fits or no paper; else `<stem>-1.svg`, `<stem>-2.svg`, ... one per
+/// page), `.pdf` (one page per tile), `.glb` / `.obj` (the mesh the net folds into).
+/// `.json` is the net JSON writer's job, not this function's. Returns the files written.
+/// \throw InvalidInputException for an unknown extension or invalid options,
+///        IOException when a file cannot be written.
+std::vector<std::string> write_output_file(const std::string& path, const Mesh& mesh,
+                                           const Net& net, const OutputOptions& options);
+
+/// Applies one command-line option of the print writers to `options`; every one takes a value:
+/// --size 200mm | --scale 2 | --paper A4|A3|Letter|WxHmm|none | --margin 10mm |
+/// --overlap 10mm | --tab-height 6mm (0: no tabs) | --flat-angle 1 (degrees) |
+/// --labels on|off. Returns false when `name` is not one of them.
+/// \throw InvalidInputException naming the option when its value is bad.
+bool apply_output_option(std::string_view name, std::string_view value, OutputOptions& options);
+
+/// One line per option of apply_output_option, for --help.
+std::string output_options_help();
+
+/// True when write_output_file knows the extension of `path`.
+bool is_print_output(const std::string& path);
+
+}  // namespace papernet

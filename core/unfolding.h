@@ -1,0 +1,170 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/net.h"
+#include "core/overlap.h"
+#include "core/progress.h"
+#include "core/unfold_tree.h"
+
+namespace papernet {
+
+/// Budget and randomness of a Tabu Unfolder run (DESIGN.md §3).
+struct TabuOptions {
+  std::uint64_t seed = 1;                   ///< every random choice derives from it
+  std::size_t max_iterations = 10'000'000;  ///< moves (0: no limit)
+  double time_limit_seconds = 60;           ///< wall-clock budget (<= 0: no limit)
+  std::string phase = "unfold";             ///< ProgressInfo::phase of the reports
+  std::size_t input_faces = 0;              ///< ProgressInfo::input_faces (0: current faces)
+};
+
+/// What one Tabu Unfolder run did.
+struct TabuStats {
+  std::size_t iterations = 0;   ///< rounds (a random overlapping face each)
+  std::size_t evaluations = 0;  ///< candidate moves evaluated
+  double seconds = 0;
+};
+
+/// The incremental state of an edge unfolding: mesh, unfold tree, 2D layout, spatial index and
+/// the set of overlapping face pairs. Both the plain Tabu Unfolder and progressive unfolding
+/// drive this one state; nothing that did not move is recomputed.
+///
+/// Faces are laid out per DESIGN.md §2: each face has its own 2D triangle; a child is placed
+/// across the edge it shares with its parent, counter-clockwise. Two faces overlap when their
+/// interiors intersect by more than 1e-9 of the mesh's bounding-box diagonal.
+///
+/// Growing the mesh (vertex splits): change vertices and faces with add_vertex,
+/// set_vertex_position, set_face_corners and add_face; fix the tree with attach and
+/// insert_between; then call update() once, which rebuilds the adjacency of what changed,
+/// re-lays out only the faces whose position changed and tests only those for new overlaps.
+/// Between those edits and update() the layout and overlap queries are stale.
+class Unfolding {
+ public:
+  /// Builds the state from a mesh and an unfold tree (`parent[f]` is the face f hangs from,
+  /// -1 for the root; each link joins faces sharing an edge).
+  /// \throw InvalidInputException for a non-manifold or inconsistently oriented mesh.
+  /// \throw TopologyException when `parent` is not a spanning tree of adjacent faces.
+  Unfolding(Mesh mesh, const std::vector<int>& parent);
+
+  /// Builds the state from the Steepest Edge Unfolder's tree (see steepest_edge_tree).
+  static Unfolding steepest_edge(Mesh mesh, std::uint64_t seed);
+
+  const Mesh& mesh() const { return mesh_; }
+  std::size_t face_count() const { return mesh_.faces.size(); }
+  /// Number of overlapping face pairs.
+  std::size_t overlap_count() const { return pair_count_; }
+  /// Faces that overlap at least one other face, in no particular order.
+  const std::vector<int>& overlapping_faces() const { return overlapping_; }
+  /// Parent of f in the unfold tree (-1 for the root). The root changes as the tree is re-rooted;
+  /// re-rooting never moves a face.
+  int parent(int f) const { return parent_[f]; }
+  /// Face across edge k (corner k to k+1) of f, -1 on a boundary.
+  int neighbour(int f, int k) const { return adj_[f][k]; }
+  /// 2D corners of f: points(f)[k] is where mesh().faces[f][k] lands.
+  const Triangle2& points(int f) const { return pos_[f]; }
+  /// The net of the current state.
+  Net net() const { return Net{parent_, pos_}; }
+  /// Length below which 2D differences are ignored by the overlap test.
+  double tolerance() const { return tolerance_; }
+
+  /// Runs the Tabu Unfolder (DESIGN.md §3) on the current state until no overlaps remain or the
+  /// budget is spent. Returns true when the state is overlap-free. Reports progress (overlaps
+  /// left, iterations) through `progress`; \throw CancelledException when it asks to stop.
+  bool resolve_overlaps(const TabuOptions& options, Progress& progress, TabuStats* stats = nullptr);
+
+  // ---- Editing for uncollapse steps (then call update()) ----
+
+  /// Appends a vertex; returns its index.
+  int add_vertex(Vec3 position);
+  /// Moves vertex v in 3D: every face using it changes shape and is re-laid out by update().
+  void set_vertex_position(int v, Vec3 position);
+  /// Replaces the corners of an existing face (counter-clockwise from outside).
+  void set_face_corners(int f, std::array<int, 3> corners);
+  /// Appends a face, not yet in the tree: give it a place with attach or insert_between before
+  /// update(). Returns its index (faces are numbered in order of addition).
+  int add_face(std::array<int, 3> corners);
+  /// Hangs face f from `parent` (they must share an edge when update() runs); f's own subtree,
+  /// if any, comes along.
+  void attach(int f, int parent);
+  /// Puts face f between the linked pair parent -> child: parent -> f -> child. f must share an
+  /// edge with both when update() runs; f must not be in the tree yet.
+  void insert_between(int f, int parent, int child);
+  /// Applies the edits: rebuilds adjacency around changed faces, re-roots the tree in the
+  /// largest part that did not change, re-lays out every other face and tests exactly those
+  /// for overlaps. Returns the overlap count.
+  /// \throw TopologyException naming the fault when the edits left a non-manifold mesh, a face
+  ///        outside the tree or a link between faces that share no edge.
+  std::size_t update();
+
+ private:
+  // unfolding.cpp: construction, editing, update.
+  void link_edges(int f);
+  void set_adjacency(int f);
+  int edge_to(int f, int other) const;
+  void reroot(int r);
+  void insert_face_index(int f);
+  void add_pair(int a, int b);
+  void remove_pair(int a, int b);
+  void test_moved(const std::vector<int>& moved);
+
+  // unfolding_moves.cpp: the move primitives of the Tabu Unfolder.
+  void prepare_cut(int g);
+  bool in_cut_subtree(int q) const;
+  void layout_side(int g, int k);
+  long long evaluate_move(int g, int k, long long cutoff);
+  void apply_move(int g, int k);
+  std::uint32_t next_seen_epoch();
+
+  Mesh mesh_;
+  std::vector<std::array<int, 3>> adj_;
+  std::vector<std::array<std::int8_t, 3>> adj_edge_;
+  std::vector<std::uint8_t> links_;  // bit k: the tree links f across edge k
+  std::vector<FaceShape> shape_;
+  std::vector<int> parent_;
+  std::vector<Triangle2> pos_;
+  std::vector<Box2> box_;
+  OverlapGrid grid_;
+  std::vector<std::vector<int>> overlaps_;  // partners of each face
+  std::vector<int> overlapping_;            // faces with partners
+  std::vector<int> overlapping_index_;      // position in overlapping_, -1 if absent
+  std::size_t pair_count_ = 0;
+  double tolerance_ = 0;
+
+  // Editing state.
+  std::unordered_map<std::uint64_t, int> half_edges_;  // a->b -> 3 * face + edge
+  std::vector<std::vector<int>> vertex_faces_;
+  std::vector<int> dirty_;  // faces whose shape, corners or parent changed since update()
+  std::vector<char> is_dirty_;
+
+  // Scratch of the move primitives.
+  std::vector<std::uint32_t> mark_;  // side marks of the current cut
+  std::uint32_t epoch_ = 0, small_mark_ = 0;
+  bool small_is_subtree_ = true;
+  int cut_face_ = -1;
+  std::vector<int> side_a_, side_b_, stack_a_, stack_b_, small_;
+  std::vector<int> order_;  // small side in layout order of the evaluated move
+  std::vector<Triangle2> new_pos_;
+  std::vector<std::uint32_t> seen_;
+  std::uint32_t seen_epoch_ = 0;
+};
+
+/// Result of an unfolding strategy.
+struct UnfoldResult {
+  Net net;
+  bool overlap_free = false;
+  std::size_t overlaps = 0;
+  TabuStats stats;
+};
+
+/// Plain Tabu Unfolding (strategy `TU`): steepest-edge start from `options.seed`, then
+/// resolve_overlaps. The net is of `mesh` itself.
+/// \throw InvalidInputException when the mesh cannot be unfolded as one piece.
+UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress);
+
+}  // namespace papernet

@@ -1,0 +1,106 @@
+// `papernet serve`: the HTTP job service. Wires config, store, workers and routes; handles
+// SIGINT/SIGTERM by draining (no new jobs, running ones get a grace period), persisting and
+// stopping.
+#include <httplib.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "server/commands.h"
+#include "server/config.h"
+#include "server/http_api.h"
+#include "server/job_service.h"
+#include "server/job_store.h"
+#include "server/metrics.h"
+#include "server/pipeline_runner.h"
+
+namespace papernet::cli {
+
+int serve(int argc, char** argv) {
+  using namespace papernet::server;
+  std::optional<ServerConfig> parsed;
+  try {
+    parsed = parse_serve_config(argc, argv);
+  } catch (const ConfigError& e) {
+    std::cerr << "papernet serve: " << e.what() << "\n";
+    return 2;
+  }
+  if (!parsed) {
+    std::cout << serve_usage();
+    return 0;
+  }
+  const ServerConfig config = *parsed;
+
+  // Signals go to one thread that waits for them; every other thread inherits the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  std::unique_ptr<JobStore> store;
+  try {
+    std::filesystem::create_directories(config.data_dir);
+    store = std::make_unique<JobStore>(
+        (std::filesystem::path(config.data_dir) / "papernet.sqlite").string());
+  } catch (const std::exception& e) {
+    std::cerr << "papernet serve: " << e.what() << "\n";
+    return 1;
+  }
+
+  ServiceSettings settings;
+  settings.workers = config.workers;
+  settings.queue_length = config.queue_length;
+  settings.options_limits.max_time_limit = config.max_job_time_limit;
+  settings.options_limits.max_target_faces = config.max_faces;
+  settings.default_time_limit = config.job_time_limit;
+  settings.reuse_results = config.reuse_results;
+  JobService service(*store, make_pipeline_runner({config.max_body_bytes, config.max_faces}),
+                     settings, [](const std::string& line) { log_line(line); });
+
+  HttpMetrics metrics;
+  httplib::Server http;
+  const std::size_t threads = config.http_threads;
+  http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  install_routes(http, service, config, metrics);
+
+  int port = config.port;
+  if (port == 0) {
+    port = http.bind_to_any_port(config.host);
+  } else if (!http.bind_to_port(config.host, port)) {
+    port = -1;
+  }
+  if (port <= 0) {
+    std::cerr << "papernet serve: cannot listen on " << config.host << ":" << config.port << "\n";
+    return 1;
+  }
+  service.start();
+
+  std::thread signal_thread([&] {
+    int sig = 0;
+    sigwait(&signals, &sig);
+    if (sig == 0) return;
+    log_line(std::string("received ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
+             ": no new jobs; running ones get " + std::to_string(config.shutdown_grace) + " s");
+    service.shutdown(std::chrono::milliseconds(static_cast<long>(config.shutdown_grace * 1000)));
+    http.stop();
+  });
+
+  log_line("papernet listening on http://" + config.host + ":" + std::to_string(port) + " (data " +
+           config.data_dir + ", " + std::to_string(config.workers) + " workers, queue " +
+           std::to_string(config.queue_length) + ")");
+  std::cout << "papernet listening on http://" << config.host << ":" << port << std::endl;
+  const bool ok = http.listen_after_bind();
+  if (!ok || http.is_running()) {
+    // listen failed by itself: wake the signal thread so it shuts the service down.
+    pthread_kill(signal_thread.native_handle(), SIGTERM);
+  }
+  signal_thread.join();
+  log_line("papernet stopped; unfinished jobs stay queued for the next start");
+  return 0;
+}
+
+}  // namespace papernet::cli

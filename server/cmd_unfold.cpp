@@ -1,0 +1,156 @@
+// `papernet unfold FILE --strategy TU -o net.json [--seed N] [--time-limit S]`
+#include <chrono>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <unordered_map>
+
+#include "api/net_json.h"
+#include "core/dual_graph.h"
+#include "core/errors.h"
+#include "core/load.h"
+#include "core/net_check.h"
+#include "core/unfolding.h"
+#include "server/commands.h"
+
+namespace papernet::cli {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: papernet unfold FILE --strategy TU -o NET.json [--seed N] [--time-limit S]\n"
+    "exit codes: 0 net written, 2 input cannot be unfolded, 3 no overlap-free net within the\n"
+    "budget, 1 other errors. Prints one summary line (key=value) on stdout.\n";
+
+// Genus and boundary loops from V - E + F = 2 - 2g - b (the mesh is manifold: the dual graph
+// was built).
+NetInput describe(const Mesh& mesh) {
+  NetInput in;
+  in.vertices = mesh.vertices.size();
+  in.faces = mesh.faces.size();
+  const DualGraph graph = build_dual_graph(mesh);
+  std::unordered_map<int, int> next;  // boundary half-edge a->b, keyed by a
+  std::size_t boundary_edges = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (graph.neighbour[f][k] < 0) {
+        ++boundary_edges;
+        next[mesh.faces[f][(k + 1) % 3]] = mesh.faces[f][k];
+      }
+  std::unordered_map<int, bool> seen;
+  for (const auto& [start, unused] : next) {
+    if (seen[start]) continue;
+    ++in.boundaries;
+    for (int v = start; !seen[v]; v = next.count(v) ? next[v] : start) seen[v] = true;
+  }
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const auto& f : mesh.faces)
+    for (int v : f) used[v] = 1;
+  long long v_count = 0;
+  for (char u : used) v_count += u;
+  const long long e =
+      (3 * static_cast<long long>(mesh.faces.size()) + static_cast<long long>(boundary_edges)) / 2;
+  const long long chi = v_count - e + static_cast<long long>(mesh.faces.size());
+  in.genus = static_cast<int>((2 - static_cast<long long>(in.boundaries) - chi) / 2);
+  return in;
+}
+
+}  // namespace
+
+int unfold(int argc, char** argv) {
+  std::string file, output, strategy = "TU";
+  TabuOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
+      return argv[++i];
+    };
+    try {
+      if (arg == "--help" || arg == "-h") {
+        std::cout << kUsage;
+        return 0;
+      } else if (arg == "--strategy") {
+        strategy = value();
+      } else if (arg == "-o" || arg == "--output") {
+        output = value();
+      } else if (arg == "--seed") {
+        options.seed = std::stoull(value());
+      } else if (arg == "--time-limit") {
+        options.time_limit_seconds = std::stod(value());
+      } else if (!arg.empty() && arg[0] == '-') {
+        throw std::invalid_argument("unknown option " + arg);
+      } else if (file.empty()) {
+        file = arg;
+      } else {
+        throw std::invalid_argument("more than one input file");
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "papernet unfold: " << e.what() << "\n" << kUsage;
+      return 1;
+    }
+  }
+  if (file.empty() || output.empty()) {
+    std::cerr << kUsage;
+    return 1;
+  }
+  if (strategy != "TU") {
+    std::cerr << "papernet unfold: strategy '" << strategy << "' is not available (TU is)\n";
+    return 1;
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  NetDocument doc;
+  UnfoldResult result;
+  try {
+    LoadedMesh loaded = load_mesh_file(file);
+    doc.input = describe(loaded.mesh);
+    Progress quiet;
+    result = unfold_tabu(loaded.mesh, options, quiet);
+    doc.mesh = std::move(loaded.mesh);
+  } catch (const IOException& e) {
+    std::cerr << "papernet unfold: " << file << ": " << e.what() << "\n";
+    return 2;
+  } catch (const InvalidInputException& e) {
+    std::cerr << "papernet unfold: " << file << ": cannot be unfolded: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "papernet unfold: " << file << ": " << e.what() << "\n";
+    return 1;
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "result=" << (result.overlap_free ? "complete" : "failed")
+            << " faces=" << doc.mesh.faces.size() << " overlaps=" << result.overlaps
+            << " iterations=" << result.stats.iterations << " seconds=" << seconds;
+  if (!result.overlap_free) {
+    std::cout << " check=skipped\n";
+    std::cerr << "papernet unfold: " << file << ": no overlap-free net within the budget ("
+              << result.overlaps << " overlapping pairs left after " << result.stats.iterations
+              << " iterations)\n";
+    return 3;
+  }
+  const NetCheckReport check = check_net(doc.mesh, result.net);
+  std::cout << " check=" << (check.ok() ? "ok" : "failed") << "\n";
+  if (!check.ok()) {
+    std::cerr << "papernet unfold: internal error, the net fails its check: " << check.summary()
+              << "\n";
+    return 1;
+  }
+  doc.strategy = strategy;
+  doc.net = std::move(result.net);
+  doc.metrics.faces = doc.mesh.faces.size();
+  doc.metrics.overlaps = result.overlaps;
+  doc.metrics.seconds = seconds;
+  std::ofstream out(output, std::ios::binary);
+  out << write_net_json(doc) << "\n";
+  if (!out) {
+    std::cerr << "papernet unfold: cannot write " << output << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace papernet::cli

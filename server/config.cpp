@@ -1,0 +1,147 @@
+#include "server/config.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+namespace papernet::server {
+namespace {
+
+struct Setting {
+  const char* flag;  // without the leading "--"
+  const char* env;
+  const char* help;
+  std::function<void(ServerConfig&, const std::string&, const std::string&)> set;
+};
+
+std::size_t count(const std::string& where, const std::string& v, std::size_t min,
+                  std::size_t max) {
+  std::size_t out = 0;
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), out);
+  if (v.empty() || ec != std::errc() || end != v.data() + v.size() || out < min || out > max)
+    throw ConfigError(where + ": '" + v + "' is not a whole number between " + std::to_string(min) +
+                      " and " + std::to_string(max));
+  return out;
+}
+
+double seconds(const std::string& where, const std::string& v) {
+  double out = 0;
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), out);
+  if (v.empty() || ec != std::errc() || end != v.data() + v.size() || !std::isfinite(out) ||
+      out < 0 || out > 86400)
+    throw ConfigError(where + ": '" + v + "' is not a number of seconds between 0 and 86400");
+  return out;
+}
+
+bool yes_no(const std::string& where, const std::string& v) {
+  if (v == "1" || v == "true" || v == "yes") return true;
+  if (v == "0" || v == "false" || v == "no") return false;
+  throw ConfigError(where + ": '" + v + "' is not true or false");
+}
+
+const std::vector<Setting>& settings() {
+  static const std::vector<Setting> table = {
+      {"host", "PAPERNET_HOST", "address to listen on (default 127.0.0.1)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.host = v; }},
+      {"port", "PAPERNET_PORT", "TCP port, 0 = any free one (default 8080)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.port = static_cast<int>(count(w, v, 0, 65535));
+       }},
+      {"data", "PAPERNET_DATA", "directory of the SQLite job store (default ./var)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.data_dir = v; }},
+      {"workers", "PAPERNET_WORKERS", "geometry worker threads (default: one per core)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.workers = count(w, v, 1, 256);
+       }},
+      {"http-threads", "PAPERNET_HTTP_THREADS", "threads serving HTTP connections (default 8)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.http_threads = count(w, v, 2, 1024);
+       }},
+      {"queue-length", "PAPERNET_QUEUE_LENGTH", "queued jobs before 429 (default 64)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.queue_length = count(w, v, 1, 1'000'000);
+       }},
+      {"max-body-bytes", "PAPERNET_MAX_BODY_BYTES", "largest upload in bytes (default 64 MiB)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.max_body_bytes = count(w, v, 1024, std::size_t{4} << 30);
+       }},
+      {"max-faces", "PAPERNET_MAX_FACES", "most faces a mesh may have (default 1000000)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.max_faces = count(w, v, 4, 100'000'000);
+       }},
+      {"job-time-limit", "PAPERNET_JOB_TIME_LIMIT",
+       "seconds a job may run when it names no time_limit (default 120)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.job_time_limit = seconds(w, v);
+       }},
+      {"max-job-time-limit", "PAPERNET_MAX_JOB_TIME_LIMIT",
+       "largest time_limit a job may ask for (default 600)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.max_job_time_limit = seconds(w, v);
+       }},
+      {"shutdown-grace", "PAPERNET_SHUTDOWN_GRACE",
+       "seconds running jobs get to finish on SIGTERM before they are re-queued (default 10)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.shutdown_grace = seconds(w, v);
+       }},
+      {"reuse-results", "PAPERNET_REUSE_RESULTS",
+       "answer identical mesh + options from a stored result (default true)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.reuse_results = yes_no(w, v);
+       }},
+      {"access-log", "PAPERNET_ACCESS_LOG", "one log line per request (default true)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.access_log = yes_no(w, v);
+       }},
+  };
+  return table;
+}
+
+}  // namespace
+
+std::optional<ServerConfig> parse_serve_config(
+    int argc, char** argv, const std::function<const char*(const char*)>& getenv) {
+  ServerConfig config;
+  for (const Setting& s : settings())
+    if (const char* v = getenv(s.env)) s.set(config, std::string("environment ") + s.env, v);
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") return std::nullopt;
+    if (arg.rfind("--", 0) != 0) throw ConfigError("unexpected argument '" + arg + "'");
+    std::string value;
+    bool has_value = false;
+    if (const auto eq = arg.find('='); eq != std::string::npos) {
+      value = arg.substr(eq + 1);
+      arg = arg.substr(0, eq);
+      has_value = true;
+    }
+    const Setting* found = nullptr;
+    for (const Setting& s : settings())
+      if (arg == std::string("--") + s.flag) found = &s;
+    if (!found) throw ConfigError("unknown flag '" + arg + "' (see papernet serve --help)");
+    if (!has_value) {
+      if (i + 1 >= argc) throw ConfigError("flag '" + arg + "' needs a value");
+      value = argv[++i];
+    }
+    found->set(config, "flag " + arg, value);
+  }
+  if (config.workers == 0)
+    config.workers = std::max<std::size_t>(1, std::thread::hardware_concurrency());
+  if (config.job_time_limit <= 0 || config.job_time_limit > config.max_job_time_limit)
+    throw ConfigError("job time limit must be more than 0 and at most the max job time limit");
+  return config;
+}
+
+std::string serve_usage() {
+  std::ostringstream out;
+  out << "usage: papernet serve [--flag VALUE]...\n\n"
+         "Runs the HTTP job service (API under /v1, OpenAPI at /v1/openapi.json).\n"
+         "Each flag may also be set by its environment variable; flags win.\n\n";
+  for (const Setting& s : settings())
+    out << "  --" << s.flag << " (" << s.env << ")\n      " << s.help << "\n";
+  return out.str();
+}
+
+}  // namespace papernet::server

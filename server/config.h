@@ -1,0 +1,46 @@
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace papernet::server {
+
+/// Every setting and limit of `papernet serve`, in one place. Filled from PAPERNET_* environment
+/// variables, then command-line flags (flags win).
+struct ServerConfig {
+  std::string host = "127.0.0.1";
+  int port = 8080;  ///< 0 picks a free port (printed on start)
+  std::string data_dir = "./var";
+  std::size_t workers = 0;        ///< geometry threads; 0 = one per core
+  std::size_t http_threads = 8;   ///< threads serving connections (and SSE streams)
+  std::size_t queue_length = 64;  ///< queued jobs before POST answers 429
+  std::size_t max_body_bytes = std::size_t{64} << 20;
+  std::size_t max_faces = 1'000'000;
+  double job_time_limit = 120;      ///< seconds, when a job does not ask for one
+  double max_job_time_limit = 600;  ///< the most a job may ask for
+  double shutdown_grace = 10;       ///< seconds running jobs get to finish on SIGTERM
+  bool reuse_results = true;        ///< answer identical mesh + options from a stored result
+  bool access_log = true;
+};
+
+class ConfigError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Reads the environment through `getenv` (injectable for tests) and then the flags
+/// (argv[0] is the command name). Returns nullopt when --help was asked for.
+/// \throw ConfigError naming the bad flag or variable.
+std::optional<ServerConfig> parse_serve_config(
+    int argc, char** argv,
+    const std::function<const char*(const char*)>& getenv = [](const char* n) {
+      return std::getenv(n);
+    });
+
+/// The --help text: every flag with its variable and default.
+std::string serve_usage();
+
+}  // namespace papernet::server

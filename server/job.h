@@ -1,0 +1,95 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "api/options.h"
+#include "core/load.h"
+#include "core/progress.h"
+
+namespace papernet::server {
+
+enum class JobStatus { Queued, Running, Succeeded, Approximated, Failed, Cancelled };
+
+std::string status_name(JobStatus status);
+/// \throw std::invalid_argument for a name that is no status.
+JobStatus parse_status(const std::string& name);
+/// True for succeeded, approximated, failed and cancelled: nothing will change any more.
+bool is_final(JobStatus status);
+
+/// What a job is given: the uploaded mesh and the files a .gltf refers to.
+struct JobInput {
+  std::string mesh;
+  MeshFormat format = MeshFormat::Unknown;
+  std::map<std::string, std::string> external_files;
+};
+
+/// One downloadable file of a result ("net.json", "net.svg", "net.pdf", "mesh.glb").
+struct Artifact {
+  std::string content_type;
+  std::string data;
+};
+
+/// What a run produced, final or intermediate.
+struct JobOutput {
+  bool approximate = false;  ///< the net folds into a coarser mesh than the input
+  std::size_t input_faces = 0;
+  std::size_t faces = 0;  ///< faces of the mesh the net folds into
+  std::size_t overlaps = 0;
+  std::map<std::string, Artifact> files;
+  nlohmann::json metrics = nlohmann::json::object();
+};
+
+/// What the service offers a running job: progress in, intermediates in, cancellation out.
+class JobSink {
+ public:
+  virtual ~JobSink() = default;
+  virtual void report(const ProgressInfo& info) = 0;
+  /// The latest overlap-free intermediate result (replaces the previous one).
+  virtual void intermediate(JobOutput output) = 0;
+  /// True once the job was cancelled, timed out or the server is stopping.
+  virtual bool cancelled() = 0;
+};
+
+/// Runs one job on a worker thread: geometry happens here and nowhere else. `options` has its
+/// time_limit filled in. Throws on failure (the service maps the exception to a problem);
+/// throws CancelledException when the sink said stop.
+using JobRunner =
+    std::function<JobOutput(const JobInput& input, const JobOptions& options, JobSink& sink)>;
+
+/// A job as the store keeps it. Times are seconds since the Unix epoch (0 = not yet).
+struct JobRecord {
+  std::string id;
+  std::int64_t seq = 0;  ///< submission order
+  JobStatus status = JobStatus::Queued;
+  double created = 0;
+  double started = 0;
+  double finished = 0;
+  nlohmann::json options = nlohmann::json::object();
+  std::string format;
+  std::size_t input_bytes = 0;
+  std::string input_key;  ///< hash of mesh + files + options, for result reuse
+  std::size_t input_faces = 0;
+  std::size_t faces = 0;
+  std::size_t overlaps = 0;
+  std::string result_kind;  ///< "complete" or "approximate" once finished with a result
+  nlohmann::json metrics = nlohmann::json::object();
+  nlohmann::json error;    ///< the problem document of a failed job, null otherwise
+  std::string result_job;  ///< job whose stored files are this job's result (itself or reused)
+  int attempts = 0;        ///< times a worker started it (a restart after a crash adds one)
+};
+
+/// Opaque job ids: 32 lowercase hex digits from a random source.
+std::string new_job_id();
+/// True when `id` has the shape new_job_id() produces; anything else is never looked up.
+bool valid_job_id(std::string_view id);
+
+/// Seconds since the Unix epoch, now.
+double now_seconds();
+
+}  // namespace papernet::server

@@ -1,0 +1,90 @@
+#include "server/job_json.h"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+
+#include "server/problem.h"
+
+namespace papernet::server {
+
+using nlohmann::json;
+
+const std::vector<std::string>& result_file_names() {
+  static const std::vector<std::string> names = {"net.json", "net.svg", "net.pdf", "mesh.glb"};
+  return names;
+}
+
+json iso_time(double seconds) {
+  if (seconds <= 0) return nullptr;
+  const auto whole = static_cast<std::time_t>(std::floor(seconds));
+  const int ms = static_cast<int>((seconds - static_cast<double>(whole)) * 1000);
+  std::tm tm{};
+  gmtime_r(&whole, &tm);
+  char text[64];
+  std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900,
+                tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, ms);
+  return text;
+}
+
+json job_to_json(const JobView& view, double now) {
+  const JobRecord& r = view.record;
+  const std::string self = "/v1/jobs/" + r.id;
+  json doc = {{"id", r.id},
+              {"status", status_name(r.status)},
+              {"created", iso_time(r.created)},
+              {"started", iso_time(r.started)},
+              {"finished", iso_time(r.finished)},
+              {"input",
+               {{"format", r.format},
+                {"bytes", r.input_bytes},
+                {"faces", r.input_faces ? json(r.input_faces) : json(nullptr)}}},
+              {"options", r.options}};
+
+  double elapsed = 0;
+  if (r.started > 0) elapsed = (r.finished > 0 ? r.finished : now) - r.started;
+  json progress = {
+      {"phase", status_name(r.status)},
+      {"faces", nullptr},
+      {"input_faces", r.input_faces ? json(r.input_faces) : json(nullptr)},
+      {"overlaps", nullptr},
+      {"iterations", nullptr},
+      {"elapsed_seconds", std::round(elapsed * 1000) / 1000},
+      {"queue_position", view.queue_position ? json(view.queue_position) : json(nullptr)}};
+  if (view.progress) {
+    progress["phase"] = view.progress->phase;
+    progress["faces"] = view.progress->faces;
+    progress["input_faces"] = view.progress->input_faces;
+    progress["overlaps"] = view.progress->overlaps;
+    progress["iterations"] = view.progress->iterations;
+  } else if (is_final(r.status) && !r.result_kind.empty()) {
+    progress["phase"] = "done";
+    progress["faces"] = r.faces;
+    progress["overlaps"] = r.overlaps;
+  }
+  doc["progress"] = progress;
+  if (view.cancel_requested && !is_final(r.status)) doc["cancel_requested"] = true;
+
+  json links = {{"self", self}, {"events", self + "/events"}};
+  if (!r.result_kind.empty()) {
+    doc["result"] = {{"kind", r.result_kind},
+                     {"faces", r.faces},
+                     {"input_faces", r.input_faces},
+                     {"overlaps", r.overlaps},
+                     {"metrics", r.metrics}};
+    for (const std::string& name : view.result_files) links[name] = self + "/" + name;
+  } else {
+    doc["result"] = nullptr;
+  }
+  if (view.intermediate) {
+    doc["intermediate"] = {{"faces", view.intermediate->faces},
+                           {"input_faces", view.intermediate->input_faces},
+                           {"overlaps", view.intermediate->overlaps}};
+    for (const auto& [name, file] : view.intermediate->files) links[name] = self + "/" + name;
+  }
+  doc["error"] = r.error.is_object() ? r.error : json(nullptr);
+  doc["links"] = links;
+  return doc;
+}
+
+}  // namespace papernet::server

@@ -1,0 +1,20 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "server/job_service.h"
+
+namespace papernet::server {
+
+/// The names of result files a job can have, in the order the API lists them.
+const std::vector<std::string>& result_file_names();
+
+/// A job as GET /v1/jobs/{id} shows it: status, progress, result summary, error, links.
+/// `now` (seconds since the epoch) fills elapsed times.
+nlohmann::json job_to_json(const JobView& view, double now);
+
+/// ISO 8601 UTC with milliseconds ("2026-11-22T05:30:00.123Z"); null for 0.
+nlohmann::json iso_time(double seconds_since_epoch);
+
+}  // namespace papernet::server

@@ -1,0 +1,35 @@
+#include "server/pipeline_output.h"
+
+#include "api/mesh_export.h"
+#include "api/pdf.h"
+#include "api/print_output.h"
+#include "api/svg.h"
+
+namespace papernet::server {
+
+PrintFiles render_print_files(const Mesh& mesh, const Net& net, const JobOptions& options) {
+  OutputOptions out;
+  if (options.size_mm) out.print.size_mm = *options.size_mm;
+  if (options.scale) out.print.scale = *options.scale;
+  out.print.flat_angle_deg = options.flat_fold_degrees;
+  if (!options.tabs) out.print.tab_height_mm = 0;
+  out.paper = options.paper != papernet::PaperSize::None;
+  if (out.paper) out.page.paper = parse_paper(paper_name(options.paper));
+  out.page.margin_mm = options.margin_mm;
+
+  PrintFiles files;
+  PrintLayout layout = layout_net(mesh, net, out.print);
+  files.coverage = layout.metrics.coverage;
+  files.aspect_ratio = layout.metrics.aspect_ratio;
+  const PageLayout pages = paginate(layout, out.page);
+  files.pages = static_cast<int>(pages.pages.size());
+  files.pdf = write_pdf(layout, pages);
+  if (out.paper && pages.pages.size() == 1)
+    files.svg = write_page_svgs(layout, pages).front();
+  else
+    files.svg = write_net_svg(layout, out.page.margin_mm);
+  files.glb = write_glb(mesh);
+  return files;
+}
+
+}  // namespace papernet::server

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <string>
+
+#include "api/options.h"
+#include "core/mesh.h"
+#include "core/net.h"
+
+namespace papernet::server {
+
+/// The print files of a net, in memory, and the layout's figures for the net JSON.
+struct PrintFiles {
+  std::string svg;  ///< one page when the net fits the paper, else the whole net in one drawing
+  std::string pdf;  ///< tiled onto the job's paper (A4 when it asked for none)
+  std::string glb;  ///< the mesh the net folds into
+  int pages = 1;
+  double coverage = 0;
+  double aspect_ratio = 1;
+};
+
+/// Lays out `net` for print with the job's options (size or scale, paper, margin, tabs, flat
+/// folds) and writes SVG, PDF and GLB. Kept apart from the net JSON writer: api/net_json.h and
+/// core/metrics.h both declare a `NetMetrics`.
+/// \throw InvalidInputException when the options leave no room on the paper.
+PrintFiles render_print_files(const Mesh& mesh, const Net& net, const JobOptions& options);
+
+}  // namespace papernet::server

@@ -1,0 +1,170 @@
+#include "server/pipeline_runner.h"
+
+#include <chrono>
+
+#include "api/net_json.h"
+#include "core/errors.h"
+#include "core/load.h"
+#include "core/net_check.h"
+#include "core/unfolding.h"
+#include "core/validate.h"
+#include "server/pipeline_output.h"
+#include "server/problem.h"
+
+namespace papernet::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Validated {
+  Mesh mesh;
+  NetInput input;
+};
+
+// Loads and validates; what cannot be unfolded fails here with the validator's reasons (422).
+Validated load_and_validate(const JobInput& input, const JobOptions& options,
+                            const PipelineLimits& limits, JobSink& sink) {
+  LoadOptions load_options;
+  load_options.max_bytes = limits.max_bytes;
+  // Above the limit, so that "too many faces" is ours to say (413) for all but absurd meshes.
+  load_options.max_faces = limits.max_faces * 4 + 16;
+  load_options.external_files = input.external_files;
+  ProgressInfo info;
+  info.phase = "load";
+  sink.report(info);
+  LoadedMesh loaded = load_mesh(input.mesh, input.format, load_options);
+  info.input_faces = loaded.mesh.faces.size();
+  info.faces = info.input_faces;
+  info.phase = "validate";
+  sink.report(info);
+  if (loaded.mesh.faces.size() > limits.max_faces)
+    throw ApiError("too_many_faces", "the mesh has " + std::to_string(loaded.mesh.faces.size()) +
+                                         " faces; this server unfolds at most " +
+                                         std::to_string(limits.max_faces));
+  ValidateOptions validate_options;
+  validate_options.keep_largest_component = options.keep_largest_component;
+  ValidationReport report = validate(loaded, validate_options);
+  if (!report.unfoldable()) {
+    nlohmann::json reasons = nlohmann::json::array();
+    for (const papernet::Problem& p : report.problems)
+      if (p.blocking)
+        reasons.push_back({{"code", p.code}, {"message", p.message}, {"elements", p.elements}});
+    throw ApiError("invalid_mesh", report.reason(),
+                   {{"reasons", reasons},
+                    {"mesh",
+                     {{"vertices", report.vertices},
+                      {"faces", report.faces},
+                      {"components", report.components},
+                      {"genus", report.genus},
+                      {"boundary_loops", report.boundary_loops}}}});
+  }
+  if (sink.cancelled()) throw CancelledException();
+  Validated out;
+  out.input.vertices = report.vertices;
+  out.input.faces = report.faces;
+  out.input.genus = static_cast<int>(report.genus);
+  out.input.boundaries = report.boundary_loops;
+  out.mesh = options.keep_largest_component && !report.largest_component.faces.empty()
+                 ? std::move(report.largest_component)
+                 : std::move(loaded.mesh);
+  return out;
+}
+
+// Everything a client can download, from one overlap-free net.
+JobOutput render(const Mesh& mesh, const Net& net, const NetInput& input, const JobOptions& options,
+                 const std::string& result, double seconds, const nlohmann::json& level) {
+  const PrintFiles print = render_print_files(mesh, net, options);
+  NetDocument doc;
+  doc.result = result;
+  doc.strategy = strategy_name(options.strategy);
+  doc.input = input;
+  doc.mesh = mesh;
+  doc.net = net;
+  doc.metrics.faces = mesh.faces.size();
+  doc.metrics.coverage = print.coverage;
+  doc.metrics.aspect_ratio = print.aspect_ratio;
+  doc.metrics.overlaps = 0;
+  doc.metrics.seconds = seconds;
+  nlohmann::json json = net_to_json(doc);
+  if (!level.is_null()) json["level"] = level;
+
+  JobOutput out;
+  out.approximate = result != "complete";
+  out.input_faces = input.faces;
+  out.faces = mesh.faces.size();
+  out.overlaps = 0;
+  out.metrics = json["metrics"];
+  out.metrics["pages"] = print.pages;
+  out.files["net.json"] = {"application/json", json.dump()};
+  out.files["net.svg"] = {"image/svg+xml", print.svg};
+  out.files["net.pdf"] = {"application/pdf", print.pdf};
+  out.files["mesh.glb"] = {"model/gltf-binary", print.glb};
+  return out;
+}
+
+// The core algorithms' Progress, forwarded to the job. Intermediate nets are rendered at most
+// every two seconds: rendering costs time the unfolder could use.
+class JobProgress : public Progress {
+ public:
+  JobProgress(JobSink& sink, const NetInput& input, const JobOptions& options)
+      : sink_(sink), input_(input), options_(options) {}
+  void report(const ProgressInfo& info) override {
+    ProgressInfo copy = info;
+    if (copy.input_faces == 0) copy.input_faces = input_.faces;
+    sink_.report(copy);
+  }
+  void intermediate(const Mesh& mesh, const Net& net) override {
+    const auto now = Clock::now();
+    if (rendered_ && now - last_ < std::chrono::seconds(2)) return;
+    rendered_ = true;
+    last_ = now;
+    const nlohmann::json level = {
+        {"kind", "intermediate"}, {"faces", mesh.faces.size()}, {"input_faces", input_.faces}};
+    sink_.intermediate(render(mesh, net, input_, options_, "approximate", 0, level));
+  }
+  bool cancelled() override { return sink_.cancelled(); }
+
+ private:
+  JobSink& sink_;
+  const NetInput& input_;
+  const JobOptions& options_;
+  bool rendered_ = false;
+  Clock::time_point last_;
+};
+
+}  // namespace
+
+JobRunner make_pipeline_runner(PipelineLimits limits) {
+  return [limits](const JobInput& input, const JobOptions& options, JobSink& sink) -> JobOutput {
+    const auto start = Clock::now();
+    const Validated v = load_and_validate(input, options, limits, sink);
+    if (options.strategy != Strategy::TU)
+      throw ApiError("pipeline_unavailable",
+                     "strategy " + strategy_name(options.strategy) +
+                         " needs progressive unfolding, which this build does not have yet; "
+                         "strategy=TU (plain Tabu Unfolding) is available");
+    JobProgress progress(sink, v.input, options);
+    TabuOptions tabu;
+    tabu.seed = options.seed;
+    tabu.time_limit_seconds = options.time_limit.value_or(60);
+    tabu.input_faces = v.input.faces;
+    const UnfoldResult result = unfold_tabu(v.mesh, tabu, progress);
+    if (!result.overlap_free)
+      throw ApiError("unfold_failed", "no overlap-free net within the time limit (" +
+                                          std::to_string(result.overlaps) +
+                                          " overlapping face pairs left after " +
+                                          std::to_string(result.stats.iterations) +
+                                          " iterations); try another seed or a longer time_limit");
+    const NetCheckReport check = check_net(v.mesh, result.net);
+    if (!check.ok())
+      throw std::logic_error("the unfolder's net fails the net checker: " + check.summary());
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    ProgressInfo info;
+    info.phase = "write";
+    info.faces = info.input_faces = v.input.faces;
+    sink.report(info);
+    return render(v.mesh, result.net, v.input, options, "complete", seconds, nullptr);
+  };
+}
+
+}  // namespace papernet::server

@@ -1,0 +1,115 @@
+#include "server/problem.h"
+
+#include <new>
+#include <string_view>
+
+#include "api/options.h"
+#include "core/errors.h"
+
+namespace papernet::server {
+namespace {
+
+struct ProblemType {
+  std::string_view code;
+  int status;
+  std::string_view title;
+};
+
+// Every code the API can answer with. Clients may rely on the codes; add, never rename.
+constexpr ProblemType kProblemTypes[] = {
+    {"unknown_option", 400, "Unknown option"},
+    {"invalid_option_value", 400, "Invalid option value"},
+    {"option_out_of_range", 400, "Option out of range"},
+    {"conflicting_options", 400, "Conflicting options"},
+    {"malformed_options", 400, "Malformed options"},
+    {"malformed_request", 400, "Malformed request"},
+    {"missing_mesh", 400, "No mesh in the request"},
+    {"not_found", 404, "No such resource"},
+    {"job_not_found", 404, "No such job"},
+    {"method_not_allowed", 405, "Method not allowed"},
+    {"result_not_ready", 409, "Result not ready"},
+    {"job_finished", 409, "Job already finished"},
+    {"job_cancelled", 410, "Job was cancelled"},
+    {"payload_too_large", 413, "Upload too large"},
+    {"too_many_faces", 413, "Mesh has too many faces"},
+    {"unsupported_format", 415, "Unsupported mesh format"},
+    {"unreadable_mesh", 422, "Mesh cannot be read"},
+    {"invalid_mesh", 422, "Mesh cannot be unfolded"},
+    {"unfold_failed", 422, "No overlap-free net found"},
+    {"time_limit_exceeded", 422, "Job ran out of time"},
+    {"interrupted_too_often", 422, "Job interrupted too often"},
+    {"queue_full", 429, "Queue full"},
+    {"too_many_streams", 429, "Too many event streams"},
+    {"internal_error", 500, "Internal error"},
+    {"pipeline_unavailable", 501, "Unfolding not available in this build"},
+    {"shutting_down", 503, "Server shutting down"},
+};
+
+const ProblemType* lookup(std::string_view code) {
+  for (const ProblemType& t : kProblemTypes)
+    if (t.code == code) return &t;
+  return nullptr;
+}
+
+}  // namespace
+
+Problem make_problem(const std::string& code, std::string detail, nlohmann::json extra) {
+  const ProblemType* type = lookup(code);
+  if (!type) return make_problem("internal_error", "unknown problem code '" + code + "'");
+  Problem p;
+  p.status = type->status;
+  p.code = std::string(type->code);
+  p.title = std::string(type->title);
+  p.detail = std::move(detail);
+  p.extra = extra.is_object() ? std::move(extra) : nlohmann::json::object();
+  if (p.status == 429 || p.status == 503) p.retry_after = 5;
+  return p;
+}
+
+Problem problem_from_exception(std::exception_ptr error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const ApiError& e) {
+    return e.problem();
+  } catch (const OptionsError& e) {
+    nlohmann::json extra = nlohmann::json::object();
+    if (!e.option().empty()) extra["option"] = e.option();
+    return make_problem(e.code(), e.what(), extra);
+  } catch (const InvalidInputException& e) {
+    return make_problem("invalid_mesh", e.what());
+  } catch (const IOException& e) {
+    return make_problem("unreadable_mesh", e.what());
+  } catch (const CancelledException&) {
+    return make_problem("job_cancelled", "the job was cancelled");
+  } catch (const TopologyException& e) {
+    return make_problem("unfold_failed", e.what());
+  } catch (const std::bad_alloc&) {
+    return make_problem("too_many_faces", "the mesh needs more memory than this server gives");
+  } catch (const std::exception& e) {
+    return make_problem("internal_error", e.what());
+  } catch (...) {
+    return make_problem("internal_error", "unknown error");
+  }
+}
+
+nlohmann::json problem_json(const Problem& p, const std::string& instance) {
+  nlohmann::json doc = p.extra;
+  doc["type"] = "urn:papernet:problem:" + p.code;
+  doc["title"] = p.title;
+  doc["status"] = p.status;
+  doc["code"] = p.code;
+  doc["detail"] = p.detail;
+  if (!instance.empty()) doc["instance"] = instance;
+  return doc;
+}
+
+Problem problem_from_json(const nlohmann::json& doc) {
+  if (!doc.is_object() || !doc.contains("code"))
+    return make_problem("internal_error", "stored error is unreadable");
+  nlohmann::json extra = doc;
+  for (const char* key : {"type", "title", "status", "code", "detail", "instance"})
+    extra.erase(key);
+  return make_problem(doc["code"].get<std::string>(), doc.value("detail", ""), extra);
+}
+
+}  // namespace papernet::server

@@ -1,0 +1,357 @@
+// The queue, workers and store of the job service, with injected runners (no geometry, no
+// sockets): what happens to jobs, not what the unfolder computes.
+#include "server/job_service.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "core/errors.h"
+#include "server/problem.h"
+
+using namespace papernet;
+using namespace papernet::server;
+using namespace std::chrono_literals;
+
+namespace {
+
+std::string sample_mesh() {
+  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/sample.obj", std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A runner that reports progress and an intermediate, then waits (polling cancellation like
+// the unfolder does) until the test opens the gate.
+struct Gate {
+  std::atomic<bool> open{false};
+  std::atomic<int> started{0};
+};
+
+JobRunner gated_runner(std::shared_ptr<Gate> gate) {
+  return [gate](const JobInput& input, const JobOptions& options, JobSink& sink) {
+    ++gate->started;
+    ProgressInfo info;
+    info.phase = "uncollapse";
+    info.faces = 10;
+    info.input_faces = 20;
+    info.overlaps = 0;
+    sink.report(info);
+    JobOutput mid;
+    mid.faces = 10;
+    mid.input_faces = 20;
+    mid.files["net.json"] = {"application/json", R"({"level":10})"};
+    sink.intermediate(mid);
+    while (!gate->open) {
+      if (sink.cancelled()) throw CancelledException();
+      std::this_thread::sleep_for(1ms);
+    }
+    JobOutput out;
+    out.input_faces = 20;
+    out.faces = 20;
+    out.approximate = options.seed == 99;  // lets a test ask for an approximate result
+    out.files["net.json"] = {"application/json",
+                             "{\"bytes\":" + std::to_string(input.mesh.size()) + "}"};
+    return out;
+  };
+}
+
+JobInput input_of(std::string mesh) {
+  JobInput in;
+  in.mesh = std::move(mesh);
+  in.format = MeshFormat::Obj;
+  return in;
+}
+
+JobView wait_final(JobService& service, const std::string& id) {
+  for (int i = 0; i < 500; ++i) {
+    auto v = service.view(id);
+    if (v && is_final(v->record.status)) return *v;
+    std::this_thread::sleep_for(10ms);
+  }
+  ADD_FAILURE() << "job " << id << " did not finish";
+  return *service.view(id);
+}
+
+void wait_running(JobService& service, const std::string& id) {
+  for (int i = 0; i < 500; ++i) {
+    if (service.view(id)->record.status == JobStatus::Running) return;
+    std::this_thread::sleep_for(10ms);
+  }
+  ADD_FAILURE() << "job " << id << " did not start";
+}
+
+ServiceSettings settings(std::size_t workers, std::size_t queue) {
+  ServiceSettings s;
+  s.workers = workers;
+  s.queue_length = queue;
+  return s;
+}
+
+void quiet(const std::string&) {}
+
+}  // namespace
+
+TEST(JobServiceTest, JobRunsAndItsResultIsStored) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();
+  gate->open = true;
+  JobService service(store, gated_runner(gate), settings(1, 4), quiet);
+  service.start();
+  const JobRecord job = service.submit(input_of(sample_mesh()), {});
+  EXPECT_EQ(job.status, JobStatus::Queued);
+  const JobView done = wait_final(service, job.id);
+  EXPECT_EQ(done.record.status, JobStatus::Succeeded);
+  EXPECT_EQ(done.record.faces, 20u);
+  EXPECT_EQ(done.record.result_kind, "complete");
+  const auto file = store.artifact(done.record.result_job, "net.json");
+  ASSERT_TRUE(file);
+  EXPECT_EQ(file->data, "{\"bytes\":" + std::to_string(sample_mesh().size()) + "}");
+  EXPECT_EQ(done.result_files, std::vector<std::string>{"net.json"});
+}
+
+TEST(JobServiceTest, ApproximateResultIsReportedAsSuch) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();
+  gate->open = true;
+  JobService service(store, gated_runner(gate), settings(1, 4), quiet);
+  service.start();
+  JobOptions options;
+  options.seed = 99;
+  const JobView done = wait_final(service, service.submit(input_of("v 0 0 0\n"), options).id);
+  EXPECT_EQ(done.record.status, JobStatus::Approximated);
+  EXPECT_EQ(done.record.result_kind, "approximate");
+}
+
+TEST(JobServiceTest, FullQueueRefusesWithRetryAfter) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();
+  JobService service(store, gated_runner(gate), settings(1, 2), quiet);
+  service.start();
+  const JobRecord running = service.submit(input_of("v 1 0 0\n"), {});
+  wait_running(service, running.id);
+  const JobRecord second = service.submit(input_of("v 2 0 0\n"), {});
+  const JobRecord third = service.submit(input_of("v 3 0 0\n"), {});
+  EXPECT_EQ(service.view(second.id)->queue_position, 1u);
+  EXPECT_EQ(service.view(third.id)->queue_position, 2u);
+  try {
+    service.submit(input_of("v 4 0 0\n"), {});
+    ADD_FAILURE() << "a full queue accepted a job";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.problem().status, 429);
+    EXPECT_EQ(e.problem().code, "queue_full");
+    ASSERT_TRUE(e.problem().retry_after);
+    EXPECT_GE(*e.problem().retry_after, 1);
+  }
+  EXPECT_EQ(service.stats().queued, 2u);
+  gate->open = true;
+  for (const auto& id : {running.id, second.id, third.id})
+    EXPECT_EQ(wait_final(service, id).record.status, JobStatus::Succeeded);
+}
+
+TEST(JobServiceTest, RunningJobShowsProgressAndIntermediate) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();
+  JobService service(store, gated_runner(gate), settings(1, 4), quiet);
+  service.start();
+  const JobRecord job = service.submit(input_of("v 0 0 0\n"), {});
+  wait_running(service, job.id);
+  for (int i = 0; i < 200 && !service.view(job.id)->intermediate; ++i)
+    std::this_thread::sleep_for(5ms);
+  const JobView v = *service.view(job.id);
+  ASSERT_TRUE(v.progress);
+  EXPECT_EQ(v.progress->phase, "uncollapse");
+  EXPECT_EQ(v.progress->input_faces, 20u);
+  ASSERT_TRUE(v.intermediate);
+  EXPECT_EQ(v.intermediate->files.at("net.json").data, R"({"level":10})");
+  gate->open = true;
+  wait_final(service, job.id);
+}
+
+TEST(JobServiceTest, CancelQueuedAndRunningJobs) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();
+  JobService service(store, gated_runner(gate), settings(1, 4), quiet);
+  service.start();
+  const JobRecord running = service.submit(input_of("v 1 0 0\n"), {});
+  const JobRecord queued = service.submit(input_of("v 2 0 0\n"), {});
+  wait_running(service, running.id);
+
+  EXPECT_EQ(service.cancel(queued.id).record.status, JobStatus::Cancelled);
+  const auto before = std::chrono::steady_clock::now();
+  service.cancel(running.id);
+  EXPECT_EQ(wait_final(service, running.id).record.status, JobStatus::Cancelled);
+  EXPECT_LT(std::chrono::steady_clock::now() - before, 1s);
+  EXPECT_EQ(gate->started, 1);  // the cancelled queued job never ran
+
+  try {
+    service.cancel(new_job_id());
+    ADD_FAILURE() << "cancelled an unknown job";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.problem().code, "job_not_found");
+  }
+}
+
+TEST(JobServiceTest, CancelFinishedJobIsAConflict) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();
+  gate->open = true;
+  JobService service(store, gated_runner(gate), settings(1, 4), quiet);
+  service.start();
+  const std::string id = service.submit(input_of("v 0 0 0\n"), {}).id;
+  wait_final(service, id);
+  try {
+    service.cancel(id);
+    ADD_FAILURE() << "cancelled a finished job";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.problem().status, 409);
+  }
+}
+
+TEST(JobServiceTest, OverrunningJobFailsWithTimeLimitExceeded) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();  // never opened: the runner would wait forever
+  ServiceSettings s = settings(1, 4);
+  s.hard_time_grace = 0.05;
+  JobService service(store, gated_runner(gate), s, quiet);
+  service.start();
+  JobOptions options;
+  options.time_limit = 0.1;
+  const JobView done = wait_final(service, service.submit(input_of("v 0 0 0\n"), options).id);
+  EXPECT_EQ(done.record.status, JobStatus::Failed);
+  EXPECT_EQ(done.record.error["code"], "time_limit_exceeded");
+}
+
+TEST(JobServiceTest, RunnerErrorsBecomeStoredProblems) {
+  JobStore store(":memory:");
+  JobService service(
+      store,
+      [](const JobInput&, const JobOptions&, JobSink&) -> JobOutput {
+        throw InvalidInputException("edge (3, 4) has 3 faces: not manifold");
+      },
+      settings(1, 4), quiet);
+  service.start();
+  const JobView done = wait_final(service, service.submit(input_of("v 0 0 0\n"), {}).id);
+  EXPECT_EQ(done.record.status, JobStatus::Failed);
+  EXPECT_EQ(done.record.error["status"], 422);
+  EXPECT_EQ(done.record.error["code"], "invalid_mesh");
+  EXPECT_EQ(done.record.error["detail"], "edge (3, 4) has 3 faces: not manifold");
+}
+
+TEST(JobServiceTest, IdenticalInputIsAnsweredFromTheStoredResult) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();
+  gate->open = true;
+  JobService service(store, gated_runner(gate), settings(1, 4), quiet);
+  service.start();
+  const std::string first = service.submit(input_of(sample_mesh()), {}).id;
+  wait_final(service, first);
+  const JobRecord again = service.submit(input_of(sample_mesh()), {});
+  EXPECT_EQ(again.status, JobStatus::Succeeded);
+  EXPECT_EQ(again.result_job, first);
+  EXPECT_EQ(gate->started, 1);
+  JobOptions other;
+  other.seed = 2;
+  const JobRecord different = service.submit(input_of(sample_mesh()), other);
+  EXPECT_EQ(different.status, JobStatus::Queued);
+  wait_final(service, different.id);
+  EXPECT_EQ(gate->started, 2);
+}
+
+TEST(JobServiceTest, ShutdownRequeuesRunningJobsAndRefusesNewOnes) {
+  JobStore store(":memory:");
+  auto gate = std::make_shared<Gate>();
+  JobService service(store, gated_runner(gate), settings(1, 4), quiet);
+  service.start();
+  const std::string id = service.submit(input_of("v 0 0 0\n"), {}).id;
+  wait_running(service, id);
+  service.shutdown(50ms);
+  EXPECT_EQ(store.find(id)->status, JobStatus::Queued);
+  EXPECT_FALSE(service.accepting());
+  try {
+    service.submit(input_of("v 1 0 0\n"), {});
+    ADD_FAILURE() << "accepted a job while shutting down";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.problem().status, 503);
+  }
+}
+
+// What a kill -9 leaves behind: queued jobs, a job marked running, a finished one. A new
+// service on the same file runs the first two and leaves the third alone.
+TEST(JobServiceTest, RestartRunsQueuedAndInterruptedJobs) {
+  const auto dir = std::filesystem::temp_directory_path() / ("papernet_store_" + new_job_id());
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "jobs.sqlite").string();
+  std::vector<std::string> ids;
+  {
+    JobStore store(path);
+    for (int i = 0; i < 3; ++i) {
+      JobRecord job;
+      job.id = new_job_id();
+      job.created = now_seconds();
+      job.options = options_to_json({});
+      job.format = "obj";
+      job.input_key = "k" + std::to_string(i);
+      const JobInput in = input_of(sample_mesh() + std::string(i, '\n'));
+      store.insert(job, &in);
+      ids.push_back(job.id);
+    }
+    store.mark_running(ids[1], now_seconds());
+    JobRecord done = *store.find(ids[2]);
+    done.status = JobStatus::Succeeded;
+    done.finished = now_seconds();
+    done.result_kind = "complete";
+    done.result_job = done.id;
+    JobOutput out;
+    out.files["net.json"] = {"application/json", "{\"kept\":true}"};
+    store.finish(done, &out);
+  }
+  JobStore store(path);
+  EXPECT_EQ(store.unfinished().size(), 2u);
+  auto gate = std::make_shared<Gate>();
+  gate->open = true;
+  {
+    JobService service(store, gated_runner(gate), settings(2, 4), quiet);
+    service.start();
+    EXPECT_EQ(wait_final(service, ids[0]).record.status, JobStatus::Succeeded);
+    const JobView interrupted = wait_final(service, ids[1]);
+    EXPECT_EQ(interrupted.record.status, JobStatus::Succeeded);
+    EXPECT_EQ(interrupted.record.attempts, 2);
+  }
+  EXPECT_EQ(gate->started, 2);
+  EXPECT_EQ(store.artifact(ids[2], "net.json")->data, "{\"kept\":true}");
+  EXPECT_TRUE(store.unfinished().empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(JobServiceTest, JobThatKeepsKillingTheServerFails) {
+  JobStore store(":memory:");
+  JobRecord job;
+  job.id = new_job_id();
+  job.options = options_to_json({});
+  job.format = "obj";
+  const JobInput in = input_of("v 0 0 0\n");
+  store.insert(job, &in);
+  for (int i = 0; i < 3; ++i) store.mark_running(job.id, now_seconds());  // three crashes
+  auto gate = std::make_shared<Gate>();
+  gate->open = true;
+  JobService service(store, gated_runner(gate), settings(1, 4), quiet);
+  service.start();
+  const JobView v = wait_final(service, job.id);
+  EXPECT_EQ(v.record.status, JobStatus::Failed);
+  EXPECT_EQ(v.record.error["code"], "interrupted_too_often");
+  EXPECT_EQ(gate->started, 0);
+}
+
+TEST(JobServiceTest, JobIdsAreOpaqueAndValidated) {
+  const std::string id = new_job_id();
+  EXPECT_TRUE(valid_job_id(id));
+  EXPECT_NE(id, new_job_id());
+  EXPECT_FALSE(valid_job_id("../../etc/passwd"));
+  EXPECT_FALSE(valid_job_id(id.substr(1)));
+  EXPECT_FALSE(valid_job_id(std::string(32, 'G')));
+}

@@ -1,0 +1,104 @@
+#include "tests/net_fixtures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <queue>
+
+#include "core/load.h"
+
+namespace papernet::testing {
+
+Mesh tetrahedron() {
+  Mesh m;
+  m.vertices = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  m.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  return m;
+}
+
+Mesh cube() {
+  Mesh m;
+  for (int i = 0; i < 8; ++i)
+    m.vertices.push_back({double(i & 1), double(i >> 1 & 1), double(i >> 2)});
+  // Quads CCW seen from outside, each split into two triangles.
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    m.faces.push_back({q[0], q[1], q[2]});
+    m.faces.push_back({q[0], q[2], q[3]});
+  }
+  return m;
+}
+
+Mesh octahedron(double top_z) {
+  Mesh m;
+  m.vertices = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, top_z}, {0, 0, -1}};
+  for (int i = 0; i < 4; ++i) {
+    m.faces.push_back({i, (i + 1) % 4, 4});
+    m.faces.push_back({(i + 1) % 4, i, 5});
+  }
+  return m;
+}
+
+Net bfs_net(const Mesh& mesh) {
+  const int n = static_cast<int>(mesh.faces.size());
+  std::map<std::pair<int, int>, std::pair<int, int>> directed;  // (u, w) -> (face, k)
+  for (int f = 0; f < n; ++f)
+    for (int k = 0; k < 3; ++k) directed[{mesh.faces[f][k], mesh.faces[f][(k + 1) % 3]}] = {f, k};
+  Net net;
+  net.parent.assign(n, -2);
+  net.points.resize(n);
+  auto len = [&](int a, int b) { return norm(mesh.vertices[a] - mesh.vertices[b]); };
+  auto lay = [&](int g, int k, Vec2 a, Vec2 b) {  // edge k of g from a to b, third on the left
+    const auto& v = mesh.faces[g];
+    const double d = norm(b - a), r1 = len(v[k], v[(k + 2) % 3]),
+                 r2 = len(v[(k + 1) % 3], v[(k + 2) % 3]);
+    const double along = (r1 * r1 - r2 * r2 + d * d) / (2 * d);
+    const double h = std::sqrt(std::max(0.0, r1 * r1 - along * along));
+    const Vec2 e = (1 / d) * (b - a), up{-e.y, e.x};
+    net.points[g][k] = a;
+    net.points[g][(k + 1) % 3] = b;
+    net.points[g][(k + 2) % 3] = a + along * e + h * up;
+  };
+  for (int root = 0; root < n; ++root) {
+    if (net.parent[root] != -2) continue;
+    net.parent[root] = -1;
+    const auto& v = mesh.faces[root];
+    lay(root, 0, {0, 0}, {len(v[0], v[1]), 0});
+    std::queue<int> todo;
+    todo.push(root);
+    while (!todo.empty()) {
+      const int f = todo.front();
+      todo.pop();
+      for (int k = 0; k < 3; ++k) {
+        const int u = mesh.faces[f][k], w = mesh.faces[f][(k + 1) % 3];
+        const auto it = directed.find({w, u});
+        if (it == directed.end()) continue;
+        const auto [g, kg] = it->second;
+        if (net.parent[g] != -2) continue;
+        net.parent[g] = f;
+        lay(g, kg, net.points[f][(k + 1) % 3], net.points[f][k]);
+        todo.push(g);
+      }
+    }
+  }
+  return net;
+}
+
+std::vector<std::pair<std::string, Mesh>> test_data_meshes() {
+  std::vector<std::pair<std::string, Mesh>> out;
+  for (const auto& entry : std::filesystem::directory_iterator(PAPERNET_TEST_DATA)) {
+    const std::string ext = entry.path().extension().string();
+    if (ext != ".obj" && ext != ".ply" && ext != ".stl") continue;
+    Mesh mesh = load_mesh_file(entry.path().string()).mesh;
+    // The first loader reads no faces from some files (binary STL); those come with a better one.
+    if (mesh.faces.empty()) continue;
+    out.emplace_back(entry.path().filename().string(), std::move(mesh));
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return out;
+}
+
+}  // namespace papernet::testing

@@ -1,0 +1,147 @@
+#include "api/options.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+using namespace papernet;
+
+namespace {
+
+// The stable code of the OptionsError that `f` throws ("" when it throws none).
+template <class F>
+std::string error_code(F f, std::string* option = nullptr) {
+  try {
+    f();
+  } catch (const OptionsError& e) {
+    if (option) *option = e.option();
+    return e.code();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
+  const JobOptions o = parse_options_query({});
+  EXPECT_EQ(o.strategy, Strategy::QQ);
+  EXPECT_EQ(o.seed, 1u);
+  EXPECT_FALSE(o.target_faces);
+  EXPECT_FALSE(o.time_limit);
+  EXPECT_EQ(o.paper, PaperSize::A4);
+  EXPECT_TRUE(o.tabs);
+  EXPECT_FALSE(o.keep_largest_component);
+}
+
+TEST(OptionsTest, QueryParametersAreParsed) {
+  const JobOptions o = parse_options_query({{"strategy", "semp"},
+                                            {"seed", "42"},
+                                            {"target_faces", "500"},
+                                            {"time_limit", "2.5"},
+                                            {"size_mm", "120"},
+                                            {"paper", "letter"},
+                                            {"margin_mm", "5"},
+                                            {"tabs", "false"},
+                                            {"keep_largest_component", "yes"}});
+  EXPECT_EQ(o.strategy, Strategy::SEMP);
+  EXPECT_EQ(o.seed, 42u);
+  EXPECT_EQ(o.target_faces, 500u);
+  EXPECT_DOUBLE_EQ(*o.time_limit, 2.5);
+  EXPECT_DOUBLE_EQ(*o.size_mm, 120);
+  EXPECT_EQ(o.paper, PaperSize::Letter);
+  EXPECT_DOUBLE_EQ(o.margin_mm, 5);
+  EXPECT_FALSE(o.tabs);
+  EXPECT_TRUE(o.keep_largest_component);
+}
+
+TEST(OptionsTest, JsonObjectIsParsedWithTypedValues) {
+  const JobOptions o = parse_options_json(
+      R"({"strategy":"TU","seed":7,"scale":2.0,"paper":"none","tabs":false,"time_limit":null})");
+  EXPECT_EQ(o.strategy, Strategy::TU);
+  EXPECT_EQ(o.seed, 7u);
+  EXPECT_DOUBLE_EQ(*o.scale, 2.0);
+  EXPECT_EQ(o.paper, PaperSize::None);
+  EXPECT_FALSE(o.tabs);
+  EXPECT_FALSE(o.time_limit);
+}
+
+TEST(OptionsTest, UnknownOptionIsNamed) {
+  std::string option;
+  EXPECT_EQ(error_code(
+                [] {
+                  parse_options_query({{"stratgey", "QQ"}});
+                },
+                &option),
+            "unknown_option");
+  EXPECT_EQ(option, "stratgey");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"colour":"red"})"); }), "unknown_option");
+}
+
+TEST(OptionsTest, BadValuesHaveStableCodes) {
+  std::string option;
+  EXPECT_EQ(error_code(
+                [] {
+                  parse_options_query({{"strategy", "FAST"}});
+                },
+                &option),
+            "invalid_option_value");
+  EXPECT_EQ(option, "strategy");
+  EXPECT_EQ(error_code([] { parse_options_query({{"seed", "-3"}}); }), "invalid_option_value");
+  EXPECT_EQ(error_code([] { parse_options_query({{"seed", "12abc"}}); }), "invalid_option_value");
+  EXPECT_EQ(error_code([] { parse_options_query({{"tabs", "maybe"}}); }), "invalid_option_value");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"seed":1.5})"); }), "invalid_option_value");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"strategy":3})"); }), "invalid_option_value");
+  EXPECT_EQ(error_code([] {
+              parse_options_query({{"seed", "1"}, {"seed", "2"}});
+            }),
+            "invalid_option_value");
+}
+
+TEST(OptionsTest, RangesAndLimitsAreChecked) {
+  OptionsLimits limits;
+  limits.max_time_limit = 30;
+  limits.max_target_faces = 1000;
+  std::string option;
+  EXPECT_EQ(error_code(
+                [&] {
+                  parse_options_query({{"time_limit", "31"}}, limits);
+                },
+                &option),
+            "option_out_of_range");
+  EXPECT_EQ(option, "time_limit");
+  EXPECT_EQ(error_code([&] {
+              parse_options_query({{"time_limit", "0"}}, limits);
+            }),
+            "option_out_of_range");
+  EXPECT_EQ(error_code([&] {
+              parse_options_query({{"target_faces", "1001"}}, limits);
+            }),
+            "option_out_of_range");
+  EXPECT_EQ(error_code([&] {
+              parse_options_query({{"target_faces", "3"}}, limits);
+            }),
+            "option_out_of_range");
+  EXPECT_EQ(error_code([] { parse_options_query({{"size_mm", "nan"}}); }), "option_out_of_range");
+  EXPECT_EQ(error_code([] { parse_options_query({{"margin_mm", "-1"}}); }), "option_out_of_range");
+  EXPECT_EQ(error_code([&] { parse_options_query({{"time_limit", "30"}}, limits); }), "");
+}
+
+TEST(OptionsTest, SizeAndScaleConflict) {
+  std::string option;
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"size_mm":100,"scale":2})"); }, &option),
+            "conflicting_options");
+}
+
+TEST(OptionsTest, MalformedJsonIsReported) {
+  EXPECT_EQ(error_code([] { parse_options_json("{strategy: QQ"); }), "malformed_options");
+  EXPECT_EQ(error_code([] { parse_options_json("[1,2]"); }), "malformed_options");
+}
+
+TEST(OptionsTest, CanonicalJsonRoundTrips) {
+  const JobOptions o = parse_options_query({{"strategy", "SEQ"}, {"seed", "9"}, {"scale", "3"}});
+  const nlohmann::json doc = options_to_json(o);
+  EXPECT_EQ(doc["strategy"], "SEQ");
+  EXPECT_TRUE(doc["size_mm"].is_null());
+  const JobOptions back = parse_options_json(doc.dump());
+  EXPECT_EQ(options_to_json(back), doc);
+}

@@ -1,0 +1,180 @@
+#include "api/pdf.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "api/pages.h"
+#include "api/print_output.h"
+#include "api/svg.h"
+#include "tests/net_fixtures.h"
+
+namespace papernet {
+namespace {
+
+/// Output of a shell command, or nullopt-like "" with ok=false when the tool is missing.
+struct ToolRun {
+  bool present = false;
+  int status = 0;
+  std::string out;
+};
+ToolRun run(const std::string& tool, const std::string& args) {
+  ToolRun r;
+  if (std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) != 0) return r;
+  r.present = true;
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((tool + " " + args).c_str(), "r"), pclose);
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe.get())) r.out.append(buf, n);
+  r.status = pclose(pipe.release());
+  return r;
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("papernet_pdf_test_" + name)).string();
+}
+
+/// Pages needed for `content` on printable `room` with `overlap`, computed independently of
+/// paginate: the smallest n with n * room - (n - 1) * overlap >= content.
+int tiles(double content, double room, double overlap) {
+  int n = 1;
+  while (n * room - (n - 1) * overlap < content) ++n;
+  return n;
+}
+
+TEST(Pages, ParsePaperAndLengths) {
+  EXPECT_DOUBLE_EQ(parse_paper("a4").height, 297);
+  EXPECT_DOUBLE_EQ(parse_paper("Letter").width, 215.9);
+  const Paper p = parse_paper("300x200mm");
+  EXPECT_DOUBLE_EQ(p.width, 200);
+  EXPECT_DOUBLE_EQ(p.height, 300);
+  EXPECT_THROW(parse_paper("B5"), std::invalid_argument);
+  EXPECT_THROW(parse_paper("0x10mm"), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(parse_length_mm("200mm"), 200);
+  EXPECT_DOUBLE_EQ(parse_length_mm("2cm"), 20);
+  EXPECT_DOUBLE_EQ(parse_length_mm("1in"), 25.4);
+  EXPECT_DOUBLE_EQ(parse_length_mm("15"), 15);
+  EXPECT_THROW(parse_length_mm("-3mm"), std::invalid_argument);
+  EXPECT_THROW(parse_length_mm("12 parsecs"), std::invalid_argument);
+  PageOptions o;
+  o.margin_mm = 120;
+  EXPECT_NE(o.validate(), "");
+}
+
+TEST(Pages, TilesCoverTheNetWithOverlapAndUseTheCheaperOrientation) {
+  const Mesh mesh = testing::octahedron();
+  for (double size : {50.0, 200.0, 600.0}) {
+    PrintOptions print;
+    print.size_mm = size;
+    PrintLayout layout = layout_net(mesh, testing::bfs_net(mesh), print);
+    const Vec2 before = layout.size;
+    PageOptions o;  // A4, 10 mm margins, 10 mm overlap
+    const PageLayout pages = paginate(layout, o);
+    const int portrait = std::min(tiles(before.x, 190, 10) * tiles(before.y, 277, 10),
+                                  tiles(before.y, 190, 10) * tiles(before.x, 277, 10));
+    EXPECT_EQ(static_cast<int>(pages.pages.size()), portrait) << size;
+    EXPECT_EQ(pages.rows * pages.cols, static_cast<int>(pages.pages.size()));
+    // Every face corner is on some page's window; neighbouring windows share the overlap.
+    for (const auto& tri : layout.faces)
+      for (Vec2 p : tri) {
+        bool seen = false;
+        for (const Page& pg : pages.pages)
+          seen |= p.x >= pg.lo.x - 1e-9 && p.x <= pg.hi.x + 1e-9 && p.y >= pg.lo.y - 1e-9 &&
+                  p.y <= pg.hi.y + 1e-9;
+        EXPECT_TRUE(seen);
+      }
+    if (pages.cols > 1) {
+      EXPECT_NEAR(pages.pages[0].hi.x - pages.pages[1].lo.x, 10, 1e-9);
+    }
+    if (pages.rows > 1) {
+      EXPECT_NEAR(pages.pages[0].lo.y - pages.pages[pages.cols].hi.y, -10, 1e-9);
+    }
+  }
+}
+
+TEST(Pdf, HasTheExpectedPageCountAndRenders) {
+  const Mesh mesh = testing::octahedron(-0.4);
+  for (double size : {60.0, 400.0}) {
+    PrintOptions print;
+    print.size_mm = size;
+    PrintLayout layout = layout_net(mesh, testing::bfs_net(mesh), print);
+    const PageLayout pages = paginate(layout, {});
+    const std::string pdf = write_pdf(layout, pages);
+    ASSERT_EQ(pdf.rfind("%PDF-", 0), 0u);
+    const std::string path = temp_path(std::to_string(int(size)) + ".pdf");
+    std::ofstream(path, std::ios::binary) << pdf;
+    const ToolRun info = run("pdfinfo", path);
+    if (!info.present) GTEST_SKIP() << "pdfinfo missing: install poppler-utils";
+    ASSERT_EQ(info.status, 0) << info.out;
+    const auto at = info.out.find("Pages:");
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_EQ(std::stoi(info.out.substr(at + 6)), static_cast<int>(pages.pages.size()));
+    if (size == 60) {
+      EXPECT_EQ(pages.pages.size(), 1u);
+    }
+    if (size == 400) {
+      EXPECT_GT(pages.pages.size(), 1u);
+    }
+    const ToolRun png = run("pdftoppm", "-r 30 -png -f 1 -l 1 " + path + " " + path);
+    if (png.present) {
+      EXPECT_EQ(png.status, 0);
+    }
+    std::filesystem::remove(path);
+    for (const char* suffix : {"-1.png", "-01.png"}) std::filesystem::remove(path + suffix);
+  }
+}
+
+TEST(Output, WritesByExtensionAndOneSvgPerPage) {
+  const Mesh mesh = testing::cube();
+  const Net net = testing::bfs_net(mesh);
+  OutputOptions o;
+  o.print.size_mm = 300;  // several A4 pages
+  const std::string base = temp_path("out");
+  const auto svgs = write_output_file(base + ".svg", mesh, net, o);
+  ASSERT_GT(svgs.size(), 1u);
+  EXPECT_EQ(svgs[0], base + "-1.svg");
+  for (const auto& f : svgs) {
+    const ToolRun lint = run("xmllint", "--noout " + f);
+    if (lint.present) {
+      EXPECT_EQ(lint.status, 0) << f;
+    }
+    std::filesystem::remove(f);
+  }
+  o.print.size_mm = 40;  // one page
+  EXPECT_EQ(write_output_file(base + ".svg", mesh, net, o).size(), 1u);
+  EXPECT_TRUE(std::filesystem::exists(base + ".svg"));
+  EXPECT_EQ(write_output_file(base + ".PDF", mesh, net, o).size(), 1u);
+  EXPECT_EQ(write_output_file(base + ".glb", mesh, net, o).size(), 1u);
+  EXPECT_THROW(write_output_file(base + ".docx", mesh, net, o), std::invalid_argument);
+  for (const char* ext : {".svg", ".PDF", ".glb"}) std::filesystem::remove(base + ext);
+}
+
+TEST(Output, CommandLineOptionsFillTheOptionsOrNameTheBadValue) {
+  OutputOptions o;
+  EXPECT_TRUE(apply_output_option("--size", "15cm", o));
+  EXPECT_DOUBLE_EQ(o.print.size_mm, 150);
+  EXPECT_TRUE(apply_output_option("--paper", "letter", o));
+  EXPECT_EQ(o.page.paper.name, "Letter");
+  EXPECT_TRUE(apply_output_option("--margin", "0", o));
+  EXPECT_DOUBLE_EQ(o.page.margin_mm, 0);
+  EXPECT_TRUE(apply_output_option("--tab-height", "4mm", o));
+  EXPECT_DOUBLE_EQ(o.print.tab_height_mm, 4);
+  EXPECT_TRUE(apply_output_option("--labels", "off", o));
+  EXPECT_FALSE(o.print.labels);
+  EXPECT_TRUE(apply_output_option("--paper", "none", o));
+  EXPECT_FALSE(o.paper);
+  EXPECT_FALSE(apply_output_option("--strategy", "QQ", o));
+  try {
+    apply_output_option("--flat-angle", "lots", o);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--flat-angle"), std::string::npos);
+  }
+  EXPECT_THROW(apply_output_option("--labels", "maybe", o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace papernet
