@@ -24,8 +24,11 @@ build: deps
 test: build format-check
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
+# Starts the HTTP job service with its defaults (127.0.0.1:8080, SQLite store under ./var).
 run: build
-	$(BUILD)/server/papernet info $(SAMPLE)
+	@echo "papernet serve: try  curl -s -i --data-binary @$(SAMPLE) -H 'Content-Type: model/obj' 'http://127.0.0.1:8080/v1/jobs'"
+	@echo "                (README.md, section 'HTTP service', has the whole session; Ctrl-C stops)"
+	$(BUILD)/server/papernet serve
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

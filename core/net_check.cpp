@@ -27,17 +27,17 @@ std::string face_name(std::size_t f) { return "face " + std::to_string(f); }
 
 double orient(Vec2 a, Vec2 b, Vec2 c) { return cross(b - a, c - a); }
 
-// Closed segments pq and rs intersect.
-bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 s) {
+// Segments pq and rs cross at a point inside both: each one's ends lie strictly on opposite
+// sides of the other's line, farther than `tiny` from it. Collinear and touching segments do
+// not cross; the callers shrink triangles first, so touching never means overlapping.
+bool segments_cross(Vec2 p, Vec2 q, Vec2 r, Vec2 s, double tiny) {
+  const double lrs = norm(s - r), lpq = norm(q - p);
   const double d1 = orient(r, s, p), d2 = orient(r, s, q), d3 = orient(p, q, r),
                d4 = orient(p, q, s);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
-    return true;
-  const auto on = [](Vec2 a, Vec2 b, Vec2 c, double d) {
-    return d == 0 && std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) &&
-           std::min(a.y, b.y) <= c.y && c.y <= std::max(a.y, b.y);
+  const auto apart = [tiny](double x, double y, double len) {
+    return (x > tiny * len && y < -tiny * len) || (x < -tiny * len && y > tiny * len);
   };
-  return on(r, s, p, d1) || on(r, s, q, d2) || on(p, q, r, d3) || on(p, q, s, d4);
+  return apart(d1, d2, lrs) && apart(d3, d4, lpq);
 }
 
 // Point inside or on the counter-clockwise triangle t.
@@ -59,12 +59,15 @@ bool shrink(const std::array<Vec2, 3>& t, double d, std::array<Vec2, 3>& out) {
 
 // Interiors of two counter-clockwise triangles intersect by more than d.
 bool interiors_meet(const std::array<Vec2, 3>& t, const std::array<Vec2, 3>& u, double d) {
+  const double tiny = 1e-6 * d;
   std::array<Vec2, 3> a, b;
   if (!shrink(t, d, a) || !shrink(u, d, b)) return false;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      if (segments_meet(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])) return true;
-  return inside(a, b[0]) || inside(b, a[0]);
+      if (segments_cross(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3], tiny)) return true;
+  for (int k = 0; k < 3; ++k)
+    if (inside(a, b[k]) || inside(b, a[k])) return true;
+  return false;
 }
 
 }  // namespace

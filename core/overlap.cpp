@@ -33,24 +33,42 @@ bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance)
 
 void OverlapGrid::reset(double cell_size) {
   inv_cell_ = 1.0 / cell_size;
-  cells_.clear();
+  buckets_.assign(1024, {});
+  mask_ = buckets_.size() - 1;
+  count_ = 0;
   range_.clear();
   big_.clear();
+}
+
+void OverlapGrid::place(int f) {
+  const Range& r = range_[f];
+  for (int x = r.x0; x <= r.x1; ++x)
+    for (int y = r.y0; y <= r.y1; ++y) buckets_[bucket(x, y)].push_back(f);
+}
+
+void OverlapGrid::grow() {
+  buckets_.assign(2 * buckets_.size(), {});
+  mask_ = buckets_.size() - 1;
+  for (std::size_t f = 0; f < range_.size(); ++f)
+    if (range_[f].valid && !range_[f].big) place(static_cast<int>(f));
 }
 
 void OverlapGrid::insert(int f, const Box2& box) {
   if (f >= static_cast<int>(range_.size())) range_.resize(f + 1);
   Range& r = range_[f];
   r = {cell(box.lo.x), cell(box.lo.y), cell(box.hi.x), cell(box.hi.y), true, false};
-  const long long count =
+  ++count_;
+  const long long cells =
       static_cast<long long>(r.x1 - r.x0 + 1) * static_cast<long long>(r.y1 - r.y0 + 1);
-  if (count > kMaxCells) {
+  if (cells > kMaxCells || r.x1 < r.x0 || r.y1 < r.y0) {
     r.big = true;
     big_.push_back(f);
     return;
   }
-  for (int x = r.x0; x <= r.x1; ++x)
-    for (int y = r.y0; y <= r.y1; ++y) cells_[key(x, y)].push_back(f);
+  if (4 * count_ > buckets_.size())
+    grow();  // grow() places f too
+  else
+    place(f);
 }
 
 void OverlapGrid::remove(int f) {
@@ -64,13 +82,10 @@ void OverlapGrid::remove(int f) {
     erase(big_);
   } else {
     for (int x = r.x0; x <= r.x1; ++x)
-      for (int y = r.y0; y <= r.y1; ++y) {
-        const auto it = cells_.find(key(x, y));
-        erase(it->second);
-        if (it->second.empty()) cells_.erase(it);
-      }
+      for (int y = r.y0; y <= r.y1; ++y) erase(buckets_[bucket(x, y)]);
   }
   r.valid = false;
+  --count_;
 }
 
 }  // namespace papernet

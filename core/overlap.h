@@ -32,7 +32,9 @@ inline Box2 triangle_box(const Triangle2& t) {
 bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance);
 
 /// Uniform hash grid over face boxes, updated incrementally: the spatial index of a net.
-/// Faces much larger than a cell are kept in a short list that every query returns.
+/// Cells hash into a power-of-two table of buckets without keys (cells that collide share a
+/// bucket, which only adds candidates), so a query is a few array lookups. Faces much larger
+/// than a cell are kept in a short list that every query returns.
 class OverlapGrid {
  public:
   /// Empties the grid and sets its cell size (> 0), typically about an average edge length.
@@ -52,14 +54,18 @@ class OverlapGrid {
     int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
     bool valid = false, big = false;
   };
-  static std::uint64_t key(int x, int y) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) |
-           static_cast<std::uint32_t>(y);
+  std::size_t bucket(int x, int y) const {
+    const std::uint64_t h = static_cast<std::uint32_t>(x) * 0x9e3779b1u ^
+                            static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0x85ebca6bu;
+    return static_cast<std::size_t>((h ^ (h >> 15)) & mask_);
   }
   int cell(double v) const { return static_cast<int>(std::floor(v * inv_cell_)); }
+  void place(int f);
+  void grow();
 
   double inv_cell_ = 1;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  std::size_t mask_ = 0, count_ = 0;
+  std::vector<std::vector<int>> buckets_;
   std::vector<Range> range_;
   std::vector<int> big_;
 };
@@ -69,11 +75,8 @@ void OverlapGrid::query(const Box2& box, Visit&& visit) const {
   for (int f : big_) visit(f);
   const int x0 = cell(box.lo.x), x1 = cell(box.hi.x), y0 = cell(box.lo.y), y1 = cell(box.hi.y);
   for (int x = x0; x <= x1; ++x)
-    for (int y = y0; y <= y1; ++y) {
-      const auto it = cells_.find(key(x, y));
-      if (it == cells_.end()) continue;
-      for (int f : it->second) visit(f);
-    }
+    for (int y = y0; y <= y1; ++y)
+      for (int f : buckets_[bucket(x, y)]) visit(f);
 }
 
 }  // namespace papernet

@@ -58,7 +58,15 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
   report();
   Clock::time_point last_report = Clock::now();
 
-  while (pair_count_ > 0) {
+  bool moved = false;
+  for (;;) {
+    if (pair_count_ == 0) {
+      // Moves are rigid motions, which round; lay the net out exactly from its tree again.
+      if (!moved) break;
+      relayout_all();
+      moved = false;
+      continue;
+    }
     if (options.max_iterations && st.iterations >= options.max_iterations) break;
     const Clock::time_point now = Clock::now();
     if (options.time_limit_seconds > 0 &&
@@ -70,16 +78,16 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
       last_report = now;
     }
 
-    reroot(static_cast<int>(rng.below(nf)));
+    root_at(static_cast<int>(rng.below(nf)));
     const int f = overlapping_[rng.below(overlapping_.size())];
     int best_g = -1, best_k = -1;
     long long best_delta = LLONG_MAX;
     bool blocked = false, improved = false;
     for (int g = f; parent_[g] != -1 && !improved; g = parent_[g]) {
-      prepare_cut(g);
+      cut(g);
       for (int k = 0; k < 3 && !improved; ++k) {
         const int q = adj_[g][k];
-        if (q < 0 || (links_[g] >> k & 1) || in_cut_subtree(q)) continue;
+        if (q < 0 || (links_[g] >> k & 1) || in_subtree(q)) continue;
         if (is_tabu(g, q)) {
           blocked = true;
           continue;
@@ -96,11 +104,13 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
       continue;
     }
     const int old_parent = parent_[best_g];
-    if (!improved) prepare_cut(best_g);  // the prepared cut is the last face walked
+    cut(best_g);
     apply_move(best_g, best_k);
+    moved = true;
     tabu.push_back(dual_edge(best_g, old_parent));
     if (tabu.size() > tabu_length) tabu.pop_front();
   }
+  if (moved) relayout_all();
   st.seconds = seconds_since(start);
   report();
   if (stats) *stats = st;

@@ -54,8 +54,7 @@ Unfolding::Unfolding(Mesh mesh, const std::vector<int>& parent) : mesh_(std::mov
   box_.resize(nf);
   overlaps_.assign(nf, {});
   overlapping_index_.assign(nf, -1);
-  mark_.assign(nf, 0);
-  new_pos_.resize(nf);
+  tin_.assign(nf, 0);
   seen_.assign(nf, 0);
   is_dirty_.assign(nf, 0);
   tolerance_ = kRelativeTolerance * bounding_box_diagonal(mesh_);
@@ -206,8 +205,7 @@ int Unfolding::add_face(std::array<int, 3> corners) {
   box_.emplace_back();
   overlaps_.emplace_back();
   overlapping_index_.push_back(-1);
-  mark_.push_back(0);
-  new_pos_.emplace_back();
+  tin_.push_back(0);
   seen_.push_back(0);
   is_dirty_.push_back(1);
   dirty_.push_back(f);

@@ -15,6 +15,16 @@
 
 namespace papernet {
 
+/// A rotation about the origin followed by a translation: x -> to + R (x - from).
+struct Rigid {
+  Vec2 from, to;
+  double c = 1, s = 0;
+  Vec2 operator()(Vec2 x) const {
+    const Vec2 d = x - from;
+    return {to.x + c * d.x - s * d.y, to.y + s * d.x + c * d.y};
+  }
+};
+
 /// Budget and randomness of a Tabu Unfolder run (DESIGN.md §3).
 struct TabuOptions {
   std::uint64_t seed = 1;                   ///< every random choice derives from it
@@ -114,11 +124,16 @@ class Unfolding {
   void test_moved(const std::vector<int>& moved);
 
   // unfolding_moves.cpp: the move primitives of the Tabu Unfolder.
-  void prepare_cut(int g);
-  bool in_cut_subtree(int q) const;
-  void layout_side(int g, int k);
+  void root_at(int r);
+  void cut(int g);
+  bool in_subtree(int x) const {
+    return static_cast<unsigned>(tin_[x] - cut_lo_) < static_cast<unsigned>(cut_hi_ - cut_lo_);
+  }
+  bool in_small(int x) const { return in_subtree(x) == small_is_subtree_; }
+  int move_anchor(int g, int k, Triangle2& anchor_pos, Rigid& motion) const;
   long long evaluate_move(int g, int k, long long cutoff);
   void apply_move(int g, int k);
+  void relayout_all();
   std::uint32_t next_seen_epoch();
 
   Mesh mesh_;
@@ -142,14 +157,11 @@ class Unfolding {
   std::vector<int> dirty_;  // faces whose shape, corners or parent changed since update()
   std::vector<char> is_dirty_;
 
-  // Scratch of the move primitives.
-  std::vector<std::uint32_t> mark_;  // side marks of the current cut
-  std::uint32_t epoch_ = 0, small_mark_ = 0;
+  // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut).
+  std::vector<int> order_, tin_, size_, stack_;
+  int cut_lo_ = 0, cut_hi_ = 0;
   bool small_is_subtree_ = true;
-  int cut_face_ = -1;
-  std::vector<int> side_a_, side_b_, stack_a_, stack_b_, small_;
-  std::vector<int> order_;  // small side in layout order of the evaluated move
-  std::vector<Triangle2> new_pos_;
+  std::vector<std::pair<int, int>> crossing_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t seen_epoch_ = 0;
 };

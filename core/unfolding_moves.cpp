@@ -1,60 +1,45 @@
 // The move primitives of the Tabu Unfolder. A move cuts the link between face g and its parent
 // and links g to another neighbour q; it is a rigid motion of one side of the cut relative to
-// the other, so only overlaps between the two sides change, and only the smaller side is laid
-// out again and tested.
+// the other, so only overlaps between the two sides change, and only the smaller side is moved
+// and tested. The sides are ranges of the tree's pre-order, so finding them costs nothing.
 #include <algorithm>
+#include <cmath>
 
 #include "core/unfolding.h"
 
 namespace papernet {
 
-void Unfolding::prepare_cut(int g) {
-  const int p = parent_[g];
-  if (epoch_ > 0xfffffff0u) {
-    std::fill(mark_.begin(), mark_.end(), 0);
-    epoch_ = 0;
-  }
-  epoch_ += 2;
-  const std::uint32_t a = epoch_, b = epoch_ + 1;
-  side_a_.clear();
-  side_b_.clear();
-  stack_a_.assign(1, g);
-  stack_b_.assign(1, p);
-  mark_[g] = a;
-  mark_[p] = b;
-  // Walk both sides in turn; the side that runs out first is the smaller one, found in time
-  // proportional to its size.
-  const auto step = [this](std::vector<int>& stack, std::vector<int>& side, std::uint32_t own,
-                           std::uint32_t other) {
-    const int x = stack.back();
-    stack.pop_back();
-    side.push_back(x);
+void Unfolding::root_at(int r) {
+  const int nf = static_cast<int>(face_count());
+  order_.clear();
+  stack_.assign(1, r);
+  parent_[r] = -1;
+  size_.resize(nf);
+  while (!stack_.empty()) {
+    const int x = stack_.back();
+    stack_.pop_back();
+    tin_[x] = static_cast<int>(order_.size());
+    order_.push_back(x);
     for (int k = 0; k < 3; ++k)
       if (links_[x] >> k & 1) {
         const int n = adj_[x][k];
-        if (mark_[n] != own && mark_[n] != other) {
-          mark_[n] = own;
-          stack.push_back(n);
-        }
+        if (n == parent_[x]) continue;
+        parent_[n] = x;
+        stack_.push_back(n);
       }
-  };
-  for (;;) {
-    if (stack_a_.empty()) {
-      small_is_subtree_ = true;
-      small_mark_ = a;
-      small_.swap(side_a_);
-      break;
-    }
-    step(stack_a_, side_a_, a, b);
-    if (stack_b_.empty()) {
-      small_is_subtree_ = false;
-      small_mark_ = b;
-      small_.swap(side_b_);
-      break;
-    }
-    step(stack_b_, side_b_, b, a);
   }
-  cut_face_ = g;
+  for (int i = nf - 1; i >= 0; --i) {
+    const int x = order_[i];
+    size_[x] = 1;
+    for (int k = 0; k < 3; ++k)
+      if ((links_[x] >> k & 1) && adj_[x][k] != parent_[x]) size_[x] += size_[adj_[x][k]];
+  }
+}
+
+void Unfolding::cut(int g) {
+  cut_lo_ = tin_[g];
+  cut_hi_ = cut_lo_ + size_[g];
+  small_is_subtree_ = 2 * static_cast<std::size_t>(size_[g]) <= face_count();
 }
 
 std::uint32_t Unfolding::next_seen_epoch() {
@@ -65,51 +50,51 @@ std::uint32_t Unfolding::next_seen_epoch() {
   return seen_epoch_;
 }
 
-bool Unfolding::in_cut_subtree(int q) const {
-  return small_is_subtree_ ? mark_[q] == small_mark_ : mark_[q] != small_mark_;
-}
-
-void Unfolding::layout_side(int g, int k) {
+int Unfolding::move_anchor(int g, int k, Triangle2& anchor_pos, Rigid& motion) const {
   const int q = adj_[g][k];
   const int kq = adj_edge_[g][k];
-  int start;
-  if (small_is_subtree_) {
-    start = g;
-    new_pos_[g] = place_across(pos_[q], kq, k, shape_[g]);
-  } else {
-    start = q;
-    new_pos_[q] = place_across(pos_[g], k, kq, shape_[q]);
-  }
-  order_.assign(1, start);
-  stack_a_.assign(1, -1);  // where each face of order_ was reached from
-  for (std::size_t i = 0; i < order_.size(); ++i) {
-    const int x = order_[i], from = stack_a_[i];
-    for (int kk = 0; kk < 3; ++kk) {
-      if (!(links_[x] >> kk & 1)) continue;
-      const int n = adj_[x][kk];
-      if (n == from || mark_[n] != small_mark_) continue;
-      new_pos_[n] = place_across(new_pos_[x], kk, adj_edge_[x][kk], shape_[n]);
-      order_.push_back(n);
-      stack_a_.push_back(x);
-    }
-  }
+  // The anchor is the face of the moving side that touches the new link.
+  const int a = small_is_subtree_ ? g : q;
+  anchor_pos = small_is_subtree_ ? place_across(pos_[q], kq, k, shape_[g])
+                                 : place_across(pos_[g], k, kq, shape_[q]);
+  const Vec2 o = pos_[a][1] - pos_[a][0], n = anchor_pos[1] - anchor_pos[0];
+  // Rotation taking direction o to direction n: (n / o) as complex numbers, normalised.
+  const double re = n.x * o.x + n.y * o.y, im = n.y * o.x - n.x * o.y;
+  const double len = std::hypot(re, im);
+  motion = {pos_[a][0], anchor_pos[0], re / len, im / len};
+  return a;
 }
 
 long long Unfolding::evaluate_move(int g, int k, long long cutoff) {
   long long delta = 0;
-  for (int s : small_)
-    for (int c : overlaps_[s])
-      if (mark_[c] != small_mark_) --delta;
-  layout_side(g, k);
-  for (int s : order_) {
-    const Triangle2& t = new_pos_[s];
-    next_seen_epoch();
+  for (int a : overlapping_)
+    if (in_small(a))
+      for (int b : overlaps_[a])
+        if (!in_small(b)) --delta;
+  Triangle2 anchor_pos;
+  Rigid motion;
+  const int anchor = move_anchor(g, k, anchor_pos, motion);
+  const int nf = static_cast<int>(face_count());
+  const auto test = [&](int s) {
+    const Triangle2 t = s == anchor
+                            ? anchor_pos
+                            : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};
+    const std::uint32_t epoch = next_seen_epoch();
     grid_.query(triangle_box(t), [&](int c) {
-      if (mark_[c] == small_mark_ || seen_[c] == seen_epoch_) return;
-      seen_[c] = seen_epoch_;
+      if (seen_[c] == epoch || in_small(c)) return;
+      seen_[c] = epoch;
       if (triangles_overlap(t, pos_[c], tolerance_)) ++delta;
     });
-    if (delta >= cutoff) return delta;
+    return delta < cutoff;
+  };
+  if (small_is_subtree_) {
+    for (int i = cut_lo_; i < cut_hi_; ++i)
+      if (!test(order_[i])) return delta;
+  } else {
+    for (int i = 0; i < cut_lo_; ++i)
+      if (!test(order_[i])) return delta;
+    for (int i = cut_hi_; i < nf; ++i)
+      if (!test(order_[i])) return delta;
   }
   return delta;
 }
@@ -117,35 +102,62 @@ long long Unfolding::evaluate_move(int g, int k, long long cutoff) {
 void Unfolding::apply_move(int g, int k) {
   const int q = adj_[g][k];
   const int p = parent_[g];
-  layout_side(g, k);
-  std::vector<int> gone;
-  for (int s : small_) {
-    gone.clear();
-    for (int c : overlaps_[s])
-      if (mark_[c] != small_mark_) gone.push_back(c);
-    for (int c : gone) remove_pair(s, c);
-  }
-  for (int s : order_) {
+  const int nf = static_cast<int>(face_count());
+  crossing_.clear();
+  for (int a : overlapping_)
+    if (in_small(a))
+      for (int b : overlaps_[a])
+        if (!in_small(b)) crossing_.push_back({a, b});
+  for (const auto& [a, b] : crossing_) remove_pair(a, b);
+
+  Triangle2 anchor_pos;
+  Rigid motion;
+  const int anchor = move_anchor(g, k, anchor_pos, motion);
+  const auto move = [&](int s) {
     grid_.remove(s);
-    pos_[s] = new_pos_[s];
+    pos_[s] = s == anchor ? anchor_pos
+                          : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};
     box_[s] = triangle_box(pos_[s]);
     grid_.insert(s, box_[s]);
-  }
-  for (int s : order_) {
-    next_seen_epoch();
+  };
+  const auto retest = [&](int s) {
+    const std::uint32_t epoch = next_seen_epoch();
     grid_.query(box_[s], [&](int c) {
-      if (mark_[c] == small_mark_ || seen_[c] == seen_epoch_) return;
-      seen_[c] = seen_epoch_;
+      if (seen_[c] == epoch || in_small(c)) return;
+      seen_[c] = epoch;
       if (triangles_overlap(pos_[s], pos_[c], tolerance_)) add_pair(s, c);
     });
-  }
+  };
+  const auto each_small = [&](const auto& visit) {
+    if (small_is_subtree_) {
+      for (int i = cut_lo_; i < cut_hi_; ++i) visit(order_[i]);
+    } else {
+      for (int i = 0; i < cut_lo_; ++i) visit(order_[i]);
+      for (int i = cut_hi_; i < nf; ++i) visit(order_[i]);
+    }
+  };
+  each_small(move);
+  each_small(retest);
+
   const int kp = edge_to(g, p);
   links_[g] &= static_cast<std::uint8_t>(~(1u << kp));
   links_[p] &= static_cast<std::uint8_t>(~(1u << adj_edge_[g][kp]));
   parent_[g] = q;
   links_[g] |= static_cast<std::uint8_t>(1u << k);
   links_[q] |= static_cast<std::uint8_t>(1u << adj_edge_[g][k]);
-  cut_face_ = -1;
+}
+
+void Unfolding::relayout_all() {
+  int root = 0;
+  while (parent_[root] != -1) root = parent_[root];
+  root_at(root);
+  pos_[root] = place_root(mesh_, root, shape_[root]);
+  for (int x : order_)
+    if (x != root) {
+      const int k = edge_to(x, parent_[x]);
+      pos_[x] = place_across(pos_[parent_[x]], adj_edge_[x][k], k, shape_[x]);
+    }
+  test_moved(order_);
 }
 
 }  // namespace papernet

@@ -66,6 +66,7 @@ int serve(int argc, char** argv) {
   httplib::Server http;
   const std::size_t threads = config.http_threads;
   http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  http.set_tcp_nodelay(true);  // small JSON answers must not wait for delayed ACKs
   install_routes(http, service, config, metrics);
   std::string web_root;
   try {
@@ -92,7 +93,8 @@ int serve(int argc, char** argv) {
     sigwait(&signals, &sig);
     if (sig == 0) return;
     log_line(std::string("received ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
-             ": no new jobs; running ones get " + std::to_string(config.shutdown_grace) + " s");
+             ": no new jobs; running ones get " +
+             std::to_string(static_cast<int>(config.shutdown_grace)) + " s");
     service.shutdown(std::chrono::milliseconds(static_cast<long>(config.shutdown_grace * 1000)));
     http.stop();
   });

@@ -1,9 +1,11 @@
-// `papernet unfold FILE --strategy TU -o net.json [--seed N] [--time-limit S]`
+// `papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o net.json [--seed N]
+//  [--time-limit S]`
 #include <chrono>
 #include <cstdlib>
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -12,6 +14,7 @@
 #include "core/errors.h"
 #include "core/load.h"
 #include "core/net_check.h"
+#include "core/progressive.h"
 #include "core/unfolding.h"
 #include "server/commands.h"
 
@@ -20,8 +23,12 @@ namespace papernet::cli {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: papernet unfold FILE --strategy TU -o NET.json [--seed N] [--time-limit S]\n"
-    "exit codes: 0 net written, 2 input cannot be unfolded, 3 no overlap-free net within the\n"
+    "usage: papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o NET.json\n"
+    "                            [--seed N] [--time-limit S]\n"
+    "QQ (default), SEMP, SEQ: progressive unfolding after collapsing to N faces (default\n"
+    "F/10 + sqrt(F)(1+genus)); TU: Tabu Unfolding of the full mesh.\n"
+    "exit codes: 0 net written (also an approximate one: a net of a coarser mesh, said on\n"
+    "stderr and in the JSON), 2 input cannot be unfolded, 3 no overlap-free net within the\n"
     "budget, 1 other errors. Prints one summary line (key=value) on stdout.\n";
 
 // Genus and boundary loops from V - E + F = 2 - 2g - b (the mesh is manifold: the dual graph
@@ -60,8 +67,9 @@ NetInput describe(const Mesh& mesh) {
 }  // namespace
 
 int unfold(int argc, char** argv) {
-  std::string file, output, strategy = "TU";
+  std::string file, output, strategy = "QQ";
   TabuOptions options;
+  std::size_t target_faces = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto value = [&]() -> std::string {
@@ -76,6 +84,10 @@ int unfold(int argc, char** argv) {
         strategy = value();
       } else if (arg == "-o" || arg == "--output") {
         output = value();
+      } else if (arg == "--target-faces") {
+        const long long n = std::stoll(value());
+        if (n < 1) throw std::invalid_argument("--target-faces must be at least 1");
+        target_faces = static_cast<std::size_t>(n);
       } else if (arg == "--seed") {
         options.seed = std::stoull(value());
       } else if (arg == "--time-limit") {
@@ -96,10 +108,12 @@ int unfold(int argc, char** argv) {
     std::cerr << kUsage;
     return 1;
   }
-  if (strategy != "TU") {
-    std::cerr << "papernet unfold: strategy '" << strategy << "' is not available (TU is)\n";
+  const std::optional<CollapseStrategy> collapse = parse_collapse_strategy(strategy);
+  if (strategy != "TU" && !collapse) {
+    std::cerr << "papernet unfold: unknown strategy '" << strategy << "' (QQ, SEMP, SEQ or TU)\n";
     return 1;
   }
+  if (collapse) strategy = strategy_name(*collapse);
 
   const auto start = std::chrono::steady_clock::now();
   NetDocument doc;
@@ -108,8 +122,25 @@ int unfold(int argc, char** argv) {
     LoadedMesh loaded = load_mesh_file(file);
     doc.input = describe(loaded.mesh);
     Progress quiet;
-    result = unfold_tabu(loaded.mesh, options, quiet);
-    doc.mesh = std::move(loaded.mesh);
+    if (collapse) {
+      ProgressiveOptions progressive;
+      progressive.strategy = *collapse;
+      progressive.target_faces = target_faces;
+      progressive.tabu = options;
+      ProgressiveResult p = unfold_progressive(loaded.mesh, progressive, quiet);
+      result.net = std::move(p.net);
+      result.overlap_free = p.overlap_free;
+      result.overlaps = p.overlaps;
+      result.stats = p.stats;
+      if (p.overlap_free && !p.complete) {
+        doc.result = "approximate";
+        doc.metrics.hausdorff = p.hausdorff;
+      }
+      doc.mesh = std::move(p.mesh);
+    } else {
+      result = unfold_tabu(loaded.mesh, options, quiet);
+      doc.mesh = std::move(loaded.mesh);
+    }
   } catch (const IOException& e) {
     std::cerr << "papernet unfold: " << file << ": " << e.what() << "\n";
     return 2;
@@ -122,8 +153,9 @@ int unfold(int argc, char** argv) {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << "result=" << (result.overlap_free ? "complete" : "failed")
-            << " faces=" << doc.mesh.faces.size() << " overlaps=" << result.overlaps
+  std::cout << "result=" << (result.overlap_free ? doc.result : "failed")
+            << " faces=" << doc.mesh.faces.size() << " input_faces=" << doc.input.faces
+            << " hausdorff=" << doc.metrics.hausdorff << " overlaps=" << result.overlaps
             << " iterations=" << result.stats.iterations << " seconds=" << seconds;
   if (!result.overlap_free) {
     std::cout << " check=skipped\n";
@@ -139,6 +171,11 @@ int unfold(int argc, char** argv) {
               << "\n";
     return 1;
   }
+  if (doc.result == "approximate")
+    std::cerr << "papernet unfold: " << file << ": approximate result: the net folds into a "
+              << "coarser mesh of " << doc.mesh.faces.size() << " of " << doc.input.faces
+              << " faces, Hausdorff distance " << doc.metrics.hausdorff
+              << " of the bounding-box diagonal\n";
   doc.strategy = strategy;
   doc.net = std::move(result.net);
   doc.metrics.faces = doc.mesh.faces.size();

@@ -63,6 +63,9 @@ json job_to_json(const JobView& view, double now) {
     progress["overlaps"] = r.overlaps;
   }
   doc["progress"] = progress;
+  if (doc["input"]["faces"].is_null() && !progress["input_faces"].is_null() &&
+      progress["input_faces"] != 0)
+    doc["input"]["faces"] = progress["input_faces"];
   if (view.cancel_requested && !is_final(r.status)) doc["cancel_requested"] = true;
 
   json links = {{"self", self}, {"events", self + "/events"}};

@@ -51,6 +51,12 @@ class JobService::Sink : public JobSink {
 
 namespace {
 
+std::string seconds_text(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f s", seconds);
+  return text;
+}
+
 std::uint64_t fnv1a(std::uint64_t h, std::string_view bytes) {
   for (unsigned char c : bytes) {
     h ^= c;
@@ -151,6 +157,8 @@ JobRecord JobService::submit(JobInput input, JobOptions options) {
     --reserved_;
     throw;
   }
+  log_("job " + job.id + " -> queued (" + job.format + ", " + std::to_string(job.input_bytes) +
+       " bytes)");
   {
     std::lock_guard lock(mutex_);
     --reserved_;
@@ -160,8 +168,6 @@ JobRecord JobService::submit(JobInput input, JobOptions options) {
   }
   work_cv_.notify_one();
   change_cv_.notify_all();
-  log_("job " + job.id + " -> queued (" + job.format + ", " + std::to_string(job.input_bytes) +
-       " bytes)");
   return job;
 }
 
@@ -374,6 +380,7 @@ void JobService::run_one(const std::string& id) {
 
 void JobService::finish(JobRecord& record, JobStatus status, const JobOutput* output,
                         const nlohmann::json& error) {
+  const JobStatus before = record.status;
   record.status = status;
   record.error = error;
   store_.finish(record, output);
@@ -391,8 +398,8 @@ void JobService::finish(JobRecord& record, JobStatus status, const JobOutput* ou
     }
   }
   change_cv_.notify_all();
-  std::string line = "job " + record.id + " -> " + status_name(status);
-  if (record.started > 0) line += " after " + std::to_string(seconds) + " s";
+  std::string line = "job " + record.id + " " + status_name(before) + " -> " + status_name(status);
+  if (record.started > 0) line += " after " + seconds_text(seconds);
   if (error.is_object())
     line += " (" + error.value("code", "") + ": " + error.value("detail", "") + ")";
   log_(line);

@@ -14,6 +14,7 @@ struct Command {
 };
 
 constexpr Command kCommands[] = {
+    {"bench", papernet::cli::bench, "benchmark unfolding strategies over a folder of meshes"},
     {"info", papernet::cli::info, "describe a mesh and every problem found in it"},
     {"serve", papernet::cli::serve, "run the HTTP job service (papernet serve --help)"},
     {"unfold", papernet::cli::unfold, "unfold a mesh into a net (papernet.net/1 JSON)"},

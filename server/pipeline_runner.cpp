@@ -6,6 +6,7 @@
 #include "core/errors.h"
 #include "core/load.h"
 #include "core/net_check.h"
+#include "core/progressive.h"
 #include "core/unfolding.h"
 #include "core/validate.h"
 #include "server/pipeline_output.h"
@@ -72,7 +73,8 @@ Validated load_and_validate(const JobInput& input, const JobOptions& options,
 
 // Everything a client can download, from one overlap-free net.
 JobOutput render(const Mesh& mesh, const Net& net, const NetInput& input, const JobOptions& options,
-                 const std::string& result, double seconds, const nlohmann::json& level) {
+                 const std::string& result, double seconds, double hausdorff,
+                 const nlohmann::json& level) {
   const PrintFiles print = render_print_files(mesh, net, options);
   NetDocument doc;
   doc.result = result;
@@ -85,6 +87,7 @@ JobOutput render(const Mesh& mesh, const Net& net, const NetInput& input, const 
   doc.metrics.aspect_ratio = print.aspect_ratio;
   doc.metrics.overlaps = 0;
   doc.metrics.seconds = seconds;
+  doc.metrics.hausdorff = hausdorff;
   nlohmann::json json = net_to_json(doc);
   if (!level.is_null()) json["level"] = level;
 
@@ -120,7 +123,7 @@ class JobProgress : public Progress {
     last_ = now;
     const nlohmann::json level = {
         {"kind", "intermediate"}, {"faces", mesh.faces.size()}, {"input_faces", input_.faces}};
-    sink_.intermediate(render(mesh, net, input_, options_, "approximate", 0, level));
+    sink_.intermediate(render(mesh, net, input_, options_, "approximate", 0, 0, level));
   }
   bool cancelled() override { return sink_.cancelled(); }
 
@@ -132,38 +135,59 @@ class JobProgress : public Progress {
   Clock::time_point last_;
 };
 
+// The net of the job's strategy: plain Tabu Unfolding (TU) or progressive unfolding.
+struct Unfolded {
+  Mesh mesh;  // what the net folds into (a coarser mesh when approximate)
+  Net net;
+  bool complete = true;
+  double hausdorff = 0;
+};
+
+Unfolded unfold(const Mesh& mesh, const NetInput& input, const JobOptions& options,
+                Progress& progress) {
+  TabuOptions tabu;
+  tabu.seed = options.seed;
+  tabu.time_limit_seconds = options.time_limit.value_or(60);
+  tabu.input_faces = input.faces;
+  auto no_net = [](std::size_t overlaps, std::size_t iterations) {
+    return ApiError("unfold_failed",
+                    "no overlap-free net within the time limit (" + std::to_string(overlaps) +
+                        " overlapping face pairs left after " + std::to_string(iterations) +
+                        " iterations); try another seed, strategy or a longer time_limit");
+  };
+  if (options.strategy == Strategy::TU) {
+    UnfoldResult r = unfold_tabu(mesh, tabu, progress);
+    if (!r.overlap_free) throw no_net(r.overlaps, r.stats.iterations);
+    return {mesh, std::move(r.net), true, 0};
+  }
+  ProgressiveOptions p;
+  p.strategy = *parse_collapse_strategy(strategy_name(options.strategy));
+  p.target_faces = options.target_faces.value_or(0);
+  p.tabu = tabu;
+  ProgressiveResult r = unfold_progressive(mesh, p, progress);
+  if (!r.overlap_free) throw no_net(r.overlaps, r.stats.iterations);
+  return {std::move(r.mesh), std::move(r.net), r.complete, r.hausdorff};
+}
+
 }  // namespace
 
 JobRunner make_pipeline_runner(PipelineLimits limits) {
   return [limits](const JobInput& input, const JobOptions& options, JobSink& sink) -> JobOutput {
     const auto start = Clock::now();
     const Validated v = load_and_validate(input, options, limits, sink);
-    if (options.strategy != Strategy::TU)
-      throw ApiError("pipeline_unavailable",
-                     "strategy " + strategy_name(options.strategy) +
-                         " needs progressive unfolding, which this build does not have yet; "
-                         "strategy=TU (plain Tabu Unfolding) is available");
     JobProgress progress(sink, v.input, options);
-    TabuOptions tabu;
-    tabu.seed = options.seed;
-    tabu.time_limit_seconds = options.time_limit.value_or(60);
-    tabu.input_faces = v.input.faces;
-    const UnfoldResult result = unfold_tabu(v.mesh, tabu, progress);
-    if (!result.overlap_free)
-      throw ApiError("unfold_failed", "no overlap-free net within the time limit (" +
-                                          std::to_string(result.overlaps) +
-                                          " overlapping face pairs left after " +
-                                          std::to_string(result.stats.iterations) +
-                                          " iterations); try another seed or a longer time_limit");
-    const NetCheckReport check = check_net(v.mesh, result.net);
+    const Unfolded u = unfold(v.mesh, v.input, options, progress);
+    const NetCheckReport check = check_net(u.mesh, u.net);
     if (!check.ok())
       throw std::logic_error("the unfolder's net fails the net checker: " + check.summary());
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     ProgressInfo info;
     info.phase = "write";
-    info.faces = info.input_faces = v.input.faces;
+    info.faces = u.mesh.faces.size();
+    info.input_faces = v.input.faces;
     sink.report(info);
-    return render(v.mesh, result.net, v.input, options, "complete", seconds, nullptr);
+    return render(u.mesh, u.net, v.input, options, u.complete ? "complete" : "approximate", seconds,
+                  u.hausdorff, nullptr);
   };
 }
 

@@ -11,9 +11,10 @@ struct PipelineLimits {
   std::size_t max_faces = 1'000'000;
 };
 
-/// The real job: load (core/load), validate, unfold progressively, write net JSON/SVG/PDF and
-/// GLB. Pieces that are not in this build make the job fail with pipeline_unavailable; the
-/// runner never pretends to have produced a net.
+/// The real job: load (core/load), validate (core/validate; 422 with reasons), unfold (TU:
+/// unfold_tabu; QQ/SEMP/SEQ: unfold_progressive, which may end approximate), check the net
+/// (core/net_check), write net JSON, SVG, PDF and GLB. Intermediate overlap-free nets are
+/// rendered at most every two seconds and handed to the sink.
 JobRunner make_pipeline_runner(PipelineLimits limits);
 
 }  // namespace papernet::server

@@ -41,7 +41,6 @@ constexpr ProblemType kProblemTypes[] = {
     {"queue_full", 429, "Queue full"},
     {"too_many_streams", 429, "Too many event streams"},
     {"internal_error", 500, "Internal error"},
-    {"pipeline_unavailable", 501, "Unfolding not available in this build"},
     {"shutting_down", 503, "Server shutting down"},
 };
 

@@ -15,6 +15,9 @@
 #include <sstream>
 #include <thread>
 
+#include "api/net_json.h"
+#include "core/net_check.h"
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
@@ -155,11 +158,6 @@ void expect_problem(const httplib::Result& res, int status, const std::string& c
   EXPECT_FALSE(doc["detail"].get<std::string>().empty());
 }
 
-// True when this build unfolds (the job did not fail with pipeline_unavailable).
-bool unfolds(const json& job) {
-  return !(job["status"] == "failed" && job["error"]["code"] == "pipeline_unavailable");
-}
-
 }  // namespace
 
 TEST(ServeTest, HealthReadinessMetricsAndOpenApi) {
@@ -184,8 +182,7 @@ TEST(ServeTest, SubmitPollAndFetchObj) {
   const json job = wait_final(s, id);
   EXPECT_EQ(job["options"]["strategy"], "TU");
   EXPECT_EQ(job["input"]["format"], "obj");
-  if (!unfolds(job)) GTEST_SKIP() << "needs the unfolder: " << job["error"]["detail"];
-  ASSERT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
+  ASSERT_EQ(job["status"], "succeeded") << job.dump();
   auto c = s.client();
   auto net = c.Get("/v1/jobs/" + id + "/net.json");
   ASSERT_EQ(net->status, 200);
@@ -193,6 +190,10 @@ TEST(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(doc["format"], "papernet.net/1");
   EXPECT_EQ(doc["metrics"]["overlaps"], 0);
   EXPECT_EQ(doc["net"]["faces"].size(), doc["mesh"]["faces"].size());
+  const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
+  const papernet::NetCheckReport check = papernet::check_net(net_doc.mesh, net_doc.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
   auto svg = c.Get("/v1/jobs/" + id + "/net.svg");
   ASSERT_EQ(svg->status, 200);
   EXPECT_NE(svg->body.find("<svg"), std::string::npos);
@@ -204,38 +205,95 @@ TEST(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(glb->body.substr(0, 4), "glTF");
 }
 
+// Progressive unfolding (the default, QQ): while the job runs, the result URLs serve the latest
+// overlap-free intermediate, said so in a header and in the body; then the complete net.
+TEST(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
+  Server s({"--workers", "1"});
+  const std::string id = submit(s, test_mesh("Duck.glb"), "model/gltf-binary");
+  auto c = s.client();
+  bool intermediate = false, not_ready = false;
+  for (int i = 0; i < 3000 && !intermediate; ++i) {
+    auto res = c.Get("/v1/jobs/" + id + "/net.json");
+    ASSERT_TRUE(res);
+    if (res->status == 409) {
+      not_ready = true;
+      EXPECT_EQ(json::parse(res->body)["code"], "result_not_ready");
+      EXPECT_FALSE(res->get_header_value("Retry-After").empty());
+    } else if (res->get_header_value("X-Papernet-Level").rfind("intermediate", 0) == 0) {
+      intermediate = true;
+      const json doc = json::parse(res->body);
+      EXPECT_EQ(doc["level"]["kind"], "intermediate");
+      EXPECT_LT(doc["mesh"]["faces"].size(), 4212u);
+      const papernet::NetDocument net = papernet::read_net_json(res->body);
+      EXPECT_TRUE(papernet::check_net(net.mesh, net.net).ok()) << "intermediate nets are valid";
+      EXPECT_EQ(c.Get("/v1/jobs/" + id + "/net.svg")->status, 200);
+      EXPECT_NE(body(c.Get("/v1/jobs/" + id))["links"].value("net.json", ""), "");
+    } else {
+      break;  // finished before we saw an intermediate
+    }
+    std::this_thread::sleep_for(2ms);
+  }
+  EXPECT_TRUE(not_ready || intermediate);
+  EXPECT_TRUE(intermediate) << "no intermediate was served while the job ran";
+  const json job = wait_final(s, id);
+  ASSERT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
+  EXPECT_EQ(job["options"]["strategy"], "QQ");
+  auto net = c.Get("/v1/jobs/" + id + "/net.json");
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["result"], job["result"]["kind"]);
+  EXPECT_FALSE(doc.contains("level"));
+  EXPECT_EQ(net->get_header_value("X-Papernet-Level").rfind(job["result"]["kind"], 0), 0u);
+}
+
+// A time limit too short to finish the uncollapse gives the last overlap-free approximation.
+TEST(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
+  Server s({"--workers", "1"});
+  const json job =
+      wait_final(s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?time_limit=0.5"));
+  ASSERT_EQ(job["status"], "approximated") << job.dump();
+  EXPECT_EQ(job["result"]["kind"], "approximate");
+  EXPECT_LT(job["result"]["faces"].get<int>(), 4212);
+  EXPECT_EQ(job["result"]["input_faces"], 4212);
+  auto net = s.client().Get("/v1/jobs/" + job["id"].get<std::string>() + "/net.json");
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["result"], "approximate");
+  EXPECT_GT(doc["metrics"]["hausdorff"].get<double>(), 0);
+  EXPECT_EQ(net->get_header_value("X-Papernet-Level").rfind("approximate", 0), 0u);
+}
+
 TEST(ServeTest, SubmitGlbDracoAndMultipartGltf) {
   Server s({"--workers", "1"});
   std::vector<std::string> ids = {
       submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU"),
       submit(s, test_mesh("Box_Draco.glb"), "", "?strategy=TU")};
-  const fs::path box = fs::path(PAPERNET_SHARED_DATA) / "meshes/gltf/draco__Box";
-  if (fs::exists(box / "Box.gltf")) {
-    httplib::MultipartFormDataItems items = {
-        {"mesh", read_file(box / "Box.gltf"), "Box.gltf", "model/gltf+json"},
-        {"buffers", read_file(box / "Box0.bin"), "Box0.bin", "application/octet-stream"},
-        {"options", R"({"strategy":"TU","seed":5})", "", "application/json"}};
-    auto res = s.client().Post("/v1/jobs", items);
-    ASSERT_TRUE(res);
-    ASSERT_EQ(res->status, 202) << res->body;
-    EXPECT_EQ(body(res)["input"]["format"], "gltf");
-    EXPECT_EQ(body(res)["options"]["seed"], 5);
-    ids.push_back(body(res)["id"]);
-  }
+  httplib::MultipartFormDataItems items = {
+      {"mesh", test_mesh("Box.gltf"), "Box.gltf", "model/gltf+json"},
+      {"buffers", test_mesh("Box0.bin"), "Box0.bin", "application/octet-stream"},
+      {"options", R"({"strategy":"TU","seed":5})", "", "application/json"}};
+  auto res = s.client().Post("/v1/jobs", items);
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 202) << res->body;
+  EXPECT_EQ(body(res)["input"]["format"], "gltf");
+  EXPECT_EQ(body(res)["options"]["seed"], 5);
+  ids.push_back(body(res)["id"]);
   for (const std::string& id : ids) {
     const json job = wait_final(s, id);
-    // Every upload must load: whatever happens next, never an unreadable mesh.
-    EXPECT_NE(job["error"].is_object() ? job["error"]["code"] : json("none"), "unreadable_mesh")
-        << job.dump();
+    EXPECT_EQ(job["status"], "succeeded") << job.dump();
     EXPECT_GT(job["input"]["faces"].get<int>(), 0) << job.dump();
-    if (unfolds(job)) {
-      EXPECT_EQ(job["status"], "succeeded") << job.dump();
-      auto net = s.client().Get("/v1/jobs/" + id + "/net.json");
-      ASSERT_TRUE(net);
-      EXPECT_EQ(json::parse(net->body)["net"]["faces"].size(), job["result"]["faces"]);
-    }
+    auto net = s.client().Get("/v1/jobs/" + id + "/net.json");
+    ASSERT_TRUE(net);
+    ASSERT_EQ(net->status, 200);
+    EXPECT_EQ(json::parse(net->body)["net"]["faces"].size(), job["result"]["faces"]);
   }
-  if (!fs::exists(box / "Box.gltf")) GTEST_SKIP() << "needs ../shared/data: " << box;
+  // The .gltf without its buffer part cannot be read: the job says so.
+  httplib::MultipartFormDataItems no_buffer = {
+      {"mesh", test_mesh("Box.gltf"), "Box.gltf", "model/gltf+json"}};
+  const std::string missing = body(s.client().Post("/v1/jobs", no_buffer))["id"];
+  const json failed = wait_final(s, missing);
+  EXPECT_EQ(failed["error"]["code"], "unreadable_mesh") << failed.dump();
+  EXPECT_NE(failed["error"]["detail"].get<std::string>().find("Box0.bin"), std::string::npos)
+      << failed.dump();
 }
 
 TEST(ServeTest, EventStreamEndsWithTheFinalState) {
@@ -255,7 +313,6 @@ TEST(ServeTest, EventStreamEndsWithTheFinalState) {
   const json last = json::parse(data);
   EXPECT_EQ(last["id"], id);
   EXPECT_EQ(last, wait_final(s, id)) << "the last event is the job's final state";
-  if (!unfolds(last)) GTEST_SKIP() << "needs the unfolder for progress events";
   EXPECT_NE(stream.find("event: progress"), std::string::npos) << stream;
   EXPECT_NE(stream.find("\"phase\":\"unfold\""), std::string::npos)
       << "the stream shows the unfolder's progress";
@@ -316,8 +373,7 @@ TEST(ServeTest, QueueFullCancelAndShutdown) {
   const std::string first = submit(s, mesh, "model/obj", "?strategy=TU&time_limit=60");
   std::this_thread::sleep_for(300ms);
   const json probe = body(s.client().Get("/v1/jobs/" + first));
-  if (!unfolds(probe)) GTEST_SKIP() << "needs the unfolder: " << probe["error"]["detail"];
-  if (probe["status"] != "running") GTEST_SKIP() << "job finished too fast to test with";
+  ASSERT_EQ(probe["status"], "running") << "the test needs a job that runs for a while";
   const std::string queued = submit(s, mesh, "model/obj", "?strategy=TU&seed=2");
   auto full = s.client().Post("/v1/jobs?seed=3", mesh, "model/obj");
   expect_problem(full, 429, "queue_full");
@@ -347,7 +403,6 @@ TEST(ServeTest, KillNineThenRestartFinishesEveryJob) {
   const fs::path data = server->data();
   const std::string finished = submit(*server, test_mesh("mirror.ply"), "", "?strategy=TU");
   const json done_before = wait_final(*server, finished);
-  if (!unfolds(done_before)) GTEST_SKIP() << "needs the unfolder";
   ASSERT_EQ(done_before["status"], "succeeded") << done_before.dump();
   const std::string net_before = server->client().Get("/v1/jobs/" + finished + "/net.json")->body;
 

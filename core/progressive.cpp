@@ -1,0 +1,299 @@
+#include "core/progressive.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <utility>
+
+#include "core/errors.h"
+#include "core/hausdorff.h"
+#include "core/progressive_mesh.h"
+#include "core/random.h"
+
+namespace papernet {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Passes the Tabu Unfolder's reports on with the run's phase, face counts and elapsed time.
+class Relay : public Progress {
+ public:
+  Relay(Progress& outer, Clock::time_point start) : outer_(outer), start_(start) {}
+  ProgressInfo context;
+  bool quiet = false;
+  void report(const ProgressInfo& in) override {
+    if (quiet) return;
+    ProgressInfo out = context;
+    out.overlaps = in.overlaps;
+    out.iterations = in.iterations;
+    out.elapsed_seconds = seconds_since(start_);
+    outer_.report(out);
+  }
+  void intermediate(const Mesh& mesh, const Net& net) override { outer_.intermediate(mesh, net); }
+  bool cancelled() override { return outer_.cancelled(); }
+
+ private:
+  Progress& outer_;
+  Clock::time_point start_;
+};
+
+// The unfolding being refined and the id maps from the input to it.
+struct State {
+  Unfolding unfolding;
+  std::vector<int> face;    // input face -> Unfolding face, -1 while collapsed
+  std::vector<int> vertex;  // input vertex -> Unfolding vertex, -1 while collapsed
+  std::size_t splits = 0;   // splits applied
+};
+
+// A split that was applied, with what its Tabu run needed (to replay it exactly).
+struct Applied {
+  VertexSplit split;
+  std::uint64_t seed = 0;
+  std::size_t iterations = 0;  // 0: no overlaps appeared
+};
+
+// Local moves tried after a split before the Tabu Unfolder runs.
+constexpr int kLocalTrials = 16;
+
+std::uint64_t split_seed(std::uint64_t seed, std::size_t index) {
+  return seed ^ (0x9e3779b97f4a7c15ULL * (index + 1));
+}
+
+// Applies a vertex split to the unfolding's mesh and tree (update() not yet called).
+void apply_split(State& st, const VertexSplit& s, std::uint64_t seed) {
+  Unfolding& u = st.unfolding;
+  ++st.splits;
+  const int r = u.add_vertex(s.vertex_position);
+  st.vertex[s.vertex] = r;
+  u.set_vertex_position(st.vertex[s.moved], s.moved_to);
+  for (const auto& [f, c] : s.relabelled) {
+    std::array<int, 3> corners = u.mesh().faces[st.face[f]];
+    corners[c] = r;
+    u.set_face_corners(st.face[f], corners);
+  }
+  for (const SplitFace& nf : s.new_faces) {
+    std::array<int, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = st.vertex[nf.corners[k]];
+    st.face[nf.face] = u.add_face(corners);
+  }
+  Random rng(seed);
+  for (const SplitFace& nf : s.new_faces) {
+    const int f = st.face[nf.face];
+    const int a = nf.wing[0] >= 0 ? st.face[nf.wing[0]] : -1;
+    const int b = nf.wing[1] >= 0 ? st.face[nf.wing[1]] : -1;
+    if (a >= 0 && b >= 0 && u.parent(b) == a) {
+      u.insert_between(f, a, b);
+    } else if (a >= 0 && b >= 0 && u.parent(a) == b) {
+      u.insert_between(f, b, a);
+    } else {
+      // A leaf of a random neighbour already in the tree: a wing face or the other new face.
+      int options[3], n = 0;
+      for (int x : {a, b})
+        if (x >= 0) options[n++] = x;
+      for (const SplitFace& other : s.new_faces) {
+        const int g = st.face[other.face];
+        if (g != f && u.parent(g) != -2) options[n++] = g;
+      }
+      if (n == 0) throw TopologyException("a split face has no neighbour in the unfold tree");
+      u.attach(f, options[rng.below(static_cast<std::uint64_t>(n))]);
+    }
+  }
+}
+
+// Applies a split and lays it out. When faces of the split's neighbourhood overlap, moving one
+// of them (with its subtree) to another neighbour is tried first, a few cheap updates each, before
+// the caller falls back on the Tabu Unfolder: most new overlaps are local. Returns the overlap
+// count.
+std::size_t place_split(State& st, const VertexSplit& s, std::uint64_t seed) {
+  apply_split(st, s, seed);
+  Unfolding& u = st.unfolding;
+  std::size_t overlaps = u.update();
+  if (overlaps == 0) return 0;
+  std::vector<int> local;
+  for (const SplitFace& nf : s.new_faces) local.push_back(st.face[nf.face]);
+  for (int f : s.reshaped) local.push_back(st.face[f]);
+  const auto in_subtree = [&u](int q, int f) {
+    for (int x = q; x >= 0; x = u.parent(x))
+      if (x == f) return true;
+    return false;
+  };
+  int trials = 0;
+  for (int f : local) {
+    if (overlaps == 0 || trials >= kLocalTrials) break;
+    const auto& list = u.overlapping_faces();
+    if (std::find(list.begin(), list.end(), f) == list.end()) continue;
+    for (int k = 0; k < 3 && overlaps > 0 && trials < kLocalTrials; ++k) {
+      const int q = u.neighbour(f, k);
+      const int before = u.parent(f);
+      if (q < 0 || q == before || before < 0 || in_subtree(q, f)) continue;
+      ++trials;
+      u.attach(f, q);
+      const std::size_t now = u.update();
+      if (now < overlaps) {
+        overlaps = now;
+        continue;
+      }
+      // Undo: update() may have re-rooted the tree, so restore the link f-before whichever
+      // way the link f-q now points.
+      if (u.parent(f) == q) {
+        u.attach(f, before);
+      } else {
+        std::vector<int> path;  // before, ..., q: q's subtree holds `before`
+        for (int x = before; x != f; x = u.parent(x)) path.push_back(x);
+        for (std::size_t i = path.size() - 1; i > 0; --i) u.attach(path[i], path[i - 1]);
+        u.attach(before, f);
+      }
+      u.update();
+    }
+  }
+  return overlaps;
+}
+
+Net net_in_input_ids(const State& st, std::size_t faces) {
+  Net net;
+  net.parent.assign(faces, -1);
+  net.points.resize(faces);
+  std::vector<int> input_face(st.unfolding.face_count(), -1);
+  for (std::size_t f = 0; f < faces; ++f) input_face[st.face[f]] = static_cast<int>(f);
+  for (std::size_t f = 0; f < faces; ++f) {
+    const int uf = st.face[f];
+    const int p = st.unfolding.parent(uf);
+    net.parent[f] = p >= 0 ? input_face[p] : -1;
+    net.points[f] = st.unfolding.points(uf);
+  }
+  return net;
+}
+
+}  // namespace
+
+ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions& options,
+                                     Progress& progress) {
+  const Clock::time_point start = Clock::now();
+  const double limit = options.tabu.time_limit_seconds;
+  const auto remaining = [&] { return limit > 0 ? limit - seconds_since(start) : 0.0; };
+  ProgressiveResult result;
+  ProgressiveMesh pm = decimate(mesh, {options.strategy, options.target_faces}, progress);
+  const std::size_t input_faces = pm.input_face_count();
+  result.coarse_faces = pm.face_count();
+  result.splits_total = pm.splits_left();
+
+  Relay relay(progress, start);
+  relay.context.input_faces = input_faces;
+  relay.context.phase = "unfold";
+  relay.context.faces = pm.face_count();
+  std::vector<int> face_ids, vertex_ids;
+  Mesh coarse = pm.compact(&face_ids, &vertex_ids);
+  State st{Unfolding::steepest_edge(std::move(coarse), options.tabu.seed),
+           std::vector<int>(input_faces, -1), std::vector<int>(mesh.vertices.size(), -1)};
+  for (std::size_t i = 0; i < face_ids.size(); ++i) st.face[face_ids[i]] = static_cast<int>(i);
+  for (std::size_t i = 0; i < vertex_ids.size(); ++i)
+    st.vertex[vertex_ids[i]] = static_cast<int>(i);
+  TabuOptions tabu = options.tabu;
+  tabu.phase = "unfold";
+  tabu.input_faces = input_faces;
+  if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
+  TabuStats stats;
+  const bool coarse_ok = st.unfolding.resolve_overlaps(tabu, relay, &stats);
+  result.stats = stats;
+
+  bool failed = !coarse_ok;
+  std::vector<Applied> log;  // splits applied since the checkpoint
+  std::optional<State> checkpoint;
+  if (coarse_ok) {
+    progress.intermediate(st.unfolding.mesh(), st.unfolding.net());
+    checkpoint = st;
+  }
+  // Checkpoints cost a copy of the state: a few per run, so that going back to the last
+  // overlap-free state replays at most an eighth of the splits.
+  const std::size_t checkpoint_every = std::max<std::size_t>(64, result.splits_total / 8);
+  relay.context.phase = "uncollapse";
+  Clock::time_point last_output = Clock::now();
+  std::size_t index = 0;
+  while (!failed && pm.splits_left() > 0) {
+    if (progress.cancelled()) throw CancelledException();
+    Applied step{pm.split(), split_seed(options.tabu.seed, index++), 0};
+    relay.context.faces = pm.face_count();
+    if (place_split(st, step.split, step.seed) > 0) {
+      TabuOptions t = options.tabu;
+      t.seed = step.seed;
+      t.phase = "uncollapse";
+      t.input_faces = input_faces;
+      t.time_limit_seconds = options.split_time_limit_seconds;
+      if (options.split_iterations > 0) t.max_iterations = options.split_iterations;
+      if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
+      if (limit > 0 && t.time_limit_seconds <= 0) {
+        failed = true;
+        break;
+      }
+      if (!st.unfolding.resolve_overlaps(t, relay, &stats)) failed = true;
+      result.stats.iterations += stats.iterations;
+      result.stats.evaluations += stats.evaluations;
+      step.iterations = stats.iterations;
+      if (failed) break;
+    }
+    log.push_back(std::move(step));
+    if (log.size() >= checkpoint_every) {
+      checkpoint = st;
+      log.clear();
+    }
+    if (Clock::now() - last_output > std::chrono::milliseconds(100)) {
+      last_output = Clock::now();
+      relay.report(ProgressInfo{});
+      progress.intermediate(st.unfolding.mesh(), st.unfolding.net());
+    }
+  }
+
+  if (failed && checkpoint) {
+    // Back to the last overlap-free state: the checkpoint plus the splits that followed it,
+    // replayed with their seeds and iteration counts (deterministic, no time limit).
+    relay.quiet = true;
+    std::size_t upto = log.size();
+    for (;;) {
+      st = *checkpoint;
+      std::size_t i = 0;
+      for (; i < upto; ++i) {
+        if (place_split(st, log[i].split, log[i].seed) == 0) continue;
+        TabuOptions t = options.tabu;
+        t.seed = log[i].seed;
+        t.max_iterations = log[i].iterations;
+        t.time_limit_seconds = 0;
+        if (!st.unfolding.resolve_overlaps(t, relay)) break;
+      }
+      if (i == upto) break;
+      upto = i;
+    }
+    relay.quiet = false;
+  }
+
+  result.splits = st.splits;
+  result.overlaps = st.unfolding.overlap_count();
+  result.overlap_free = result.overlaps == 0;
+  result.complete = result.overlap_free && st.unfolding.face_count() == input_faces;
+  if (result.complete) {
+    result.mesh = mesh;
+    result.net = net_in_input_ids(st, input_faces);
+    result.face_ids.resize(input_faces);
+    for (std::size_t f = 0; f < input_faces; ++f) result.face_ids[f] = static_cast<int>(f);
+  } else {
+    result.mesh = st.unfolding.mesh();
+    result.net = st.unfolding.net();
+    result.face_ids.assign(st.unfolding.face_count(), -1);
+    for (std::size_t f = 0; f < input_faces; ++f)
+      if (st.face[f] >= 0) result.face_ids[st.face[f]] = static_cast<int>(f);
+    result.hausdorff = hausdorff_distance(mesh, result.mesh).distance;
+  }
+  relay.context.faces = result.mesh.faces.size();
+  ProgressInfo last;
+  last.overlaps = result.overlaps;
+  relay.report(last);
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+}  // namespace papernet

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/decimate.h"
+#include "core/mesh.h"
+#include "core/net.h"
+#include "core/progress.h"
+#include "core/unfolding.h"
+
+namespace papernet {
+
+struct ProgressiveOptions {
+  CollapseStrategy strategy = CollapseStrategy::QQ;
+  /// Face count of the coarse mesh; 0 means the paper's t_f (see collapse_target).
+  std::size_t target_faces = 0;
+  /// Seed of every random choice, the whole run's time limit, and the iteration limit of each
+  /// Tabu Unfolder run (on the coarse mesh and after each split that creates overlaps).
+  TabuOptions tabu;
+  /// Time limit of the Tabu Unfolder after one split (the whole run's limit applies too); when
+  /// a split's overlaps cannot be removed within it, the result is approximate.
+  double split_time_limit_seconds = 10;
+  /// Iteration limit of the Tabu Unfolder after one split; 0 means tabu.max_iterations.
+  std::size_t split_iterations = 0;
+};
+
+/// Outcome of progressive unfolding.
+struct ProgressiveResult {
+  /// The net folds into the input itself; `mesh` is the input and `face_ids` the identity.
+  bool complete = false;
+  /// `net` has no overlapping faces. False only when not even the coarse mesh could be unfolded
+  /// within the budget (then `net` is the coarse mesh's best attempt).
+  bool overlap_free = false;
+  Mesh mesh;                  ///< the mesh that `net` folds into
+  Net net;                    ///< net.points[i] belongs to mesh.faces[i]
+  std::vector<int> face_ids;  ///< input face id of each face of `mesh`
+  /// Two-sided Hausdorff distance of `mesh` to the input relative to the input's bounding-box
+  /// diagonal (0 when complete).
+  double hausdorff = 0;
+  std::size_t overlaps = 0;      ///< overlapping pairs left in `net`
+  std::size_t coarse_faces = 0;  ///< faces after collapsing
+  std::size_t splits = 0;        ///< vertex splits the net includes
+  std::size_t splits_total = 0;  ///< collapses made
+  TabuStats stats;               ///< Tabu Unfolder work summed over all runs
+  double seconds = 0;
+};
+
+/// Progressive Mesh Unfolding (the paper's Algorithm 1, DESIGN.md §1 steps 3-5): collapse the
+/// mesh with `options.strategy`, unfold the coarse mesh (steepest edge, then the Tabu Unfolder),
+/// then undo the collapses one vertex split at a time, inserting each new face into the unfold
+/// tree between the two faces linked across its wing (else as a leaf of a random neighbour),
+/// re-laying out and testing only what moved, and running the Tabu Unfolder when overlaps
+/// appear. When that fails within the budget, the last overlap-free state is returned
+/// (`complete` false).
+///
+/// Progress: phases "collapse", "unfold", "uncollapse" in that order, faces never decreasing
+/// during "uncollapse", the last report at the face count of the returned mesh; `intermediate`
+/// receives overlap-free nets of coarser meshes now and then (at most every ~100 ms).
+/// \throw InvalidInputException when the mesh is not a manifold, oriented triangle mesh.
+/// \throw CancelledException when `progress` asks to stop.
+ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions& options,
+                                     Progress& progress);
+
+}  // namespace papernet

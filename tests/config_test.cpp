@@ -1,0 +1,77 @@
+#include "server/config.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <vector>
+
+using namespace papernet::server;
+
+namespace {
+
+struct Args {
+  std::vector<std::string> words;
+  std::vector<char*> argv;
+  explicit Args(std::vector<std::string> w) : words(std::move(w)) {
+    for (auto& s : words) argv.push_back(s.data());
+  }
+  int argc() const { return static_cast<int>(argv.size()); }
+};
+
+std::optional<ServerConfig> parse(std::vector<std::string> words,
+                                  std::map<std::string, std::string> env = {}) {
+  words.insert(words.begin(), "serve");
+  Args args(std::move(words));
+  return parse_serve_config(args.argc(), args.argv.data(), [&env](const char* name) {
+    auto it = env.find(name);
+    return it == env.end() ? nullptr : it->second.c_str();
+  });
+}
+
+}  // namespace
+
+TEST(ConfigTest, DefaultsAreLoopbackPort8080AndVar) {
+  const ServerConfig c = *parse({});
+  EXPECT_EQ(c.host, "127.0.0.1");
+  EXPECT_EQ(c.port, 8080);
+  EXPECT_EQ(c.data_dir, "./var");
+  EXPECT_GE(c.workers, 1u);
+  EXPECT_TRUE(c.reuse_results);
+}
+
+TEST(ConfigTest, EnvironmentThenFlagsWhichWin) {
+  const ServerConfig c =
+      *parse({"--port", "9000", "--queue-length=5"},
+             {{"PAPERNET_PORT", "7000"}, {"PAPERNET_WORKERS", "3"}, {"PAPERNET_DATA", "/tmp/x"}});
+  EXPECT_EQ(c.port, 9000);
+  EXPECT_EQ(c.workers, 3u);
+  EXPECT_EQ(c.data_dir, "/tmp/x");
+  EXPECT_EQ(c.queue_length, 5u);
+}
+
+TEST(ConfigTest, BadValuesNameTheirSource) {
+  try {
+    parse({"--port", "99999"});
+    ADD_FAILURE() << "accepted port 99999";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--port"), std::string::npos) << e.what();
+  }
+  try {
+    parse({}, {{"PAPERNET_WORKERS", "many"}});
+    ADD_FAILURE() << "accepted workers=many";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("PAPERNET_WORKERS"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse({"--colour", "red"}), ConfigError);
+  EXPECT_THROW(parse({"--port"}), ConfigError);
+  EXPECT_THROW(parse({"--job-time-limit", "700"}), ConfigError);  // above the max (600)
+}
+
+TEST(ConfigTest, HelpListsEveryVariable) {
+  EXPECT_FALSE(parse({"--help"}));
+  const std::string help = serve_usage();
+  for (const char* v : {"PAPERNET_HOST", "PAPERNET_PORT", "PAPERNET_DATA", "PAPERNET_WORKERS",
+                        "PAPERNET_QUEUE_LENGTH", "PAPERNET_MAX_BODY_BYTES", "PAPERNET_MAX_FACES",
+                        "PAPERNET_JOB_TIME_LIMIT"})
+    EXPECT_NE(help.find(v), std::string::npos) << v;
+}

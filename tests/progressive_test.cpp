@@ -1,0 +1,157 @@
+#include "core/progressive.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/load.h"
+#include "core/net_check.h"
+#include "core/progressive_mesh.h"
+
+namespace papernet {
+namespace {
+
+Mesh load_test_mesh(const char* name) {
+  const Mesh m = load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/" + name).mesh;
+  EXPECT_FALSE(m.faces.empty()) << name;
+  return m;
+}
+
+// Records every report and intermediate net.
+class Recorder : public Progress {
+ public:
+  std::vector<ProgressInfo> reports;
+  std::size_t intermediates = 0;
+  std::string first_check, last_check;
+  void report(const ProgressInfo& info) override { reports.push_back(info); }
+  void intermediate(const Mesh& mesh, const Net& net) override {
+    const NetCheckReport r = check_net(mesh, net);
+    (intermediates == 0 ? first_check : last_check) = r.ok() ? "ok" : r.summary();
+    ++intermediates;
+  }
+};
+
+class ProgressiveStrategies : public testing::TestWithParam<CollapseStrategy> {};
+
+TEST_P(ProgressiveStrategies, NetsOfTestMeshesPassTheChecker) {
+  for (const char* name : {"sample.obj", "reference.obj", "mirror.ply", "thingi10k_65004.stl"}) {
+    SCOPED_TRACE(name);
+    const Mesh input = load_test_mesh(name);
+    ProgressiveOptions options;
+    options.strategy = GetParam();
+    options.tabu.time_limit_seconds = 120;
+    Progress quiet;
+    const ProgressiveResult r = unfold_progressive(input, options, quiet);
+    ASSERT_TRUE(r.overlap_free);
+    EXPECT_LT(r.coarse_faces, input.faces.size());
+    const NetCheckReport check = check_net(r.mesh, r.net);
+    EXPECT_TRUE(check.ok()) << check.summary();
+    if (r.complete) {
+      // The net belongs to the input itself, face for face.
+      EXPECT_EQ(r.mesh.faces, input.faces);
+      EXPECT_EQ(r.splits, r.splits_total);
+      EXPECT_EQ(r.hausdorff, 0);
+    } else {
+      ADD_FAILURE() << "approximate result with a two-minute budget";
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Strategies, ProgressiveStrategies,
+                         testing::Values(CollapseStrategy::QQ, CollapseStrategy::SEMP,
+                                         CollapseStrategy::SEQ),
+                         [](const auto& info) { return strategy_name(info.param); });
+
+TEST(Progressive, ReportsArriveInOrderAndEndAtTheInputFaceCount) {
+  const Mesh input = load_test_mesh("sample.obj");
+  Recorder recorder;
+  const ProgressiveResult r = unfold_progressive(input, {}, recorder);
+  ASSERT_TRUE(r.complete);
+  ASSERT_FALSE(recorder.reports.empty());
+  const std::vector<std::string> order{"collapse", "unfold", "uncollapse"};
+  std::size_t phase = 0, faces = 0;
+  double elapsed = 0;
+  for (const ProgressInfo& info : recorder.reports) {
+    EXPECT_EQ(info.input_faces, input.faces.size());
+    while (phase < order.size() && order[phase] != info.phase) ++phase;
+    ASSERT_LT(phase, order.size()) << "phase " << info.phase << " out of order";
+    if (info.phase == "uncollapse") {
+      EXPECT_GE(info.faces, faces);
+      faces = info.faces;
+    }
+    EXPECT_GE(info.elapsed_seconds, elapsed);
+    elapsed = info.elapsed_seconds;
+  }
+  EXPECT_EQ(recorder.reports.front().phase, "collapse");
+  EXPECT_EQ(recorder.reports.back().phase, "uncollapse");
+  EXPECT_EQ(recorder.reports.back().faces, input.faces.size());
+  EXPECT_EQ(recorder.reports.back().overlaps, 0u);
+  // The coarse net at least is handed out, and every intermediate net is overlap-free.
+  ASSERT_GE(recorder.intermediates, 1u);
+  EXPECT_EQ(recorder.first_check, "ok");
+  if (recorder.intermediates > 1) {
+    EXPECT_EQ(recorder.last_check, "ok");
+  }
+}
+
+// Tabu runs of a single iteration after each split make some split's overlaps unresolvable: the
+// result is then the last overlap-free state, which must be exactly the mesh after that many
+// splits.
+TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
+  const Mesh input = load_test_mesh("sample.obj");
+  int approximations = 0;
+  for (std::uint64_t seed = 1; seed <= 12 && approximations < 2; ++seed) {
+    SCOPED_TRACE(seed);
+    ProgressiveOptions options;
+    options.tabu.seed = seed;
+    options.split_iterations = 1;
+    Progress quiet;
+    const ProgressiveResult r = unfold_progressive(input, options, quiet);
+    if (!r.overlap_free || r.complete) continue;
+    ++approximations;
+    EXPECT_LT(r.mesh.faces.size(), input.faces.size());
+    EXPECT_GE(r.mesh.faces.size(), r.coarse_faces);
+    EXPECT_LT(r.splits, r.splits_total);
+    const NetCheckReport check = check_net(r.mesh, r.net);
+    EXPECT_TRUE(check.ok()) << check.summary();
+    EXPECT_GT(r.hausdorff, 0);
+    EXPECT_LT(r.hausdorff, 0.2);
+    // Same collapses, then as many splits: the same mesh, vertex positions bit for bit.
+    ProgressiveMesh pm = decimate(input, {options.strategy, 0}, quiet);
+    for (std::size_t i = 0; i < r.splits; ++i) pm.split();
+    ASSERT_EQ(pm.face_count(), r.mesh.faces.size());
+    ASSERT_EQ(r.face_ids.size(), r.mesh.faces.size());
+    for (std::size_t f = 0; f < r.mesh.faces.size(); ++f) {
+      const int id = r.face_ids[f];
+      ASSERT_TRUE(id >= 0 && pm.face_alive(id));
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 a = r.mesh.vertices[r.mesh.faces[f][k]];
+        const Vec3 b = pm.mesh().vertices[pm.mesh().faces[id][k]];
+        ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "face " << f << " corner " << k;
+      }
+    }
+  }
+  EXPECT_GE(approximations, 1) << "no seed produced an approximate result";
+}
+
+TEST(Progressive, CancellationStops) {
+  class Cancel : public Progress {
+   public:
+    int polls = 0;
+    bool cancelled() override { return ++polls > 3; }
+  } cancel;
+  EXPECT_THROW(unfold_progressive(load_test_mesh("sample.obj"), {}, cancel), CancelledException);
+}
+
+TEST(Progressive, BadInputIsRefused) {
+  Mesh m = load_test_mesh("sample.obj");
+  m.faces.push_back(m.faces[0]);
+  Progress quiet;
+  EXPECT_THROW(unfold_progressive(m, {}, quiet), InvalidInputException);
+}
+
+}  // namespace
+}  // namespace papernet
