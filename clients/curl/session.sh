@@ -10,7 +10,8 @@
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
-mesh=${1:-${PAPERNET_TEST_DATA:-$here/../../tests/data}/sample.obj}
+data=${PAPERNET_TEST_DATA:-$here/../../tests/data}
+mesh=${1:-$data/sample.obj}
 work=$(mktemp -d)
 server_pid=
 cleanup() {
@@ -89,4 +90,16 @@ grep -q '"code":"unknown_option"' problem.json || fail "no unknown_option code"
 # 5. Cancelling a finished job is refused (409 job_finished).
 show curl -sS -o problem.json -w '%{http_code}\n' -X DELETE "$url/v1/jobs/$id" | tee code.txt
 [ "$(cat code.txt)" = 409 ] || fail "cancelling a finished job answered $(cat code.txt)"
+# 6. A .gltf with its buffer file, options as a JSON part (multipart/form-data).
+show curl -sS -o job2.json -w '%{http_code}\n' -F "mesh=@$data/Box.gltf" -F "buffers=@$data/Box0.bin" \
+  -F 'options={"strategy":"TU","seed":5};type=application/json' "$url/v1/jobs" | tee code.txt
+[ "$(cat code.txt)" = 202 ] || fail "multipart submit answered $(cat code.txt): $(cat job2.json)"
+id2=$(sed -n 's/.*"id":"\([0-9a-f]\{32\}\)".*/\1/p' job2.json)
+show curl -fsS -N --max-time 120 "$url/v1/jobs/$id2/events" | grep -A1 '^event: done' | tail -1 >done.txt
+grep -q '"status":"succeeded"' done.txt || fail "the .gltf job did not succeed: $(cat done.txt)"
+echo "job $id2 succeeded"
+
+# 7. Recent jobs and the Prometheus metrics.
+show curl -fsS "$url/v1/jobs?limit=10" | grep -q "$id2" || fail "the job list lacks $id2"
+show curl -fsS "$url/metrics" | grep -m1 '^papernet_' || fail "no papernet_ metrics"
 echo "curl session OK"

@@ -114,6 +114,17 @@ test("multipart .gltf with its external buffer file", async () => {
   assert.equal(net.input.faces, done.progress.input_faces);
 });
 
+test("multipart: the repository's Box.gltf with Box0.bin", async () => {
+  const job = await client.submit(sample("Box.gltf"), {
+    filename: "Box.gltf",
+    buffers: [{ name: "Box0.bin", data: sample("Box0.bin") }],
+    options: { strategy: "QQ", seed: 2 },
+  });
+  const done = await client.wait(job.id);
+  assert.ok(["succeeded", "approximated"].includes(done.status), JSON.stringify(done.error));
+  checkNet(await client.netJson(job.id));
+});
+
 test("a .gltf whose buffer file is missing fails with a problem code", async () => {
   const { gltf } = splitGlb(sample("Duck.glb"));
   let code;

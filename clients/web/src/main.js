@@ -8,7 +8,7 @@ const $ = (id) => document.getElementById(id);
 const client = new PapernetClient("");
 const ui = {
   drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
-  paper: $("paper"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
+  paper: $("paper"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
   model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
   downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
 };
@@ -186,6 +186,7 @@ async function run() {
   const buffers = files.filter((f) => f !== mesh).map((f) => ({ name: f.name, data: f }));
   const options = { strategy: ui.strategy.value, paper: ui.paper.value };
   if (Number(ui.size.value) > 0) options.size_mm = Number(ui.size.value);
+  if (Number(ui.timeLimit.value) > 0) options.time_limit = Number(ui.timeLimit.value);
   current?.abort.abort();
   const abort = new AbortController();
   shownFaces = -1;

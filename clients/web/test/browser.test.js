@@ -14,7 +14,7 @@ import { startServer, dataDir } from "../../js/test/server.js";
 const executablePath = process.env.CHROMIUM ?? "/usr/bin/chromium";
 const screenshot = resolve(process.env.PAPERNET_SCREENSHOT ?? join(tmpdir(), "papernet-demo.png"));
 const sampleName = process.env.PAPERNET_DEMO_SAMPLE ?? "Duck.glb";
-const strategy = process.env.PAPERNET_DEMO_STRATEGY ?? "TU";
+const strategy = process.env.PAPERNET_DEMO_STRATEGY ?? "QQ";
 
 let server;
 let context;
@@ -70,6 +70,17 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.selectOption("#strategy", strategy);
   await page.fill("#size", "120");
   await page.selectOption("#paper", "A4");
+  await page.fill("#time-limit", "20");
+  // Record every status line, to check the live progress shown while the job runs.
+  await page.evaluate(() => {
+    window.statusLog = [];
+    const status = document.getElementById("status");
+    new MutationObserver(() => window.statusLog.push(status.textContent)).observe(status, {
+      childList: true,
+      characterData: true,
+      subtree: true,
+    });
+  });
   await page.click("#start");
 
   await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
@@ -79,6 +90,10 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   const status = await page.textContent("#status");
   assert.equal(state, "done", `page ended in ${state}: ${status}`);
   assert.match(status, /^(succeeded|approximated): net of \d+ faces/);
+  const log = await page.evaluate(() => window.statusLog);
+  const live = log.filter((line) => /^running · .*approximation: \d+ of \d+ faces/.test(line));
+  assert.ok(live.length > 0, `the approximation level was shown while running: ${JSON.stringify(log.slice(0, 5))}`);
+  console.log(`live status lines: ${live.length}, e.g. ${live[Math.floor(live.length / 2)]}`);
 
   // The net: the server's SVG with drawn paths.
   const paths = await page.locator("#net svg path").count();
