@@ -36,19 +36,31 @@ const material = new THREE.MeshStandardMaterial({ color: 0xf2e6c9, side: THREE.D
 const lineMaterial = new THREE.LineBasicMaterial({ color: 0x6b5b3e });
 let folding = null; // {prepared, mesh, lines, positions, linePositions}
 
+// Render on demand (orbiting, folding, resizing), not in a loop: the page stays idle otherwise.
+let frameRequested = false;
+function requestRender() {
+  if (frameRequested) return;
+  frameRequested = true;
+  requestAnimationFrame(() => {
+    frameRequested = false;
+    renderer.render(scene, camera);
+  });
+}
+function watchControls() {
+  controls.addEventListener("change", requestRender);
+}
+watchControls();
+
 function resize() {
   const w = ui.model.clientWidth || 400;
   const h = ui.model.clientHeight || 380;
   renderer.setSize(w, h, false);
   camera.aspect = w / h;
   camera.updateProjectionMatrix();
+  requestRender();
 }
 new ResizeObserver(resize).observe(ui.model);
 resize();
-renderer.setAnimationLoop(() => {
-  controls.update();
-  renderer.render(scene, camera);
-});
 
 function showNet3d(doc) {
   const prepared = prepareFold(doc);
@@ -78,6 +90,7 @@ function showNet3d(doc) {
   controls.target.set(0, 0, 0);
   controls.dispose();
   controls = new OrbitControls(camera, renderer.domElement);
+  watchControls();
   ui.fold.disabled = false;
   applyFold();
 }
@@ -112,6 +125,8 @@ function applyFold() {
   camera.near = radius / 100;
   camera.far = radius * 100;
   camera.updateProjectionMatrix();
+  controls.update();
+  requestRender();
 }
 ui.fold.addEventListener("input", applyFold);
 
@@ -147,7 +162,7 @@ function setStatus(text, error = false) {
 function describe(job) {
   const p = job.progress ?? {};
   const parts = [`${job.status}`];
-  if (p.phase && p.phase !== job.status) parts.push(p.phase);
+  if (p.phase && p.phase !== job.status && !isFinal(job.status)) parts.push(p.phase);
   if (p.queue_position) parts.push(`#${p.queue_position} in queue`);
   if (p.faces != null && p.input_faces) {
     parts.push(`approximation: ${p.faces} of ${p.input_faces} faces (${((100 * p.faces) / p.input_faces).toFixed(1)} %)`);
@@ -199,13 +214,16 @@ async function run() {
     current = { id: job.id, abort };
     ui.cancel.disabled = false;
     let pending = false;
+    let lastShown = 0;
     const final = await client.wait(job.id, {
       signal: abort.signal,
       onProgress: (update) => {
         showProgress(update);
         // Show the latest overlap-free intermediate while the job runs.
-        if (!isFinal(update.status) && update.intermediate && !pending && update.intermediate.faces !== shownFaces) {
+        // At most every 2 s: drawing a net of thousands of faces takes the CPU the job needs.
+        if (!isFinal(update.status) && update.intermediate && !pending && update.intermediate.faces !== shownFaces && Date.now() - lastShown > 2000) {
           pending = true;
+          lastShown = Date.now();
           showResult(job.id, false).catch(() => {}).finally(() => (pending = false));
         }
       },

@@ -70,7 +70,7 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.selectOption("#strategy", strategy);
   await page.fill("#size", "120");
   await page.selectOption("#paper", "A4");
-  await page.fill("#time-limit", "20");
+  await page.fill("#time-limit", "90");
   // Record every status line, to check the live progress shown while the job runs.
   await page.evaluate(() => {
     window.statusLog = [];
