@@ -55,7 +55,8 @@ const std::vector<Setting>& settings() {
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.workers = count(w, v, 1, 256);
        }},
-      {"http-threads", "PAPERNET_HTTP_THREADS", "threads serving HTTP connections (default 8)",
+      {"http-threads", "PAPERNET_HTTP_THREADS",
+       "threads serving HTTP connections, one per open connection (default 16)",
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.http_threads = count(w, v, 2, 1024);
        }},

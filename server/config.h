@@ -15,7 +15,7 @@ struct ServerConfig {
   int port = 8080;  ///< 0 picks a free port (printed on start)
   std::string data_dir = "./var";
   std::size_t workers = 0;        ///< geometry threads; 0 = one per core
-  std::size_t http_threads = 8;   ///< threads serving connections (and SSE streams)
+  std::size_t http_threads = 16;  ///< threads serving connections (and SSE streams)
   std::size_t queue_length = 64;  ///< queued jobs before POST answers 429
   std::size_t max_body_bytes = std::size_t{64} << 20;
   std::size_t max_faces = 1'000'000;

@@ -1,10 +1,7 @@
 // End-to-end: starts the real `papernet serve` on a free loopback port and speaks HTTP to it.
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
-#include <netinet/in.h>
 #include <signal.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -35,18 +32,6 @@ std::string test_mesh(const std::string& name) {
   return read_file(fs::path(PAPERNET_TEST_DATA) / name);
 }
 
-int free_port() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
-  socklen_t len = sizeof addr;
-  getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
-  close(fd);
-  return ntohs(addr.sin_port);
-}
-
 // Three triangles on one edge: loads fine, cannot be unfolded (non-manifold edge).
 constexpr const char* kNonManifoldObj =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
@@ -68,25 +53,33 @@ class Server {
     if (owns_) fs::remove_all(data_);
   }
 
+  // Port 0: the server binds a free port itself and prints it (no race with other tests).
   void start() {
-    port_ = free_port();
-    std::vector<std::string> args = {
-        "papernet", "serve",        "--port",       std::to_string(port_),
-        "--data",   data_.string(), "--access-log", "false"};
+    port_ = 0;
+    const fs::path out = data_ / "stdout.txt";
+    fs::remove(out);
+    std::vector<std::string> args = {"papernet", "serve",        "--port",       "0",
+                                     "--data",   data_.string(), "--access-log", "false"};
     args.insert(args.end(), flags_.begin(), flags_.end());
     pid_ = fork();
     if (pid_ == 0) {
       const std::string log = (data_ / "server.log").string();
       freopen(log.c_str(), "a", stderr);
-      freopen("/dev/null", "w", stdout);
+      freopen(out.c_str(), "w", stdout);
       std::vector<char*> argv;
       for (auto& a : args) argv.push_back(a.data());
       argv.push_back(nullptr);
       execv(PAPERNET_BINARY, argv.data());
       _exit(127);
     }
-    for (int i = 0; i < 200; ++i) {
-      if (auto res = client().Get("/healthz"); res && res->status == 200) return;
+    const std::string prefix = "listening on http://127.0.0.1:";
+    for (int i = 0; i < 400; ++i) {
+      const std::string text = read_file(out);
+      if (const auto at = text.find(prefix);
+          port_ == 0 && at != std::string::npos && text.find('\n', at) != std::string::npos)
+        port_ = std::stoi(text.substr(at + prefix.size()));
+      if (port_ != 0)
+        if (auto res = client().Get("/healthz"); res && res->status == 200) return;
       std::this_thread::sleep_for(25ms);
     }
     ADD_FAILURE() << "papernet serve did not come up; log:\n" << log();
@@ -194,6 +187,14 @@ TEST(ServeTest, SubmitPollAndFetchObj) {
   const papernet::NetCheckReport check = papernet::check_net(net_doc.mesh, net_doc.net);
   EXPECT_TRUE(check.ok()) << check.summary();
   EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
+
+  // The same mesh with the same options is answered from the stored result at once.
+  auto again = c.Post("/v1/jobs?strategy=TU&seed=3", test_mesh("sample.obj"), "model/obj");
+  ASSERT_EQ(again->status, 202);
+  EXPECT_EQ(body(again)["status"], "succeeded");
+  EXPECT_EQ(body(again)["result"]["metrics"]["reused_from"], id);
+  EXPECT_EQ(c.Get("/v1/jobs/" + body(again)["id"].get<std::string>() + "/net.json")->body,
+            net->body);
   auto svg = c.Get("/v1/jobs/" + id + "/net.svg");
   ASSERT_EQ(svg->status, 200);
   EXPECT_NE(svg->body.find("<svg"), std::string::npos);
@@ -395,6 +396,23 @@ TEST(ServeTest, QueueFullCancelAndShutdown) {
   std::this_thread::sleep_for(200ms);
   expect_problem(s.client().Post("/v1/jobs", mesh, "model/obj"), 503, "shutting_down");
   expect_problem(s.client().Get("/readyz"), 503, "shutting_down");
+}
+
+// SIGTERM with no grace: the running job is stopped, stays queued, and runs after a restart.
+TEST(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
+  auto server = std::make_unique<Server>(std::vector<std::string>{"--shutdown-grace", "0"});
+  const fs::path data = server->data();
+  const std::string id = submit(*server, test_mesh("sample.obj"), "model/obj", "?strategy=TU");
+  std::this_thread::sleep_for(300ms);
+  EXPECT_EQ(body(server->client().Get("/v1/jobs/" + id))["status"], "running");
+  server->keep_data();
+  const int status = server->stop(SIGTERM);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  server.reset();
+  Server restarted({}, data);
+  const json job = wait_final(restarted, id);
+  EXPECT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
+  EXPECT_NE(restarted.log().find("running -> queued (server stopping)"), std::string::npos);
 }
 
 // kill -9 with jobs queued and running; a restart finishes every one and loses no result.
