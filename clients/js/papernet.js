@@ -219,14 +219,14 @@ export class PapernetClient {
       ? buffers
       : Object.entries(buffers ?? {}).map(([name, data]) => ({ name, data }));
     if (bufferList.length > 0 || multipart) {
-      const form = new FormData();
       const type = (format && FORMAT_TYPES[format]) || "application/octet-stream";
-      form.append("mesh", toBlob(mesh, type), filename ?? (format ? `mesh.${format}` : "mesh"));
-      for (const { name, data } of bufferList) {
-        form.append("buffers", toBlob(data, "application/octet-stream"), name);
-      }
-      form.append("options", new Blob([JSON.stringify(options)], { type: "application/json" }), "options.json");
-      return this._json("/v1/jobs", { method: "POST", body: form, signal });
+      const parts = [
+        { name: "mesh", filename: filename ?? (format ? `mesh.${format}` : "mesh"), type, data: mesh },
+        ...bufferList.map(({ name, data }) => ({ name: "buffers", filename: name, type: "application/octet-stream", data })),
+        { name: "options", filename: "options.json", type: "application/json", data: JSON.stringify(options) },
+      ];
+      const { headers, body } = encodeMultipart(parts);
+      return this._json("/v1/jobs", { method: "POST", headers, body, signal });
     }
     const q = optionsQuery(options);
     const query = q.toString();
@@ -382,13 +382,35 @@ export function parseLevel(header) {
   return out;
 }
 
+/**
+ * multipart/form-data of `parts` ({name, filename, type, data}) as one Blob, encoded here rather
+ * than by FormData: Node 18's fetch leaves out the CRLF after the closing boundary, which the
+ * server's multipart parser (cpp-httplib 0.11) refuses, and a Blob body gets a Content-Length.
+ */
+function encodeMultipart(parts) {
+  // (Node 18 has no global crypto; a boundary needs to be unlikely in the data, not secret.)
+  const random = Array.from({ length: 4 }, () => Math.floor(Math.random() * 2 ** 32).toString(16).padStart(8, "0"));
+  const boundary = `----papernet${random.join("")}`;
+  // As browsers do: quotes and line breaks in names are percent-encoded.
+  const quote = (v) => String(v).replace(/"/g, "%22").replace(/\r/g, "%0D").replace(/\n/g, "%0A");
+  const chunks = [];
+  for (const p of parts) {
+    chunks.push(
+      `--${boundary}\r\nContent-Disposition: form-data; name="${quote(p.name)}"; filename="${quote(p.filename)}"\r\n` +
+        `Content-Type: ${p.type}\r\n\r\n`,
+      toBody(p.data),
+      "\r\n",
+    );
+  }
+  chunks.push(`--${boundary}--\r\n`);
+  return {
+    headers: { "Content-Type": `multipart/form-data; boundary=${boundary}` },
+    body: new Blob(chunks),
+  };
+}
+
 function toBody(data) {
   if (data instanceof ArrayBuffer || ArrayBuffer.isView(data) || typeof data === "string") return data;
   if (typeof Blob !== "undefined" && data instanceof Blob) return data;
   throw new TypeError("mesh must be a Blob, ArrayBuffer, typed array or string");
-}
-
-function toBlob(data, type) {
-  if (typeof Blob !== "undefined" && data instanceof Blob) return data;
-  return new Blob([toBody(data)], { type });
 }

@@ -235,3 +235,22 @@ test("parseLevel reads X-Papernet-Level", () => {
   assert.deepEqual(parseLevel("intermediate; faces=40; input-faces=400"), { kind: "intermediate", faces: 40, inputFaces: 400 });
   assert.equal(parseLevel(null), null);
 });
+
+test("multipart bodies are encoded in full: Content-Length, closing boundary with CRLF", async () => {
+  let sent;
+  const fake = new PapernetClient("http://papernet.invalid", {
+    fetch: async (url, init) => {
+      sent = { url, init };
+      return new Response(JSON.stringify({ id: "x" }), { status: 202, headers: { "Content-Type": "application/json" } });
+    },
+  });
+  await fake.submit('{"asset":{}}', { filename: 'a"b.gltf', buffers: { "b.bin": new Uint8Array([0, 1, 2]) }, options: { seed: 4 } });
+  const boundary = /boundary=(.+)$/.exec(sent.init.headers["Content-Type"])[1];
+  const text = await new Response(sent.init.body).text();
+  assert.ok(sent.init.body instanceof Blob, "a Blob body, sent with a Content-Length");
+  assert.ok(text.endsWith(`\r\n--${boundary}--\r\n`));
+  assert.match(text, /name="mesh"; filename="a%22b.gltf"\r\nContent-Type: model\/gltf\+json\r\n\r\n\{"asset":\{\}\}\r\n/);
+  assert.match(text, /name="buffers"; filename="b.bin"\r\nContent-Type: application\/octet-stream\r\n\r\n\0\x01\x02\r\n/);
+  assert.match(text, /name="options"; filename="options.json"\r\nContent-Type: application\/json\r\n\r\n\{"seed":4\}\r\n/);
+  assert.equal(sent.url, "http://papernet.invalid/v1/jobs");
+});
