@@ -159,9 +159,9 @@ function setStatus(text, error = false) {
   ui.status.classList.toggle("error", error);
 }
 
-function describe(job) {
+function describe(job, withStatus = true) {
   const p = job.progress ?? {};
-  const parts = [`${job.status}`];
+  const parts = withStatus ? [job.status] : [];
   if (p.phase && p.phase !== job.status && !isFinal(job.status)) parts.push(p.phase);
   if (p.queue_position) parts.push(`#${p.queue_position} in queue`);
   if (p.faces != null && p.input_faces) {
@@ -232,7 +232,7 @@ async function run() {
     if (final.status === "succeeded" || final.status === "approximated") {
       await showResult(job.id, true);
       const r = final.result ?? {};
-      setStatus(`${final.status}: net of ${r.faces} faces (input ${r.input_faces}) · ${describe(final)}`);
+      setStatus(`${final.status}: net of ${r.faces} faces (input ${r.input_faces}) · ${describe(final, false)}`);
       document.body.dataset.state = "done";
     } else {
       const e = final.error;
