@@ -178,8 +178,8 @@ test("an invalid mesh fails with invalid_mesh and its reasons", async () => {
 
 test("cancel a queued job; cancelling a finished one is job_finished (409)", async () => {
   // The single worker is busy with a long job, so the second one waits in the queue.
-  const busy = await client.submit(sample("thingi10k_134617.stl"), {
-    filename: "busy.stl",
+  const busy = await client.submit(sample("Duck.glb"), {
+    filename: "busy.glb",
     options: { strategy: "TU", seed: 11, time_limit: 30 },
   });
   const queued = await client.submit(sample("sample.obj"), { filename: "q.obj", options: { strategy: "TU", seed: 12 } });
