@@ -70,7 +70,7 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.selectOption("#strategy", strategy);
   await page.fill("#size", "120");
   await page.selectOption("#paper", "A4");
-  await page.fill("#time-limit", "90");
+  await page.fill("#time-limit", "240");
   // Record every status line, to check the live progress shown while the job runs.
   await page.evaluate(() => {
     window.statusLog = [];
@@ -84,7 +84,7 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.click("#start");
 
   await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
-    timeout: 90000,
+    timeout: 300000,
   });
   const state = await page.evaluate(() => document.body.dataset.state);
   const status = await page.textContent("#status");
