@@ -9,6 +9,7 @@
 #               (0.0.0.0, PAPERNET_WEB_ROOT), the HEALTHCHECK script passes, GET / serves the
 #               demo, and the compose client-test command (JS client tests at PAPERNET_URL) passes.
 #   docker/check-steps.sh [WORKDIR]      (default: a new directory under /tmp)
+#   REUSE_BUILD=1 docker/check-steps.sh WORKDIR   skips steps 1-2 when WORKDIR has a build
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 work=${1:-$(mktemp -d /tmp/papernet-docker-steps.XXXXXX)}
@@ -16,18 +17,23 @@ step() { printf '\n== %s\n' "$*"; }
 fail() { echo "FAILED: $*" >&2; exit 1; }
 start=$(date +%s)
 
-step "deps layer: scripts/install-deps.sh build && scripts/install-deps.sh runtime"
-bash "$repo/scripts/install-deps.sh" build
-bash "$repo/scripts/install-deps.sh" runtime
-
-step "build stage: clean tree of HEAD in $work/src, make build (as the Dockerfile)"
-rm -rf "$work/src" && mkdir -p "$work/src"
-git -C "$repo" archive HEAD | tar -x -C "$work/src"
-(cd "$work/src" && make build DEPS=build BUILD="$work/build" \
-  CMAKE_FLAGS="-DPAPERNET_WERROR=ON -DPAPERNET_BUILD_TESTS=OFF" JOBS=2)
 bin=$work/build/server/papernet
 web=$work/build/clients/web/dist
-[ -x "$bin" ] && [ -f "$web/index.html" ] && [ -f "$web/app.js" ] || fail "build did not produce the binary and the web bundle"
+if [ "${REUSE_BUILD:-0}" = 1 ] && [ -x "$bin" ]; then
+  step "reusing the build in $work/build (steps 1-2 skipped)"
+else
+  step "deps layer: scripts/install-deps.sh build && scripts/install-deps.sh runtime"
+  bash "$repo/scripts/install-deps.sh" build
+  bash "$repo/scripts/install-deps.sh" runtime
+
+  step "build stage: clean tree of HEAD in $work/src, make build (as the Dockerfile)"
+  rm -rf "$work/src" && mkdir -p "$work/src"
+  git -C "$repo" archive HEAD | tar -x -C "$work/src"
+  (cd "$work/src" && make build DEPS=build BUILD="$work/build" \
+    CMAKE_FLAGS="-DPAPERNET_WERROR=ON -DPAPERNET_BUILD_TESTS=OFF" JOBS=2)
+fi
+[ -x "$bin" ] && [ -f "$web/index.html" ] && [ -f "$web/app.js" ] ||
+  fail "the build did not produce the binary and the web bundle"
 
 step "runtime stage: shared libraries come from runtime packages or the slim base"
 runtime=$(sed -n 's/^runtime=(\(.*\))$/\1/p' "$repo/scripts/install-deps.sh")
@@ -38,7 +44,10 @@ covered=" $base $(apt-cache depends --recurse --no-recommends --no-suggests --no
   --no-breaks --no-replaces --no-enhances $runtime 2>/dev/null | grep -v '^ ' | sed 's/:amd64$//' | tr '\n' ' ') "
 missing=()
 for lib in $(ldd "$bin" | awk '/=>/ {print $3}'); do
-  pkg=$(dpkg -S "$(readlink -f "$lib")" 2>/dev/null | head -1 | cut -d: -f1)
+  # dpkg knows a file by the path its package ships (/lib or /usr/lib): match the file name.
+  real=$(readlink -f "$lib")
+  pkg=$(dpkg -S "*/$(basename "$(dirname "$real")")/$(basename "$real")" 2>/dev/null | head -1 |
+    cut -d: -f1 || true)
   [[ -n "$pkg" && "$covered" == *" $pkg "* ]] || missing+=("$lib(${pkg:-no package})")
 done
 [ ${#missing[@]} -eq 0 ] || fail "libraries not brought by install-deps.sh runtime: ${missing[*]}"
@@ -49,7 +58,7 @@ id papernet-check >/dev/null 2>&1 || useradd --system --no-create-home --shell /
 mkdir -p "$work/var" && chown papernet-check "$work/var"
 chmod -R a+rX "$work/build/server" "$web" "$work"
 port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1])')
-runuser -u papernet-check -- env PAPERNET_HOST=0.0.0.0 PAPERNET_PORT="$port" PAPERNET_DATA="$work/var" \
+setpriv --reuid=papernet-check --regid=papernet-check --init-groups env PAPERNET_HOST=0.0.0.0 PAPERNET_PORT="$port" PAPERNET_DATA="$work/var" \
   PAPERNET_WEB_ROOT="$web" PAPERNET_WORKERS=1 "$bin" serve >"$work/serve.log" 2>&1 &
 pid=$!
 trap 'kill -TERM $pid 2>/dev/null || true; wait $pid 2>/dev/null || true' EXIT
