@@ -66,6 +66,22 @@ std::string PageOptions::validate() const {
   return {};
 }
 
+namespace {
+
+/// True when a face or tab of the layout reaches into the page's window (a sparse net tiled
+/// onto a grid can leave pages empty: those are not printed).
+bool shows_something(const PrintLayout& layout, const Page& page) {
+  const std::array<Vec2, 4> window = {page.lo, Vec2{page.hi.x, page.lo.y}, page.hi,
+                                      Vec2{page.lo.x, page.hi.y}};
+  for (const auto& f : layout.faces)
+    if (convex_overlap(f, window, 0)) return true;
+  for (const Tab& t : layout.tabs)
+    if (convex_overlap(t.corners, window, 0)) return true;
+  return false;
+}
+
+}  // namespace
+
 void turn_quarter(PrintLayout& layout) {
   const double h = layout.size.y;
   auto turn = [h](Vec2& p) { p = {h - p.y, p.x}; };
@@ -75,42 +91,57 @@ void turn_quarter(PrintLayout& layout) {
     for (Vec2& p : t.corners) turn(p);
   for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
     for (Segment& s : *list) turn(s.a), turn(s.b);
-  for (Label& l : layout.labels) turn(l.at), l.angle += std::numbers::pi / 2;
+  for (Label& l : layout.labels) {
+    turn(l.at);
+    // Keep labels reading upright: half a turn more where a quarter turn put them upside down.
+    l.angle += std::cos(l.angle + std::numbers::pi / 2) < -1e-9 ? 1.5 * std::numbers::pi
+                                                                : std::numbers::pi / 2;
+  }
   layout.size = {layout.size.y, layout.size.x};
 }
 
-PageLayout paginate(PrintLayout& layout, const PageOptions& options) {
-  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+namespace {
+
+/// The tiles of `layout` on pages of `pw` x `ph` that show something.
+PageLayout tile(const PrintLayout& layout, double pw, double ph, const PageOptions& options) {
   const double m = options.margin_mm, ov = options.overlap_mm;
+  const double w = pw - 2 * m, h = ph - 2 * m;
   auto tiles = [ov](double content, double room) {
     return content <= room ? 1 : static_cast<int>(std::ceil((content - ov) / (room - ov)));
   };
-  // Candidates: portrait page / net as is, portrait / turned, landscape / as is, landscape /
-  // turned. Fewest pages wins; ties keep the earlier (portrait first).
+  PageLayout out{pw, ph, m, ov, false, tiles(layout.size.y, h), tiles(layout.size.x, w), {}};
+  // The tiles together cover (cols * (w - ov) + ov) x (rows * (h - ov) + ov); centre the net.
+  const double tw = out.cols * (w - ov) + ov, th = out.rows * (h - ov) + ov;
+  const Vec2 off{0.5 * (tw - layout.size.x), 0.5 * (th - layout.size.y)};
+  for (int r = 0; r < out.rows; ++r)
+    for (int c = 0; c < out.cols; ++c) {
+      const double x0 = c * (w - ov) - off.x, y1 = th - r * (h - ov) - off.y;
+      const Page page{r, c, {x0, y1 - h}, {x0 + w, y1}};
+      if (shows_something(layout, page)) out.pages.push_back(page);
+    }
+  return out;
+}
+
+}  // namespace
+
+PageLayout paginate(PrintLayout& layout, const PageOptions& options) {
+  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  // Candidates: portrait pages with the net's long side along the page's long side, portrait
+  // with it across, then the same on landscape pages. Fewest printed pages wins; ties keep the
+  // earlier.
+  PrintLayout turned = layout;
+  turn_quarter(turned);
+  const bool wide = layout.size.x > layout.size.y;
   PageLayout best;
-  int best_count = 0;
   for (int c = 0; c < 4; ++c) {
-    const bool landscape = c >= 2, turned = c % 2 == 1;
+    const bool landscape = c >= 2, turn = (c % 2 == 1) != (wide != landscape);
     const double pw = landscape ? options.paper.height : options.paper.width;
     const double ph = landscape ? options.paper.width : options.paper.height;
-    const Vec2 content = turned ? Vec2{layout.size.y, layout.size.x} : layout.size;
-    const int cols = tiles(content.x, pw - 2 * m), rows = tiles(content.y, ph - 2 * m);
-    if (c == 0 || rows * cols < best_count) {
-      best_count = rows * cols;
-      best = {pw, ph, m, ov, turned, rows, cols, {}};
-    }
+    PageLayout candidate = tile(turn ? turned : layout, pw, ph, options);
+    candidate.quarter_turn = turn;
+    if (c == 0 || candidate.pages.size() < best.pages.size()) best = std::move(candidate);
   }
-  if (best.quarter_turn) turn_quarter(layout);
-  const double w = best.width - 2 * m, h = best.height - 2 * m;
-  // The tiles together cover (cols * (w - ov) + ov) x (rows * (h - ov) + ov); centre the net.
-  const double tw = best.cols * (w - ov) + ov, th = best.rows * (h - ov) + ov;
-  const Vec2 off{0.5 * (std::max(tw, w) - layout.size.x), 0.5 * (std::max(th, h) - layout.size.y)};
-  for (int r = 0; r < best.rows; ++r)
-    for (int c = 0; c < best.cols; ++c) {
-      const double x0 = (best.cols == 1 ? 0 : c * (w - ov)) - off.x;
-      const double y1 = (best.rows == 1 ? h : th - r * (h - ov)) - off.y;
-      best.pages.push_back({r, c, {x0, y1 - h}, {x0 + w, y1}});
-    }
+  if (best.quarter_turn) layout = std::move(turned);
   return best;
 }
 

@@ -43,12 +43,14 @@ struct PageLayout {
   double margin = 0, overlap = 0;
   bool quarter_turn = false;  ///< the layout was turned by 90 degrees (see turn_quarter)
   int rows = 1, cols = 1;
-  std::vector<Page> pages;  ///< row by row, left to right
+  std::vector<Page> pages;  ///< row by row, left to right; empty tiles left out
 };
 
 /// Splits a layout onto pages, choosing orientation (page portrait or landscape, net turned or
-/// not) to use the fewest pages; ties prefer portrait pages. Turns `layout` by a quarter when
-/// that is the choice. A layout that fits one page is centred on it.
+/// not) to use the fewest pages; ties prefer portrait pages, then the net's long side along
+/// the page's long side. Turns `layout` by a quarter when
+/// that is the choice. A layout that fits one page is centred on it. Tiles of the rows x cols
+/// grid that show nothing of the net are left out of `pages`.
 /// \throw InvalidInputException for invalid options (e.g. margins that leave no room).
 PageLayout paginate(PrintLayout& layout, const PageOptions& options);
 

@@ -88,6 +88,13 @@ std::string write_pdf(const PrintLayout& layout, const PageLayout& pages) {
     throw IOException(std::string("cannot create PDF: ") +
                       cairo_status_to_string(cairo_surface_status(surface)));
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "papernet");
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, "papernet paper net");
+  // The counts the SVG carries as data-* attributes, for tools that read PDF metadata.
+  const std::string subject = std::to_string(layout.faces.size()) + " faces, " +
+                              std::to_string(layout.cut_edges) + " cut edges, " +
+                              std::to_string(layout.tabs.size()) + " tabs, " +
+                              std::to_string(layout.omitted_tabs.size()) + " tabs omitted";
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, subject.c_str());
   cairo_t* cr = cairo_create(surface);
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> own_cr(cr, cairo_destroy);
   cairo_scale(cr, kPt, kPt);  // draw in millimetres

@@ -97,6 +97,7 @@ std::string label_text(int number) {
 
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options) {
   if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  if (mesh.faces.empty()) throw InvalidInputException("nothing to print: the mesh has no faces");
   if (net.points.size() != mesh.faces.size() || net.parent.size() != mesh.faces.size())
     throw InvalidInputException("the net has " + std::to_string(net.points.size()) +
                                 " faces but the mesh has " + std::to_string(mesh.faces.size()));
@@ -158,6 +159,10 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       const int t = tab_of[e];
       if (t >= 0 && out.tabs[t].side.face == s.face && out.tabs[t].side.k == s.k) {
         const auto& c = out.tabs[t].corners;
+        const Segment edge_line = side_segment(s);
+        // A tab on part of the edge: the rest of the edge is still cut.
+        if (norm(c[1] - edge_line.a) > 0) out.cut.push_back({edge_line.a, c[1]});
+        if (norm(edge_line.b - c[0]) > 0) out.cut.push_back({c[0], edge_line.b});
         out.mountain.push_back({c[1], c[0]});
         out.cut.push_back({c[1], c[2]});
         out.cut.push_back({c[2], c[3]});

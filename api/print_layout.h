@@ -60,12 +60,13 @@ struct PrintLayout {
   std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) that got no tab
   std::vector<Label> labels;
   Vec2 size;
-  NetMetrics metrics;  ///< of the net itself, in model units
-  int cut_edges = 0;   ///< interior cut edges (label numbers run 1..cut_edges)
+  NetBoxMetrics metrics;  ///< of the net itself, in model units
+  int cut_edges = 0;      ///< interior cut edges (label numbers run 1..cut_edges)
 };
 
 /// Lays out a net for printing.
-/// \throw InvalidInputException for invalid options or a net that does not match the mesh.
+/// \throw InvalidInputException for invalid options, an empty mesh, or a net that does not
+///        match the mesh (sizes, non-finite points, vertex indices out of range).
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {});
 
 }  // namespace papernet

@@ -84,38 +84,46 @@ bool is_print_output(const std::string& path) {
   return ext == "svg" || ext == "pdf" || ext == "glb" || ext == "obj";
 }
 
-std::vector<std::string> write_output_file(const std::string& path, const Mesh& mesh,
-                                           const Net& net, const OutputOptions& options) {
+WrittenOutput write_output_file(const std::string& path, const Mesh& mesh, const Net& net,
+                                const OutputOptions& options) {
   const std::string ext = extension(path);
+  WrittenOutput out;
   if (ext == "glb" || ext == "obj") {
     write_file(path, ext == "glb" ? write_glb(mesh) : write_obj(mesh));
-    return {path};
+    out.files = {path};
+    return out;
   }
   if (ext != "svg" && ext != "pdf")
     throw InvalidInputException("unknown output type '" + path +
                                 "': use .svg, .pdf, .glb, .obj (or .json for the net)");
   PrintLayout layout = layout_net(mesh, net, options.print);
+  out.pages = 1;
+  out.tabs = layout.tabs.size();
+  out.tabs_omitted = layout.omitted_tabs.size();
   if (ext == "svg" && !options.paper) {
     write_file(path, write_net_svg(layout, options.page.margin_mm));
-    return {path};
+    out.files = {path};
+    return out;
   }
   const PageLayout pages = paginate(layout, options.page);
+  out.pages = static_cast<int>(pages.pages.size());
   if (ext == "pdf") {
     write_file(path, write_pdf(layout, pages));
-    return {path};
+    out.files = {path};
+    return out;
   }
   const std::vector<std::string> svgs = write_page_svgs(layout, pages);
   if (svgs.size() == 1) {
     write_file(path, svgs[0]);
-    return {path};
+    out.files = {path};
+    return out;
   }
-  std::vector<std::string> written;
   const std::string stem = path.substr(0, path.size() - 4);
   for (std::size_t i = 0; i < svgs.size(); ++i) {
-    written.push_back(stem + "-" + std::to_string(i + 1) + ".svg");
-    write_file(written.back(), svgs[i]);
+    out.files.push_back(stem + "-" + std::to_string(i + 1) + ".svg");
+    write_file(out.files.back(), svgs[i]);
   }
-  return written;
+  return out;
 }
 
 }  // namespace papernet

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,14 +19,21 @@ struct OutputOptions {
   bool paper = true;  ///< false: one SVG sized to the net (PDF always uses paper)
 };
 
+/// What write_output_file wrote.
+struct WrittenOutput {
+  std::vector<std::string> files;
+  int pages = 0;  ///< printed pages (SVG/PDF), 0 for meshes
+  std::size_t tabs = 0, tabs_omitted = 0;
+};
+
 /// Writes one output file, the format chosen by the extension of `path` (case-insensitive):
 /// `.svg` (one page when it fits or no paper; else `<stem>-1.svg`, `<stem>-2.svg`, ... one per
 /// page), `.pdf` (one page per tile), `.glb` / `.obj` (the mesh the net folds into).
-/// `.json` is the net JSON writer's job, not this function's. Returns the files written.
+/// `.json` is the net JSON writer's job, not this function's.
 /// \throw InvalidInputException for an unknown extension or invalid options,
 ///        IOException when a file cannot be written.
-std::vector<std::string> write_output_file(const std::string& path, const Mesh& mesh,
-                                           const Net& net, const OutputOptions& options);
+WrittenOutput write_output_file(const std::string& path, const Mesh& mesh, const Net& net,
+                                const OutputOptions& options);
 
 /// Applies one command-line option of the print writers to `options`; every one takes a value:
 /// --size 200mm | --scale 2 | --paper A4|A3|Letter|WxHmm|none | --margin 10mm |

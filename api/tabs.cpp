@@ -89,15 +89,26 @@ class Grid {
 
 /// The trapezoid on the outside of `side`, `height` tall with sides slanted by `angle`.
 std::array<Vec2, 4> trapezoid(const std::vector<std::array<Vec2, 3>>& faces, EdgeSide side,
-                              double height, double angle) {
-  const Vec2 p0 = faces[side.face][side.k], p1 = faces[side.face][(side.k + 1) % 3];
-  const double len = norm(p1 - p0);
-  const Vec2 d = (1 / len) * (p1 - p0), out{d.y, -d.x};  // the face is on the left of p0->p1
+                              double height, double angle, double from, double to) {
+  const Vec2 e0 = faces[side.face][side.k], e1 = faces[side.face][(side.k + 1) % 3];
+  const double full = norm(e1 - e0);
+  const Vec2 d = (1 / full) * (e1 - e0), out{d.y, -d.x};  // the face is on the left of e0->e1
+  const Vec2 p0 = e0 + from * full * d, p1 = e0 + to * full * d;
+  const double len = (to - from) * full;
   const double inset = std::min(height / std::tan(angle), 0.45 * len);
   return {p1, p0, p0 + height * out + inset * d, p1 + height * out - inset * d};
 }
 
 }  // namespace
+
+/// Tab shapes tried in turn: the stretch of the edge the base covers and the slant.
+struct Shape {
+  double from, to;
+  bool pointed;
+};
+constexpr Shape kShapes[] = {{0, 1, false},       {0, 1, true},        {0.2, 0.8, false},
+                             {0.05, 0.55, false}, {0.45, 0.95, false}, {0.3, 0.7, true},
+                             {0.05, 0.4, true},   {0.6, 0.95, true}};
 
 TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
                         const std::vector<NetEdge>& edges, const TabOptions& options) {
@@ -120,10 +131,16 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
     const double h0 = std::min(options.height, 0.5 * norm(p1 - p0));
     bool placed = false;
     for (double s : scales) {
-      for (double angle : angles) {
+      for (const Shape& shape : kShapes) {
+        if (placed) break;
         for (EdgeSide side : {edge.a, edge.b}) {
           if (h0 <= 0) continue;
-          const auto t = trapezoid(faces, side, s * h0, angle);
+          // Along side b the edge runs the other way: mirror the span so both sides mean the
+          // same stretch of the edge.
+          const bool b = side.face == edge.b.face && side.k == edge.b.k;
+          const double from = b ? 1 - shape.to : shape.from, to = b ? 1 - shape.from : shape.to;
+          const auto t =
+              trapezoid(faces, side, s * h0 * (to - from), angles[shape.pointed], from, to);
           if (grid.overlaps(t, options.tolerance)) continue;
           grid.add(t);
           result.tabs.push_back({e, side, t});

@@ -226,7 +226,10 @@ class Decimator {
       if (a.length2 != b.length2) return a.length2 < b.length2;
       return a.kept < b.kept;
     });
-    for (const Candidate& c : candidates_) {
+    // The cheapest few only: around a vertex of high valence, checking every edge is slow.
+    const std::size_t tries = std::min<std::size_t>(candidates_.size(), 12);
+    for (std::size_t i = 0; i < tries; ++i) {
+      const Candidate& c = candidates_[i];
       if (!pm_.can_collapse(v, c.kept, c.position)) continue;
       best_[v] = c;
       heap_.push({c.cost, c.length2, v, stamp_[v]});

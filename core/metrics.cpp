@@ -86,8 +86,8 @@ OrientedBox min_area_box(const std::vector<Vec2>& points) {
   return best;
 }
 
-NetMetrics net_metrics(const Mesh& mesh, const Net& net) {
-  NetMetrics m;
+NetBoxMetrics net_metrics(const Mesh& mesh, const Net& net) {
+  NetBoxMetrics m;
   m.faces = static_cast<int>(mesh.faces.size());
   std::vector<Vec2> points;
   points.reserve(3 * net.points.size());

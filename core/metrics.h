@@ -30,7 +30,7 @@ std::vector<Vec2> convex_hull(std::vector<Vec2> points);
 OrientedBox min_area_box(const std::vector<Vec2>& points);
 
 /// Figures describing how well a net uses its paper (DESIGN.md section 4).
-struct NetMetrics {
+struct NetBoxMetrics {
   int faces = 0;
   double face_area = 0;     ///< summed area of the mesh's faces (mesh units squared)
   double coverage = 0;      ///< face_area / area of the minimum-area box (0 when degenerate)
@@ -40,6 +40,6 @@ struct NetMetrics {
 
 /// Coverage, aspect ratio and the minimum-area box of a net of `mesh`.
 /// \pre net.points.size() == mesh.faces.size()
-NetMetrics net_metrics(const Mesh& mesh, const Net& net);
+NetBoxMetrics net_metrics(const Mesh& mesh, const Net& net);
 
 }  // namespace papernet

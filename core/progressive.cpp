@@ -53,13 +53,18 @@ struct State {
 
 // A split that was applied, with what its Tabu run needed (to replay it exactly).
 struct Applied {
-  VertexSplit split;
+  std::vector<VertexSplit> splits;  // one, or a batch on large meshes
   std::uint64_t seed = 0;
   std::size_t iterations = 0;  // 0: no overlaps appeared
 };
 
+// Hausdorff refinement budget per direction for approximate results (a few tenths of a second).
+constexpr std::size_t kHausdorffRefinements = 20000;
+
 // Local moves tried after a split before the Tabu Unfolder runs.
 constexpr int kLocalTrials = 16;
+// Above this face count, several splits share one update() (whose cost grows with the mesh).
+constexpr std::size_t kBatchFaces = 4000;
 
 std::uint64_t split_seed(std::uint64_t seed, std::size_t index) {
   return seed ^ (0x9e3779b97f4a7c15ULL * (index + 1));
@@ -106,18 +111,20 @@ void apply_split(State& st, const VertexSplit& s, std::uint64_t seed) {
   }
 }
 
-// Applies a split and lays it out. When faces of the split's neighbourhood overlap, moving one
+// Applies splits and lays them out. When faces of the split's neighbourhood overlap, moving one
 // of them (with its subtree) to another neighbour is tried first, a few cheap updates each, before
 // the caller falls back on the Tabu Unfolder: most new overlaps are local. Returns the overlap
 // count.
-std::size_t place_split(State& st, const VertexSplit& s, std::uint64_t seed) {
-  apply_split(st, s, seed);
+std::size_t place_splits(State& st, const std::vector<VertexSplit>& splits, std::uint64_t seed) {
+  for (std::size_t i = 0; i < splits.size(); ++i) apply_split(st, splits[i], seed + i);
   Unfolding& u = st.unfolding;
   std::size_t overlaps = u.update();
   if (overlaps == 0) return 0;
   std::vector<int> local;
-  for (const SplitFace& nf : s.new_faces) local.push_back(st.face[nf.face]);
-  for (int f : s.reshaped) local.push_back(st.face[f]);
+  for (const VertexSplit& s : splits) {
+    for (const SplitFace& nf : s.new_faces) local.push_back(st.face[nf.face]);
+    for (int f : s.reshaped) local.push_back(st.face[f]);
+  }
   const auto in_subtree = [&u](int q, int f) {
     for (int x = q; x >= 0; x = u.parent(x))
       if (x == f) return true;
@@ -149,7 +156,7 @@ std::size_t place_split(State& st, const VertexSplit& s, std::uint64_t seed) {
         for (std::size_t i = path.size() - 1; i > 0; --i) u.attach(path[i], path[i - 1]);
         u.attach(before, f);
       }
-      u.update();
+      overlaps = u.update();  // the old layout again (from another anchor: recount)
     }
   }
   return overlaps;
@@ -204,6 +211,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
 
   bool failed = !coarse_ok;
   std::vector<Applied> log;  // splits applied since the checkpoint
+  std::size_t logged_splits = 0;
   std::optional<State> checkpoint;
   if (coarse_ok) {
     progress.intermediate(st.unfolding.mesh(), st.unfolding.net());
@@ -217,9 +225,15 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   std::size_t index = 0;
   while (!failed && pm.splits_left() > 0) {
     if (progress.cancelled()) throw CancelledException();
-    Applied step{pm.split(), split_seed(options.tabu.seed, index++), 0};
+    // One split per update on meshes up to kBatchFaces faces; beyond, batches that keep the
+    // O(faces) cost of an update per face added bounded.
+    Applied step;
+    step.seed = split_seed(options.tabu.seed, index++);
+    const std::size_t batch = std::max<std::size_t>(1, pm.face_count() / kBatchFaces);
+    for (std::size_t i = 0; i < batch && pm.splits_left() > 0; ++i)
+      step.splits.push_back(pm.split());
     relay.context.faces = pm.face_count();
-    if (place_split(st, step.split, step.seed) > 0) {
+    if (place_splits(st, step.splits, step.seed) > 0) {
       TabuOptions t = options.tabu;
       t.seed = step.seed;
       t.phase = "uncollapse";
@@ -237,10 +251,12 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       step.iterations = stats.iterations;
       if (failed) break;
     }
+    logged_splits += step.splits.size();
     log.push_back(std::move(step));
-    if (log.size() >= checkpoint_every) {
+    if (logged_splits >= checkpoint_every) {
       checkpoint = st;
       log.clear();
+      logged_splits = 0;
     }
     if (Clock::now() - last_output > std::chrono::milliseconds(100)) {
       last_output = Clock::now();
@@ -258,7 +274,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       st = *checkpoint;
       std::size_t i = 0;
       for (; i < upto; ++i) {
-        if (place_split(st, log[i].split, log[i].seed) == 0) continue;
+        if (place_splits(st, log[i].splits, log[i].seed) == 0) continue;
         TabuOptions t = options.tabu;
         t.seed = log[i].seed;
         t.max_iterations = log[i].iterations;
@@ -286,7 +302,13 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     result.face_ids.assign(st.unfolding.face_count(), -1);
     for (std::size_t f = 0; f < input_faces; ++f)
       if (st.face[f] >= 0) result.face_ids[st.face[f]] = static_cast<int>(f);
-    result.hausdorff = hausdorff_distance(mesh, result.mesh).distance;
+    if (result.overlap_free) {
+      // A bounded amount of refinement: CAD meshes kept exactly by the quadrics would
+      // otherwise refine their flat sides towards the absolute accuracy for a long time.
+      HausdorffOptions accuracy;
+      accuracy.max_refinements = kHausdorffRefinements;
+      result.hausdorff = hausdorff_distance(mesh, result.mesh, accuracy).distance;
+    }
   }
   relay.context.faces = result.mesh.faces.size();
   ProgressInfo last;

@@ -38,6 +38,9 @@ int find_root(std::vector<int>& parent, int x) {
 // that edge: such slivers make 2D layouts and overlap tests ill-conditioned.
 constexpr double kMinShape = 1e-6;
 
+// Most faces a collapse may leave around the kept vertex.
+constexpr std::size_t kMaxValence = 24;
+
 bool degenerate(Vec3 a, Vec3 b, Vec3 c) {
   const Vec3 n = cross(b - a, c - a);
   const double l = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
@@ -187,6 +190,8 @@ bool ProgressiveMesh::can_collapse(int vertex, int kept, Vec3 position) const {
     ++n_gone;
   }
   if (n_gone == 0 || face_count_ <= static_cast<std::size_t>(n_gone)) return false;
+  // Valence cap: hubs make slivers and make every check around them slow.
+  if (vertex_faces_[r].size() + vertex_faces_[k].size() - 2 * n_gone > kMaxValence) return false;
   if (n_gone == 2 && is_boundary_vertex(r) && is_boundary_vertex(k)) return false;
   // Link condition: the common neighbours of r and k are exactly the edge's opposite vertices.
   thread_local std::vector<int> ring_r, ring_k;
@@ -199,16 +204,17 @@ bool ProgressiveMesh::can_collapse(int vertex, int kept, Vec3 position) const {
       ++common;
     }
   if (common != n_gone) return false;
-  // A face (r, x, y) must not become a copy of an existing (k, x, y) (a tetrahedron's collapse).
-  for (int f : vertex_faces_[r]) {
-    if (f == gone[0] || f == gone[1]) continue;
-    const auto& face = mesh_.faces[f];
-    for (int g : vertex_faces_[k]) {
-      const auto& other = mesh_.faces[g];
-      if (g != gone[0] && g != gone[1] && contains(other, face[0] == r ? face[1] : face[0]) &&
-          contains(other, third_corner(face, r, face[0] == r ? face[1] : face[0])))
-        return false;
-    }
+  // A face (r, a, b) must not become a copy of an existing (k, a, b) (a tetrahedron's
+  // collapse); by the link condition a and b can only be the two opposite vertices.
+  if (n_gone == 2) {
+    const auto holds_ab = [&](int v) {
+      for (int f : vertex_faces_[v])
+        if (f != gone[0] && f != gone[1] && contains(mesh_.faces[f], opposite[0]) &&
+            contains(mesh_.faces[f], opposite[1]))
+          return true;
+      return false;
+    };
+    if (holds_ab(r) && holds_ab(k)) return false;
   }
   // Geometry: no flipped normal, no degenerate face among the faces that change.
   for (int side = 0; side < 2; ++side) {

@@ -62,7 +62,8 @@ class ProgressiveMesh {
 
   /// True when collapsing `vertex` into `kept` (which then moves to `position`) keeps the mesh a
   /// manifold (link condition, no non-manifold boundary vertex, no duplicate face, at least
-  /// one face left), flips no face normal and makes no face degenerate.
+  /// one face left), flips no face normal, makes no face degenerate (height below 1e-6 of its
+  /// longest edge) and leaves at most 24 faces around `kept`.
   bool can_collapse(int vertex, int kept, Vec3 position) const;
   /// Applies that collapse and records it. \throw TopologyException when !can_collapse.
   void collapse(int vertex, int kept, Vec3 position);

@@ -224,13 +224,14 @@ void Unfolding::attach(int f, int parent) {
   }
 }
 
-void Unfolding::insert_between(int f, int parent, int child) {
-  if (parent_.at(child) != parent)
-    throw TopologyException(face_name(child) + " does not hang from " + face_name(parent));
+void Unfolding::insert_between(int f, int a, int b) {
   if (parent_.at(f) != -2) throw TopologyException(face_name(f) + " is already in the tree");
-  parent_[f] = parent;
-  parent_[child] = f;
-  for (int x : {f, child})
+  if (parent_.at(a) == b) std::swap(a, b);
+  if (parent_.at(b) != a)
+    throw TopologyException(face_name(a) + " and " + face_name(b) + " are not linked");
+  parent_[f] = a;
+  parent_[b] = f;
+  for (int x : {f, b})
     if (!is_dirty_[x]) {
       is_dirty_[x] = 1;
       dirty_.push_back(x);

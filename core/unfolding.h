@@ -102,9 +102,12 @@ class Unfolding {
   /// Hangs face f from `parent` (they must share an edge when update() runs); f's own subtree,
   /// if any, comes along.
   void attach(int f, int parent);
-  /// Puts face f between the linked pair parent -> child: parent -> f -> child. f must share an
-  /// edge with both when update() runs; f must not be in the tree yet.
-  void insert_between(int f, int parent, int child);
+  /// Puts face f between two linked faces a and b: a - f - b. The pair may be linked in either
+  /// direction (the root moves as the Tabu Unfolder re-roots). f must share an edge with both
+  /// when update() runs and must not be in the tree yet.
+  void insert_between(int f, int a, int b);
+  /// True when faces a and b are linked in the unfold tree (in either direction).
+  bool linked(int a, int b) const { return parent_[a] == b || parent_[b] == a; }
   /// Applies the edits: rebuilds adjacency around changed faces, re-roots the tree in the
   /// largest part that did not change, re-lays out every other face and tests exactly those
   /// for overlaps. Returns the overlap count.

@@ -1,5 +1,5 @@
-// `papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o net.json [--seed N]
-//  [--time-limit S]`
+// `papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o OUT [-o OUT]...
+//  [--seed N] [--time-limit S] [print options]`
 #include <chrono>
 #include <cstdlib>
 #include <exception>
@@ -8,11 +8,14 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "api/net_json.h"
+#include "api/print_output.h"
 #include "core/dual_graph.h"
 #include "core/errors.h"
 #include "core/load.h"
+#include "core/metrics.h"
 #include "core/net_check.h"
 #include "core/progressive.h"
 #include "core/unfolding.h"
@@ -23,10 +26,12 @@ namespace papernet::cli {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o NET.json\n"
-    "                            [--seed N] [--time-limit S]\n"
+    "usage: papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o OUT\n"
+    "                            [-o OUT]... [--seed N] [--time-limit S] [print options]\n"
     "QQ (default), SEMP, SEQ: progressive unfolding after collapsing to N faces (default\n"
     "F/10 + sqrt(F)(1+genus)); TU: Tabu Unfolding of the full mesh.\n"
+    "OUT is chosen by extension: .json (papernet.net/1), .svg (one page, or OUT-1.svg ... per\n"
+    "page), .pdf (one page per tile), .glb / .obj (the mesh the net folds into).\n"
     "exit codes: 0 net written (also an approximate one: a net of a coarser mesh, said on\n"
     "stderr and in the JSON), 2 input cannot be unfolded, 3 no overlap-free net within the\n"
     "budget, 1 other errors. Prints one summary line (key=value) on stdout.\n";
@@ -67,8 +72,10 @@ NetInput describe(const Mesh& mesh) {
 }  // namespace
 
 int unfold(int argc, char** argv) {
-  std::string file, output, strategy = "QQ";
+  std::string file, strategy = "QQ";
+  std::vector<std::string> outputs;
   TabuOptions options;
+  OutputOptions print;
   std::size_t target_faces = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -78,12 +85,16 @@ int unfold(int argc, char** argv) {
     };
     try {
       if (arg == "--help" || arg == "-h") {
-        std::cout << kUsage;
+        std::cout << kUsage << "print options:\n" << output_options_help();
         return 0;
       } else if (arg == "--strategy") {
         strategy = value();
       } else if (arg == "-o" || arg == "--output") {
-        output = value();
+        outputs.push_back(value());
+        const std::string& o = outputs.back();
+        if (!is_print_output(o) && !(o.size() > 5 && o.substr(o.size() - 5) == ".json"))
+          throw std::invalid_argument("unknown output type '" + o +
+                                      "': use .json, .svg, .pdf, .glb or .obj");
       } else if (arg == "--target-faces") {
         const long long n = std::stoll(value());
         if (n < 1) throw std::invalid_argument("--target-faces must be at least 1");
@@ -92,6 +103,9 @@ int unfold(int argc, char** argv) {
         options.seed = std::stoull(value());
       } else if (arg == "--time-limit") {
         options.time_limit_seconds = std::stod(value());
+      } else if (arg.starts_with("--") && i + 1 < argc &&
+                 apply_output_option(arg, argv[i + 1], print)) {
+        ++i;
       } else if (!arg.empty() && arg[0] == '-') {
         throw std::invalid_argument("unknown option " + arg);
       } else if (file.empty()) {
@@ -104,7 +118,7 @@ int unfold(int argc, char** argv) {
       return 1;
     }
   }
-  if (file.empty() || output.empty()) {
+  if (file.empty() || outputs.empty()) {
     std::cerr << kUsage;
     return 1;
   }
@@ -181,11 +195,30 @@ int unfold(int argc, char** argv) {
   doc.metrics.faces = doc.mesh.faces.size();
   doc.metrics.overlaps = result.overlaps;
   doc.metrics.seconds = seconds;
-  std::ofstream out(output, std::ios::binary);
-  out << write_net_json(doc) << "\n";
-  if (!out) {
-    std::cerr << "papernet unfold: cannot write " << output << "\n";
-    return 1;
+  const NetBoxMetrics box = net_metrics(doc.mesh, doc.net);
+  doc.metrics.coverage = box.coverage;
+  doc.metrics.aspect_ratio = box.aspect_ratio;
+  for (const std::string& output : outputs) {
+    if (is_print_output(output)) {
+      try {
+        const WrittenOutput w = write_output_file(output, doc.mesh, doc.net, print);
+        for (const std::string& written : w.files)
+          std::cerr << "papernet unfold: wrote " << written << "\n";
+        if (w.pages > 0)
+          std::cerr << "papernet unfold: " << output << ": " << w.pages << " page(s), " << w.tabs
+                    << " glue tabs, " << w.tabs_omitted << " cut edges without a tab (no room)\n";
+      } catch (const std::exception& e) {
+        std::cerr << "papernet unfold: " << output << ": " << e.what() << "\n";
+        return 1;
+      }
+      continue;
+    }
+    std::ofstream out(output, std::ios::binary);
+    out << write_net_json(doc) << "\n";
+    if (!out) {
+      std::cerr << "papernet unfold: cannot write " << output << "\n";
+      return 1;
+    }
   }
   return 0;
 }

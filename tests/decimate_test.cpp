@@ -167,7 +167,12 @@ struct Case {
 class DecimateRoundTrip : public testing::TestWithParam<CollapseStrategy> {};
 
 TEST_P(DecimateRoundTrip, SplittingEverythingRestoresTheInputExactly) {
-  const Case cases[] = {{"sample.obj", 0, 0}, {"reference.obj", 0, 2}, {"mirror.ply", 1, 0}};
+  const Case cases[] = {{"sample.obj", 0, 0},
+                        {"reference.obj", 0, 2},
+                        {"mirror.ply", 1, 0},
+                        {"thingi10k_65004.stl", 2, 0},
+                        {"thingi10k_134617.stl", 0, 1},
+                        {"Duck.glb", 0, 0}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.file);
     const Mesh input = load_mesh_file(test_file(c.file)).mesh;

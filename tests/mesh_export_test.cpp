@@ -70,6 +70,20 @@ TEST(MeshExport, ObjReadsBackThroughTheLoader) {
   }
 }
 
+TEST(MeshExport, GlbReadsBackThroughTheGltfLoader) {
+  for (const auto& [name, mesh] : testing::test_data_meshes()) {
+    const LoadedMesh back = load_mesh(write_glb(mesh), MeshFormat::Glb);
+    ASSERT_EQ(back.mesh.faces.size(), mesh.faces.size()) << name;
+    ASSERT_EQ(back.mesh.vertices.size(), mesh.vertices.size()) << name;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 a = mesh.vertices[mesh.faces[f][k]],
+                   b = back.mesh.vertices[back.mesh.faces[f][k]];
+        EXPECT_NEAR(norm(a - b), 0, 1e-6 * (1 + norm(a))) << name << " face " << f;
+      }
+  }
+}
+
 TEST(MeshExport, RefusesBadMeshes) {
   EXPECT_THROW(write_glb(Mesh{}), std::invalid_argument);
   Mesh bad = testing::tetrahedron();

@@ -90,12 +90,8 @@ Net bfs_net(const Mesh& mesh) {
 std::vector<std::pair<std::string, Mesh>> test_data_meshes() {
   std::vector<std::pair<std::string, Mesh>> out;
   for (const auto& entry : std::filesystem::directory_iterator(PAPERNET_TEST_DATA)) {
-    const std::string ext = entry.path().extension().string();
-    if (ext != ".obj" && ext != ".ply" && ext != ".stl") continue;
-    Mesh mesh = load_mesh_file(entry.path().string()).mesh;
-    // The first loader reads no faces from some files (binary STL); those come with a better one.
-    if (mesh.faces.empty()) continue;
-    out.emplace_back(entry.path().filename().string(), std::move(mesh));
+    if (format_from_extension(entry.path().string()) == MeshFormat::Unknown) continue;
+    out.emplace_back(entry.path().filename().string(), load_mesh_file(entry.path().string()).mesh);
   }
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return out;

@@ -18,7 +18,7 @@ Mesh octahedron(double top_z = 1);  ///< top vertex at (0, 0, top_z); below 0 it
 /// across the edge it shares with its parent from the 3D edge lengths.
 Net bfs_net(const Mesh& mesh);
 
-/// Meshes of tests/data that the loader reads (OBJ, PLY, STL) with at least one face, by name.
+/// Every mesh file of tests/data (all formats the loader reads), by file name.
 std::vector<std::pair<std::string, Mesh>> test_data_meshes();
 
 }  // namespace papernet::testing

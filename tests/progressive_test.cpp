@@ -2,7 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -151,6 +157,39 @@ TEST(Progressive, BadInputIsRefused) {
   m.faces.push_back(m.faces[0]);
   Progress quiet;
   EXPECT_THROW(unfold_progressive(m, {}, quiet), InvalidInputException);
+}
+
+// `papernet unfold` with the progressive strategies, as a user runs it.
+int run_unfold(const std::string& args) {
+  const int status = std::system(
+      (std::string(PAPERNET_BINARY) + " unfold " + args + " >/dev/null 2>/dev/null").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(UnfoldCli, QQIsTheDefaultAndWritesACompleteNet) {
+  const std::string out = testing::TempDir() + "papernet_progressive_cli.json";
+  ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/sample.obj -o " + out), 0);
+  std::stringstream text;
+  text << std::ifstream(out).rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["strategy"], "QQ");
+  EXPECT_EQ(j["result"], "complete");
+  EXPECT_EQ(j["mesh"]["faces"].size(), 1000u);
+  EXPECT_EQ(j["net"]["faces"].size(), 1000u);
+  EXPECT_EQ(j["metrics"]["hausdorff"], 0.0);
+  ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/mirror.ply --strategy se/mp " +
+                       "--target-faces 100 -o " + out),
+            0);
+  text.str("");
+  text << std::ifstream(out).rdbuf();
+  EXPECT_EQ(nlohmann::json::parse(text.str())["strategy"], "SEMP");
+  std::remove(out.c_str());
+}
+
+TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
+  const std::string mesh = std::string(PAPERNET_TEST_DATA) + "/sample.obj -o /dev/null";
+  EXPECT_EQ(run_unfold(mesh + " --strategy QX"), 1);
+  EXPECT_EQ(run_unfold(mesh + " --target-faces 0"), 1);
 }
 
 }  // namespace

@@ -269,8 +269,8 @@ TEST(ServeTest, SubmitGlbDracoAndMultipartGltf) {
       submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU"),
       submit(s, test_mesh("Box_Draco.glb"), "", "?strategy=TU")};
   httplib::MultipartFormDataItems items = {
-      {"mesh", test_mesh("Box.gltf"), "Box.gltf", "model/gltf+json"},
-      {"buffers", test_mesh("Box0.bin"), "Box0.bin", "application/octet-stream"},
+      {"mesh", test_mesh("gltf_external/Box.gltf"), "Box.gltf", "model/gltf+json"},
+      {"buffers", test_mesh("gltf_external/Box0.bin"), "Box0.bin", "application/octet-stream"},
       {"options", R"({"strategy":"TU","seed":5})", "", "application/json"}};
   auto res = s.client().Post("/v1/jobs", items);
   ASSERT_TRUE(res);
@@ -289,7 +289,7 @@ TEST(ServeTest, SubmitGlbDracoAndMultipartGltf) {
   }
   // The .gltf without its buffer part cannot be read: the job says so.
   httplib::MultipartFormDataItems no_buffer = {
-      {"mesh", test_mesh("Box.gltf"), "Box.gltf", "model/gltf+json"}};
+      {"mesh", test_mesh("gltf_external/Box.gltf"), "Box.gltf", "model/gltf+json"}};
   const std::string missing = body(s.client().Post("/v1/jobs", no_buffer))["id"];
   const json failed = wait_final(s, missing);
   EXPECT_EQ(failed["error"]["code"], "unreadable_mesh") << failed.dump();

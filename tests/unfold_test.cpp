@@ -114,9 +114,7 @@ TEST(Unfold, EditsAndUpdateKeepTheStateConsistent) {
   const int f1 = u.add_face({old[1], old[2], v});
   const int f2 = u.add_face({old[2], old[0], v});
   for (const auto& [f, n] : {std::pair{f1, across12}, std::pair{f2, across10}}) {
-    if (u.parent(n) == 0)
-      u.insert_between(f, 0, n);
-    else if (u.parent(0) == n)
+    if (u.linked(0, n))
       u.insert_between(f, n, 0);
     else
       u.attach(f, 0);

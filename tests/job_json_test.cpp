@@ -1,0 +1,83 @@
+#include "server/job_json.h"
+
+#include <gtest/gtest.h>
+
+#include "server/problem.h"
+
+using namespace papernet::server;
+
+namespace {
+
+JobView queued_view() {
+  JobView v;
+  v.record.id = new_job_id();
+  v.record.status = JobStatus::Queued;
+  v.record.created = 1'700'000'000.25;
+  v.record.format = "obj";
+  v.record.input_bytes = 123;
+  v.queue_position = 3;
+  return v;
+}
+
+}  // namespace
+
+TEST(JobJsonTest, QueuedJobShowsItsPlaceAndNoResult) {
+  const nlohmann::json doc = job_to_json(queued_view(), 1'700'000'010);
+  EXPECT_EQ(doc["status"], "queued");
+  EXPECT_EQ(doc["progress"]["queue_position"], 3);
+  EXPECT_EQ(doc["progress"]["elapsed_seconds"], 0.0);
+  EXPECT_TRUE(doc["result"].is_null());
+  EXPECT_TRUE(doc["error"].is_null());
+  EXPECT_EQ(doc["created"], "2023-11-14T22:13:20.250Z");
+  EXPECT_FALSE(doc["links"].contains("net.json"));
+  EXPECT_EQ(doc["links"]["events"], "/v1/jobs/" + doc["id"].get<std::string>() + "/events");
+}
+
+TEST(JobJsonTest, RunningJobShowsProgressAndIntermediateLinks) {
+  JobView v = queued_view();
+  v.record.status = JobStatus::Running;
+  v.record.started = 1'700'000'001;
+  v.queue_position = 0;
+  v.progress = papernet::ProgressInfo{"uncollapse", 800, 2000, 0, 17, 4.5};
+  auto mid = std::make_shared<JobOutput>();
+  mid->faces = 800;
+  mid->input_faces = 2000;
+  mid->files["net.json"] = {"application/json", "{}"};
+  v.intermediate = mid;
+  const nlohmann::json doc = job_to_json(v, 1'700'000'003);
+  EXPECT_EQ(doc["progress"]["phase"], "uncollapse");
+  EXPECT_EQ(doc["progress"]["faces"], 800);
+  EXPECT_EQ(doc["progress"]["input_faces"], 2000);
+  EXPECT_EQ(doc["progress"]["elapsed_seconds"], 2.0);
+  EXPECT_TRUE(doc["progress"]["queue_position"].is_null());
+  EXPECT_EQ(doc["input"]["faces"], 2000);
+  EXPECT_EQ(doc["intermediate"]["faces"], 800);
+  EXPECT_TRUE(doc["links"].contains("net.json"));
+  EXPECT_FALSE(doc["links"].contains("net.pdf"));
+}
+
+TEST(JobJsonTest, FinishedJobsShowResultOrError) {
+  JobView ok = queued_view();
+  ok.queue_position = 0;
+  ok.record.status = JobStatus::Approximated;
+  ok.record.started = 1'700'000'001;
+  ok.record.finished = 1'700'000'002.5;
+  ok.record.result_kind = "approximate";
+  ok.record.faces = 900;
+  ok.record.input_faces = 2000;
+  ok.result_files = {"mesh.glb", "net.json"};
+  const nlohmann::json done = job_to_json(ok, 1'700'000'100);
+  EXPECT_EQ(done["result"]["kind"], "approximate");
+  EXPECT_EQ(done["progress"]["elapsed_seconds"], 1.5);
+  EXPECT_TRUE(done["links"].contains("mesh.glb"));
+  EXPECT_FALSE(done["links"].contains("net.svg"));
+
+  JobView failed = queued_view();
+  failed.queue_position = 0;
+  failed.record.status = JobStatus::Failed;
+  failed.record.error = problem_json(make_problem("invalid_mesh", "2 non-manifold edges"));
+  const nlohmann::json doc = job_to_json(failed, 1'700'000'100);
+  EXPECT_EQ(doc["error"]["code"], "invalid_mesh");
+  EXPECT_EQ(doc["error"]["status"], 422);
+  EXPECT_TRUE(doc["result"].is_null());
+}
