@@ -91,7 +91,7 @@ grep -q '"code":"unknown_option"' problem.json || fail "no unknown_option code"
 show curl -sS -o problem.json -w '%{http_code}\n' -X DELETE "$url/v1/jobs/$id" | tee code.txt
 [ "$(cat code.txt)" = 409 ] || fail "cancelling a finished job answered $(cat code.txt)"
 # 6. A .gltf with its buffer file, options as a JSON part (multipart/form-data).
-show curl -sS -o job2.json -w '%{http_code}\n' -F "mesh=@$data/Box.gltf" -F "buffers=@$data/Box0.bin" \
+show curl -sS -o job2.json -w '%{http_code}\n' -F "mesh=@$data/gltf_external/Box.gltf" -F "buffers=@$data/gltf_external/Box0.bin" \
   -F 'options={"strategy":"TU","seed":5};type=application/json' "$url/v1/jobs" | tee code.txt
 [ "$(cat code.txt)" = 202 ] || fail "multipart submit answered $(cat code.txt): $(cat job2.json)"
 id2=$(sed -n 's/.*"id":"\([0-9a-f]\{32\}\)".*/\1/p' job2.json)

@@ -115,9 +115,9 @@ test("multipart .gltf with its external buffer file", async () => {
 });
 
 test("multipart: the repository's Box.gltf with Box0.bin", async () => {
-  const job = await client.submit(sample("Box.gltf"), {
+  const job = await client.submit(sample("gltf_external/Box.gltf"), {
     filename: "Box.gltf",
-    buffers: [{ name: "Box0.bin", data: sample("Box0.bin") }],
+    buffers: [{ name: "Box0.bin", data: sample("gltf_external/Box0.bin") }],
     options: { strategy: "QQ", seed: 2 },
   });
   const done = await client.wait(job.id);
