@@ -2,6 +2,8 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
+# What scripts/install-deps.sh installs: all (build, run, test) or build (the Dockerfile).
+DEPS ?= all
 SAMPLE ?= tests/data/sample.obj
 # CI treats warnings as errors.
 ifeq ($(CI),true)
@@ -13,7 +15,7 @@ endif
 all: build
 
 deps:
-	bash scripts/install-deps.sh
+	bash scripts/install-deps.sh $(DEPS)
 
 build: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)

@@ -5,12 +5,18 @@
 #   scripts/install-deps.sh runtime  only what the papernet binary needs to run
 set -euo pipefail
 
-runtime=(libopenmesh1 libdraco7 libsqlite3-0 libcairo2 ca-certificates)
+runtime=(libopenmesh1 libdraco7 libsqlite3-0 libcairo2 libcpp-httplib0.11 ca-certificates)
 build=(build-essential cmake pkg-config git clang-format
   libopenmesh-dev libdraco-dev libtinygltf-dev nlohmann-json3-dev libcpp-httplib-dev
   libgtest-dev libsqlite3-dev libcairo2-dev)
-# Tools the tests call: SVG rendering and XML checking, PDF inspection.
-test_tools=(librsvg2-bin poppler-utils libxml2-utils)
+# Node.js and npm bundle the web demo and run the JS client tests. Any Node >= 18 with npm
+# will do (Debian 12 ships 18); one already on the PATH is kept.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  build+=(nodejs npm)
+fi
+# Tools the tests call: SVG rendering and XML checking, PDF inspection; curl for the curl
+# session; Chromium for the browser test of the web demo (driven by playwright-core from npm).
+test_tools=(librsvg2-bin poppler-utils libxml2-utils curl chromium)
 
 case "${1:-all}" in
   runtime) wanted=("${runtime[@]}") ;;

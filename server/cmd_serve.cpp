@@ -15,6 +15,7 @@
 #include "server/job_store.h"
 #include "server/metrics.h"
 #include "server/pipeline_runner.h"
+#include "server/static_files.h"
 
 namespace papernet::cli {
 
@@ -67,6 +68,13 @@ int serve(int argc, char** argv) {
   http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
   http.set_tcp_nodelay(true);  // small JSON answers must not wait for delayed ACKs
   install_routes(http, service, config, metrics);
+  std::string web_root;
+  try {
+    web_root = mount_web_root(http);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "papernet serve: " << e.what() << "\n";
+    return 2;
+  }
 
   int port = config.port;
   if (port == 0) {
@@ -93,7 +101,8 @@ int serve(int argc, char** argv) {
 
   log_line("papernet listening on http://" + config.host + ":" + std::to_string(port) + " (data " +
            config.data_dir + ", " + std::to_string(config.workers) + " workers, queue " +
-           std::to_string(config.queue_length) + ")");
+           std::to_string(config.queue_length) + ")" +
+           (web_root.empty() ? "" : "; web demo from " + web_root));
   std::cout << "papernet listening on http://" << config.host << ":" << port << std::endl;
   const bool ok = http.listen_after_bind();
   if (!ok || http.is_running()) {

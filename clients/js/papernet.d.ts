@@ -1,0 +1,165 @@
+// TypeScript declarations of papernet.js (the papernet HTTP API client).
+
+export type Strategy = "QQ" | "SEMP" | "SEQ" | "TU";
+export type Paper = "A4" | "Letter" | "A3" | "none";
+export type MeshFormat = "glb" | "gltf" | "drc" | "obj" | "off" | "ply" | "stl";
+export type JobStatus = "queued" | "running" | "succeeded" | "approximated" | "failed" | "cancelled";
+export type ResultFile = "net.json" | "net.svg" | "net.pdf" | "mesh.glb";
+
+/** Job options (api/openapi.json #/components/schemas/Options); unknown names are refused. */
+export interface Options {
+  strategy?: Strategy;
+  seed?: number;
+  target_faces?: number;
+  time_limit?: number;
+  /** Longest side of the model in millimetres (exclusive with scale). */
+  size_mm?: number;
+  /** Millimetres per mesh unit (exclusive with size_mm). */
+  scale?: number;
+  paper?: Paper;
+  margin_mm?: number;
+  tabs?: boolean;
+  flat_fold_degrees?: number;
+  keep_largest_component?: boolean;
+}
+
+/** RFC 9457 problem details with papernet's stable code. */
+export interface Problem {
+  type?: string;
+  title?: string;
+  status?: number;
+  code: string;
+  detail?: string;
+  instance?: string;
+  option?: string;
+  reasons?: Array<Record<string, unknown>>;
+  [extra: string]: unknown;
+}
+
+export interface Progress {
+  phase?: string;
+  /** Faces of the mesh being worked on now (the approximation level). */
+  faces?: number | null;
+  input_faces?: number | null;
+  overlaps?: number | null;
+  iterations?: number | null;
+  elapsed_seconds?: number;
+  /** 1 = next; null when not queued. */
+  queue_position?: number | null;
+}
+
+export interface Job {
+  id: string;
+  status: JobStatus;
+  created: string;
+  started?: string | null;
+  finished?: string | null;
+  input: { format?: string; bytes?: number; faces?: number | null };
+  options: Required<Pick<Options, "strategy" | "seed" | "paper">> & Options;
+  progress: Progress;
+  cancel_requested?: boolean;
+  result?: {
+    kind: "complete" | "approximate";
+    faces: number;
+    input_faces: number;
+    overlaps: number;
+    metrics?: Record<string, number>;
+  } | null;
+  intermediate?: { faces: number; input_faces: number; overlaps: number };
+  error?: Problem | null;
+  links: Record<string, string>;
+}
+
+/** X-Papernet-Level of a result file. */
+export interface Level {
+  kind: "complete" | "approximate" | "intermediate" | string;
+  faces: number | null;
+  inputFaces: number | null;
+}
+
+/** The net document, papernet.net/1 (docs/DESIGN.md §4). */
+export interface NetDocument {
+  format: "papernet.net/1";
+  result: "complete" | "approximate";
+  strategy?: string;
+  input?: { vertices: number; faces: number; genus?: number; boundaries?: number };
+  mesh: { vertices: Array<[number, number, number]>; faces: Array<[number, number, number]> };
+  net: { faces: Array<{ parent: number; points: Array<[number, number]> }> };
+  metrics?: Record<string, number>;
+  /** Parsed from the X-Papernet-Level header (not enumerable). */
+  readonly level: Level | null;
+  [extra: string]: unknown;
+}
+
+export interface SseEvent {
+  event: string;
+  data: string;
+  id: string | null;
+}
+
+export type BinaryLike = Blob | ArrayBuffer | ArrayBufferView | string;
+
+export interface SubmitOptions {
+  options?: Options;
+  /** File name (its extension gives the format); default: the Blob/File's name. */
+  filename?: string;
+  format?: MeshFormat;
+  /** External files of a .gltf by the relative URI it uses; sends multipart/form-data. */
+  buffers?: Record<string, BinaryLike> | Array<{ name: string; data: BinaryLike }>;
+  /** Send multipart/form-data even without buffers. */
+  multipart?: boolean;
+  signal?: AbortSignal;
+}
+
+export interface RequestOptions {
+  signal?: AbortSignal;
+}
+
+export const FINAL_STATUSES: readonly JobStatus[];
+export const RESULT_FILES: readonly ResultFile[];
+export function isFinal(status: string): boolean;
+export function formatOfFileName(name: string | undefined | null): MeshFormat | undefined;
+export function parseLevel(header: string | null | undefined): Level | null;
+/** Server-Sent Events from a byte stream (e.g. a fetch Response's body). */
+export function parseSse(stream: ReadableStream<Uint8Array>): AsyncGenerator<SseEvent, void, undefined>;
+
+/** An error answer of the server, or "network_error" / "bad_response" / "timeout". */
+export class PapernetError extends Error {
+  constructor(problem: Problem, init?: { status?: number; retryAfter?: number | null; cause?: unknown });
+  readonly name: "PapernetError";
+  /** The server's stable problem code, e.g. "invalid_mesh", "queue_full". */
+  readonly code: string;
+  /** HTTP status; 0 when the server was not reached. */
+  readonly status: number;
+  readonly title?: string;
+  readonly detail?: string;
+  /** Seconds from Retry-After, or null. */
+  readonly retryAfter: number | null;
+  readonly problem: Problem;
+}
+
+export class PapernetClient {
+  /** `baseUrl` e.g. "http://127.0.0.1:8080"; "" for the page the server serves. */
+  constructor(baseUrl?: string, init?: { fetch?: typeof fetch });
+  readonly baseUrl: string;
+  url(path: string): string;
+  submit(mesh: BinaryLike, init?: SubmitOptions): Promise<Job>;
+  job(id: string, init?: RequestOptions): Promise<Job>;
+  jobs(init?: { limit?: number; cursor?: string; signal?: AbortSignal }): Promise<{ jobs: Job[]; next: string | null }>;
+  cancel(id: string, init?: RequestOptions): Promise<Job>;
+  /** One job document per change; the last is final. */
+  events(id: string, init?: RequestOptions): AsyncGenerator<Job, void, undefined>;
+  poll(
+    id: string,
+    init?: { interval?: number; timeout?: number; onProgress?: (job: Job) => void; signal?: AbortSignal },
+  ): Promise<Job>;
+  /** Events, falling back to polling; resolves to the final job. */
+  wait(id: string, init?: { interval?: number; onProgress?: (job: Job) => void; signal?: AbortSignal }): Promise<Job>;
+  result(id: string, name: ResultFile, init?: RequestOptions): Promise<Response>;
+  netJson(id: string, init?: RequestOptions): Promise<NetDocument>;
+  netSvg(id: string, init?: RequestOptions): Promise<string>;
+  netPdf(id: string, init?: RequestOptions): Promise<Uint8Array>;
+  meshGlb(id: string, init?: RequestOptions): Promise<Uint8Array>;
+  /** GET /readyz answers 200. */
+  ready(init?: RequestOptions): Promise<boolean>;
+}

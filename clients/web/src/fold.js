@@ -1,0 +1,121 @@
+// Folding a papernet.net/1 net into its mesh along the unfold tree, without three.js (so it is
+// tested in Node). Every face hangs from its parent by the mesh edge they share; folding by t
+// rotates each face's subtree about that edge by t × its fold angle, composed from the root down.
+// At t = 0 the net lies flat in z = 0 as drawn (x, y = the net's 2D points, y mirrored when the
+// net is drawn clockwise); at t = 1 it is the mesh, moved rigidly so the root face stays put.
+
+const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const unit = (a) => {
+  const n = Math.hypot(a[0], a[1], a[2]);
+  return n > 0 ? [a[0] / n, a[1] / n, a[2] / n] : [0, 0, 0];
+};
+
+/** Affine 3×4 matrices as 12 numbers, row-major: [r00 r01 r02 tx, r10 ... ty, r20 ... tz]. */
+const IDENTITY = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0];
+
+function multiply(a, b) {
+  const out = new Array(12);
+  for (let r = 0; r < 3; ++r) {
+    for (let c = 0; c < 4; ++c) {
+      let s = c === 3 ? a[r * 4 + 3] : 0;
+      for (let k = 0; k < 3; ++k) s += a[r * 4 + k] * b[k * 4 + c];
+      out[r * 4 + c] = s;
+    }
+  }
+  return out;
+}
+
+/** Rotation by `angle` about the line through `p` (z = 0) with unit direction `d` (z = 0). */
+function rotationAbout(p, d, angle) {
+  const c = Math.cos(angle);
+  const s = Math.sin(angle);
+  const [x, y, z] = d;
+  const C = 1 - c;
+  const r = [
+    c + x * x * C, x * y * C - z * s, x * z * C + y * s,
+    y * x * C + z * s, c + y * y * C, y * z * C - x * s,
+    z * x * C - y * s, z * y * C + x * s, c + z * z * C,
+  ];
+  // Translate p to the origin, rotate, translate back: t = p - R p.
+  const t = [0, 1, 2].map((i) => p[i] - (r[i * 3] * p[0] + r[i * 3 + 1] * p[1] + r[i * 3 + 2] * p[2]));
+  return [r[0], r[1], r[2], t[0], r[3], r[4], r[5], t[1], r[6], r[7], r[8], t[2]];
+}
+
+function transform(m, p) {
+  return [
+    m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3],
+    m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7],
+    m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11],
+  ];
+}
+
+/**
+ * Prepares a net document (papernet.net/1) for folding: the tree order from the root, and per
+ * face its hinge (a point and direction in the flat net) and fold angle (radians, signed).
+ * Throws an Error naming the face when the document breaks the format's promises.
+ */
+export function prepareFold(doc) {
+  const vertices = doc.mesh.vertices;
+  const faces = doc.mesh.faces;
+  const netFaces = doc.net.faces;
+  const n = faces.length;
+  if (netFaces.length !== n) throw new Error(`net has ${netFaces.length} faces, mesh ${n}`);
+  const roots = [];
+  const children = Array.from({ length: n }, () => []);
+  netFaces.forEach((f, i) => {
+    if (f.parent === -1) roots.push(i);
+    else if (f.parent >= 0 && f.parent < n && f.parent !== i) children[f.parent].push(i);
+    else throw new Error(`face ${i} has parent ${f.parent}`);
+  });
+  if (roots.length !== 1) throw new Error(`net has ${roots.length} root faces, expected 1`);
+  const root = roots[0];
+  // Mirror the net when it is drawn clockwise, so the flat +z side is the outside.
+  const [r0, r1, r2] = netFaces[root].points;
+  const area = (r1[0] - r0[0]) * (r2[1] - r0[1]) - (r1[1] - r0[1]) * (r2[0] - r0[0]);
+  const flip = area < 0 ? -1 : 1;
+  const flat = netFaces.map((f) => f.points.map(([u, v]) => [u, flip * v, 0]));
+  const normal = faces.map(([a, b, c]) => unit(cross(sub(vertices[b], vertices[a]), sub(vertices[c], vertices[a]))));
+
+  const order = [];
+  const hinge = new Array(n);
+  const seen = new Uint8Array(n);
+  const queue = [root];
+  seen[root] = 1;
+  while (queue.length > 0) {
+    const i = queue.shift();
+    order.push(i);
+    for (const c of children[i]) {
+      if (seen[c]) throw new Error(`the unfold tree has a cycle at face ${c}`);
+      seen[c] = 1;
+      queue.push(c);
+      const p = i;
+      const shared = faces[c].filter((v) => faces[p].includes(v));
+      if (shared.length !== 2) throw new Error(`face ${c} shares no edge with its parent ${p}`);
+      const [a, b] = shared;
+      const pa = flat[c][faces[c].indexOf(a)];
+      const pb = flat[c][faces[c].indexOf(b)];
+      const e = unit(sub(vertices[b], vertices[a]));
+      const angle = Math.atan2(dot(cross(normal[p], normal[c]), e), dot(normal[p], normal[c]));
+      hinge[c] = { parent: p, point: pa, direction: unit(sub(pb, pa)), angle };
+    }
+  }
+  if (order.length !== n) throw new Error(`${n - order.length} faces are not connected to the root`);
+  return { faces, flat, order, hinge, root };
+}
+
+/**
+ * Corner positions of every face folded by t ∈ [0, 1] (0 flat, 1 the mesh): a Float32Array of
+ * 9 numbers per face (face i's corners k = 0..2 at 9i + 3k), written into `out` if given.
+ */
+export function foldPositions(prepared, t, out = new Float32Array(prepared.faces.length * 9)) {
+  const { flat, order, hinge } = prepared;
+  const matrix = new Array(flat.length);
+  for (const i of order) {
+    const h = hinge[i];
+    matrix[i] = h ? multiply(matrix[h.parent], rotationAbout(h.point, h.direction, t * h.angle)) : IDENTITY;
+    for (let k = 0; k < 3; ++k) out.set(transform(matrix[i], flat[i][k]), i * 9 + k * 3);
+  }
+  return out;
+}

@@ -1,0 +1,262 @@
+// The demo page: upload a mesh, follow the job, show the model folding from its net.
+import * as THREE from "three";
+import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { PapernetClient, PapernetError, isFinal, formatOfFileName } from "../../js/papernet.js";
+import { prepareFold, foldPositions } from "./fold.js";
+
+const $ = (id) => document.getElementById(id);
+const client = new PapernetClient("");
+const ui = {
+  drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
+  paper: $("paper"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
+  model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
+  downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
+};
+
+let files = [];
+let current = null; // {id, abort}
+let shownFaces = -1; // face count of the net on screen
+
+// ---- 3D view -------------------------------------------------------------------------------
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+ui.model.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0xfafaf7);
+const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+camera.position.set(0, -3, 2);
+let controls = new OrbitControls(camera, renderer.domElement);
+const group = new THREE.Group();
+scene.add(group);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x8890a0, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.4);
+sun.position.set(2, -3, 4);
+scene.add(sun);
+const material = new THREE.MeshStandardMaterial({ color: 0xf2e6c9, side: THREE.DoubleSide, flatShading: true, roughness: 0.9 });
+const lineMaterial = new THREE.LineBasicMaterial({ color: 0x6b5b3e });
+let folding = null; // {prepared, mesh, lines, positions, linePositions}
+
+// Render on demand (orbiting, folding, resizing), not in a loop: the page stays idle otherwise.
+let frameRequested = false;
+function requestRender() {
+  if (frameRequested) return;
+  frameRequested = true;
+  requestAnimationFrame(() => {
+    frameRequested = false;
+    renderer.render(scene, camera);
+  });
+}
+function watchControls() {
+  controls.addEventListener("change", requestRender);
+}
+watchControls();
+
+function resize() {
+  const w = ui.model.clientWidth || 400;
+  const h = ui.model.clientHeight || 380;
+  renderer.setSize(w, h, false);
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+  requestRender();
+}
+new ResizeObserver(resize).observe(ui.model);
+resize();
+
+function showNet3d(doc) {
+  const prepared = prepareFold(doc);
+  if (folding) {
+    group.remove(folding.mesh, folding.lines);
+    folding.mesh.geometry.dispose();
+    folding.lines.geometry.dispose();
+  }
+  const n = prepared.faces.length;
+  const geometry = new THREE.BufferGeometry();
+  const positions = new Float32Array(n * 9);
+  geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+  const lineGeometry = new THREE.BufferGeometry();
+  const linePositions = new Float32Array(n * 18);
+  lineGeometry.setAttribute("position", new THREE.BufferAttribute(linePositions, 3));
+  folding = {
+    prepared,
+    mesh: new THREE.Mesh(geometry, material),
+    lines: new THREE.LineSegments(lineGeometry, lineMaterial),
+    positions,
+    linePositions,
+  };
+  group.add(folding.mesh, folding.lines);
+  // A new model: look at it from the front, a little from above (z is the net's normal).
+  camera.up.set(0, 0, 1);
+  camera.position.set(0.35, -1.1, 0.9);
+  controls.target.set(0, 0, 0);
+  controls.dispose();
+  controls = new OrbitControls(camera, renderer.domElement);
+  watchControls();
+  ui.fold.disabled = false;
+  applyFold();
+}
+
+function applyFold() {
+  const t = Number(ui.fold.value);
+  ui.foldValue.textContent = t >= 1 ? "folded" : t <= 0 ? "flat net" : `${Math.round(t * 100)} % folded`;
+  if (!folding) return;
+  const { positions: p, linePositions: l } = folding;
+  foldPositions(folding.prepared, t, p);
+  for (let i = 0; i < p.length / 9; ++i) {
+    for (let k = 0; k < 3; ++k) {
+      const a = i * 9 + k * 3;
+      const b = i * 9 + ((k + 1) % 3) * 3;
+      l.set(p.subarray(a, a + 3), i * 18 + k * 6);
+      l.set(p.subarray(b, b + 3), i * 18 + k * 6 + 3);
+    }
+  }
+  folding.mesh.geometry.attributes.position.needsUpdate = true;
+  folding.mesh.geometry.computeVertexNormals();
+  folding.mesh.geometry.computeBoundingSphere();
+  folding.lines.geometry.attributes.position.needsUpdate = true;
+  folding.lines.geometry.computeBoundingSphere();
+  // Keep what is shown centred and filling the view at every stage of folding; the direction
+  // the user orbited to is kept.
+  const sphere = folding.mesh.geometry.boundingSphere;
+  group.position.copy(sphere.center).negate();
+  const radius = sphere.radius || 1;
+  const direction = camera.position.clone().sub(controls.target).normalize();
+  controls.target.set(0, 0, 0);
+  camera.position.copy(direction.multiplyScalar(radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05));
+  camera.near = radius / 100;
+  camera.far = radius * 100;
+  camera.updateProjectionMatrix();
+  controls.update();
+  requestRender();
+}
+ui.fold.addEventListener("input", applyFold);
+
+// ---- files ---------------------------------------------------------------------------------
+function chooseFiles(list) {
+  files = Array.from(list);
+  const mesh = files.find((f) => formatOfFileName(f.name));
+  ui.dropText.textContent = mesh
+    ? `${files.map((f) => f.name).join(", ")} (${Math.round(files.reduce((s, f) => s + f.size, 0) / 1024)} KiB)`
+    : "No mesh among these files: choose a GLB / glTF / OBJ / STL / PLY / OFF";
+  ui.start.disabled = !mesh;
+  if (mesh) setStatus(`Ready to unfold ${mesh.name}.`);
+}
+ui.file.addEventListener("change", () => chooseFiles(ui.file.files));
+for (const type of ["dragenter", "dragover"]) {
+  ui.drop.addEventListener(type, (e) => {
+    e.preventDefault();
+    ui.drop.classList.add("over");
+  });
+}
+for (const type of ["dragleave", "drop"]) ui.drop.addEventListener(type, () => ui.drop.classList.remove("over"));
+ui.drop.addEventListener("drop", (e) => {
+  e.preventDefault();
+  chooseFiles(e.dataTransfer.files);
+});
+
+// ---- job -----------------------------------------------------------------------------------
+function setStatus(text, error = false) {
+  ui.status.textContent = text;
+  ui.status.classList.toggle("error", error);
+}
+
+function describe(job, withStatus = true) {
+  const p = job.progress ?? {};
+  const parts = withStatus ? [job.status] : [];
+  if (p.phase && p.phase !== job.status && !isFinal(job.status)) parts.push(p.phase);
+  if (p.queue_position) parts.push(`#${p.queue_position} in queue`);
+  if (p.faces != null && p.input_faces) {
+    parts.push(`approximation: ${p.faces} of ${p.input_faces} faces (${((100 * p.faces) / p.input_faces).toFixed(1)} %)`);
+  }
+  if (p.overlaps != null) parts.push(`${p.overlaps} overlaps`);
+  if (p.elapsed_seconds != null) parts.push(`${p.elapsed_seconds.toFixed(1)} s`);
+  return parts.join(" · ");
+}
+
+function showProgress(job) {
+  const p = job.progress ?? {};
+  if (p.faces != null && p.input_faces) ui.progress.value = Math.min(1, p.faces / p.input_faces);
+  else if (isFinal(job.status)) ui.progress.value = 1;
+  else ui.progress.removeAttribute("value"); // indeterminate while loading
+  setStatus(describe(job));
+}
+
+async function showResult(id, final) {
+  const [doc, svg] = await Promise.all([client.netJson(id), client.netSvg(id)]);
+  const faces = doc.mesh.faces.length;
+  if (!final && faces === shownFaces) return;
+  shownFaces = faces;
+  // The SVG comes from our own server; it holds the net's cut, fold and label layers.
+  ui.net.innerHTML = svg;
+  const svgElement = ui.net.querySelector("svg");
+  svgElement?.removeAttribute("width");
+  svgElement?.removeAttribute("height");
+  showNet3d(doc);
+  for (const [name, a] of Object.entries(ui.downloads)) a.href = client.url(`/v1/jobs/${id}/${name}`);
+  document.body.dataset.level = doc.level?.kind ?? doc.result;
+}
+
+async function run() {
+  const mesh = files.find((f) => formatOfFileName(f.name));
+  if (!mesh) return;
+  const buffers = files.filter((f) => f !== mesh).map((f) => ({ name: f.name, data: f }));
+  const options = { strategy: ui.strategy.value, paper: ui.paper.value };
+  if (Number(ui.size.value) > 0) options.size_mm = Number(ui.size.value);
+  if (Number(ui.timeLimit.value) > 0) options.time_limit = Number(ui.timeLimit.value);
+  current?.abort.abort();
+  const abort = new AbortController();
+  shownFaces = -1;
+  ui.start.disabled = true;
+  document.body.dataset.state = "running";
+  for (const a of Object.values(ui.downloads)) a.removeAttribute("href");
+  setStatus(`Uploading ${mesh.name}…`);
+  try {
+    const job = await client.submit(mesh, { filename: mesh.name, buffers, options, signal: abort.signal });
+    current = { id: job.id, abort };
+    ui.cancel.disabled = false;
+    let pending = false;
+    let lastShown = 0;
+    const final = await client.wait(job.id, {
+      signal: abort.signal,
+      onProgress: (update) => {
+        showProgress(update);
+        // Show the latest overlap-free intermediate while the job runs.
+        // At most every 2 s: drawing a net of thousands of faces takes the CPU the job needs.
+        if (!isFinal(update.status) && update.intermediate && !pending && update.intermediate.faces !== shownFaces && Date.now() - lastShown > 2000) {
+          pending = true;
+          lastShown = Date.now();
+          showResult(job.id, false).catch(() => {}).finally(() => (pending = false));
+        }
+      },
+    });
+    showProgress(final);
+    if (final.status === "succeeded" || final.status === "approximated") {
+      await showResult(job.id, true);
+      const r = final.result ?? {};
+      setStatus(`${final.status}: net of ${r.faces} faces (input ${r.input_faces}) · ${describe(final, false)}`);
+      document.body.dataset.state = "done";
+    } else {
+      const e = final.error;
+      setStatus(e ? `${final.status}: ${e.code} — ${e.detail}` : final.status, final.status === "failed");
+      document.body.dataset.state = final.status;
+    }
+  } catch (err) {
+    if (abort.signal.aborted) return;
+    setStatus(err instanceof PapernetError ? `${err.code}: ${err.detail ?? err.message}` : String(err), true);
+    document.body.dataset.state = "error";
+  } finally {
+    ui.cancel.disabled = true;
+    ui.start.disabled = files.length === 0;
+  }
+}
+ui.start.addEventListener("click", run);
+ui.cancel.addEventListener("click", async () => {
+  if (!current) return;
+  try {
+    await client.cancel(current.id);
+  } catch (err) {
+    setStatus(`${err.code ?? "error"}: ${err.detail ?? err.message}`, true);
+  }
+});
+document.body.dataset.state = "idle";
+// For tests and the console: the three.js objects and the current fold.
+window.papernetDemo = { scene, camera, renderer, get folding() { return folding; } };

@@ -1,0 +1,108 @@
+// Folding along the unfold tree: flat at t = 0, a rigid copy of the mesh at t = 1.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { prepareFold, foldPositions } from "../src/fold.js";
+
+/** Every corner of vertex v lands on one point, and edge lengths are the mesh's. */
+function assertFoldsIntoMesh(doc, positions, tolerance) {
+  const { vertices, faces } = doc.mesh;
+  const where = new Map();
+  faces.forEach((f, i) =>
+    f.forEach((v, k) => {
+      const p = Array.from(positions.subarray(i * 9 + k * 3, i * 9 + k * 3 + 3));
+      if (!where.has(v)) where.set(v, p);
+      const q = where.get(v);
+      assert.ok(Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]) < tolerance, `vertex ${v} of face ${i} lands apart`);
+    }),
+  );
+  for (const [a, b, c] of faces) {
+    for (const [u, w] of [[a, b], [b, c], [c, a]]) {
+      const d3 = Math.hypot(...[0, 1, 2].map((k) => vertices[u][k] - vertices[w][k]));
+      const df = Math.hypot(...[0, 1, 2].map((k) => where.get(u)[k] - where.get(w)[k]));
+      assert.ok(Math.abs(d3 - df) < tolerance, `edge ${u}-${w}: ${df} folded, ${d3} in the mesh`);
+    }
+  }
+}
+
+/** A tetrahedron and a hand-made net of it (root face 0, three faces around it). */
+function tetrahedron(mirror) {
+  const s = Math.sqrt(3);
+  const vertices = [[0, 0, 0], [2, 0, 0], [1, s, 0], [1, s / 3, Math.sqrt(8 / 3) * 1]];
+  const faces = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+  // Unfolded: the base triangle with the three side faces folded out around it.
+  const m = (p) => (mirror ? [p[0], -p[1]] : p);
+  const points = [
+    [[0, 0], [1, -s], [2, 0]],
+    [[0, 0], [2, 0], [1, s]],
+    [[2, 0], [1, -s], [3, -s]],
+    [[1, -s], [0, 0], [-1, -s]],
+  ];
+  // Face 0 is drawn mirrored to the others' order when read as (0,2,1): fix orientation per face.
+  return {
+    format: "papernet.net/1",
+    mesh: { vertices, faces },
+    net: { faces: points.map((p, i) => ({ parent: i === 0 ? -1 : 0, points: p.map(m) })) },
+  };
+}
+
+test("a tetrahedron folds from flat to the mesh", () => {
+  for (const mirror of [false, true]) {
+    const doc = tetrahedron(mirror);
+    const prepared = prepareFold(doc);
+    const flat = foldPositions(prepared, 0);
+    for (let i = 2; i < flat.length; i += 3) assert.equal(flat[i], 0);
+    assertFoldsIntoMesh(doc, foldPositions(prepared, 1), 1e-5);
+    // Half way, faces are still rigid: each face keeps its edge lengths.
+    const half = foldPositions(prepared, 0.5);
+    for (let i = 0; i < 4; ++i) {
+      const c = [0, 1, 2].map((k) => Array.from(half.subarray(i * 9 + k * 3, i * 9 + k * 3 + 3)));
+      const f = prepared.flat[i];
+      for (const [u, w] of [[0, 1], [1, 2], [2, 0]]) {
+        const a = Math.hypot(...[0, 1, 2].map((k) => c[u][k] - c[w][k]));
+        const b = Math.hypot(...[0, 1, 2].map((k) => f[u][k] - f[w][k]));
+        assert.ok(Math.abs(a - b) < 1e-5);
+      }
+    }
+  }
+});
+
+test("broken trees are refused with the face named", () => {
+  const doc = tetrahedron(false);
+  doc.net.faces[2].parent = -1;
+  assert.throws(() => prepareFold(doc), /2 root faces/);
+  const cyc = tetrahedron(false);
+  cyc.net.faces[1].parent = 3;
+  cyc.net.faces[3].parent = 1;
+  assert.throws(() => prepareFold(cyc), /not connected|cycle/);
+});
+
+test("a net from the server folds into its mesh", async () => {
+  const { startServer, sample } = await import("../../js/test/server.js");
+  const { PapernetClient } = await import("../../js/papernet.js");
+  const server = await startServer();
+  try {
+    const client = new PapernetClient(server.url);
+    for (const [name, file] of [["sample.obj", "sample.obj"], ["Duck.glb", "Duck.glb"]]) {
+      const job = await client.submit(sample(file), { filename: name, options: { strategy: "TU" } });
+      const done = await client.wait(job.id);
+      assert.ok(["succeeded", "approximated"].includes(done.status), JSON.stringify(done.error));
+      const doc = await client.netJson(job.id);
+      const prepared = prepareFold(doc);
+      const flat = foldPositions(prepared, 0);
+      // Flat: the net's own 2D points (up to the mirror), z = 0.
+      doc.net.faces.forEach((f, i) =>
+        f.points.forEach(([u, v], k) => {
+          assert.ok(Math.abs(flat[i * 9 + k * 3] - u) < 1e-4 * (1 + Math.abs(u)));
+          assert.ok(Math.abs(Math.abs(flat[i * 9 + k * 3 + 1]) - Math.abs(v)) < 1e-4 * (1 + Math.abs(v)));
+        }),
+      );
+      const diagonal = Math.hypot(...[0, 1, 2].map((k) => {
+        const xs = doc.mesh.vertices.map((p) => p[k]);
+        return Math.max(...xs) - Math.min(...xs);
+      }));
+      assertFoldsIntoMesh(doc, foldPositions(prepared, 1), 1e-3 * diagonal);
+    }
+  } finally {
+    await server.stop();
+  }
+});
