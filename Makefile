@@ -5,6 +5,8 @@ CMAKE_FLAGS ?=
 # What scripts/install-deps.sh installs: all (build, run, test) or build (the Dockerfile).
 DEPS ?= all
 SAMPLE ?= tests/data/sample.obj
+# The web demo bundle that `make build` writes (clients/web); served at / by `make run`.
+WEB_ROOT ?= $(BUILD)/clients/web/dist
 # CI treats warnings as errors.
 ifeq ($(CI),true)
 CMAKE_FLAGS += -DPAPERNET_WERROR=ON
@@ -26,9 +28,10 @@ test: build format-check
 
 # Starts the HTTP job service with its defaults (127.0.0.1:8080, SQLite store under ./var).
 run: build
-	@echo "papernet serve: try  curl -s -i --data-binary @$(SAMPLE) -H 'Content-Type: model/obj' 'http://127.0.0.1:8080/v1/jobs'"
+	@echo "papernet serve: open http://127.0.0.1:8080/ for the demo page, or"
+	@echo "                try  curl -s -i --data-binary @$(SAMPLE) -H 'Content-Type: model/obj' 'http://127.0.0.1:8080/v1/jobs'"
 	@echo "                (README.md, section 'HTTP service', has the whole session; Ctrl-C stops)"
-	$(BUILD)/server/papernet serve
+	PAPERNET_WEB_ROOT="$${PAPERNET_WEB_ROOT:-$(WEB_ROOT)}" $(BUILD)/server/papernet serve
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
