@@ -7,18 +7,17 @@
 #include <iostream>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "api/net_json.h"
 #include "api/print_output.h"
-#include "core/dual_graph.h"
 #include "core/errors.h"
 #include "core/load.h"
 #include "core/metrics.h"
 #include "core/net_check.h"
 #include "core/progressive.h"
 #include "core/unfolding.h"
+#include "core/validate.h"
 #include "server/commands.h"
 
 namespace papernet::cli {
@@ -35,39 +34,6 @@ constexpr const char* kUsage =
     "exit codes: 0 net written (also an approximate one: a net of a coarser mesh, said on\n"
     "stderr and in the JSON), 2 input cannot be unfolded, 3 no overlap-free net within the\n"
     "budget, 1 other errors. Prints one summary line (key=value) on stdout.\n";
-
-// Genus and boundary loops from V - E + F = 2 - 2g - b (the mesh is manifold: the dual graph
-// was built).
-NetInput describe(const Mesh& mesh) {
-  NetInput in;
-  in.vertices = mesh.vertices.size();
-  in.faces = mesh.faces.size();
-  const DualGraph graph = build_dual_graph(mesh);
-  std::unordered_map<int, int> next;  // boundary half-edge a->b, keyed by a
-  std::size_t boundary_edges = 0;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (graph.neighbour[f][k] < 0) {
-        ++boundary_edges;
-        next[mesh.faces[f][(k + 1) % 3]] = mesh.faces[f][k];
-      }
-  std::unordered_map<int, bool> seen;
-  for (const auto& [start, unused] : next) {
-    if (seen[start]) continue;
-    ++in.boundaries;
-    for (int v = start; !seen[v]; v = next.count(v) ? next[v] : start) seen[v] = true;
-  }
-  std::vector<char> used(mesh.vertices.size(), 0);
-  for (const auto& f : mesh.faces)
-    for (int v : f) used[v] = 1;
-  long long v_count = 0;
-  for (char u : used) v_count += u;
-  const long long e =
-      (3 * static_cast<long long>(mesh.faces.size()) + static_cast<long long>(boundary_edges)) / 2;
-  const long long chi = v_count - e + static_cast<long long>(mesh.faces.size());
-  in.genus = static_cast<int>((2 - static_cast<long long>(in.boundaries) - chi) / 2);
-  return in;
-}
 
 }  // namespace
 
@@ -134,7 +100,12 @@ int unfold(int argc, char** argv) {
   UnfoldResult result;
   try {
     LoadedMesh loaded = load_mesh_file(file);
-    doc.input = describe(loaded.mesh);
+    const ValidationReport report = validate(loaded);
+    if (!report.unfoldable()) throw InvalidInputException(report.reason());
+    doc.input.vertices = report.vertices;
+    doc.input.faces = report.faces;
+    doc.input.genus = static_cast<int>(report.genus);
+    doc.input.boundaries = report.boundary_loops;
     Progress quiet;
     if (collapse) {
       ProgressiveOptions progressive;

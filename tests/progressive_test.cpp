@@ -201,5 +201,24 @@ TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
   EXPECT_EQ(run_unfold(mesh + " --target-faces 0"), 1);
 }
 
+// The command validates before it unfolds: a fault the validator names ends in exit 2 with
+// that reason, never in a net (or a failed net check).
+TEST(UnfoldCli, MeshThatCannotBeUnfoldedExitsTwoNamingTheFault) {
+  const std::string obj = testing::TempDir() + "papernet_degenerate.obj";
+  // A tetrahedron plus a zero-area face glued to one of its edges (also non-manifold).
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 2 0 0\n"
+                        "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 2 5\n";
+  const std::string out = testing::TempDir() + "papernet_degenerate.json";
+  std::remove(out.c_str());
+  std::string said;
+  for (const char* strategy : {"QQ", "TU"}) {
+    EXPECT_EQ(run_unfold(obj + " --strategy " + strategy + " -o " + out, &said), 2) << said;
+    EXPECT_NE(said.find("cannot be unfolded: "), std::string::npos) << said;
+    EXPECT_NE(said.find("degenerate"), std::string::npos) << said;
+    EXPECT_FALSE(std::ifstream(out).good()) << "no net may be written";
+  }
+  std::remove(obj.c_str());
+}
+
 }  // namespace
 }  // namespace papernet
