@@ -68,9 +68,9 @@ int serve(int argc, char** argv) {
   http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
   http.set_tcp_nodelay(true);  // small JSON answers must not wait for delayed ACKs
   install_routes(http, service, config, metrics);
-  std::string web_root;
+  const std::string& web_root = config.web_root;
   try {
-    web_root = mount_web_root(http);
+    mount_web_root(http, web_root);
   } catch (const std::invalid_argument& e) {
     std::cerr << "papernet serve: " << e.what() << "\n";
     return 2;

@@ -96,6 +96,9 @@ const std::vector<Setting>& settings() {
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.access_log = yes_no(w, v);
        }},
+      {"web-root", "PAPERNET_WEB_ROOT",
+       "directory of the web demo served at / (the built clients/web bundle; default none)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.web_root = v; }},
   };
   return table;
 }

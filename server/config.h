@@ -24,6 +24,7 @@ struct ServerConfig {
   double shutdown_grace = 10;       ///< seconds running jobs get to finish on SIGTERM
   bool reuse_results = true;        ///< answer identical mesh + options from a stored result
   bool access_log = true;
+  std::string web_root;  ///< directory of the web demo served at / ("" = none)
 };
 
 class ConfigError : public std::invalid_argument {

@@ -37,6 +37,12 @@ TEST(ConfigTest, DefaultsAreLoopbackPort8080AndVar) {
   EXPECT_EQ(c.data_dir, "./var");
   EXPECT_GE(c.workers, 1u);
   EXPECT_TRUE(c.reuse_results);
+  EXPECT_EQ(c.web_root, "") << "no web demo unless asked for";
+}
+
+TEST(ConfigTest, WebRootFromEnvironmentOrFlag) {
+  EXPECT_EQ(parse({}, {{"PAPERNET_WEB_ROOT", "/srv/web"}})->web_root, "/srv/web");
+  EXPECT_EQ(parse({"--web-root", "dist"}, {{"PAPERNET_WEB_ROOT", "/srv/web"}})->web_root, "dist");
 }
 
 TEST(ConfigTest, EnvironmentThenFlagsWhichWin) {

@@ -12,22 +12,27 @@
 namespace papernet::server {
 namespace {
 
-std::function<const char*(const char*)> env_with(const char* value) {
-  return [value](const char* name) {
-    return std::string(name) == "PAPERNET_WEB_ROOT" ? value : nullptr;
-  };
-}
-
-TEST(StaticFiles, NothingIsServedWithoutTheVariable) {
+TEST(StaticFiles, NothingIsServedWithoutADirectory) {
   httplib::Server http;
-  EXPECT_EQ(mount_web_root(http, env_with(nullptr)), "");
-  EXPECT_EQ(mount_web_root(http, env_with("")), "");
+  EXPECT_NO_THROW(mount_web_root(http, ""));
+  http.Get("/healthz", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content("ok", "text/plain");
+  });
+  const int port = http.bind_to_any_port("127.0.0.1");
+  ASSERT_GT(port, 0);
+  std::thread thread([&] { http.listen_after_bind(); });
+  httplib::Client client("127.0.0.1", port);
+  auto index = client.Get("/");
+  http.stop();
+  thread.join();
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 404);
 }
 
 TEST(StaticFiles, ANonDirectoryIsRefusedByName) {
   httplib::Server http;
   try {
-    mount_web_root(http, env_with("/nonexistent/papernet-web"));
+    mount_web_root(http, "/nonexistent/papernet-web");
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/papernet-web"), std::string::npos);
@@ -44,7 +49,7 @@ TEST(StaticFiles, TheDirectoryIsServedAtTheRootBesideTheRoutes) {
   http.Get("/healthz", [](const httplib::Request&, httplib::Response& res) {
     res.set_content("ok", "text/plain");
   });
-  EXPECT_EQ(mount_web_root(http, env_with(dir.c_str())), dir.string());
+  mount_web_root(http, dir.string());
   const int port = http.bind_to_any_port("127.0.0.1");
   ASSERT_GT(port, 0);
   std::thread thread([&] { http.listen_after_bind(); });
