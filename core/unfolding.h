@@ -137,6 +137,9 @@ class Unfolding {
   bool in_small(int x) const { return in_subtree(x) == small_is_subtree_; }
   int move_anchor(int g, int k, Triangle2& anchor_pos, Rigid& motion) const;
   long long crossing_pairs() const;  // overlapping pairs between the two sides of the cut
+  // Calls f(a, b) for each overlapping pair with a on the cut's smaller side, b on the other.
+  template <class F>
+  void for_each_crossing(F&& f) const;
   long long evaluate_move(int g, int k, long long crossing, long long cutoff);
   void apply_move(int g, int k);
   void relayout_all();

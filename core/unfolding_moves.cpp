@@ -65,15 +65,16 @@ int Unfolding::move_anchor(int g, int k, Triangle2& anchor_pos, Rigid& motion) c
   return a;
 }
 
-long long Unfolding::crossing_pairs() const {
-  long long count = 0;
+template <class F>
+void Unfolding::for_each_crossing(F&& f) const {
   const auto from = [&](int a) {
     for (int b : overlaps_[a])
-      if (!in_small(b)) ++count;
+      if (!in_small(b)) f(a, b);
   };
   const int nf = static_cast<int>(face_count());
   const std::size_t small = small_is_subtree_ ? static_cast<std::size_t>(cut_hi_ - cut_lo_)
                                               : face_count() - (cut_hi_ - cut_lo_);
+  // Walk whichever is shorter: the overlapping faces, or the smaller side's faces.
   if (small >= overlapping_.size()) {
     for (int a : overlapping_)
       if (in_small(a)) from(a);
@@ -83,6 +84,11 @@ long long Unfolding::crossing_pairs() const {
     for (int i = 0; i < cut_lo_; ++i) from(order_[i]);
     for (int i = cut_hi_; i < nf; ++i) from(order_[i]);
   }
+}
+
+long long Unfolding::crossing_pairs() const {
+  long long count = 0;
+  for_each_crossing([&](int, int) { ++count; });
   return count;
 }
 
@@ -121,21 +127,7 @@ void Unfolding::apply_move(int g, int k) {
   const int p = parent_[g];
   const int nf = static_cast<int>(face_count());
   crossing_.clear();
-  const auto from = [&](int a) {
-    for (int b : overlaps_[a])
-      if (!in_small(b)) crossing_.push_back({a, b});
-  };
-  const std::size_t small = small_is_subtree_ ? static_cast<std::size_t>(cut_hi_ - cut_lo_)
-                                              : face_count() - (cut_hi_ - cut_lo_);
-  if (small >= overlapping_.size()) {
-    for (int a : overlapping_)
-      if (in_small(a)) from(a);
-  } else if (small_is_subtree_) {
-    for (int i = cut_lo_; i < cut_hi_; ++i) from(order_[i]);
-  } else {
-    for (int i = 0; i < cut_lo_; ++i) from(order_[i]);
-    for (int i = cut_hi_; i < nf; ++i) from(order_[i]);
-  }
+  for_each_crossing([&](int a, int b) { crossing_.push_back({a, b}); });
   for (const auto& [a, b] : crossing_) remove_pair(a, b);
 
   Triangle2 anchor_pos;
