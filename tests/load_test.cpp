@@ -180,6 +180,18 @@ TEST(Load, OffWithCountsGluedToTheKeyword) {
   EXPECT_TRUE(m.triangulated);
 }
 
+TEST(Load, ObjQuadIsTriangulatedAndWelded) {
+  // Two quads sharing an edge, written with duplicated vertices: welding must merge them.
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+      "v 1 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\n"
+      "f 1 2 3 4\nf 5 6 7 8\n";
+  const LoadedMesh loaded = load_mesh(obj, MeshFormat::Obj);
+  EXPECT_EQ(loaded.mesh.faces.size(), 4u);
+  EXPECT_EQ(loaded.mesh.vertices.size(), 6u);
+  EXPECT_TRUE(loaded.triangulated);
+}
+
 TEST(Load, PlyTriangleStripsKeepOneOrientation) {
   // A unit square as the strip 0 1 3 2, then a restart and a strip with a join (repeated 2).
   const std::string ply =
