@@ -1,22 +1,27 @@
 // `papernet bench DIR --strategies TU --time-limit S --jobs N --csv out.csv`: every mesh in
 // DIR/<faces>/*.obj unfolded by every strategy, each run in its own `papernet unfold` process
 // so that a crash or a hang counts as a failed run and cannot take the benchmark down.
+// `--markdown FILE` and `--plots DIR` write the report (bench_report.h), also from an earlier
+// run's CSV with `--from-csv FILE`.
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
-#include <map>
 #include <mutex>
+#include <numeric>
+#include <random>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "server/bench_progress.h"
+#include "server/bench_report.h"
 #include "server/bench_run.h"
 #include "server/commands.h"
 
@@ -29,19 +34,26 @@ namespace fs = std::filesystem;
 constexpr const char* kUsage =
     "usage: papernet bench DIR [--strategies TU[,QQ,...]] [--time-limit S] [--jobs N]\n"
     "                          [--csv OUT.csv] [--seed N] [--sizes 100,200,...]\n"
+    "                          [--markdown OUT.md] [--plots DIR] [--machine TEXT]\n"
+    "                          [--source TEXT] [--command TEXT]\n"
+    "       papernet bench --from-csv RUNS.csv [--markdown OUT.md] [--plots DIR] ...\n"
     "Unfolds every DIR/<faces>/*.obj with each strategy in a child `papernet unfold` process\n"
-    "(killed at the time limit plus a grace period) and prints, per face count, the success\n"
-    "rate and the median/mean/max seconds.\n";
+    "(killed at the time limit, default 20 s, plus a grace period; a crash or timeout is a\n"
+    "failed run) and prints, per face count, the success rate and the median/mean/max seconds.\n"
+    "--csv writes every run; --markdown the report (the paper's Appendix C table, headline\n"
+    "ratios, failures per mesh); --plots SVG plots against face count. --from-csv makes the\n"
+    "report from an earlier run's CSV without running anything (--time-limit and --jobs then\n"
+    "describe that run). --machine/--source/--command fill the report's setup (the machine is\n"
+    "detected when not given).\n";
 
-struct Run {
-  std::string mesh, strategy;
-  int faces_dir = 0;  // the folder's face count
-  std::string status, check = "-";
-  int faces = 0;
-  long long overlaps = -1;
-  double seconds = 0, cpu_seconds = 0;
-  double hausdorff = 0;  // of an approximate result (status "approx")
-  std::string note;
+struct Options {
+  std::string dir, csv, from_csv, markdown, plots, machine, source, command;
+  std::vector<std::string> strategies{"TU"};
+  std::vector<int> sizes;
+  double limit = 20;
+  int jobs = 1;
+  bool limit_given = false, jobs_given = false;
+  unsigned long long seed = 1;
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -52,28 +64,36 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return parts;
 }
 
-// Value of `key=` in the unfold command's summary line, "" when absent.
+// Value of `key=` in the unfold command's summary line (space-separated key=value), "" when
+// absent.
 std::string summary_value(const std::string& out, const std::string& key) {
-  const std::size_t at = out.find(key + "=");
-  if (at == std::string::npos) return "";
-  const std::size_t from = at + key.size() + 1;
-  return out.substr(from, out.find_first_of(" \n", from) - from);
+  std::istringstream words(out.substr(0, out.find('\n')));
+  for (std::string word; words >> word;)
+    if (word.size() > key.size() && word.compare(0, key.size() + 1, key + "=") == 0)
+      return word.substr(key.size() + 1);
+  return "";
 }
 
-void execute(Run& run, const std::string& exe, const std::string& file, unsigned long long seed,
-             double limit, const std::string& tmp) {
+double summary_number(const std::string& out, const std::string& key, double fallback) {
+  const std::string v = summary_value(out, key);
+  try {
+    return v.empty() ? fallback : std::stod(v);
+  } catch (const std::exception&) {
+    return fallback;
+  }
+}
+
+void execute(BenchRun& run, const std::string& exe, const std::string& file, double limit,
+             const std::string& tmp) {
   const ChildResult r =
       run_child({exe, "unfold", file, "--strategy", run.strategy, "-o", tmp, "--seed",
-                 std::to_string(seed), "--time-limit", std::to_string(limit)},
+                 std::to_string(run.seed), "--time-limit", std::to_string(limit)},
                 limit + 30 + limit * 0.5);
   std::remove(tmp.c_str());
-  run.seconds = r.seconds;
+  run.seconds = summary_number(r.out, "seconds", r.seconds);
   run.cpu_seconds = r.cpu_seconds;
-  if (!summary_value(r.out, "seconds").empty())
-    run.seconds = std::stod(summary_value(r.out, "seconds"));
-  if (!summary_value(r.out, "faces").empty()) run.faces = std::stoi(summary_value(r.out, "faces"));
-  if (!summary_value(r.out, "overlaps").empty())
-    run.overlaps = std::stoll(summary_value(r.out, "overlaps"));
+  run.faces = static_cast<int>(summary_number(r.out, "faces", 0));
+  run.overlaps = static_cast<long long>(summary_number(r.out, "overlaps", -1));
   if (!summary_value(r.out, "check").empty()) run.check = summary_value(r.out, "check");
   if (r.timed_out) {
     run.status = "timeout";
@@ -83,8 +103,9 @@ void execute(Run& run, const std::string& exe, const std::string& file, unsigned
     run.note = "signal " + std::to_string(r.signal);
   } else if (r.exit_code == 0) {
     run.status = summary_value(r.out, "result") == "approximate" ? "approx" : "ok";
-    if (!summary_value(r.out, "hausdorff").empty())
-      run.hausdorff = std::stod(summary_value(r.out, "hausdorff"));
+    if (run.status == "approx") run.hausdorff = summary_number(r.out, "hausdorff", 0);
+    run.coverage = summary_number(r.out, "coverage", -1);
+    run.aspect_ratio = summary_number(r.out, "aspect_ratio", -1);
   } else if (r.exit_code == 2) {
     run.status = "invalid";
   } else if (r.exit_code == 3) {
@@ -99,29 +120,122 @@ void execute(Run& run, const std::string& exe, const std::string& file, unsigned
   }
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
+// DIR/<faces>/*.obj, by face count then name, times every strategy.
+std::vector<BenchRun> plan_runs(const Options& o, std::vector<std::string>& files) {
+  std::vector<std::pair<int, fs::path>> folders;
+  for (const auto& entry : fs::directory_iterator(o.dir)) {
+    const std::string name = entry.path().filename().string();
+    if (!entry.is_directory() || name.empty() ||
+        name.find_first_not_of("0123456789") != std::string::npos || name.size() > 9)
+      continue;
+    const int faces = std::stoi(name);
+    if (o.sizes.empty() || std::find(o.sizes.begin(), o.sizes.end(), faces) != o.sizes.end())
+      folders.push_back({faces, entry.path()});
+  }
+  std::sort(folders.begin(), folders.end());
+  std::vector<BenchRun> runs;
+  for (const auto& [faces, path] : folders) {
+    std::vector<fs::path> meshes;
+    for (const auto& entry : fs::directory_iterator(path))
+      if (entry.path().extension() == ".obj") meshes.push_back(entry.path());
+    std::sort(meshes.begin(), meshes.end());
+    for (const fs::path& m : meshes)
+      for (const std::string& s : o.strategies) {
+        BenchRun run;
+        run.mesh = fs::relative(m, o.dir).string();
+        run.strategy = s;
+        run.resolution = faces;
+        run.seed = o.seed;
+        runs.push_back(run);
+        files.push_back(m.string());
+      }
+  }
+  return runs;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+// Runs them all, `jobs` at a time, in a shuffled order so that the ETA is not biased by the
+// small meshes coming first. Results land at their index (the CSV stays sorted).
+void run_all(std::vector<BenchRun>& runs, const std::vector<std::string>& files, const Options& o,
+             const std::string& exe, BenchProgress& progress) {
+  std::vector<std::size_t> order(runs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(12345));
+  std::atomic<std::size_t> next{0}, finished{0};
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::vector<std::thread> workers;
+  for (int w = 0; w < o.jobs; ++w)
+    workers.emplace_back([&, w] {
+      const std::string tmp =
+          (fs::temp_directory_path() /
+           ("papernet-bench-" + std::to_string(getpid()) + "-" + std::to_string(w) + ".json"))
+              .string();
+      for (std::size_t k; (k = next++) < order.size();) {
+        BenchRun& run = runs[order[k]];
+        try {
+          execute(run, exe, files[order[k]], o.limit, tmp);
+        } catch (const std::exception& e) {
+          run.status = "error";
+          run.note = e.what();
+        }
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.1f", run.seconds);
+        progress.finished(!run.has_net(), run.has_net()
+                                              ? ""
+                                              : "failed: " + run.mesh + " " + run.strategy + " " +
+                                                    run.status + " after " + seconds + " s");
+        ++finished;
+        wake.notify_one();
+      }
+    });
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (finished < runs.size()) {
+      wake.wait_for(lock, std::chrono::seconds(1));
+      progress.tick();
+    }
+  }
+  for (std::thread& t : workers) t.join();
+  progress.done();
+}
+
+bool write_reports(const std::vector<BenchRun>& runs, const Options& o, double elapsed) {
+  try {
+    const std::vector<BenchGroup> groups = summarize(runs);
+    std::cout << text_tables(groups);
+    if (!o.plots.empty()) {
+      const std::vector<std::string> files = write_plots(groups, o.plots);
+      std::cerr << "papernet bench: wrote " << files.size() << " plots to " << o.plots << "\n";
+    }
+    if (!o.markdown.empty()) {
+      const fs::path doc_dir = fs::absolute(o.markdown).parent_path();
+      ReportContext ctx;
+      const std::string csv = o.from_csv.empty() ? o.csv : o.from_csv;
+      if (!csv.empty()) ctx.csv_link = fs::relative(fs::absolute(csv), doc_dir).string();
+      if (!o.plots.empty()) ctx.plots_link = fs::relative(fs::absolute(o.plots), doc_dir).string();
+      ctx.machine = o.machine;
+      ctx.source = o.source;
+      ctx.command = o.command;
+      // With --from-csv, --time-limit and --jobs describe the run that wrote the CSV.
+      ctx.time_limit = o.from_csv.empty() || o.limit_given ? o.limit : 0;
+      ctx.jobs = o.from_csv.empty() || o.jobs_given ? o.jobs : 0;
+      ctx.elapsed = elapsed;
+      std::ofstream out(o.markdown);
+      out << markdown_report(runs, ctx);
+      if (!out) throw std::runtime_error("cannot write " + o.markdown);
+      std::cerr << "papernet bench: wrote " << o.markdown << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "papernet bench: " << e.what() << "\n";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
 
 int bench(int argc, char** argv) {
-  std::string dir, csv;
-  std::vector<std::string> strategies{"TU"};
-  std::vector<int> sizes;
-  double limit = 60;
-  int jobs = 1;
-  unsigned long long seed = 1;
+  Options o;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string arg = argv[i];
@@ -133,65 +247,70 @@ int bench(int argc, char** argv) {
         std::cout << kUsage;
         return 0;
       } else if (arg == "--strategies") {
-        strategies = split(value(), ',');
+        o.strategies = split(value(), ',');
       } else if (arg == "--time-limit") {
-        limit = std::stod(value());
+        o.limit = std::stod(value());
+        if (!(o.limit > 0)) throw std::invalid_argument("--time-limit must be > 0");
+        o.limit_given = true;
       } else if (arg == "--jobs") {
-        jobs = std::max(1, std::stoi(value()));
+        o.jobs = std::max(1, std::stoi(value()));
+        o.jobs_given = true;
       } else if (arg == "--csv") {
-        csv = value();
+        o.csv = value();
+      } else if (arg == "--from-csv") {
+        o.from_csv = value();
+      } else if (arg == "--markdown") {
+        o.markdown = value();
+      } else if (arg == "--plots") {
+        o.plots = value();
+      } else if (arg == "--machine") {
+        o.machine = value();
+      } else if (arg == "--source") {
+        o.source = value();
+      } else if (arg == "--command") {
+        o.command = value();
       } else if (arg == "--seed") {
-        seed = std::stoull(value());
+        o.seed = std::stoull(value());
       } else if (arg == "--sizes") {
-        for (const std::string& s : split(value(), ',')) sizes.push_back(std::stoi(s));
+        for (const std::string& s : split(value(), ',')) o.sizes.push_back(std::stoi(s));
       } else if (!arg.empty() && arg[0] == '-') {
         throw std::invalid_argument("unknown option " + arg);
       } else {
-        dir = arg;
+        o.dir = arg;
       }
     }
-    if (dir.empty()) throw std::invalid_argument("no folder given");
-    if (!fs::is_directory(dir)) throw std::invalid_argument(dir + " is not a folder");
-    if (strategies.empty()) throw std::invalid_argument("no strategy given");
+    if (!o.from_csv.empty()) {
+      if (!o.dir.empty()) throw std::invalid_argument("--from-csv makes a report only: no DIR");
+    } else {
+      if (o.dir.empty()) throw std::invalid_argument("no folder given");
+      if (!fs::is_directory(o.dir)) throw std::invalid_argument(o.dir + " is not a folder");
+      if (o.strategies.empty()) throw std::invalid_argument("no strategy given");
+    }
   } catch (const std::exception& e) {
     std::cerr << "papernet bench: " << e.what() << "\n" << kUsage;
     return 1;
   }
 
-  // DIR/<faces>/*.obj, by face count then name.
-  std::vector<Run> runs;
-  std::vector<std::string> files;
-  std::vector<std::pair<int, fs::path>> folders;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    if (!entry.is_directory() || name.empty() ||
-        name.find_first_not_of("0123456789") != std::string::npos)
-      continue;
-    const int faces = std::stoi(name);
-    if (sizes.empty() || std::find(sizes.begin(), sizes.end(), faces) != sizes.end())
-      folders.push_back({faces, entry.path()});
-  }
-  std::sort(folders.begin(), folders.end());
-  for (const auto& [faces, path] : folders) {
-    std::vector<fs::path> meshes;
-    for (const auto& entry : fs::directory_iterator(path))
-      if (entry.path().extension() == ".obj") meshes.push_back(entry.path());
-    std::sort(meshes.begin(), meshes.end());
-    for (const fs::path& m : meshes)
-      for (const std::string& s : strategies) {
-        Run run;
-        run.mesh = fs::relative(m, dir).string();
-        run.strategy = s;
-        run.faces_dir = faces;
-        runs.push_back(run);
-        files.push_back(m.string());
-      }
-  }
-  if (runs.empty()) {
-    std::cerr << "papernet bench: no DIR/<faces>/*.obj meshes in " << dir << "\n";
-    return 1;
+  if (!o.from_csv.empty()) {
+    std::ifstream in(o.from_csv, std::ios::binary);
+    if (!in) {
+      std::cerr << "papernet bench: cannot read " << o.from_csv << "\n";
+      return 1;
+    }
+    try {
+      return write_reports(read_bench_csv(in), o, 0) ? 0 : 1;
+    } catch (const std::exception& e) {
+      std::cerr << "papernet bench: " << o.from_csv << ": " << e.what() << "\n";
+      return 1;
+    }
   }
 
+  std::vector<std::string> files;
+  std::vector<BenchRun> runs = plan_runs(o, files);
+  if (runs.empty()) {
+    std::cerr << "papernet bench: no DIR/<faces>/*.obj meshes in " << o.dir << "\n";
+    return 1;
+  }
   std::string exe;
   try {
     exe = self_executable();
@@ -199,95 +318,20 @@ int bench(int argc, char** argv) {
     std::cerr << "papernet bench: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "papernet bench: " << runs.size() << " runs, " << jobs << " at a time, " << limit
+  std::cerr << "papernet bench: " << runs.size() << " runs, " << o.jobs << " at a time, " << o.limit
             << " s each\n";
-  std::atomic<std::size_t> next{0};
-  std::mutex print;
-  std::vector<std::thread> workers;
-  for (int w = 0; w < jobs; ++w)
-    workers.emplace_back([&, w] {
-      const std::string tmp =
-          (fs::temp_directory_path() /
-           ("papernet-bench-" + std::to_string(getpid()) + "-" + std::to_string(w) + ".json"))
-              .string();
-      for (std::size_t i; (i = next++) < runs.size();) {
-        try {
-          execute(runs[i], exe, files[i], seed, limit, tmp);
-        } catch (const std::exception& e) {
-          runs[i].status = "error";
-          runs[i].note = e.what();
-        }
-        const std::lock_guard<std::mutex> lock(print);
-        std::cerr << "[" << i + 1 << "/" << runs.size() << "] " << runs[i].mesh << " "
-                  << runs[i].strategy << " " << runs[i].status << " " << std::fixed
-                  << std::setprecision(3) << runs[i].seconds << " s\n";
-      }
-    });
-  for (std::thread& t : workers) t.join();
+  BenchProgress progress(runs.size(), std::cerr, isatty(STDERR_FILENO) != 0);
+  run_all(runs, files, o, exe, progress);
 
-  if (!csv.empty()) {
-    std::ofstream out(csv);
-    out << "mesh,faces,strategy,seed,status,seconds,cpu_seconds,overlaps,net_check,note,"
-           "hausdorff\n";
-    for (const Run& r : runs)
-      out << csv_field(r.mesh) << "," << (r.faces ? r.faces : r.faces_dir) << "," << r.strategy
-          << "," << seed << "," << r.status << "," << r.seconds << "," << r.cpu_seconds << ","
-          << r.overlaps << "," << r.check << "," << csv_field(r.note) << "," << r.hausdorff << "\n";
+  if (!o.csv.empty()) {
+    std::ofstream out(o.csv);
+    write_bench_csv(out, runs);
     if (!out) {
-      std::cerr << "papernet bench: cannot write " << csv << "\n";
+      std::cerr << "papernet bench: cannot write " << o.csv << "\n";
       return 1;
     }
   }
-
-  // Per strategy and face count: success rate; seconds of every run (a failed run counts with
-  // the time it took, at least the limit), and of the successful ones.
-  std::cout << "seconds: wall-clock of the unfold itself (load to net check); cpu: user+system "
-               "time of the whole child process\n"
-            << "strategy  faces  runs  success   median    mean     max  med(ok)  med-cpu  "
-               "max-cpu\n";
-  std::map<std::pair<std::string, int>, std::vector<const Run*>> groups;
-  for (const Run& r : runs) groups[{r.strategy, r.faces_dir}].push_back(&r);
-  for (const auto& [key, group] : groups) {
-    std::vector<double> all, ok, cpu;
-    double max_cpu = 0;
-    for (const Run* r : group) {
-      all.push_back(r->seconds);
-      cpu.push_back(r->cpu_seconds);
-      max_cpu = std::max(max_cpu, r->cpu_seconds);
-      if (r->status == "ok") ok.push_back(r->seconds);
-    }
-    double sum = 0, max = 0;
-    for (double s : all) sum += s, max = std::max(max, s);
-    char line[256];
-    std::snprintf(line, sizeof line, "%-8s %6d %5zu  %6.1f%% %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n",
-                  key.first.c_str(), key.second, group.size(),
-                  100.0 * static_cast<double>(ok.size()) / static_cast<double>(group.size()),
-                  median(all), sum / static_cast<double>(all.size()), max, median(ok), median(cpu),
-                  max_cpu);
-    std::cout << line;
-  }
-  // Progressive strategies: approximate results (a net of a coarser mesh) next to complete ones.
-  std::cout << "\nstrategy  faces  complete  incl.approx   p95(s)  mean-hausdorff(approx)\n";
-  for (const auto& [key, group] : groups) {
-    std::vector<double> all;
-    std::size_t complete = 0, approx = 0;
-    double hausdorff = 0;
-    for (const Run* r : group) {
-      all.push_back(r->seconds);
-      complete += r->status == "ok";
-      if (r->status == "approx") ++approx, hausdorff += r->hausdorff;
-    }
-    std::sort(all.begin(), all.end());
-    const double n = static_cast<double>(group.size());
-    const double p95 = all[std::min(all.size() - 1, static_cast<std::size_t>(0.95 * n))];
-    char line[256];
-    std::snprintf(line, sizeof line, "%-8s %6d  %7.1f%%  %10.1f%% %8.3f  %s\n", key.first.c_str(),
-                  key.second, 100.0 * static_cast<double>(complete) / n,
-                  100.0 * static_cast<double>(complete + approx) / n, p95,
-                  approx ? std::to_string(hausdorff / static_cast<double>(approx)).c_str() : "-");
-    std::cout << line;
-  }
-  return 0;
+  return write_reports(runs, o, progress.elapsed()) ? 0 : 1;
 }
 
 }  // namespace papernet::cli

@@ -150,7 +150,9 @@ int unfold(int argc, char** argv) {
     return 3;
   }
   const NetCheckReport check = check_net(doc.mesh, result.net);
-  std::cout << " check=" << (check.ok() ? "ok" : "failed") << "\n";
+  const NetBoxMetrics box = net_metrics(doc.mesh, result.net);
+  std::cout << " coverage=" << box.coverage << " aspect_ratio=" << box.aspect_ratio
+            << " check=" << (check.ok() ? "ok" : "failed") << "\n";
   if (!check.ok()) {
     std::cerr << "papernet unfold: internal error, the net fails its check: " << check.summary()
               << "\n";
@@ -166,7 +168,6 @@ int unfold(int argc, char** argv) {
   doc.metrics.faces = doc.mesh.faces.size();
   doc.metrics.overlaps = result.overlaps;
   doc.metrics.seconds = seconds;
-  const NetBoxMetrics box = net_metrics(doc.mesh, doc.net);
   doc.metrics.coverage = box.coverage;
   doc.metrics.aspect_ratio = box.aspect_ratio;
   for (const std::string& output : outputs) {
