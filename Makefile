@@ -12,7 +12,7 @@ ifeq ($(CI),true)
 CMAKE_FLAGS += -DPAPERNET_WERROR=ON
 endif
 
-.PHONY: all deps build test run format format-check clean
+.PHONY: all deps build test run format format-check clean benchmarks
 
 all: build
 
@@ -32,6 +32,11 @@ run: build
 	@echo "                try  curl -s -i --data-binary @$(SAMPLE) -H 'Content-Type: model/obj' 'http://127.0.0.1:8080/v1/jobs'"
 	@echo "                (README.md, section 'HTTP service', has the whole session; Ctrl-C stops)"
 	PAPERNET_WEB_ROOT="$${PAPERNET_WEB_ROOT:-$(WEB_ROOT)}" $(BUILD)/server/papernet serve
+
+# Regenerates docs/benchmarks.md, docs/benchmarks/*.svg and runs.csv from a full benchmark run
+# (1,080 runs; 30-40 min on 2 idle cores). Needs ../shared/data.
+benchmarks: deps
+	bash scripts/benchmarks.sh
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

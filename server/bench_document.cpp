@@ -60,6 +60,13 @@ std::string base_name(const std::string& mesh) {
   return name;
 }
 
+// "**132× faster**", "**1.6× faster**" or "**2.0× slower**" for paper time / our time.
+std::string speedup(double ratio) {
+  if (!std::isfinite(ratio) || ratio <= 0) return "–";
+  if (ratio >= 1) return "**" + fmt(ratio >= 10 ? "%.0f" : "%.1f", ratio) + "×** faster";
+  return "**" + fmt("%.1f", 1 / ratio) + "×** slower";
+}
+
 // One plot per figure: ours from the groups, or the paper's from its table.
 LinePlot figure(const std::vector<BenchGroup>& groups, const std::string& title,
                 const std::string& y_label, double (*value)(const BenchGroup&)) {
@@ -189,6 +196,7 @@ std::string markdown_report(const std::vector<BenchRun>& runs, const ReportConte
     out << ", every run in [" << ctx.csv_link << "](" << ctx.csv_link << ")";
   out << ". What the figures mean, where the time goes, what fails and why and what is planned: "
          "[performance.md](performance.md).\n\n";
+  if (!ctx.note.empty()) out << "> " << ctx.note << "\n\n";
 
   // Headline ratios at 2,000 faces (or the largest resolution measured).
   const int h = std::find(resolutions.begin(), resolutions.end(), 2000) != resolutions.end()
@@ -201,8 +209,8 @@ std::string markdown_report(const std::vector<BenchRun>& runs, const ReportConte
     if (!g) continue;
     out << "- **" << s << "**: median " << fmt("%.3f", g->median) << " s";
     if (p)
-      out << " vs the paper's " << paper_strategy_name(s) << " " << fmt("%.3f", p->median)
-          << " s (**" << fmt("%.0f", p->median / g->median) << "×** faster)";
+      out << " vs the paper's " << paper_strategy_name(s) << " " << fmt("%.3f", p->median) << " s ("
+          << speedup(p->median / g->median) << ")";
     out << "; success " << fmt("%.1f", g->success()) << " % complete, "
         << fmt("%.1f", g->success_approx()) << " % incl. approximations";
     if (p)
@@ -213,7 +221,11 @@ std::string markdown_report(const std::vector<BenchRun>& runs, const ReportConte
   if (find_group(groups, "QQ", h) && find_group(groups, "TU", h)) {
     const double ratio = find_group(groups, "TU", h)->median / find_group(groups, "QQ", h)->median;
     out << "- **QQ vs our TU**: our TU's median is " << fmt("%.2f", ratio) << "× QQ's at " << h
-        << " faces (paper: TU " << fmt("%.2f", 140.888 / 87.213) << "× Q/Q); per resolution:";
+        << " faces";
+    if (paper_result("QQ", h) && paper_result("TU", h))
+      out << " (paper: TU "
+          << fmt("%.2f", paper_result("TU", h)->median / paper_result("QQ", h)->median) << "× Q/Q)";
+    out << "; per resolution:";
     for (int r : resolutions) {
       const BenchGroup *q = find_group(groups, "QQ", r), *t = find_group(groups, "TU", r);
       if (q && t) out << " " << r << ": " << fmt("%.2f", t->median / q->median) << "×";
@@ -293,33 +305,39 @@ std::string markdown_report(const std::vector<BenchRun>& runs, const ReportConte
            "strategy's own approximations). |\n\n";
   }
 
-  // Failures and timeouts per mesh.
-  std::map<std::string, std::map<std::string, std::vector<std::string>>> fails;
+  // Failures and timeouts per mesh: mesh -> strategy -> status -> resolutions.
+  std::map<std::string, std::map<std::string, std::map<std::string, std::vector<int>>>> fails;
+  std::map<std::string, int> fail_count;
   for (const BenchRun& r : runs)
-    if (!r.has_net())
-      fails[base_name(r.mesh)][r.strategy].push_back(std::to_string(r.resolution) + " " + r.status);
+    if (!r.has_net()) {
+      fails[base_name(r.mesh)][r.strategy][r.status].push_back(r.resolution);
+      ++fail_count[base_name(r.mesh)];
+    }
   out << "## Failures and timeouts per mesh\n\n";
   if (fails.empty()) {
     out << "None: every run wrote a net.\n";
   } else {
     std::vector<std::pair<int, std::string>> order;
-    for (const auto& [mesh, per] : fails) {
-      int n = 0;
-      for (const auto& [s, list] : per) n += static_cast<int>(list.size());
-      order.push_back({-n, mesh});
-    }
+    for (const auto& [mesh, n] : fail_count) order.push_back({-n, mesh});
     std::sort(order.begin(), order.end());
-    out << "Status: `timeout` killed at the limit, `budget` no overlap-free net within it, "
-           "`invalid` the mesh cannot be unfolded (e.g. its dual graph is a tree and its only "
-           "edge unfolding overlaps), `crash`/`error` see the CSV's note.\n\n"
-        << "| mesh | failed runs | strategy: resolution status |\n|---|---:|---|\n";
+    out << "Status: `budget` no overlap-free net within the time limit (at once when no move "
+           "exists, e.g. a mesh whose dual graph is a tree), `timeout` killed after the limit "
+           "plus a grace period, `invalid` the mesh was rejected, `crash`/`error` see the CSV's "
+           "note.\n\n"
+        << "| mesh | failed runs | strategy: status at resolutions |\n|---|---:|---|\n";
     for (const auto& [minus_n, mesh] : order) {
       out << "| `" << mesh << "` | " << -minus_n << " of " << meshes[mesh] << " |";
-      bool first_s = true;
-      for (const auto& [s, list] : fails[mesh]) {
-        out << (first_s ? " " : "; ") << s << ":";
-        for (std::size_t i = 0; i < list.size(); ++i) out << (i ? ", " : " ") << list[i];
-        first_s = false;
+      const char* sep = " ";
+      for (const auto& [s, statuses] : fails[mesh]) {
+        out << sep << s << ":";
+        const char* sep2 = " ";
+        for (auto [status, at] : statuses) {
+          std::sort(at.begin(), at.end());
+          out << sep2 << status << " at";
+          for (std::size_t i = 0; i < at.size(); ++i) out << (i ? ", " : " ") << at[i];
+          sep2 = ", ";
+        }
+        sep = "; ";
       }
       out << " |\n";
     }

@@ -74,6 +74,7 @@ struct ReportContext {
   std::string machine;     ///< hardware and OS the runs ran on
   std::string source;      ///< e.g. "binary built from commit abc1234 (Release)"
   std::string command;     ///< the command that regenerates the document
+  std::string note;        ///< shown as a quote under the first paragraph ("" = none)
   double time_limit = 0;   ///< seconds per run, 0 unknown
   int jobs = 0;            ///< runs at a time, 0 unknown
   double elapsed = 0;      ///< wall-clock of the whole benchmark, 0 unknown

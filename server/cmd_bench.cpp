@@ -35,7 +35,7 @@ constexpr const char* kUsage =
     "usage: papernet bench DIR [--strategies TU[,QQ,...]] [--time-limit S] [--jobs N]\n"
     "                          [--csv OUT.csv] [--seed N] [--sizes 100,200,...]\n"
     "                          [--markdown OUT.md] [--plots DIR] [--machine TEXT]\n"
-    "                          [--source TEXT] [--command TEXT]\n"
+    "                          [--source TEXT] [--command TEXT] [--note TEXT]\n"
     "       papernet bench --from-csv RUNS.csv [--markdown OUT.md] [--plots DIR] ...\n"
     "Unfolds every DIR/<faces>/*.obj with each strategy in a child `papernet unfold` process\n"
     "(killed at the time limit, default 20 s, plus a grace period; a crash or timeout is a\n"
@@ -44,10 +44,10 @@ constexpr const char* kUsage =
     "ratios, failures per mesh); --plots SVG plots against face count. --from-csv makes the\n"
     "report from an earlier run's CSV without running anything (--time-limit and --jobs then\n"
     "describe that run). --machine/--source/--command fill the report's setup (the machine is\n"
-    "detected when not given).\n";
+    "detected when not given); --note adds a remark at its top.\n";
 
 struct Options {
-  std::string dir, csv, from_csv, markdown, plots, machine, source, command;
+  std::string dir, csv, from_csv, markdown, plots, machine, source, command, note;
   std::vector<std::string> strategies{"TU"};
   std::vector<int> sizes;
   double limit = 20;
@@ -216,6 +216,7 @@ bool write_reports(const std::vector<BenchRun>& runs, const Options& o, double e
       ctx.machine = o.machine;
       ctx.source = o.source;
       ctx.command = o.command;
+      ctx.note = o.note;
       // With --from-csv, --time-limit and --jobs describe the run that wrote the CSV.
       ctx.time_limit = o.from_csv.empty() || o.limit_given ? o.limit : 0;
       ctx.jobs = o.from_csv.empty() || o.jobs_given ? o.jobs : 0;
@@ -269,6 +270,8 @@ int bench(int argc, char** argv) {
         o.source = value();
       } else if (arg == "--command") {
         o.command = value();
+      } else if (arg == "--note") {
+        o.note = value();
       } else if (arg == "--seed") {
         o.seed = std::stoull(value());
       } else if (arg == "--sizes") {

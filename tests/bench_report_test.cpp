@@ -222,8 +222,9 @@ TEST(BenchReport, DocumentHasHeadlineFailuresAndPlots) {
   EXPECT_NE(md.find("87.213 s (**29×** faster)"), std::string::npos) << md;
   // Our TU's median (7 s) over QQ's (3 s).
   EXPECT_NE(md.find("our TU's median is 2.33× QQ's"), std::string::npos) << md;
-  EXPECT_NE(md.find("| `d` | 1 of 2 | QQ: 100 timeout |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| `e` | 2 of 2 | QQ: 100 budget; TU: 100 crash |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `d` | 1 of 2 | QQ: timeout at 100 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `e` | 2 of 2 | QQ: budget at 100; TU: crash at 100 |"), std::string::npos)
+      << md;
   EXPECT_NE(md.find("(benchmarks/median-time.svg)"), std::string::npos);
   EXPECT_NE(md.find("test machine"), std::string::npos);
   EXPECT_NE(md.find(kPaperMachine), std::string::npos);
@@ -365,7 +366,7 @@ TEST(BenchCommand, SmallRunWritesCsvReportAndPlots) {
   }
   const std::string doc = read_text(dir / "doc.md");
   EXPECT_NE(doc.find("| Approx | 1000 | 50.0 | 50.0 |"), std::string::npos) << doc;
-  EXPECT_NE(doc.find("| `broken` | 2 of 2 | QQ: 1000 invalid; TU: 1000 invalid |"),
+  EXPECT_NE(doc.find("| `broken` | 2 of 2 | QQ: invalid at 1000; TU: invalid at 1000 |"),
             std::string::npos)
       << doc;
   EXPECT_NE(doc.find("](runs.csv)"), std::string::npos);

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Regenerates the benchmark document from scratch: builds papernet (Release), runs every mesh
+# of ../shared/data/bench at all ten resolutions with all four strategies (1,080 runs, each in
+# its own `papernet unfold` process), then writes
+#   docs/benchmarks/runs.csv   every run
+#   docs/benchmarks/*.svg      plots against face count (ours, and the paper's redrawn)
+#   docs/benchmarks.md         the generated document (Appendix C table, headline ratios, ...)
+# The hand-written analysis is docs/performance.md; this script never touches it.
+#
+# Expected duration on the 2-core reference machine, idle, JOBS=2: about 30-40 minutes. The
+# estimate, from the 432-run CSV of docs/performance.md (10 s limit): the successful runs of all
+# ten resolutions take ~1,100 s in sum, and ~125-160 runs fail at the time limit, so
+# (1,100 + 160 x 20) / 2 = ~36 min with the 20 s limit (30 s would be ~50 min, too close to the
+# 60 min budget). Run it on an otherwise idle machine: the timings are wall-clock.
+#
+# Environment (all optional):
+#   DATA=../shared/data/bench  BUILD=build  JOBS=$(nproc)  TIME_LIMIT=20
+#   STRATEGIES=QQ,SEMP,SEQ,TU  SIZES=100,200 (a subset, for trying the pipeline)
+#   OUT=docs (where benchmarks.md and benchmarks/ go)
+#   FROM_CSV=file.csv  only rewrite the document and plots from an earlier run's CSV
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+DATA=${DATA:-../shared/data/bench}
+BUILD=${BUILD:-build}
+JOBS=${JOBS:-$(nproc)}
+TIME_LIMIT=${TIME_LIMIT:-20}
+STRATEGIES=${STRATEGIES:-QQ,SEMP,SEQ,TU}
+OUT=${OUT:-docs}
+
+cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$BUILD" -j "$JOBS" --target papernet
+papernet="$BUILD/server/papernet"
+
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+if ! git diff --quiet HEAD -- core api server 2>/dev/null; then commit="$commit + local changes"; fi
+compiler=$(${CXX:-c++} --version 2>/dev/null | head -n1 || echo "unknown compiler")
+source_note="binary built from commit $commit (Release, $compiler)"
+command="scripts/benchmarks.sh"
+[ "$TIME_LIMIT" = 20 ] || command="TIME_LIMIT=$TIME_LIMIT $command"
+
+mkdir -p "$OUT/benchmarks"
+report=(--markdown "$OUT/benchmarks.md" --plots "$OUT/benchmarks" --source "$source_note"
+  --command "$command" --time-limit "$TIME_LIMIT" --jobs "$JOBS")
+
+if [ -n "${FROM_CSV:-}" ]; then
+  if [ "$(realpath "$FROM_CSV")" != "$(realpath -m "$OUT/benchmarks/runs.csv")" ]; then
+    cp "$FROM_CSV" "$OUT/benchmarks/runs.csv"
+  fi
+  exec "$papernet" bench --from-csv "$OUT/benchmarks/runs.csv" "${report[@]}"
+fi
+
+if [ ! -d "$DATA" ]; then
+  echo "error: no benchmark meshes in $DATA (set DATA=...; see ../shared/data/README)" >&2
+  exit 1
+fi
+sizes=()
+[ -z "${SIZES:-}" ] || sizes=(--sizes "$SIZES")
+start=$(date +%s)
+"$papernet" bench "$DATA" --strategies "$STRATEGIES" "${sizes[@]}" --seed 1 \
+  --csv "$OUT/benchmarks/runs.csv" "${report[@]}"
+echo "scripts/benchmarks.sh: done in $(( ($(date +%s) - start) / 60 )) min; wrote $OUT/benchmarks.md" >&2
