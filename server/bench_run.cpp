@@ -11,11 +11,66 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <sstream>
 #include <stdexcept>
 
 extern char** environ;
 
 namespace papernet::cli {
+
+namespace {
+
+// Value of `key=` in the unfold command's summary line (space-separated key=value), "" when
+// absent.
+std::string summary_value(const std::string& out, const std::string& key) {
+  std::istringstream words(out.substr(0, out.find('\n')));
+  for (std::string word; words >> word;)
+    if (word.size() > key.size() && word.compare(0, key.size() + 1, key + "=") == 0)
+      return word.substr(key.size() + 1);
+  return "";
+}
+
+double summary_number(const std::string& out, const std::string& key, double fallback) {
+  const std::string v = summary_value(out, key);
+  try {
+    return v.empty() ? fallback : std::stod(v);
+  } catch (const std::exception&) {
+    return fallback;
+  }
+}
+
+}  // namespace
+
+void record_child_result(const ChildResult& r, BenchRun& run) {
+  run.seconds = summary_number(r.out, "seconds", r.seconds);
+  run.cpu_seconds = r.cpu_seconds;
+  run.faces = static_cast<int>(summary_number(r.out, "faces", 0));
+  run.overlaps = static_cast<long long>(summary_number(r.out, "overlaps", -1));
+  if (!summary_value(r.out, "check").empty()) run.check = summary_value(r.out, "check");
+  if (r.timed_out) {
+    run.status = "timeout";
+    run.seconds = r.seconds;
+  } else if (r.signal) {
+    run.status = "crash";
+    run.note = "signal " + std::to_string(r.signal);
+  } else if (r.exit_code == 0) {
+    run.status = summary_value(r.out, "result") == "approximate" ? "approx" : "ok";
+    if (run.status == "approx") run.hausdorff = summary_number(r.out, "hausdorff", 0);
+    run.coverage = summary_number(r.out, "coverage", -1);
+    run.aspect_ratio = summary_number(r.out, "aspect_ratio", -1);
+  } else if (r.exit_code == 2) {
+    run.status = "invalid";
+  } else if (r.exit_code == 3) {
+    run.status = "budget";
+  } else {
+    run.status = "error";
+  }
+  if (run.status != "ok" && run.note.empty()) {
+    std::string e = r.err;
+    while (!e.empty() && (e.back() == '\n' || e.back() == '\r')) e.pop_back();
+    run.note = e.substr(e.rfind('\n') == std::string::npos ? 0 : e.rfind('\n') + 1);
+  }
+}
 
 std::string self_executable() {
   char buf[4096];

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "server/bench_report.h"
+
 namespace papernet::cli {
 
 /// How a child run ended.
@@ -21,6 +23,12 @@ struct ChildResult {
 /// output and kills it after `timeout_seconds` (<= 0: no timeout). Never throws for a failing
 /// child; throws std::runtime_error only when the child cannot be started.
 ChildResult run_child(const std::vector<std::string>& argv, double timeout_seconds);
+
+/// Fills `run` from how a child `papernet unfold` ended: its status (timeout, crash, ok,
+/// approx, invalid for exit 2, budget for exit 3, error otherwise), times, the figures of its
+/// summary line (faces, overlaps, check, hausdorff, coverage, aspect_ratio) and, for a run that
+/// is not "ok", the last line of its stderr as the note. A timeout or crash never has a net.
+void record_child_result(const ChildResult& child, BenchRun& run);
 
 /// Path of the running executable (/proc/self/exe).
 std::string self_executable();

@@ -64,25 +64,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return parts;
 }
 
-// Value of `key=` in the unfold command's summary line (space-separated key=value), "" when
-// absent.
-std::string summary_value(const std::string& out, const std::string& key) {
-  std::istringstream words(out.substr(0, out.find('\n')));
-  for (std::string word; words >> word;)
-    if (word.size() > key.size() && word.compare(0, key.size() + 1, key + "=") == 0)
-      return word.substr(key.size() + 1);
-  return "";
-}
-
-double summary_number(const std::string& out, const std::string& key, double fallback) {
-  const std::string v = summary_value(out, key);
-  try {
-    return v.empty() ? fallback : std::stod(v);
-  } catch (const std::exception&) {
-    return fallback;
-  }
-}
-
 void execute(BenchRun& run, const std::string& exe, const std::string& file, double limit,
              const std::string& tmp) {
   const ChildResult r =
@@ -90,34 +71,7 @@ void execute(BenchRun& run, const std::string& exe, const std::string& file, dou
                  std::to_string(run.seed), "--time-limit", std::to_string(limit)},
                 limit + 30 + limit * 0.5);
   std::remove(tmp.c_str());
-  run.seconds = summary_number(r.out, "seconds", r.seconds);
-  run.cpu_seconds = r.cpu_seconds;
-  run.faces = static_cast<int>(summary_number(r.out, "faces", 0));
-  run.overlaps = static_cast<long long>(summary_number(r.out, "overlaps", -1));
-  if (!summary_value(r.out, "check").empty()) run.check = summary_value(r.out, "check");
-  if (r.timed_out) {
-    run.status = "timeout";
-    run.seconds = r.seconds;
-  } else if (r.signal) {
-    run.status = "crash";
-    run.note = "signal " + std::to_string(r.signal);
-  } else if (r.exit_code == 0) {
-    run.status = summary_value(r.out, "result") == "approximate" ? "approx" : "ok";
-    if (run.status == "approx") run.hausdorff = summary_number(r.out, "hausdorff", 0);
-    run.coverage = summary_number(r.out, "coverage", -1);
-    run.aspect_ratio = summary_number(r.out, "aspect_ratio", -1);
-  } else if (r.exit_code == 2) {
-    run.status = "invalid";
-  } else if (r.exit_code == 3) {
-    run.status = "budget";
-  } else {
-    run.status = "error";
-  }
-  if (run.status != "ok" && run.note.empty()) {
-    std::string e = r.err;
-    while (!e.empty() && (e.back() == '\n' || e.back() == '\r')) e.pop_back();
-    run.note = e.substr(e.rfind('\n') == std::string::npos ? 0 : e.rfind('\n') + 1);
-  }
+  record_child_result(r, run);
 }
 
 // DIR/<faces>/*.obj, by face count then name, times every strategy.

@@ -298,6 +298,66 @@ TEST(BenchProgress, LineShowsCountsElapsedAndEta) {
   EXPECT_EQ(out.str().find('\r'), std::string::npos) << "no terminal control in plain mode";
 }
 
+TEST(BenchRun, ChildOutcomesBecomeStatuses) {
+  const auto record = [](ChildResult child) {
+    BenchRun run;
+    record_child_result(child, run);
+    return run;
+  };
+  ChildResult ok;
+  ok.exit_code = 0;
+  ok.seconds = 2.5;
+  ok.out =
+      "result=complete faces=1000 input_faces=1000 hausdorff=0 overlaps=0 iterations=12 "
+      "seconds=1.25 coverage=0.31 aspect_ratio=1.7 check=ok\n";
+  const BenchRun complete = record(ok);
+  EXPECT_EQ(complete.status, "ok");
+  EXPECT_TRUE(complete.has_net());
+  EXPECT_DOUBLE_EQ(complete.seconds, 1.25) << "the unfold's own time, not the process's";
+  EXPECT_EQ(complete.faces, 1000) << "faces=, not input_faces=";
+  EXPECT_DOUBLE_EQ(complete.coverage, 0.31);
+  EXPECT_DOUBLE_EQ(complete.aspect_ratio, 1.7);
+  EXPECT_EQ(complete.check, "ok");
+
+  ChildResult approx = ok;
+  approx.out =
+      "result=approximate faces=400 input_faces=1000 hausdorff=0.004 overlaps=0 iterations=9 "
+      "seconds=0.5 coverage=0.2 aspect_ratio=2 check=ok\n";
+  EXPECT_EQ(record(approx).status, "approx");
+  EXPECT_DOUBLE_EQ(record(approx).hausdorff, 0.004);
+  EXPECT_TRUE(record(approx).has_net());
+
+  ChildResult timeout;
+  timeout.timed_out = true;
+  timeout.seconds = 51;
+  timeout.err = "working\nstill working\n";
+  const BenchRun killed = record(timeout);
+  EXPECT_EQ(killed.status, "timeout");
+  EXPECT_FALSE(killed.has_net());
+  EXPECT_DOUBLE_EQ(killed.seconds, 51);
+  EXPECT_EQ(killed.note, "still working");
+
+  ChildResult crash;
+  crash.signal = 11;
+  EXPECT_EQ(record(crash).status, "crash");
+  EXPECT_FALSE(record(crash).has_net());
+  ChildResult budget;
+  budget.exit_code = 3;
+  budget.out = "result=failed faces=1000 overlaps=7 seconds=20 check=skipped\n";
+  EXPECT_EQ(record(budget).status, "budget");
+  EXPECT_EQ(record(budget).overlaps, 7);
+  EXPECT_FALSE(record(budget).has_net());
+  ChildResult invalid;
+  invalid.exit_code = 2;
+  EXPECT_EQ(record(invalid).status, "invalid");
+  ChildResult check_failed;
+  check_failed.exit_code = 1;
+  check_failed.out =
+      "result=complete faces=10 seconds=1 coverage=0.5 aspect_ratio=1 check=failed\n";
+  EXPECT_EQ(record(check_failed).status, "error");
+  EXPECT_FALSE(record(check_failed).has_net());
+}
+
 TEST(BenchRun, TimeoutKillsTheChild) {
   const ChildResult r = run_child({"/bin/sleep", "20"}, 0.3);
   EXPECT_TRUE(r.timed_out);
