@@ -50,6 +50,10 @@ struct BenchGroup {
   double median_cpu = 0, max_cpu = 0;                             ///< CPU s of all runs
   double coverage = 0, aspect_ratio = 0;  ///< means over runs with a net and known metrics
   double hausdorff = 0;                   ///< mean over approximate runs
+  /// Mean over the meshes that every progressive strategy (QQ, SEMP, SEQ) in the runs
+  /// approximated at this resolution, as the paper's figure; NaN when none (and for TU).
+  double hausdorff_shared = 0;
+  int shared_approx = 0;  ///< how many such meshes
   double success() const { return runs ? 100.0 * complete / runs : 0; }
   double success_approx() const { return runs ? 100.0 * (complete + approx) / runs : 0; }
 };

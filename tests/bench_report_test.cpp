@@ -177,8 +177,28 @@ TEST(BenchReport, FailedAndTimedOutRunsCountAsFailures) {
   EXPECT_LT(qq.max, 1.0);
   EXPECT_DOUBLE_EQ(qq.max_all, 30.0);
   EXPECT_DOUBLE_EQ(qq.hausdorff, 0.02);
+  // QQ is the only progressive strategy here, so its shared approximations are its own.
+  EXPECT_DOUBLE_EQ(qq.hausdorff_shared, 0.02);
+  EXPECT_EQ(qq.shared_approx, 1);
+  EXPECT_TRUE(std::isnan(groups[2].hausdorff_shared)) << "TU has no shared approximations";
   BenchRun timeout = make_run("z", "TU", 100, "timeout", 99);
   EXPECT_FALSE(timeout.has_net());
+}
+
+TEST(BenchReport, SharedHausdorffIsOverMeshesEveryProgressiveStrategyApproximated) {
+  // x: approximated by QQ and SEMP (shared); y: only by QQ (SEMP complete): not shared.
+  const std::vector<BenchRun> runs = {
+      make_run("x", "QQ", 400, "approx", 1, 0.2, 2, 0.010),
+      make_run("x", "SEMP", 400, "approx", 1, 0.2, 2, 0.030),
+      make_run("y", "QQ", 400, "approx", 1, 0.2, 2, 0.050),
+      make_run("y", "SEMP", 400, "ok", 1, 0.2, 2),
+  };
+  const std::vector<BenchGroup> groups = summarize(runs);
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_DOUBLE_EQ(groups[0].hausdorff, (0.010 + 0.050) / 2);
+  EXPECT_DOUBLE_EQ(groups[0].hausdorff_shared, 0.010);
+  EXPECT_EQ(groups[0].shared_approx, 1);
+  EXPECT_DOUBLE_EQ(groups[1].hausdorff_shared, 0.030);
 }
 
 TEST(BenchReport, MarkdownTableHasTheAppendixRowsAndOurFigures) {
