@@ -124,8 +124,9 @@ std::string write_line_plot(const LinePlot& plot) {
       << plot.height << "\" viewBox=\"0 0 " << plot.width << " " << plot.height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<defs><clipPath id=\"area\"><rect x=\"" << num(left) << "\" y=\"" << num(top)
-      << "\" width=\"" << num(w) << "\" height=\"" << num(h) << "\"/></clipPath></defs>\n"
+      << "<defs><clipPath id=\"area\"><rect x=\"" << num(left - 4) << "\" y=\"" << num(top - 4)
+      << "\" width=\"" << num(w + 8) << "\" height=\"" << num(h + 8)
+      << "\"/></clipPath></defs>\n"  // markers on the frame stay whole
       << "<text x=\"" << num(left + w / 2) << "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">"
       << xml_escape(plot.title) << "</text>\n";
 
