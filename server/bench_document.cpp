@@ -274,7 +274,8 @@ std::string markdown_report(const std::vector<BenchRun>& runs, const ReportConte
       << "\n```\n\nNeeds `../shared/data` (see its README). The script builds papernet "
          "(Release), runs every mesh at every resolution with every strategy, each in its own "
          "`papernet unfold` process (a crash or a timeout counts as a failure), writes the CSV, "
-         "then this document and the plots from the CSV.\n\n";
+         "then this document and the plots from the CSV. `FROM_CSV=docs/benchmarks/runs.csv "
+         "scripts/benchmarks.sh` remakes the document and plots from the CSV alone.\n\n";
 
   out << "## Results in the shape of the paper's Appendix C table\n\n"
       << "Ours per strategy, then the paper's (2,800 meshes; coverage, aspect ratio and "
