@@ -1,0 +1,223 @@
+#include "server/http_server.h"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace papernet::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int millis(double seconds) {
+  return static_cast<int>(std::clamp(std::ceil(seconds * 1000), 0.0, 86'400'000.0));
+}
+
+// The socket as httplib reads it, with a byte budget and deadlines per request. One stream
+// serves a whole keep-alive connection, so bytes read ahead belong to the next request.
+class GuardedStream : public httplib::Stream {
+ public:
+  GuardedStream(socket_t sock, const HttpLimits& limits) : sock_(sock), limits_(limits) {}
+
+  // A new request starts: fresh budget and deadlines.
+  void begin_request() {
+    state_ = {};
+    head_done_ = false;
+    head_bytes_ = body_bytes_ = 0;
+    tail_ = 0;
+    start_ = Clock::now();
+  }
+  const RequestReadState& state() const { return state_; }
+  bool failed() const { return state_.head_too_large || state_.body_too_large || state_.timed_out; }
+  bool buffered() const { return begin_ < end_; }
+
+  bool is_readable() const override { return buffered() || wait(POLLIN, read_wait()) > 0; }
+  bool is_writable() const override { return wait(POLLOUT, limits_.read_timeout) > 0; }
+
+  ssize_t read(char* ptr, std::size_t size) override {
+    if (size == 0) return 0;
+    if (head_done_) {
+      if (body_bytes_ >= limits_.max_body_bytes) {
+        state_.body_too_large = true;
+        return -1;
+      }
+      size = std::min(size, limits_.max_body_bytes - body_bytes_);
+    } else {
+      if (head_bytes_ >= limits_.max_head_bytes) {
+        state_.head_too_large = true;
+        return -1;
+      }
+      size = std::min(size, limits_.max_head_bytes - head_bytes_);
+    }
+    if (Clock::now() > deadline()) {
+      state_.timed_out = true;
+      return -1;
+    }
+    if (!buffered() && !fill()) return closed_ ? 0 : -1;
+    const std::size_t n = std::min(size, end_ - begin_);
+    std::copy(buffer_ + begin_, buffer_ + begin_ + n, ptr);
+    begin_ += n;
+    if (head_done_) {
+      body_bytes_ += n;
+    } else {
+      head_bytes_ += n;
+      // httplib reads the head byte by byte; it ends with an empty line ("\n\r\n").
+      for (std::size_t i = 0; i < n && !head_done_; ++i) {
+        tail_ = ((tail_ << 8) | static_cast<unsigned char>(ptr[i])) & 0xffffff;
+        head_done_ = tail_ == 0x0a0d0a;
+      }
+    }
+    return static_cast<ssize_t>(n);
+  }
+
+  ssize_t write(const char* ptr, std::size_t size) override {
+    if (!is_writable()) return -1;
+    return ::send(sock_, ptr, size, MSG_NOSIGNAL);
+  }
+
+  void get_remote_ip_and_port(std::string& ip, int& port) const override {
+    address(::getpeername, ip, port);
+  }
+  void get_local_ip_and_port(std::string& ip, int& port) const override {
+    address(::getsockname, ip, port);
+  }
+  socket_t socket() const override { return sock_; }
+
+  // Waits for the next request on an idle connection; false when it is closed, idle too long or
+  // the server stops.
+  template <class Running>
+  bool wait_for_request(Running running) {
+    if (buffered()) return true;
+    const auto end = Clock::now() + std::chrono::milliseconds(millis(limits_.keep_alive_timeout));
+    while (running() && Clock::now() < end) {
+      const int ready = wait(POLLIN, 0.1);
+      if (ready < 0) return false;
+      if (ready > 0) return true;
+    }
+    return false;
+  }
+
+  // Discards what the client still sends (a body we refused) for a short while, so that closing
+  // does not reset the connection before the client has read our answer.
+  void linger() {
+    ::shutdown(sock_, SHUT_WR);
+    const auto end = Clock::now() + std::chrono::milliseconds(millis(limits_.linger));
+    std::size_t total = 0;
+    while (Clock::now() < end && total < limits_.max_body_bytes) {
+      if (wait(POLLIN, 0.2) <= 0) continue;
+      const ssize_t n = ::recv(sock_, buffer_, sizeof buffer_, 0);
+      if (n <= 0) return;
+      total += static_cast<std::size_t>(n);
+    }
+  }
+
+ private:
+  Clock::time_point deadline() const {
+    const double seconds = head_done_ ? limits_.request_timeout : limits_.header_timeout;
+    return start_ + std::chrono::milliseconds(millis(seconds));
+  }
+  // How long the next read may wait: the read timeout, cut short by the request's deadline.
+  double read_wait() const {
+    const double left = std::chrono::duration<double>(deadline() - Clock::now()).count();
+    return std::max(0.0, std::min(limits_.read_timeout, left));
+  }
+  int wait(short events, double seconds) const {
+    pollfd p{sock_, events, 0};
+    int r = 0;
+    do {
+      r = ::poll(&p, 1, millis(seconds));
+    } while (r < 0 && errno == EINTR);
+    if (r > 0 && (p.revents & (POLLERR | POLLNVAL))) return -1;
+    return r;
+  }
+  bool fill() {
+    const int ready = wait(POLLIN, read_wait());
+    if (ready == 0) {
+      state_.timed_out = true;
+      return false;
+    }
+    if (ready < 0) return false;
+    ssize_t n = 0;
+    do {
+      n = ::recv(sock_, buffer_, sizeof buffer_, 0);
+    } while (n < 0 && errno == EINTR);
+    if (n == 0) closed_ = true;
+    if (n <= 0) return false;
+    begin_ = 0;
+    end_ = static_cast<std::size_t>(n);
+    return true;
+  }
+  void address(int (*get)(int, sockaddr*, socklen_t*), std::string& ip, int& port) const {
+    sockaddr_storage addr{};
+    socklen_t len = sizeof addr;
+    if (get(sock_, reinterpret_cast<sockaddr*>(&addr), &len) != 0) return;
+    char text[INET6_ADDRSTRLEN] = {};
+    if (addr.ss_family == AF_INET) {
+      const auto* a = reinterpret_cast<const sockaddr_in*>(&addr);
+      inet_ntop(AF_INET, &a->sin_addr, text, sizeof text);
+      port = ntohs(a->sin_port);
+    } else if (addr.ss_family == AF_INET6) {
+      const auto* a = reinterpret_cast<const sockaddr_in6*>(&addr);
+      inet_ntop(AF_INET6, &a->sin6_addr, text, sizeof text);
+      port = ntohs(a->sin6_port);
+    }
+    ip = text;
+  }
+
+  socket_t sock_;
+  const HttpLimits& limits_;
+  RequestReadState state_;
+  bool head_done_ = false;
+  bool closed_ = false;
+  std::size_t head_bytes_ = 0, body_bytes_ = 0;
+  std::uint32_t tail_ = 0;
+  Clock::time_point start_ = Clock::now();
+  char buffer_[4096];
+  std::size_t begin_ = 0, end_ = 0;
+};
+
+thread_local GuardedStream* current_stream = nullptr;
+thread_local bool close_after = false;
+
+}  // namespace
+
+RequestReadState request_read_state() {
+  return current_stream ? current_stream->state() : RequestReadState{};
+}
+
+void close_connection_after_response() { close_after = true; }
+
+bool GuardedHttpServer::set_listen_backlog(int backlog) {
+  // listen() on a listening socket only changes its backlog (Linux).
+  return svr_sock_ != INVALID_SOCKET && ::listen(svr_sock_, backlog) == 0;
+}
+
+bool GuardedHttpServer::process_and_close_socket(socket_t sock) {
+  GuardedStream stream(sock, limits_);
+  current_stream = &stream;
+  bool linger = false;
+  std::size_t left = keep_alive_max_count_;
+  while (left > 0 && stream.wait_for_request([this] { return svr_sock_ != INVALID_SOCKET; })) {
+    stream.begin_request();
+    close_after = false;
+    bool connection_closed = false;
+    const bool ok = process_request(stream, left == 1, connection_closed, nullptr);
+    linger = close_after || stream.failed();
+    if (!ok || connection_closed || linger) break;
+    --left;
+  }
+  if (linger) stream.linger();
+  current_stream = nullptr;
+  close_after = false;
+  ::shutdown(sock, SHUT_RDWR);
+  ::close(sock);
+  return true;
+}
+
+}  // namespace papernet::server
