@@ -131,10 +131,6 @@ int main(int argc, char** argv) {
     std::cout << " (-1 = no answer)\n";
     if (!pid.empty()) std::cout << "server RSS after the burst:" << rss_of(pid) << "\n";
   }
-  std::vector<int> stalled;
-  for (int i = 0; i < slow; ++i)
-    if (const int fd = stalled_connection(port); fd >= 0) stalled.push_back(fd);
-  if (slow > 0) std::cout << "holding " << stalled.size() << " stalled connections\n";
   int refused = 0;
   for (int i = 0; i < fill; ++i) {
     auto res =
@@ -154,6 +150,10 @@ int main(int argc, char** argv) {
   if (ids.empty()) return 1;
   if (!pid.empty()) std::cout << "server RSS with full queue:" << rss_of(pid) << "\n";
 
+  std::vector<int> stalled;
+  for (int i = 0; i < slow; ++i)
+    if (const int fd = stalled_connection(port); fd >= 0) stalled.push_back(fd);
+  if (slow > 0) std::cout << "holding " << stalled.size() << " stalled connections\n";
   std::atomic<bool> stop{false};
   std::mutex mutex;
   std::map<int, long> statuses;
@@ -164,6 +164,7 @@ int main(int argc, char** argv) {
     threads.emplace_back([&, c] {
       httplib::Client cli(host, port);
       cli.set_keep_alive(true);
+      cli.set_read_timeout(60, 0);  // stalled connections may hold every HTTP thread a while
       cli.set_tcp_nodelay(true);
       std::map<int, long> mine;
       std::vector<double> lat;

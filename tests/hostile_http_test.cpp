@@ -549,5 +549,7 @@ TEST(HostileHttp, DeeplyNestedJsonIsRefused) {
                    "unreadable_mesh");
   expect_normal_job_completes(s);
   const std::size_t peak_after = proc_status_kb(s.pid(), "VmHWM");
+  std::cout << "[ figures  ] server peak RSS " << peak_before << " kB before, " << peak_after
+            << " kB after\n";
   EXPECT_LT(peak_after, peak_before + 64 * 1024);
 }
