@@ -70,9 +70,7 @@ int serve(int argc, char** argv) {
   http_limits.header_timeout = config.header_timeout;
   http_limits.request_timeout = config.request_timeout;
   http_limits.keep_alive_timeout = config.read_timeout;
-  GuardedHttpServer http(http_limits);
-  const std::size_t threads = config.http_threads;
-  http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  GuardedHttpServer http(http_limits, config.http_threads);
   http.set_tcp_nodelay(true);  // small JSON answers must not wait for delayed ACKs
   install_routes(http, service, config, metrics);
   const std::string& web_root = config.web_root;

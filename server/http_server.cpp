@@ -23,7 +23,8 @@ int millis(double seconds) {
 // serves a whole keep-alive connection, so bytes read ahead belong to the next request.
 class GuardedStream : public httplib::Stream {
  public:
-  GuardedStream(socket_t sock, const HttpLimits& limits) : sock_(sock), limits_(limits) {}
+  GuardedStream(socket_t sock, const HttpLimits& limits, const std::atomic<int>& waiting)
+      : sock_(sock), limits_(limits), waiting_(waiting) {}
 
   // A new request starts: fresh budget and deadlines.
   void begin_request() {
@@ -94,13 +95,7 @@ class GuardedStream : public httplib::Stream {
   template <class Running>
   bool wait_for_request(Running running) {
     if (buffered()) return true;
-    const auto end = Clock::now() + std::chrono::milliseconds(millis(limits_.keep_alive_timeout));
-    while (running() && Clock::now() < end) {
-      const int ready = wait(POLLIN, 0.1);
-      if (ready < 0) return false;
-      if (ready > 0) return true;
-    }
-    return false;
+    return wait_for_data(limits_.keep_alive_timeout, true, running) > 0;
   }
 
   // Discards what the client still sends (a body we refused) for a short while, so that closing
@@ -136,8 +131,23 @@ class GuardedStream : public httplib::Stream {
     if (r > 0 && (p.revents & (POLLERR | POLLNVAL))) return -1;
     return r;
   }
+  // Waits up to `seconds` for data, in slices so that it notices other connections waiting
+  // for a thread (then an idle connection or a stalled head yields after busy_idle_timeout)
+  // and a server that stops. 1 = data, 0 = timed out, -1 = error.
+  template <class Running>
+  int wait_for_data(double seconds, bool may_yield, Running running) const {
+    const auto start = Clock::now();
+    for (;;) {
+      double limit = seconds;
+      if (may_yield && waiting_ > 0) limit = std::min(limit, limits_.busy_idle_timeout);
+      const double left = limit - std::chrono::duration<double>(Clock::now() - start).count();
+      if (left <= 0 || !running()) return 0;
+      const int ready = wait(POLLIN, std::min(left, 0.1));
+      if (ready != 0) return ready;
+    }
+  }
   bool fill() {
-    const int ready = wait(POLLIN, read_wait());
+    const int ready = wait_for_data(read_wait(), !head_done_, [] { return true; });
     if (ready == 0) {
       state_.timed_out = true;
       return false;
@@ -172,6 +182,7 @@ class GuardedStream : public httplib::Stream {
 
   socket_t sock_;
   const HttpLimits& limits_;
+  const std::atomic<int>& waiting_;
   RequestReadState state_;
   bool head_done_ = false;
   bool closed_ = false;
@@ -193,13 +204,41 @@ RequestReadState request_read_state() {
 
 void close_connection_after_response() { close_after = true; }
 
+namespace {
+
+// httplib's pool, counting the connections that wait for a thread.
+class CountingThreadPool : public httplib::ThreadPool {
+ public:
+  CountingThreadPool(std::size_t threads, std::shared_ptr<std::atomic<int>> waiting)
+      : httplib::ThreadPool(threads), waiting_(std::move(waiting)) {}
+  void enqueue(std::function<void()> fn) override {
+    ++*waiting_;
+    httplib::ThreadPool::enqueue([waiting = waiting_, fn = std::move(fn)] {
+      --*waiting;
+      fn();
+    });
+  }
+
+ private:
+  std::shared_ptr<std::atomic<int>> waiting_;
+};
+
+}  // namespace
+
+GuardedHttpServer::GuardedHttpServer(const HttpLimits& limits, std::size_t threads)
+    : limits_(limits), waiting_(std::make_shared<std::atomic<int>>(0)) {
+  new_task_queue = [threads, waiting = waiting_] {
+    return new CountingThreadPool(threads, waiting);
+  };
+}
+
 bool GuardedHttpServer::set_listen_backlog(int backlog) {
   // listen() on a listening socket only changes its backlog (Linux).
   return svr_sock_ != INVALID_SOCKET && ::listen(svr_sock_, backlog) == 0;
 }
 
 bool GuardedHttpServer::process_and_close_socket(socket_t sock) {
-  GuardedStream stream(sock, limits_);
+  GuardedStream stream(sock, limits_, *waiting_);
   current_stream = &stream;
   bool linger = false;
   std::size_t left = keep_alive_max_count_;
@@ -208,8 +247,11 @@ bool GuardedHttpServer::process_and_close_socket(socket_t sock) {
     close_after = false;
     bool connection_closed = false;
     const bool ok = process_request(stream, left == 1, connection_closed, nullptr);
-    linger = close_after || stream.failed();
-    if (!ok || connection_closed || linger) break;
+    // A refused body may still be arriving: drain it a moment so the client reads our answer.
+    // A client that timed out is slow anyway and gets no such courtesy.
+    const RequestReadState& state = stream.state();
+    linger = close_after || state.head_too_large || state.body_too_large;
+    if (!ok || connection_closed || linger || state.timed_out) break;
     --left;
   }
   if (linger) stream.linger();

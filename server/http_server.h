@@ -2,7 +2,9 @@
 
 #include <httplib.h>
 
+#include <atomic>
 #include <cstddef>
+#include <memory>
 
 namespace papernet::server {
 
@@ -17,6 +19,9 @@ struct HttpLimits {
   double request_timeout = 120;           ///< seconds from the first byte to the end of the body
   double keep_alive_timeout = 5;          ///< seconds an idle connection is kept open
   double linger = 2;  ///< seconds spent discarding a body we did not read before closing
+  /// While connections wait for a free thread, a connection that sends nothing for this long
+  /// between requests or in the middle of its headers gives its thread up (is closed).
+  double busy_idle_timeout = 1;
 };
 
 /// What went wrong while reading the current request on this thread, if anything.
@@ -31,7 +36,8 @@ struct RequestReadState {
 /// the connection is closed.
 class GuardedHttpServer : public httplib::Server {
  public:
-  explicit GuardedHttpServer(const HttpLimits& limits) : limits_(limits) {}
+  /// `threads` serve connections, one each; further connections wait for a free thread.
+  GuardedHttpServer(const HttpLimits& limits, std::size_t threads);
   const HttpLimits& limits() const { return limits_; }
   /// Call after binding: cpp-httplib listens with a backlog of 5, so a burst of connections
   /// overflows it and the kernel resets them. \return false when listen() fails.
@@ -40,6 +46,7 @@ class GuardedHttpServer : public httplib::Server {
  private:
   bool process_and_close_socket(socket_t sock) override;
   HttpLimits limits_;
+  std::shared_ptr<std::atomic<int>> waiting_;  // accepted connections without a thread
 };
 
 /// The read state of the request being handled on this thread (all false outside a request).
