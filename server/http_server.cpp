@@ -35,7 +35,6 @@ class GuardedStream : public httplib::Stream {
     start_ = Clock::now();
   }
   const RequestReadState& state() const { return state_; }
-  bool failed() const { return state_.head_too_large || state_.body_too_large || state_.timed_out; }
   bool buffered() const { return begin_ < end_; }
 
   bool is_readable() const override { return buffered() || wait(POLLIN, read_wait()) > 0; }
