@@ -182,7 +182,24 @@ JobOptions parse_options_query(const std::multimap<std::string, std::string>& pa
 }
 
 JobOptions parse_options_json(std::string_view text, const OptionsLimits& limits) {
-  const json doc = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  // Options are a flat object of a dozen values: anything long or nested is refused while
+  // parsing, before a deep or huge document is built.
+  if (text.size() > kMaxOptionsJsonBytes)
+    throw OptionsError("malformed_options", "",
+                       "the options part has " + std::to_string(text.size()) +
+                           " bytes, more than " + std::to_string(kMaxOptionsJsonBytes));
+  bool too_deep = false;
+  const json doc = json::parse(
+      text,
+      [&too_deep](int depth, json::parse_event_t, json&) {
+        if (depth > kMaxOptionsJsonDepth) too_deep = true;
+        return !too_deep;
+      },
+      /*allow_exceptions=*/false);
+  if (too_deep)
+    throw OptionsError(
+        "malformed_options", "",
+        "the options part nests deeper than " + std::to_string(kMaxOptionsJsonDepth) + " levels");
   if (doc.is_discarded())
     throw OptionsError("malformed_options", "", "the options part is not valid JSON");
   if (!doc.is_object())

@@ -67,7 +67,12 @@ class OptionsError : public std::invalid_argument {
 JobOptions parse_options_query(const std::multimap<std::string, std::string>& params,
                                const OptionsLimits& limits = {});
 
-/// Options from a JSON object (the `options` part of a multipart upload).
+/// The options part's limits: a flat object needs neither.
+inline constexpr std::size_t kMaxOptionsJsonBytes = 64 << 10;
+inline constexpr int kMaxOptionsJsonDepth = 4;
+
+/// Options from a JSON object (the `options` part of a multipart upload). Longer or deeper
+/// documents than the limits above are refused (malformed_options) before they are built.
 /// \throw OptionsError naming the first fault.
 JobOptions parse_options_json(std::string_view text, const OptionsLimits& limits = {});
 

@@ -3,9 +3,18 @@
 // connections for a fixed time and prints requests per second, status counts, latency
 // percentiles and the server's resident memory before and after (from /proc/PID/status).
 //
+// With --slow N, N more connections send half a request head and then stall for the whole
+// run (a slowloris); the figures then show what the other clients still get and how many of
+// the stalled connections the server closed (--header-timeout / --read-timeout).
+// With --burst N, N clients first submit one job each at the same moment (statuses counted).
+//
 //   papernet_serve_load --port 8080 --pid $(pidof papernet) [--seconds 10] [--connections 4]
-//                       [--mesh tests/data/sample.obj] [--fill 200]
+//                       [--mesh tests/data/sample.obj] [--fill 200] [--slow 0] [--burst 0]
 #include <httplib.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -30,11 +39,37 @@ std::string rss_of(const std::string& pid) {
   return " unknown";
 }
 
+// A connection that sends half a request head and then nothing.
+int stalled_connection(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  const char head[] = "GET /healthz HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ";
+  ::send(fd, head, sizeof head - 1, MSG_NOSIGNAL);
+  return fd;
+}
+
+// True when the server has closed the connection (what it sent is read and dropped).
+bool closed_by_server(int fd) {
+  char buf[4096];
+  for (;;) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 0) <= 0) return false;
+    if (::recv(fd, buf, sizeof buf, 0) <= 0) return true;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string host = "127.0.0.1", pid, mesh_path = "tests/data/sample.obj";
-  int port = 8080, connections = 4, fill = 200;
+  int port = 8080, connections = 4, fill = 200, slow = 0, burst = 0;
   double seconds = 10;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
@@ -50,6 +85,10 @@ int main(int argc, char** argv) {
       mesh_path = value;
     else if (flag == "--fill")
       fill = std::clamp(std::stoi(value), 0, 10000);
+    else if (flag == "--slow")
+      slow = std::clamp(std::stoi(value), 0, 500);
+    else if (flag == "--burst")
+      burst = std::clamp(std::stoi(value), 0, 2000);
     else {
       std::cerr << "unknown flag " << flag << "\n";
       return 1;
@@ -68,6 +107,30 @@ int main(int argc, char** argv) {
 
   httplib::Client client(host, port);
   std::vector<std::string> ids;
+  if (burst > 0) {
+    std::mutex burst_mutex;
+    std::map<int, int> burst_statuses;
+    std::vector<std::thread> clients;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < burst; ++i)
+      clients.emplace_back([&, i] {
+        httplib::Client c(host, port);
+        c.set_connection_timeout(60, 0);
+        c.set_read_timeout(60, 0);
+        auto res =
+            c.Post("/v1/jobs?strategy=TU&seed=" + std::to_string(500000 + i), mesh, "model/obj");
+        std::lock_guard lock(burst_mutex);
+        ++burst_statuses[res ? res->status : -1];
+        if (res && res->status == 202) ids.push_back(nlohmann::json::parse(res->body)["id"]);
+      });
+    for (auto& t : clients) t.join();
+    std::cout << "burst of " << burst << " concurrent POSTs in "
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()
+              << " s:";
+    for (auto [s, k] : burst_statuses) std::cout << " " << k << " x " << s;
+    std::cout << " (-1 = no answer)\n";
+    if (!pid.empty()) std::cout << "server RSS after the burst:" << rss_of(pid) << "\n";
+  }
   int refused = 0;
   for (int i = 0; i < fill; ++i) {
     auto res =
@@ -87,6 +150,10 @@ int main(int argc, char** argv) {
   if (ids.empty()) return 1;
   if (!pid.empty()) std::cout << "server RSS with full queue:" << rss_of(pid) << "\n";
 
+  std::vector<int> stalled;
+  for (int i = 0; i < slow; ++i)
+    if (const int fd = stalled_connection(port); fd >= 0) stalled.push_back(fd);
+  if (slow > 0) std::cout << "holding " << stalled.size() << " stalled connections\n";
   std::atomic<bool> stop{false};
   std::mutex mutex;
   std::map<int, long> statuses;
@@ -97,6 +164,7 @@ int main(int argc, char** argv) {
     threads.emplace_back([&, c] {
       httplib::Client cli(host, port);
       cli.set_keep_alive(true);
+      cli.set_read_timeout(60, 0);  // stalled connections may hold every HTTP thread a while
       cli.set_tcp_nodelay(true);
       std::map<int, long> mine;
       std::vector<double> lat;
@@ -129,6 +197,12 @@ int main(int argc, char** argv) {
             << latencies.back() << "\n";
   for (auto [s, k] : statuses) std::cout << "status " << s << ": " << k << "\n";
   if (!pid.empty()) std::cout << "server RSS after:" << rss_of(pid) << "\n";
+  if (!stalled.empty()) {
+    const auto closed = std::count_if(stalled.begin(), stalled.end(), closed_by_server);
+    std::cout << "stalled connections closed by the server: " << closed << " of " << stalled.size()
+              << "\n";
+    for (int fd : stalled) ::close(fd);
+  }
   // Leave the server as we found it: cancel what we queued.
   for (const std::string& id : ids) client.Delete("/v1/jobs/" + id);
   return 0;

@@ -12,6 +12,19 @@ class IOException : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The input is over a configured size limit (bytes, faces, vertices), said before anything of
+/// that size is allocated. A service answers it with "too large" rather than "unreadable".
+class LimitExceededException : public IOException {
+ public:
+  enum class Limit { Bytes, Faces, Vertices };
+  LimitExceededException(Limit limit, const std::string& message)
+      : IOException(message), limit_(limit) {}
+  Limit limit() const { return limit_; }
+
+ private:
+  Limit limit_;
+};
+
 /// The input was read but is not a mesh we can unfold (non-manifold, degenerate, empty, ...).
 /// The message names the fault.
 class InvalidInputException : public std::invalid_argument {

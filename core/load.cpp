@@ -20,14 +20,18 @@ namespace detail {
 
 void check_declared_faces(std::size_t count, const LoadOptions& options, std::string_view what) {
   if (count > options.max_faces)
-    throw IOException(std::string(what) + " declares " + std::to_string(count) +
-                      " faces, more than the limit of " + std::to_string(options.max_faces));
+    throw LimitExceededException(LimitExceededException::Limit::Faces,
+                                 std::string(what) + " declares " + std::to_string(count) +
+                                     " faces, more than the limit of " +
+                                     std::to_string(options.max_faces));
 }
 
 void check_vertices(std::size_t count, const LoadOptions& options, std::string_view what) {
   if (count > options.max_vertices)
-    throw IOException(std::string(what) + " has " + std::to_string(count) +
-                      " vertices, more than the limit of " + std::to_string(options.max_vertices));
+    throw LimitExceededException(LimitExceededException::Limit::Vertices,
+                                 std::string(what) + " has " + std::to_string(count) +
+                                     " vertices, more than the limit of " +
+                                     std::to_string(options.max_vertices));
 }
 
 void add_polygon(RawMesh& out, const std::vector<long long>& poly, const LoadOptions& options,
@@ -40,7 +44,9 @@ void add_polygon(RawMesh& out, const std::vector<long long>& poly, const LoadOpt
   if (poly.size() < 3) return;  // counted by the caller, which knows what the entry was
   if (poly.size() > 3) out.triangulated = true;
   if (out.faces.size() + poly.size() - 2 > options.max_faces)
-    throw IOException("more than the limit of " + std::to_string(options.max_faces) + " faces");
+    throw LimitExceededException(
+        LimitExceededException::Limit::Faces,
+        "more than the limit of " + std::to_string(options.max_faces) + " faces");
   for (std::size_t k = 1; k + 1 < poly.size(); ++k)
     out.faces.push_back({int(poly[0]), int(poly[k]), int(poly[k + 1])});
 }
@@ -198,8 +204,10 @@ MeshFormat sniff_format(std::string_view bytes) {
 
 LoadedMesh load_mesh(std::string_view bytes, MeshFormat format, const LoadOptions& options) {
   if (bytes.size() > options.max_bytes)
-    throw IOException("the file has " + std::to_string(bytes.size()) +
-                      " bytes, more than the limit of " + std::to_string(options.max_bytes));
+    throw LimitExceededException(LimitExceededException::Limit::Bytes,
+                                 "the file has " + std::to_string(bytes.size()) +
+                                     " bytes, more than the limit of " +
+                                     std::to_string(options.max_bytes));
   if (bytes.empty()) throw IOException("the file is empty");
   if (format == MeshFormat::Unknown) format = sniff_format(bytes);
   detail::RawMesh raw;
@@ -235,8 +243,10 @@ LoadedMesh load_mesh_file(const std::string& path, const LoadOptions& options) {
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) throw IOException("cannot open " + path + ": " + ec.message());
   if (size > options.max_bytes)
-    throw IOException("the file has " + std::to_string(size) + " bytes, more than the limit of " +
-                      std::to_string(options.max_bytes));
+    throw LimitExceededException(LimitExceededException::Limit::Bytes,
+                                 "the file has " + std::to_string(size) +
+                                     " bytes, more than the limit of " +
+                                     std::to_string(options.max_bytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IOException("cannot open " + path);
   std::string bytes(static_cast<std::size_t>(size), '\0');

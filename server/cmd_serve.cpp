@@ -11,6 +11,7 @@
 #include "server/commands.h"
 #include "server/config.h"
 #include "server/http_api.h"
+#include "server/http_server.h"
 #include "server/job_service.h"
 #include "server/job_store.h"
 #include "server/metrics.h"
@@ -63,9 +64,13 @@ int serve(int argc, char** argv) {
                      settings, [](const std::string& line) { log_line(line); });
 
   HttpMetrics metrics;
-  httplib::Server http;
-  const std::size_t threads = config.http_threads;
-  http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  HttpLimits http_limits;
+  http_limits.max_body_bytes = config.max_body_bytes + (64 << 10);  // multipart/chunk framing
+  http_limits.read_timeout = config.read_timeout;
+  http_limits.header_timeout = config.header_timeout;
+  http_limits.request_timeout = config.request_timeout;
+  http_limits.keep_alive_timeout = config.read_timeout;
+  GuardedHttpServer http(http_limits, config.http_threads);
   http.set_tcp_nodelay(true);  // small JSON answers must not wait for delayed ACKs
   install_routes(http, service, config, metrics);
   const std::string& web_root = config.web_root;
@@ -82,7 +87,7 @@ int serve(int argc, char** argv) {
   } else if (!http.bind_to_port(config.host, port)) {
     port = -1;
   }
-  if (port <= 0) {
+  if (port <= 0 || !http.set_listen_backlog(1024)) {
     std::cerr << "papernet serve: cannot listen on " << config.host << ":" << config.port << "\n";
     return 1;
   }

@@ -87,6 +87,21 @@ const std::vector<Setting>& settings() {
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.shutdown_grace = seconds(w, v);
        }},
+      {"read-timeout", "PAPERNET_READ_TIMEOUT",
+       "seconds one read from a client may wait for data (default 5)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.read_timeout = seconds(w, v);
+       }},
+      {"header-timeout", "PAPERNET_HEADER_TIMEOUT",
+       "seconds a client has to send a request's line and headers (default 10)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.header_timeout = seconds(w, v);
+       }},
+      {"request-timeout", "PAPERNET_REQUEST_TIMEOUT",
+       "seconds a client has to send a whole request, upload included (default 120)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.request_timeout = seconds(w, v);
+       }},
       {"reuse-results", "PAPERNET_REUSE_RESULTS",
        "answer identical mesh + options from a stored result (default true)",
        [](ServerConfig& c, const std::string& w, const std::string& v) {
@@ -133,6 +148,8 @@ std::optional<ServerConfig> parse_serve_config(
   }
   if (config.workers == 0)
     config.workers = std::max<std::size_t>(1, std::thread::hardware_concurrency());
+  if (config.read_timeout <= 0 || config.header_timeout <= 0 || config.request_timeout <= 0)
+    throw ConfigError("read, header and request timeouts must be more than 0 seconds");
   if (config.job_time_limit <= 0 || config.job_time_limit > config.max_job_time_limit)
     throw ConfigError("job time limit must be more than 0 and at most the max job time limit");
   return config;

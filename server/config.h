@@ -22,6 +22,9 @@ struct ServerConfig {
   double job_time_limit = 120;      ///< seconds, when a job does not ask for one
   double max_job_time_limit = 600;  ///< the most a job may ask for
   double shutdown_grace = 10;       ///< seconds running jobs get to finish on SIGTERM
+  double read_timeout = 5;          ///< seconds one read from a client may wait
+  double header_timeout = 10;       ///< seconds a client has to send a request's line and headers
+  double request_timeout = 120;     ///< seconds a client has to send a whole request (the upload)
   bool reuse_results = true;        ///< answer identical mesh + options from a stored result
   bool access_log = true;
   std::string web_root;  ///< directory of the web demo served at / ("" = none)

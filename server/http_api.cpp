@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "api/openapi.h"
+#include "server/http_server.h"
 #include "server/job_json.h"
 #include "server/problem.h"
 #include "server/upload.h"
@@ -22,7 +23,8 @@ thread_local Clock::time_point request_start;
 
 void send_problem(httplib::Response& res, const Problem& p, const std::string& instance) {
   res.status = p.status;
-  res.set_content(problem_json(p, instance).dump(), "application/problem+json");
+  // The path is the client's: echo no more of it than a job's result path needs.
+  res.set_content(problem_json(p, instance.substr(0, 128)).dump(), "application/problem+json");
   if (p.retry_after) res.set_header("Retry-After", std::to_string(*p.retry_after));
 }
 
@@ -56,18 +58,65 @@ JobView find_job(JobService& service, const httplib::Request& req) {
   return *view;
 }
 
-UploadRequest upload_of(const httplib::Request& req) {
+// Reads the upload's body through `reader`, never more than `max_bytes` of it (after any
+// Content-Encoding is undone): a chunked, length-less or compressed body is refused with 413 as
+// soon as it passes the limit, before it is all in memory.
+UploadRequest upload_of(const httplib::Request& req, const httplib::ContentReader& reader,
+                        std::size_t max_bytes) {
   UploadRequest up;
   up.content_type = req.get_header_value("Content-Type");
   up.query = {req.params.begin(), req.params.end()};
   up.multipart = req.is_multipart_form_data();
+  std::size_t total = 0;
+  bool too_large = false, too_many_parts = false;
+  auto take = [&](std::string& into, const char* data, std::size_t n) {
+    total += n;
+    if (total > max_bytes) {
+      too_large = true;
+      return false;
+    }
+    into.append(data, n);
+    return true;
+  };
+  bool ok = false;
   if (up.multipart) {
-    for (const auto& [name, part] : req.files)
-      up.parts.push_back({part.name, part.filename, part.content_type, part.content});
+    ok = reader(
+        [&](const httplib::MultipartFormData& part) {
+          if (up.parts.size() >= 64) {
+            too_many_parts = true;
+            return false;
+          }
+          up.parts.push_back({part.name, part.filename, part.content_type, {}});
+          return true;
+        },
+        [&](const char* data, std::size_t n) {
+          return !up.parts.empty() && take(up.parts.back().content, data, n);
+        });
   } else {
-    up.body = req.body;
+    ok = reader([&](const char* data, std::size_t n) { return take(up.body, data, n); });
   }
-  return up;
+  if (ok) return up;
+  close_connection_after_response();
+  const RequestReadState state = request_read_state();
+  if (too_large || state.body_too_large)
+    throw ApiError("payload_too_large", "the upload is larger than this server's limit of " +
+                                            std::to_string(max_bytes) + " bytes");
+  if (state.timed_out)
+    throw ApiError("request_timeout",
+                   "the upload did not arrive in time (read timeout or "
+                   "request deadline passed)");
+  if (too_many_parts) throw ApiError("malformed_request", "more than 64 form parts");
+  throw ApiError("malformed_request",
+                 "the request body could not be read: truncated, a bad chunked or multipart "
+                 "framing, or a Content-Encoding that does not decode");
+}
+
+// A body on a route that takes none (everything but POST /v1/jobs) is refused before it is
+// read: httplib would buffer a chunked or compressed one without bound.
+bool refuse_unexpected_body(const httplib::Request& req) {
+  if (req.method == "POST" && req.path == "/v1/jobs") return false;
+  if (req.has_header("Transfer-Encoding") || req.has_header("Content-Encoding")) return true;
+  return req.get_header_value<std::uint64_t>("Content-Length") > (std::uint64_t{64} << 10);
 }
 
 struct Api {
@@ -77,11 +126,12 @@ struct Api {
   HttpMetrics& metrics;
   std::atomic<int> streams{0};
 
-  void submit(const httplib::Request& req, httplib::Response& res) {
+  void submit(const httplib::Request& req, httplib::Response& res,
+              const httplib::ContentReader& reader) {
     OptionsLimits limits;
     limits.max_time_limit = config.max_job_time_limit;
     limits.max_target_faces = config.max_faces;
-    ParsedUpload upload = parse_upload(upload_of(req), limits);
+    ParsedUpload upload = parse_upload(upload_of(req, reader, config.max_body_bytes), limits);
     const JobRecord job = service.submit(std::move(upload.input), std::move(upload.options));
     auto view = service.view(job.id);
     res.set_header("Location", "/v1/jobs/" + job.id);
@@ -201,17 +251,58 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
   const std::string job = "/v1/jobs/([^/]+)";
 
   http.set_payload_max_length(config.max_body_bytes);
-  http.set_pre_routing_handler([](const httplib::Request&, httplib::Response&) {
-    request_start = Clock::now();
-    return httplib::Server::HandlerResponse::Unhandled;
-  });
+  // A declared length over the limit is refused before the body is read (and before a client
+  // that asked "Expect: 100-continue" sends it).
+  auto declared_too_large = [&config](const httplib::Request& req) {
+    return req.get_header_value<std::uint64_t>("Content-Length") > config.max_body_bytes;
+  };
+  http.set_expect_100_continue_handler(
+      [declared_too_large](const httplib::Request& req, httplib::Response& res) {
+        if (!declared_too_large(req)) return 100;
+        close_connection_after_response();
+        res.status = 413;  // the error handler below writes the problem
+        return 413;
+      });
+  http.set_pre_routing_handler(
+      [&config, declared_too_large](const httplib::Request& req, httplib::Response& res) {
+        request_start = Clock::now();
+        Problem p;
+        if (declared_too_large(req))
+          p = make_problem("payload_too_large", "the upload declares " +
+                                                    req.get_header_value("Content-Length") +
+                                                    " bytes, more than this server's limit of " +
+                                                    std::to_string(config.max_body_bytes));
+        else if (refuse_unexpected_body(req))
+          p = make_problem("payload_too_large", req.method + " " + req.path +
+                                                    " takes no request body (chunked, encoded or "
+                                                    "over 64 KiB bodies are refused)");
+        else
+          return httplib::Server::HandlerResponse::Unhandled;
+        close_connection_after_response();
+        send_problem(res, p, req.path);
+        return httplib::Server::HandlerResponse::Handled;
+      });
   // Answers httplib produced itself (unknown route, body over the limit, unparsable request)
   // get a problem document too.
   http.set_error_handler(httplib::Server::HandlerWithResponse([&config](const httplib::Request& req,
                                                                         httplib::Response& res) {
     if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
     Problem p;
-    if (res.status == 413)
+    // httplib answers 400 when a read fails; the guarded stream knows why.
+    const RequestReadState state = request_read_state();
+    if (state.timed_out) res.status = 408;
+    if (state.body_too_large) res.status = 413;
+    if (state.head_too_large) res.status = 431;
+    if (res.status == 408)
+      p = make_problem("request_timeout",
+                       "the request did not arrive in time (read timeout or "
+                       "request deadline passed)");
+    else if (res.status == 414)
+      p = make_problem("uri_too_long", "the request URI is longer than this server accepts");
+    else if (res.status == 431)
+      p = make_problem("request_head_too_large",
+                       "the request line or headers are longer than this server accepts");
+    else if (res.status == 413)
       p = make_problem("payload_too_large", "the upload is larger than this server's limit of " +
                                                 std::to_string(config.max_body_bytes) + " bytes");
     else if (res.status == 404)
@@ -259,9 +350,14 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
   http.Get("/v1/openapi.json", guarded([](const httplib::Request&, httplib::Response& res) {
              res.set_content(std::string(openapi_document()), "application/json");
            }));
-  http.Post("/v1/jobs", guarded([api](const httplib::Request& req, httplib::Response& res) {
-              api->submit(req, res);
-            }));
+  http.Post("/v1/jobs", [api](const httplib::Request& req, httplib::Response& res,
+                              const httplib::ContentReader& reader) {
+    try {
+      api->submit(req, res, reader);
+    } catch (...) {
+      send_problem(res, problem_from_exception(std::current_exception()), req.path);
+    }
+  });
   http.Get("/v1/jobs", guarded([api](const httplib::Request& req, httplib::Response& res) {
              api->list(req, res);
            }));

@@ -27,8 +27,8 @@ Validated load_and_validate(const JobInput& input, const JobOptions& options,
                             const PipelineLimits& limits, JobSink& sink) {
   LoadOptions load_options;
   load_options.max_bytes = limits.max_bytes;
-  // Above the limit, so that "too many faces" is ours to say (413) for all but absurd meshes.
-  load_options.max_faces = limits.max_faces * 4 + 16;
+  // A count over the limit is refused by the loader before it allocates (LimitExceeded: 413).
+  load_options.max_faces = limits.max_faces;
   load_options.external_files = input.external_files;
   ProgressInfo info;
   info.phase = "load";

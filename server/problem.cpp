@@ -27,11 +27,13 @@ constexpr ProblemType kProblemTypes[] = {
     {"not_found", 404, "No such resource"},
     {"job_not_found", 404, "No such job"},
     {"method_not_allowed", 405, "Method not allowed"},
+    {"request_timeout", 408, "Request timeout"},
     {"result_not_ready", 409, "Result not ready"},
     {"job_finished", 409, "Job already finished"},
     {"job_cancelled", 410, "Job was cancelled"},
     {"payload_too_large", 413, "Upload too large"},
     {"too_many_faces", 413, "Mesh has too many faces"},
+    {"uri_too_long", 414, "Request URI too long"},
     {"unsupported_format", 415, "Unsupported mesh format"},
     {"unreadable_mesh", 422, "Mesh cannot be read"},
     {"invalid_mesh", 422, "Mesh cannot be unfolded"},
@@ -40,6 +42,7 @@ constexpr ProblemType kProblemTypes[] = {
     {"interrupted_too_often", 422, "Job interrupted too often"},
     {"queue_full", 429, "Queue full"},
     {"too_many_streams", 429, "Too many event streams"},
+    {"request_head_too_large", 431, "Request line or headers too large"},
     {"internal_error", 500, "Internal error"},
     {"shutting_down", 503, "Server shutting down"},
 };
@@ -74,6 +77,10 @@ Problem problem_from_exception(std::exception_ptr error) {
     nlohmann::json extra = nlohmann::json::object();
     if (!e.option().empty()) extra["option"] = e.option();
     return make_problem(e.code(), e.what(), extra);
+  } catch (const LimitExceededException& e) {
+    return make_problem(
+        e.limit() == LimitExceededException::Limit::Bytes ? "payload_too_large" : "too_many_faces",
+        e.what());
   } catch (const InvalidInputException& e) {
     return make_problem("invalid_mesh", e.what());
   } catch (const IOException& e) {

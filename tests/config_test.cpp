@@ -55,6 +55,20 @@ TEST(ConfigTest, EnvironmentThenFlagsWhichWin) {
   EXPECT_EQ(c.queue_length, 5u);
 }
 
+TEST(ConfigTest, ClientTimeouts) {
+  const ServerConfig d = *parse({});
+  EXPECT_EQ(d.read_timeout, 5);
+  EXPECT_EQ(d.header_timeout, 10);
+  EXPECT_EQ(d.request_timeout, 120);
+  const ServerConfig c =
+      *parse({"--read-timeout", "1.5", "--header-timeout=3"}, {{"PAPERNET_REQUEST_TIMEOUT", "30"}});
+  EXPECT_EQ(c.read_timeout, 1.5);
+  EXPECT_EQ(c.header_timeout, 3);
+  EXPECT_EQ(c.request_timeout, 30);
+  EXPECT_THROW(parse({"--read-timeout", "0"}), ConfigError);
+  EXPECT_THROW(parse({"--header-timeout", "-1"}), ConfigError);
+}
+
 TEST(ConfigTest, BadValuesNameTheirSource) {
   try {
     parse({"--port", "99999"});
