@@ -70,14 +70,14 @@ constexpr std::size_t kBatchFaces = 4000;
 // growing with the face count, and an end when the fewest overlaps seen stall.
 constexpr std::size_t kCoarseIterationsBase = 2000;
 constexpr std::size_t kCoarseIterationsPerFace = 20;
-constexpr std::size_t kCoarseStallBase = 500;
-// Overlapping pairs per face at the start above which an attempt is not even tried.
-constexpr std::size_t kHopelessPairsPerFace = 20;
+constexpr std::size_t kCoarseStallBase = 2000;
 // A retry halves the face count; it does not go below this.
 constexpr std::size_t kMinCoarseFaces = 8;
-// Iterations a split's Tabu run may take at least; beyond, at most as many as all the work
-// done before it (a split that needs more is stuck: the result becomes approximate).
-constexpr std::size_t kSplitIterationsBase = 1000;
+// Iterations a split's Tabu run may take at least (base + per face of the current mesh);
+// beyond, at most as many as all the work done before it (a split that needs more is stuck:
+// the result becomes approximate).
+constexpr std::size_t kSplitIterationsBase = 2000;
+constexpr std::size_t kSplitIterationsPerFace = 5;
 
 // The smaller of an iteration limit (0: none) and n.
 std::size_t at_most(std::size_t limit, std::size_t n) {
@@ -246,14 +246,11 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       } else {
         tabu.max_iterations =
             at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
-        tabu.stall_iterations = std::max<std::size_t>(kCoarseStallBase, 2 * faces);
+        tabu.stall_iterations = std::max<std::size_t>(kCoarseStallBase, 5 * faces);
         if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining() / 4);
       }
     }
-    // A start with many times more overlapping pairs than faces is far from any net: the
-    // mesh is too detailed for its shape, go coarser at once.
-    const bool hopeless = !last && u.overlap_count() > kHopelessPairsPerFace * faces;
-    if (!hopeless) coarse_ok = u.resolve_overlaps(tabu, relay, &stats);
+    coarse_ok = u.resolve_overlaps(tabu, relay, &stats);
     result.stats.iterations += stats.iterations;
     result.stats.evaluations += stats.evaluations;
     stats = {};
@@ -304,7 +301,9 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       t.max_iterations =
           options.split_iterations > 0
               ? options.split_iterations
-              : at_most(t.max_iterations, std::max(kSplitIterationsBase, result.stats.iterations));
+              : at_most(t.max_iterations,
+                        std::max(kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count(),
+                                 result.stats.iterations));
       if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
       if (limit > 0 && t.time_limit_seconds <= 0) {
         failed = true;

@@ -21,8 +21,8 @@ struct ProgressiveOptions {
   /// Time limit of the Tabu Unfolder after one split (the whole run's limit applies too); when
   /// a split's overlaps cannot be removed within it, the result is approximate.
   double split_time_limit_seconds = 10;
-  /// Iteration limit of the Tabu Unfolder after one split; 0 means automatic: at least 1,000,
-  /// at most as many as all Tabu iterations before that split (and tabu.max_iterations).
+  /// Iteration limit of the Tabu Unfolder after one split; 0 means automatic: at least 2,000 + 5
+  /// per face, at most as many as all Tabu iterations before that split (and tabu.max_iterations).
   std::size_t split_iterations = 0;
   /// Iteration limit of the Tabu Unfolder on a coarse mesh that may still be collapsed further
   /// when it fails; 0 means automatic (growing with its face count, ended early by a stall).
