@@ -21,8 +21,9 @@ struct ProgressiveOptions {
   /// Time limit of the Tabu Unfolder after one split (the whole run's limit applies too); when
   /// a split's overlaps cannot be removed within it, the result is approximate.
   double split_time_limit_seconds = 10;
-  /// Iteration limit of the Tabu Unfolder after one split; 0 means automatic: at least 2,000 + 5
-  /// per face, at most as many as all Tabu iterations before that split (and tabu.max_iterations).
+  /// Iteration limit of the Tabu Unfolder after one split; 0 means automatic: the larger of
+  /// 2,000 + 5 per face of the current mesh and all Tabu iterations before that split (capped by
+  /// tabu.max_iterations).
   std::size_t split_iterations = 0;
   /// Iteration limit of the Tabu Unfolder on a coarse mesh that may still be collapsed further
   /// when it fails; 0 means automatic (growing with its face count, ended early by a stall).
@@ -60,7 +61,8 @@ struct ProgressiveResult {
 /// (`complete` false). When the coarse mesh itself cannot be unfolded within a budget that grows
 /// with its size, it is collapsed further (half the faces each time) and unfolded again, so that
 /// meshes too detailed for their shape still give an approximate net; a split whose overlaps need
-/// more Tabu iterations than everything before it ends the run (approximate) early.
+/// more Tabu iterations than everything before it (and than 2,000 + 5 per face) ends the run
+/// early with the last overlap-free state.
 ///
 /// Progress: phases "collapse", "unfold", "uncollapse" in that order, faces never decreasing
 /// during "uncollapse", the last report at the face count of the returned mesh; `intermediate`
