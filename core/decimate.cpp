@@ -143,6 +143,7 @@ class Decimator {
     const Mesh& m = pm_.mesh();
     quadric_.assign(m.vertices.size(), Quadric{});
     for (std::size_t f = 0; f < m.faces.size(); ++f) {
+      if (!pm_.face_alive(static_cast<int>(f))) continue;  // collapsed earlier
       const auto& face = m.faces[f];
       const Vec3 p = m.vertices[face[0]];
       const Vec3 n2 = cross(m.vertices[face[1]] - p, m.vertices[face[2]] - p);
@@ -247,6 +248,16 @@ class Decimator {
   std::vector<Candidate> candidates_;
 };
 
+// Forwards cancellation only: a further collapse during unfolding is not a phase of its own.
+class CancelOnly : public Progress {
+ public:
+  explicit CancelOnly(Progress& outer) : outer_(outer) {}
+  bool cancelled() override { return outer_.cancelled(); }
+
+ private:
+  Progress& outer_;
+};
+
 }  // namespace
 
 std::string strategy_name(CollapseStrategy strategy) {
@@ -284,6 +295,12 @@ ProgressiveMesh decimate(const Mesh& mesh, const DecimateOptions& options, Progr
                                  : collapse_target(pm.input_face_count(), pm.genus());
   Decimator(pm, options.strategy).run(target, progress);
   return pm;
+}
+
+void collapse_further(ProgressiveMesh& pm, CollapseStrategy strategy, std::size_t target_faces,
+                      Progress& progress) {
+  CancelOnly quiet(progress);
+  Decimator(pm, strategy).run(target_faces, quiet);
 }
 
 }  // namespace papernet

@@ -43,4 +43,11 @@ struct DecimateOptions {
 /// \throw CancelledException when `progress` asks to stop.
 ProgressiveMesh decimate(const Mesh& mesh, const DecimateOptions& options, Progress& progress);
 
+/// Collapses `pm` further, to at most `target_faces` faces or until no legal collapse is left,
+/// with quadrics of its current state. Collapses already recorded stay, so splitting everything
+/// still restores the input exactly. Reports nothing; polls `progress` for cancellation.
+/// \throw CancelledException when `progress` asks to stop.
+void collapse_further(ProgressiveMesh& pm, CollapseStrategy strategy, std::size_t target_faces,
+                      Progress& progress);
+
 }  // namespace papernet

@@ -66,6 +66,24 @@ constexpr int kLocalTrials = 16;
 // Above this face count, several splits share one update() (whose cost grows with the mesh).
 constexpr std::size_t kBatchFaces = 4000;
 
+// Tabu budget of a coarse attempt that may still be retried on a coarser mesh: iterations
+// growing with the face count, and an end when the fewest overlaps seen stall.
+constexpr std::size_t kCoarseIterationsBase = 2000;
+constexpr std::size_t kCoarseIterationsPerFace = 20;
+constexpr std::size_t kCoarseStallBase = 2000;
+// A retry halves the face count; it does not go below this.
+constexpr std::size_t kMinCoarseFaces = 8;
+// Iterations a split's Tabu run may take at least (base + per face of the current mesh);
+// beyond, at most as many as all the work done before it (a split that needs more is stuck:
+// the result becomes approximate).
+constexpr std::size_t kSplitIterationsBase = 2000;
+constexpr std::size_t kSplitIterationsPerFace = 5;
+
+// The smaller of an iteration limit (0: none) and n.
+std::size_t at_most(std::size_t limit, std::size_t n) {
+  return limit == 0 ? n : std::min(limit, n);
+}
+
 std::uint64_t split_seed(std::uint64_t seed, std::size_t index) {
   return seed ^ (0x9e3779b97f4a7c15ULL * (index + 1));
 }
@@ -162,6 +180,19 @@ std::size_t place_splits(State& st, const std::vector<VertexSplit>& splits, std:
   return overlaps;
 }
 
+// The unfolding of pm's current mesh from the steepest-edge tree of `seed`, with id maps.
+State make_state(const ProgressiveMesh& pm, const Mesh& input, std::uint64_t seed) {
+  std::vector<int> face_ids, vertex_ids;
+  Mesh coarse = pm.compact(&face_ids, &vertex_ids);
+  State st{Unfolding::steepest_edge(std::move(coarse), seed),
+           std::vector<int>(pm.input_face_count(), -1),
+           std::vector<int>(input.vertices.size(), -1)};
+  for (std::size_t i = 0; i < face_ids.size(); ++i) st.face[face_ids[i]] = static_cast<int>(i);
+  for (std::size_t i = 0; i < vertex_ids.size(); ++i)
+    st.vertex[vertex_ids[i]] = static_cast<int>(i);
+  return st;
+}
+
 Net net_in_input_ids(const State& st, std::size_t faces) {
   Net net;
   net.parent.assign(faces, -1);
@@ -187,27 +218,52 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   ProgressiveResult result;
   ProgressiveMesh pm = decimate(mesh, {options.strategy, options.target_faces}, progress);
   const std::size_t input_faces = pm.input_face_count();
-  result.coarse_faces = pm.face_count();
-  result.splits_total = pm.splits_left();
 
   Relay relay(progress, start);
   relay.context.input_faces = input_faces;
   relay.context.phase = "unfold";
-  relay.context.faces = pm.face_count();
-  std::vector<int> face_ids, vertex_ids;
-  Mesh coarse = pm.compact(&face_ids, &vertex_ids);
-  State st{Unfolding::steepest_edge(std::move(coarse), options.tabu.seed),
-           std::vector<int>(input_faces, -1), std::vector<int>(mesh.vertices.size(), -1)};
-  for (std::size_t i = 0; i < face_ids.size(); ++i) st.face[face_ids[i]] = static_cast<int>(i);
-  for (std::size_t i = 0; i < vertex_ids.size(); ++i)
-    st.vertex[vertex_ids[i]] = static_cast<int>(i);
-  TabuOptions tabu = options.tabu;
-  tabu.phase = "unfold";
-  tabu.input_faces = input_faces;
-  if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
+  std::optional<State> coarse;
   TabuStats stats;
-  const bool coarse_ok = st.unfolding.resolve_overlaps(tabu, relay, &stats);
-  result.stats = stats;
+  bool coarse_ok = false, can_go_coarser = true;
+  for (std::size_t attempt = 0;; ++attempt) {
+    // When the coarse mesh cannot be unfolded within a modest budget, collapse it further and
+    // try again: a coarser net that uncollapses part of the way is still an approximate result.
+    // The coarsest attempt gets the whole remaining budget.
+    const std::size_t faces = pm.face_count();
+    const std::size_t next = faces / 2;
+    const bool last = !can_go_coarser || next < kMinCoarseFaces || (limit > 0 && remaining() <= 0);
+    relay.context.faces = faces;
+    coarse = make_state(pm, mesh, options.tabu.seed + attempt);
+    Unfolding& u = coarse->unfolding;
+    TabuOptions tabu = options.tabu;
+    tabu.seed = options.tabu.seed + attempt;
+    tabu.phase = "unfold";
+    tabu.input_faces = input_faces;
+    if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
+    if (!last) {
+      if (options.coarse_iterations > 0) {
+        tabu.max_iterations = options.coarse_iterations;
+      } else {
+        tabu.max_iterations =
+            at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
+        tabu.stall_iterations = std::max<std::size_t>(kCoarseStallBase, 5 * faces);
+        if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining() / 4);
+      }
+    }
+    coarse_ok = u.resolve_overlaps(tabu, relay, &stats);
+    result.stats.iterations += stats.iterations;
+    result.stats.evaluations += stats.evaluations;
+    stats = {};
+    if (coarse_ok || last) break;
+    collapse_further(pm, options.strategy, next, progress);
+    // No legal collapse left: one more attempt on this mesh, with the whole budget.
+    if (pm.face_count() >= faces) can_go_coarser = false;
+    ++result.coarse_retries;
+  }
+  result.coarse_faces = pm.face_count();
+  result.splits_total = pm.splits_left();
+  State st = std::move(*coarse);
+  coarse.reset();
 
   bool failed = !coarse_ok;
   std::vector<Applied> log;  // splits applied since the checkpoint
@@ -242,7 +298,12 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       t.phase = "uncollapse";
       t.input_faces = input_faces;
       t.time_limit_seconds = options.split_time_limit_seconds;
-      if (options.split_iterations > 0) t.max_iterations = options.split_iterations;
+      t.max_iterations =
+          options.split_iterations > 0
+              ? options.split_iterations
+              : at_most(t.max_iterations,
+                        std::max(kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count(),
+                                 result.stats.iterations));
       if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
       if (limit > 0 && t.time_limit_seconds <= 0) {
         failed = true;

@@ -21,8 +21,13 @@ struct ProgressiveOptions {
   /// Time limit of the Tabu Unfolder after one split (the whole run's limit applies too); when
   /// a split's overlaps cannot be removed within it, the result is approximate.
   double split_time_limit_seconds = 10;
-  /// Iteration limit of the Tabu Unfolder after one split; 0 means tabu.max_iterations.
+  /// Iteration limit of the Tabu Unfolder after one split; 0 means automatic: the larger of
+  /// 2,000 + 5 per face of the current mesh and all Tabu iterations before that split (capped by
+  /// tabu.max_iterations).
   std::size_t split_iterations = 0;
+  /// Iteration limit of the Tabu Unfolder on a coarse mesh that may still be collapsed further
+  /// when it fails; 0 means automatic (growing with its face count, ended early by a stall).
+  std::size_t coarse_iterations = 0;
 };
 
 /// Outcome of progressive unfolding.
@@ -38,11 +43,12 @@ struct ProgressiveResult {
   /// Two-sided Hausdorff distance of `mesh` to the input relative to the input's bounding-box
   /// diagonal (0 when complete).
   double hausdorff = 0;
-  std::size_t overlaps = 0;      ///< overlapping pairs left in `net`
-  std::size_t coarse_faces = 0;  ///< faces after collapsing
-  std::size_t splits = 0;        ///< vertex splits the net includes
-  std::size_t splits_total = 0;  ///< collapses made
-  TabuStats stats;               ///< Tabu Unfolder work summed over all runs
+  std::size_t overlaps = 0;        ///< overlapping pairs left in `net`
+  std::size_t coarse_faces = 0;    ///< faces of the coarse mesh that was unfolded
+  std::size_t coarse_retries = 0;  ///< further collapses after a coarse mesh failed
+  std::size_t splits = 0;          ///< vertex splits the net includes
+  std::size_t splits_total = 0;    ///< collapses made
+  TabuStats stats;                 ///< Tabu Unfolder work summed over all runs
   double seconds = 0;
 };
 
@@ -52,7 +58,11 @@ struct ProgressiveResult {
 /// tree between the two faces linked across its wing (else as a leaf of a random neighbour),
 /// re-laying out and testing only what moved, and running the Tabu Unfolder when overlaps
 /// appear. When that fails within the budget, the last overlap-free state is returned
-/// (`complete` false).
+/// (`complete` false). When the coarse mesh itself cannot be unfolded within a budget that grows
+/// with its size, it is collapsed further (half the faces each time) and unfolded again, so that
+/// meshes too detailed for their shape still give an approximate net; a split whose overlaps need
+/// more Tabu iterations than everything before it (and than 2,000 + 5 per face) ends the run
+/// early with the last overlap-free state.
 ///
 /// Progress: phases "collapse", "unfold", "uncollapse" in that order, faces never decreasing
 /// during "uncollapse", the last report at the face count of the returned mesh; `intermediate`

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/decimate.h"
 #include "core/errors.h"
 #include "core/load.h"
 #include "core/net_check.h"
@@ -141,6 +142,52 @@ TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
     }
   }
   EXPECT_GE(approximations, 1) << "no seed produced an approximate result";
+}
+
+// A coarse mesh that fails within its (here one-iteration) Tabu budget is collapsed further and
+// unfolded again; the net of that coarser start still passes the checker and uncollapses.
+TEST(Progressive, CoarseFailureRetriesOnACoarserMesh) {
+  const Mesh input = load_test_mesh("sample.obj");
+  Progress quiet;
+  const std::size_t target = collapse_target(input.faces.size(), 0);
+  int retried = 0;
+  for (std::uint64_t seed = 1; seed <= 8 && retried < 2; ++seed) {
+    SCOPED_TRACE(seed);
+    ProgressiveOptions options;
+    options.tabu.seed = seed;
+    options.coarse_iterations = 1;
+    const ProgressiveResult r = unfold_progressive(input, options, quiet);
+    if (r.coarse_retries == 0) continue;
+    ++retried;
+    EXPECT_LT(r.coarse_faces, target);
+    ASSERT_TRUE(r.overlap_free);
+    const NetCheckReport check = check_net(r.mesh, r.net);
+    EXPECT_TRUE(check.ok()) << check.summary();
+    if (r.complete) {
+      EXPECT_EQ(r.mesh.faces, input.faces);
+      EXPECT_EQ(r.splits, r.splits_total);
+    } else {
+      EXPECT_GT(r.hausdorff, 0);
+    }
+  }
+  EXPECT_GE(retried, 1) << "no seed's coarse mesh failed its one-iteration budget";
+}
+
+// c3d__alligator at 99 faces has a dual graph that is a tree: no edge unfolding of it is
+// overlap-free, nor of its default coarse mesh. A coarser approximation is.
+TEST(Progressive, MeshWithoutAnyNetGivesAnApproximation) {
+  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/100/c3d__alligator.obj";
+  if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
+  const Mesh input = load_mesh_file(file).mesh;
+  Progress quiet;
+  const ProgressiveResult r = unfold_progressive(input, {}, quiet);
+  ASSERT_TRUE(r.overlap_free);
+  EXPECT_FALSE(r.complete);
+  EXPECT_GE(r.coarse_retries, 1u);
+  EXPECT_LT(r.mesh.faces.size(), input.faces.size());
+  EXPECT_GT(r.hausdorff, 0);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
 }
 
 TEST(Progressive, CancellationStops) {
