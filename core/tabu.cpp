@@ -68,6 +68,14 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
 
   for (int f = 0; f < nf; ++f)
     if (parent_[f] == -1) root_at(f);
+  // Checked between iterations and every few evaluations inside one: on huge sliver meshes a
+  // single walk can take seconds.
+  const auto out_of_time = [&](Clock::time_point now) {
+    return options.time_limit_seconds > 0 &&
+           std::chrono::duration<double>(now - start).count() >= options.time_limit_seconds;
+  };
+  bool stop = false;
+  bool stalled = false;  // no new fewest count for |F| iterations: more walks from now on
   bool moved = false;
   std::size_t fewest = pair_count_, fewest_at = 0;
   for (;;) {
@@ -82,9 +90,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
     if (options.stall_iterations && st.iterations - fewest_at >= options.stall_iterations) break;
     if (no_moves || (options.max_iterations && st.iterations >= options.max_iterations)) break;
     const Clock::time_point now = Clock::now();
-    if (options.time_limit_seconds > 0 &&
-        std::chrono::duration<double>(now - start).count() >= options.time_limit_seconds)
-      break;
+    if (out_of_time(now)) break;
     if (progress.cancelled()) throw CancelledException();
     if (now - last_report >= std::chrono::milliseconds(50)) {
       report();
@@ -95,13 +101,15 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
     long long best_delta = LLONG_MAX;
     bool blocked = false, improved = false;
     // Walks from a random overlapping face towards a random root (re-rooting moves nothing, so
-    // the root is only where the walk ends; the pre-order stays as it is). When the best move
-    // of the walks so far raises the count by more than accept_rise pairs, another walk looks
-    // elsewhere; then the best move of all of them is applied.
-    for (std::size_t walk = 0; walk < walks && best_delta > accept_rise; ++walk) {
+    // the root is only where the walk ends; the pre-order stays as it is). Once stalled, when
+    // the best move of the walks so far raises the count by more than accept_rise pairs,
+    // another walk looks elsewhere; then the best move of all of them is applied.
+    if (st.iterations - fewest_at > static_cast<std::size_t>(nf)) stalled = true;
+    const std::size_t now_walks = stalled ? walks : 1;
+    for (std::size_t walk = 0; walk < now_walks && best_delta > accept_rise && !stop; ++walk) {
       const int r = static_cast<int>(rng.below(nf));
       const int f = overlapping_[rng.below(overlapping_.size())];
-      for (int g = f; g != r && !improved;) {
+      for (int g = f; g != r && !improved && !stop;) {
         const int up = step_towards(g, r);
         cut(g, up);
         long long crossing = -1;  // computed once per cut, when a move is evaluated
@@ -115,6 +123,8 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
           if (crossing < 0) crossing = crossing_pairs();
           const long long delta = evaluate_move(g, k, crossing, best_delta);
           ++st.evaluations;
+          if (out_of_time(Clock::now())) stop = true;
+          if (st.evaluations % 32 == 0 && progress.cancelled()) throw CancelledException();
           if (delta < best_delta) best_delta = delta, best_g = g, best_k = k, best_other = up;
           if (delta < 0) improved = true;
         }
@@ -122,6 +132,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
       }
     }
     ++st.iterations;
+    if (stop) break;
     if (best_g < 0) {
       if (blocked) tabu.clear();
       continue;

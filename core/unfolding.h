@@ -35,13 +35,14 @@ struct TabuOptions {
   /// resolve_overlaps stops (returns false) when the fewest overlaps seen have not dropped for
   /// this many iterations (0: never); unfold_tabu then restarts from another start.
   std::size_t stall_iterations = 0;
-  /// Walks per iteration at most. The paper applies the best move of one walk; on CAD meshes
-  /// with slivers that move is often a large step up (+22 pairs on average on
-  /// `thingi10k__73416` at 400 faces) and the count wanders on a plateau. So when the best move
-  /// of the walks so far raises the count by more than `accept_rise` pairs, another walk (new
-  /// random overlapping face, new random root) is tried, up to `walks`, and the best move of
-  /// all is applied. Small rises are still taken at once: organic meshes need them to leave
-  /// local minima. walks = 1 is the paper's rule.
+  /// Walks per iteration at most, once stalled. The paper applies the best move of one walk;
+  /// on CAD meshes with slivers that move is often a large step up (+22 pairs on average on
+  /// `thingi10k__73416` at 400 faces) and the count wanders on a plateau. So once the fewest
+  /// overlaps seen have not dropped for |F| iterations, an iteration whose best move so far
+  /// raises the count by more than `accept_rise` pairs tries another walk (new random
+  /// overlapping face, new random root), up to `walks`, and applies the best move of all.
+  /// Before that stall (and with walks = 1) it is the paper's rule: organic meshes converge
+  /// faster with it, small and large steps up included.
   std::size_t walks = 4;
   std::size_t accept_rise = 2;  ///< see `walks`
 };
