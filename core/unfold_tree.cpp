@@ -59,6 +59,46 @@ struct UnionFind {
   }
 };
 
+// A dual edge between faces `face` and `other`, weighted: spanning trees prefer light links.
+struct DualEdge {
+  double weight;
+  int face, other;
+};
+
+// Minimum spanning tree of the dual graph over `edges` (stable order for equal weights), as a
+// parent array hanging from a root drawn from `rng`.
+std::vector<int> spanning_tree(int nf, std::vector<DualEdge>& edges, Random& rng) {
+  std::stable_sort(edges.begin(), edges.end(),
+                   [](const DualEdge& x, const DualEdge& y) { return x.weight < y.weight; });
+  UnionFind sets(nf);
+  std::vector<std::vector<int>> tree(nf);
+  int linked = 0;
+  for (const DualEdge& e : edges)
+    if (sets.unite(e.face, e.other)) {
+      tree[e.face].push_back(e.other);
+      tree[e.other].push_back(e.face);
+      ++linked;
+    }
+  if (linked != nf - 1)
+    throw InvalidInputException("the mesh is not connected across edges (" +
+                                std::to_string(nf - linked) + " pieces); it cannot be one net");
+
+  std::vector<int> parent(nf, -2);
+  const int root = static_cast<int>(rng.below(nf));
+  parent[root] = -1;
+  std::vector<int> stack{root};
+  while (!stack.empty()) {
+    const int f = stack.back();
+    stack.pop_back();
+    for (int q : tree[f])
+      if (parent[q] == -2) {
+        parent[q] = f;
+        stack.push_back(q);
+      }
+  }
+  return parent;
+}
+
 }  // namespace
 
 std::vector<int> steepest_edge_tree(const Mesh& mesh, const DualGraph& graph, std::uint64_t seed) {
@@ -88,10 +128,6 @@ std::vector<int> steepest_edge_tree(const Mesh& mesh, const DualGraph& graph, st
       cuts.insert(half_edge_key(std::min(v, steepest[v]), std::max(v, steepest[v])));
 
   // Dual edges (f, k) with f < neighbour, weighted: preferred cuts last, then by steepness.
-  struct DualEdge {
-    double weight;
-    int face, other;
-  };
   std::vector<DualEdge> edges;
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
@@ -102,36 +138,22 @@ std::vector<int> steepest_edge_tree(const Mesh& mesh, const DualGraph& graph, st
       const bool cut = cuts.count(half_edge_key(std::min(a, b), std::max(a, b))) != 0;
       edges.push_back({(cut ? 2.0 : 0.0) + std::abs(dot(c, d)) / norm(d), f, q});
     }
-  std::stable_sort(edges.begin(), edges.end(),
-                   [](const DualEdge& x, const DualEdge& y) { return x.weight < y.weight; });
+  return spanning_tree(nf, edges, rng);
+}
 
-  UnionFind sets(nf);
-  std::vector<std::vector<int>> tree(nf);
-  int linked = 0;
-  for (const DualEdge& e : edges)
-    if (sets.unite(e.face, e.other)) {
-      tree[e.face].push_back(e.other);
-      tree[e.other].push_back(e.face);
-      ++linked;
+std::vector<int> min_perimeter_tree(const Mesh& mesh, const DualGraph& graph, std::uint64_t seed) {
+  const int nf = static_cast<int>(mesh.faces.size());
+  if (nf == 0) throw InvalidInputException("the mesh has no faces");
+  Random rng(seed);
+  std::vector<DualEdge> edges;
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int q = graph.neighbour[f][k];
+      if (q < f) continue;
+      const Vec3 d = mesh.vertices[mesh.faces[f][(k + 1) % 3]] - mesh.vertices[mesh.faces[f][k]];
+      edges.push_back({-norm(d), f, q});  // longest links first: the cut edges are the shortest
     }
-  if (linked != nf - 1)
-    throw InvalidInputException("the mesh is not connected across edges (" +
-                                std::to_string(nf - linked) + " pieces); it cannot be one net");
-
-  std::vector<int> parent(nf, -2);
-  const int root = static_cast<int>(rng.below(nf));
-  parent[root] = -1;
-  std::vector<int> stack{root};
-  while (!stack.empty()) {
-    const int f = stack.back();
-    stack.pop_back();
-    for (int q : tree[f])
-      if (parent[q] == -2) {
-        parent[q] = f;
-        stack.push_back(q);
-      }
-  }
-  return parent;
+  return spanning_tree(nf, edges, rng);
 }
 
 }  // namespace papernet

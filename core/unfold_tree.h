@@ -53,4 +53,10 @@ std::array<Vec2, 3> place_root(const Mesh& mesh, int f, const FaceShape& shape);
 /// \throw InvalidInputException when the dual graph is not connected.
 std::vector<int> steepest_edge_tree(const Mesh& mesh, const DualGraph& graph, std::uint64_t seed);
 
+/// Minimum-perimeter tree (Schlickenrieder's heuristic): a maximum spanning tree of the dual
+/// graph weighted by edge length, so the cut edges (the net's boundary) are the shortest ones.
+/// Long slivers of CAD meshes then stay glued along their long sides. The root is drawn from
+/// `seed`. \throw InvalidInputException when the dual graph is not connected.
+std::vector<int> min_perimeter_tree(const Mesh& mesh, const DualGraph& graph, std::uint64_t seed);
+
 }  // namespace papernet

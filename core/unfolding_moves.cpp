@@ -10,6 +10,7 @@
 namespace papernet {
 
 void Unfolding::root_at(int r) {
+  root_ = r;
   const int nf = static_cast<int>(face_count());
   order_.clear();
   stack_.assign(1, r);
@@ -36,10 +37,25 @@ void Unfolding::root_at(int r) {
   }
 }
 
-void Unfolding::cut(int g) {
-  cut_lo_ = tin_[g];
-  cut_hi_ = cut_lo_ + size_[g];
-  small_is_subtree_ = 2 * static_cast<std::size_t>(size_[g]) <= face_count();
+int Unfolding::step_towards(int g, int r) const {
+  if (!in_subtree_of(g, r)) return parent_[g];
+  for (int k = 0; k < 3; ++k)
+    if (links_[g] >> k & 1) {
+      const int c = adj_[g][k];
+      if (c != parent_[g] && in_subtree_of(c, r)) return c;
+    }
+  return -1;  // not reached for a spanning tree
+}
+
+void Unfolding::cut(int g, int other) {
+  cut_other_ = other;
+  // The link is g - parent_[g] (g's side is g's pre-order range) or other - parent_[other] ==
+  // g (g's side is everything outside other's range).
+  g_in_range_ = other == parent_[g];
+  const int top = g_in_range_ ? g : other;
+  cut_lo_ = tin_[top];
+  cut_hi_ = cut_lo_ + size_[top];
+  small_is_range_ = 2 * static_cast<std::size_t>(size_[top]) <= face_count();
 }
 
 std::uint32_t Unfolding::next_seen_epoch() {
@@ -54,9 +70,9 @@ int Unfolding::move_anchor(int g, int k, Triangle2& anchor_pos, Rigid& motion) c
   const int q = adj_[g][k];
   const int kq = adj_edge_[g][k];
   // The anchor is the face of the moving side that touches the new link.
-  const int a = small_is_subtree_ ? g : q;
-  anchor_pos = small_is_subtree_ ? place_across(pos_[q], kq, k, shape_[g])
-                                 : place_across(pos_[g], k, kq, shape_[q]);
+  const int a = small_is_range_ == g_in_range_ ? g : q;
+  anchor_pos =
+      a == g ? place_across(pos_[q], kq, k, shape_[g]) : place_across(pos_[g], k, kq, shape_[q]);
   const Vec2 o = pos_[a][1] - pos_[a][0], n = anchor_pos[1] - anchor_pos[0];
   // Rotation taking direction o to direction n: (n / o) as complex numbers, normalised.
   const double re = n.x * o.x + n.y * o.y, im = n.y * o.x - n.x * o.y;
@@ -72,13 +88,13 @@ void Unfolding::for_each_crossing(F&& f) const {
       if (!in_small(b)) f(a, b);
   };
   const int nf = static_cast<int>(face_count());
-  const std::size_t small = small_is_subtree_ ? static_cast<std::size_t>(cut_hi_ - cut_lo_)
-                                              : face_count() - (cut_hi_ - cut_lo_);
+  const std::size_t small = small_is_range_ ? static_cast<std::size_t>(cut_hi_ - cut_lo_)
+                                            : face_count() - (cut_hi_ - cut_lo_);
   // Walk whichever is shorter: the overlapping faces, or the smaller side's faces.
   if (small >= overlapping_.size()) {
     for (int a : overlapping_)
       if (in_small(a)) from(a);
-  } else if (small_is_subtree_) {
+  } else if (small_is_range_) {
     for (int i = cut_lo_; i < cut_hi_; ++i) from(order_[i]);
   } else {
     for (int i = 0; i < cut_lo_; ++i) from(order_[i]);
@@ -110,7 +126,7 @@ long long Unfolding::evaluate_move(int g, int k, long long crossing, long long c
     });
     return delta < cutoff;
   };
-  if (small_is_subtree_) {
+  if (small_is_range_) {
     for (int i = cut_lo_; i < cut_hi_; ++i)
       if (!test(order_[i])) return delta;
   } else {
@@ -124,7 +140,7 @@ long long Unfolding::evaluate_move(int g, int k, long long crossing, long long c
 
 void Unfolding::apply_move(int g, int k) {
   const int q = adj_[g][k];
-  const int p = parent_[g];
+  const int p = cut_other_;
   const int nf = static_cast<int>(face_count());
   crossing_.clear();
   for_each_crossing([&](int a, int b) { crossing_.push_back({a, b}); });
@@ -149,7 +165,7 @@ void Unfolding::apply_move(int g, int k) {
     });
   };
   const auto each_small = [&](const auto& visit) {
-    if (small_is_subtree_) {
+    if (small_is_range_) {
       for (int i = cut_lo_; i < cut_hi_; ++i) visit(order_[i]);
     } else {
       for (int i = 0; i < cut_lo_; ++i) visit(order_[i]);
@@ -162,9 +178,9 @@ void Unfolding::apply_move(int g, int k) {
   const int kp = edge_to(g, p);
   links_[g] &= static_cast<std::uint8_t>(~(1u << kp));
   links_[p] &= static_cast<std::uint8_t>(~(1u << adj_edge_[g][kp]));
-  parent_[g] = q;
   links_[g] |= static_cast<std::uint8_t>(1u << k);
   links_[q] |= static_cast<std::uint8_t>(1u << adj_edge_[g][k]);
+  root_at(root_);  // the pre-order of the changed tree
 }
 
 void Unfolding::relayout_all() {
