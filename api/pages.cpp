@@ -77,6 +77,8 @@ bool shows_something(const PrintLayout& layout, const Page& page) {
     if (convex_overlap(f, window, 0)) return true;
   for (const Tab& t : layout.tabs)
     if (convex_overlap(t.corners, window, 0)) return true;
+  for (const GlueStrip& t : layout.strips)
+    if (convex_overlap(t.corners, window, 0)) return true;
   return false;
 }
 
@@ -88,6 +90,8 @@ void turn_quarter(PrintLayout& layout) {
   for (auto& f : layout.faces)
     for (Vec2& p : f) turn(p);
   for (Tab& t : layout.tabs)
+    for (Vec2& p : t.corners) turn(p);
+  for (GlueStrip& t : layout.strips)
     for (Vec2& p : t.corners) turn(p);
   for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
     for (Segment& s : *list) turn(s.a), turn(s.b);
@@ -165,6 +169,19 @@ void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawin
   };
   for (const auto& f : layout.faces) add(Layer::Faces, {f[0], f[1], f[2]}, true);
   for (const Tab& t : layout.tabs) add(Layer::Tabs, {t.corners.begin(), t.corners.end()}, true);
+  for (const GlueStrip& t : layout.strips) {
+    if (!box_meets({t.corners.begin(), t.corners.end()}, lo, hi)) continue;
+    add(Layer::Strips, {t.corners.begin(), t.corners.end()}, true);
+    const StripMarks m = strip_marks(t);
+    add(Layer::Strips, {m.seam0, m.seam1}, false);
+    if (t.text.empty() || !(t.text_size > 0)) continue;
+    // The label on each half, upright on the page where it can be.
+    double angle = m.angle;
+    if (std::cos(angle) < -1e-9) angle += std::numbers::pi;
+    for (Vec2 p : m.label_at)
+      d.shapes.push_back(
+          {Layer::Strips, {map(p)}, false, t.text, t.text_size, -angle * 180 / std::numbers::pi});
+  }
   for (const Segment& s : layout.cut) add(Layer::Cut, {s.a, s.b}, false);
   for (const Segment& s : layout.mountain) add(Layer::Mountain, {s.a, s.b}, false);
   for (const Segment& s : layout.valley) add(Layer::Valley, {s.a, s.b}, false);

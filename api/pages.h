@@ -58,7 +58,7 @@ PageLayout paginate(PrintLayout& layout, const PageOptions& options);
 void turn_quarter(PrintLayout& layout);
 
 /// Which drawing layer a shape belongs to (one SVG group or one PDF drawing pass each).
-enum class Layer { Faces, Tabs, Cut, Mountain, Valley, Labels, Marks };
+enum class Layer { Faces, Tabs, Strips, Cut, Mountain, Valley, Labels, Marks };
 
 /// A shape in page coordinates (mm, y down, origin at the page's top-left corner).
 struct Shape {

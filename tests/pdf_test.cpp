@@ -135,6 +135,39 @@ TEST(Pages, AWideNetThatFitsEitherWayRunsAlongThePortraitPage) {
   EXPECT_DOUBLE_EQ(layout.size.y, 150);
 }
 
+TEST(Pages, GlueStripsLandOnPagesAndTurnWithTheNet) {
+  // A strip far from any face still gets its page, and every corner of every strip lies on a
+  // printed page whichever way the net is turned.
+  PrintLayout layout;
+  layout.faces = {{Vec2{0, 0}, Vec2{20, 0}, Vec2{0, 20}}};
+  layout.strips = {{-1, {Vec2{350, 520}, Vec2{370, 520}, Vec2{370, 532}, Vec2{350, 532}}, "7", 3}};
+  layout.size = {370, 540};
+  const PageLayout lone = paginate(layout, {});
+  EXPECT_EQ(lone.pages.size(), 2u);
+  const Mesh mesh = testing::octahedron(-0.4);
+  for (double size : {60.0, 400.0}) {
+    PrintOptions print;
+    print.size_mm = size;
+    print.tabs = TabMode::Strips;
+    PrintLayout net = layout_net(mesh, testing::bfs_net(mesh), print);
+    ASSERT_EQ(net.strips.size(), static_cast<std::size_t>(net.cut_edges));
+    const PageLayout pages = paginate(net, {});
+    int drawn = 0;
+    for (int i = 0; i < static_cast<int>(pages.pages.size()); ++i)
+      for (const Shape& s : draw_page(net, pages, i).shapes)
+        drawn += s.layer == Layer::Strips && s.closed;
+    EXPECT_GE(drawn, static_cast<int>(net.strips.size())) << size;
+    for (const GlueStrip& strip : net.strips)
+      for (Vec2 p : strip.corners) {
+        bool on_page = false;
+        for (const Page& page : pages.pages)
+          on_page |= p.x >= page.lo.x - 1e-9 && p.x <= page.hi.x + 1e-9 &&
+                     p.y >= page.lo.y - 1e-9 && p.y <= page.hi.y + 1e-9;
+        EXPECT_TRUE(on_page) << size << ": a strip corner on no page";
+      }
+  }
+}
+
 TEST(Pdf, HasTheExpectedPageCountAndRenders) {
   const Mesh mesh = testing::octahedron(-0.4);
   for (double size : {60.0, 400.0}) {
@@ -152,7 +185,8 @@ TEST(Pdf, HasTheExpectedPageCountAndRenders) {
     const auto at = info.out.find("Pages:");
     ASSERT_NE(at, std::string::npos);
     EXPECT_EQ(std::stoi(info.out.substr(at + 6)), static_cast<int>(pages.pages.size()));
-    EXPECT_NE(info.out.find(std::to_string(layout.omitted_tabs.size()) + " tabs omitted"),
+    EXPECT_NE(info.out.find(std::to_string(layout.strips.size()) + " glue strips, " +
+                            std::to_string(layout.omitted_tabs.size()) + " tabs omitted"),
               std::string::npos)
         << info.out;
     if (size == 60) {

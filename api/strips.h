@@ -1,0 +1,51 @@
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "api/tabs.h"
+
+namespace papernet {
+
+/// A glue strip: a separate rectangle printed in free space, for a cut edge that has no room
+/// for a tab in place. Cut it out, glue one half under each side of the edge (the seam line
+/// down its middle goes where the two sides meet); both halves carry the edge's number.
+/// `corners` are counter-clockwise; corners[0] -> corners[1] is one long side, and the seam runs
+/// from the middle of corners[3]-corners[0] to the middle of corners[1]-corners[2].
+struct GlueStrip {
+  int edge = -1;  ///< index into the edge list
+  std::array<Vec2, 4> corners;
+  std::string text;      ///< the edge's label, printed on both halves ("" for none)
+  double text_size = 0;  ///< its height in layout units
+};
+
+struct StripOptions {
+  double max_half_width = 6;  ///< glue width on each side of the seam, at most
+  double min_half_width = 2;  ///< ... and at least; half the edge's length in between
+  double min_length = 4;      ///< strips of shorter edges are this long
+  double gap = 1;             ///< free paper kept around a strip so it can be cut out
+  double cell = 1;            ///< resolution of the free-space search
+};
+
+/// Places one strip for each edge in `which` (indices into `edges`; each a cut edge of the net)
+/// where it overlaps neither a face, a tab nor another strip, keeping `gap` of free paper around
+/// it: first in free space within the bounding box of faces and tabs (scanning from the top
+/// left, upright or lying), then in rows below it. A strip is as long as its edge (at least
+/// min_length). Checked geometrically with convex_overlap, never by the raster alone.
+std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& faces,
+                                    const std::vector<Tab>& tabs, const std::vector<NetEdge>& edges,
+                                    const std::vector<int>& which,
+                                    const StripOptions& options = {});
+
+/// Where a strip's seam runs and where its two labels go: centre of each half, with the
+/// direction of the seam in radians.
+struct StripMarks {
+  Vec2 seam0, seam1;
+  std::array<Vec2, 2> label_at;
+  double angle = 0;
+  double half_width = 0;
+};
+StripMarks strip_marks(const GlueStrip& strip);
+
+}  // namespace papernet
