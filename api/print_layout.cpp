@@ -173,7 +173,9 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     strip_options.max_half_width = options.tab_height_mm;
     strip_options.min_half_width =
         std::max(1.0, std::min(options.min_tab_height_mm, options.tab_height_mm));
-    out.strips = place_strips(out.faces, out.tabs, out.edges, bare, strip_options);
+    out.strips =
+        place_strips(out.faces, out.tabs, strip_requests(out.faces, out.edges, bare, strip_options),
+                     {}, strip_options);
     for (GlueStrip& s : out.strips) {
       if (!options.labels) continue;
       s.text = label_text(out.edges[s.edge].cut_index + 1);

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "api/tabs.h"
@@ -26,16 +27,37 @@ struct StripOptions {
   double min_length = 4;      ///< strips of shorter edges are this long
   double gap = 1;             ///< free paper kept around a strip so it can be cut out
   double cell = 1;            ///< resolution of the free-space search
+  double search_radius = 60;  ///< how far from its edge a strip is looked for first
+  double hug = 3;  ///< ... where it stays this close to the net (beyond its own half size)
+  std::vector<std::pair<Vec2, Vec2>> within;  ///< boxes (lo, hi) strips must lie in, if any
 };
 
-/// Places one strip for each edge in `which` (indices into `edges`; each a cut edge of the net)
-/// where it overlaps neither a face, a tab nor another strip, keeping `gap` of free paper around
-/// it: first in free space within the bounding box of faces and tabs (scanning from the top
-/// left, upright or lying), then in rows below it. A strip is as long as its edge (at least
-/// min_length). Checked geometrically with convex_overlap, never by the raster alone.
+/// One strip to place: for `edge`, `length` x `width`, as near `near` as it can go.
+struct StripRequest {
+  int edge = -1;
+  double length = 0, width = 0;
+  Vec2 near;
+};
+
+/// The strips for the edges in `which` (indices into `edges`, cut edges of the net): as long as
+/// the edge (at least min_length), twice half its length wide (within min/max_half_width), near
+/// the middle of its side a.
+std::vector<StripRequest> strip_requests(const std::vector<std::array<Vec2, 3>>& faces,
+                                         const std::vector<NetEdge>& edges,
+                                         const std::vector<int>& which,
+                                         const StripOptions& options = {});
+
+/// Places every requested strip where it overlaps neither a face, a tab, one of `others` nor
+/// another strip, keeping `gap` of free paper around it: in the free window of the bounding box
+/// of faces, tabs and `others` nearest `near` (within `search_radius`, lying or standing) that
+/// hugs the net (so that it prints on a page the net needs anyway), else in the first free
+/// window of the box (scanning from the top left), else in rows below the box. With
+/// `options.within` set, windows inside the box must also lie inside one of those boxes.
+/// Checked geometrically with convex_overlap, never by the raster alone.
 std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& faces,
-                                    const std::vector<Tab>& tabs, const std::vector<NetEdge>& edges,
-                                    const std::vector<int>& which,
+                                    const std::vector<Tab>& tabs,
+                                    const std::vector<StripRequest>& requests,
+                                    const std::vector<GlueStrip>& others = {},
                                     const StripOptions& options = {});
 
 /// Where a strip's seam runs and where its two labels go: centre of each half, with the
