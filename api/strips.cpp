@@ -190,13 +190,18 @@ std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& face
     return false;
   };
   // Tries the window of strip `s` centred on cell (ci, cj), lying or standing.
+  // The window must hug the net (its centre at most `hug` beyond its half size from a face or
+  // tab): a strip out in the open would print on pages that show nothing else.
+  const double hug = options.hug / cell;
   auto try_at = [&](const Size& s, int ci, int cj) {
     for (bool standing : {false, true}) {
       const double w = standing ? s.width : s.length, h = standing ? s.length : s.width;
       const int cw = static_cast<int>(std::ceil(w / cell)) + 2 * gc;
       const int ch = static_cast<int>(std::ceil(h / cell)) + 2 * gc;
       const int i = ci - cw / 2, j = cj - ch / 2;
-      if (i < 0 || j < 0 || i + cw > space.nx() || j + ch > space.ny() || !space.free(i, j, cw, ch))
+      if (i < 0 || j < 0 || i + cw > space.nx() || j + ch > space.ny() ||
+          space.at(distance, ci, cj) > 0.5 * std::max(cw, ch) + hug || !allowed(i, j, cw, ch) ||
+          !space.free(i, j, cw, ch))
         continue;
       const auto rect = strip_rect(space.corner(i + gc, j + gc), s.length, s.width, standing);
       if (grid.overlaps(rect, tolerance)) continue;  // the raster is conservative: never
@@ -216,6 +221,7 @@ std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& face
     const Size& s = sizes[o];
     const int ti = static_cast<int>(std::floor((s.near.x - lo.x) / cell));
     const int tj = static_cast<int>(std::floor((s.near.y - lo.y) / cell));
+    const double limit = 0.5 * (std::ceil(s.length / cell) + 2 * gc) + hug;
     bool placed = false;
     for (int r = 0; r <= radius && !placed; ++r)
       for (int k = 0; k < std::max(1, 8 * r) && !placed; ++k) {
@@ -223,7 +229,11 @@ std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& face
         const int side = r > 0 ? k / (2 * r) : 0, t = r > 0 ? k % (2 * r) : 0;
         const int di = side == 0 ? -r + t : side == 1 ? r : side == 2 ? r - t : -r;
         const int dj = side == 0 ? -r : side == 1 ? -r + t : side == 2 ? r : r - t;
-        placed = try_at(s, ti + di, tj + dj);
+        const int ci = ti + di, cj = tj + dj;
+        if (ci < 0 || cj < 0 || ci >= space.nx() || cj >= space.ny() ||
+            space.at(distance, ci, cj) > limit)
+          continue;  // off the raster, or too far from the net for this strip either way
+        placed = try_at(s, ci, cj);
       }
     if (!placed) far.push_back(o);
   }

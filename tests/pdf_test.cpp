@@ -136,14 +136,20 @@ TEST(Pages, AWideNetThatFitsEitherWayRunsAlongThePortraitPage) {
 }
 
 TEST(Pages, GlueStripsLandOnPagesAndTurnWithTheNet) {
-  // A strip far from any face still gets its page, and every corner of every strip lies on a
-  // printed page whichever way the net is turned.
+  // A strip far from the net, which would need a page of its own, moves onto the net's page;
+  // on real nets every strip prints whole on one page, whichever way the net is turned.
   PrintLayout layout;
   layout.faces = {{Vec2{0, 0}, Vec2{20, 0}, Vec2{0, 20}}};
   layout.strips = {{-1, {Vec2{350, 520}, Vec2{370, 520}, Vec2{370, 532}, Vec2{350, 532}}, "7", 3}};
   layout.size = {370, 540};
   const PageLayout lone = paginate(layout, {});
-  EXPECT_EQ(lone.pages.size(), 2u);
+  ASSERT_EQ(lone.pages.size(), 1u);
+  for (Vec2 p : layout.strips[0].corners) {
+    EXPECT_TRUE(p.x >= lone.pages[0].lo.x && p.x <= lone.pages[0].hi.x) << p.x;
+    EXPECT_TRUE(p.y >= lone.pages[0].lo.y && p.y <= lone.pages[0].hi.y) << p.y;
+    EXPECT_FALSE(convex_overlap(layout.strips[0].corners, layout.faces[0], 0));
+  }
+  EXPECT_EQ(layout.strips[0].text, "7");
   Mesh mesh;
   for (auto& [name, m] : testing::test_data_meshes())
     if (name == "sample.obj") mesh = std::move(m);
