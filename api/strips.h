@@ -26,7 +26,7 @@ struct StripOptions {
   double min_half_width = 2;  ///< ... and at least; half the edge's length in between
   double min_length = 4;      ///< strips of shorter edges are this long
   double gap = 1;             ///< free paper kept around a strip so it can be cut out
-  double cell = 1;            ///< resolution of the free-space search
+  double cell = 2;            ///< resolution of the free-space search
   double search_radius = 30;  ///< how far from its edge a strip is looked for first
   double hug = 3;  ///< ... where it stays this close to the net (beyond its own half size)
   std::vector<std::pair<Vec2, Vec2>> within;  ///< boxes (lo, hi) strips must lie in, if any
