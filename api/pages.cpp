@@ -68,16 +68,45 @@ std::string PageOptions::validate() const {
 
 namespace {
 
+std::array<Vec2, 4> window_of(const Page& page) {
+  return {page.lo, Vec2{page.hi.x, page.lo.y}, page.hi, Vec2{page.lo.x, page.hi.y}};
+}
+
 /// True when a face or tab of the layout reaches into the page's window (a sparse net tiled
 /// onto a grid can leave pages empty: those are not printed).
-bool shows_something(const PrintLayout& layout, const Page& page) {
-  const std::array<Vec2, 4> window = {page.lo, Vec2{page.hi.x, page.lo.y}, page.hi,
-                                      Vec2{page.lo.x, page.hi.y}};
+bool shows_net(const PrintLayout& layout, const Page& page) {
+  const auto window = window_of(page);
   for (const auto& f : layout.faces)
     if (convex_overlap(f, window, 0)) return true;
   for (const Tab& t : layout.tabs)
     if (convex_overlap(t.corners, window, 0)) return true;
   return false;
+}
+
+bool contains(const Page& page, const GlueStrip& strip) {
+  for (Vec2 p : strip.corners)
+    if (p.x < page.lo.x || p.x > page.hi.x || p.y < page.lo.y || p.y > page.hi.y) return false;
+  return true;
+}
+
+/// Which tiles are printed: those showing part of the net, and for each glue strip not wholly
+/// on one of those, a tile that holds it wholly (else every tile it reaches into).
+std::vector<Page> printed_tiles(const PrintLayout& layout, const std::vector<Page>& tiles) {
+  std::vector<char> printed(tiles.size());
+  for (std::size_t t = 0; t < tiles.size(); ++t) printed[t] = shows_net(layout, tiles[t]);
+  for (const GlueStrip& strip : layout.strips) {
+    bool held = false;
+    for (std::size_t t = 0; t < tiles.size() && !held; ++t)
+      held = printed[t] && contains(tiles[t], strip);
+    for (std::size_t t = 0; t < tiles.size() && !held; ++t)
+      if (contains(tiles[t], strip)) printed[t] = held = true;
+    for (std::size_t t = 0; t < tiles.size() && !held; ++t)
+      if (convex_overlap(strip.corners, window_of(tiles[t]), 0)) printed[t] = 1;
+  }
+  std::vector<Page> out;
+  for (std::size_t t = 0; t < tiles.size(); ++t)
+    if (printed[t]) out.push_back(tiles[t]);
+  return out;
 }
 
 }  // namespace
@@ -88,6 +117,8 @@ void turn_quarter(PrintLayout& layout) {
   for (auto& f : layout.faces)
     for (Vec2& p : f) turn(p);
   for (Tab& t : layout.tabs)
+    for (Vec2& p : t.corners) turn(p);
+  for (GlueStrip& t : layout.strips)
     for (Vec2& p : t.corners) turn(p);
   for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
     for (Segment& s : *list) turn(s.a), turn(s.b);
@@ -103,7 +134,46 @@ void turn_quarter(PrintLayout& layout) {
 namespace {
 
 /// The tiles of `layout` on pages of `pw` x `ph` that show something.
-PageLayout tile(const PrintLayout& layout, double pw, double ph, const PageOptions& options) {
+/// Moves glue strips that none of `net_windows` holds wholly into free space inside one of them
+/// where there is room.
+void pull_strips_onto(PrintLayout& layout, const std::vector<std::pair<Vec2, Vec2>>& net_windows) {
+  std::vector<int> stray;
+  for (int i = 0; i < static_cast<int>(layout.strips.size()); ++i) {
+    bool held = false;
+    for (const auto& [lo, hi] : net_windows)
+      held = held || contains({0, 0, lo, hi}, layout.strips[i]);
+    if (!held) stray.push_back(i);
+  }
+  if (stray.empty() || net_windows.empty()) return;
+  std::vector<StripRequest> requests;
+  for (int i : stray) {
+    const GlueStrip& g = layout.strips[i];
+    Vec2 near = 0.25 * (g.corners[0] + g.corners[1] + g.corners[2] + g.corners[3]);
+    if (g.edge >= 0 && g.edge < static_cast<int>(layout.edges.size())) {
+      const EdgeSide a = layout.edges[g.edge].a;
+      near = 0.5 * (layout.faces[a.face][a.k] + layout.faces[a.face][(a.k + 1) % 3]);
+    }
+    requests.push_back(
+        {g.edge, norm(g.corners[1] - g.corners[0]), norm(g.corners[3] - g.corners[0]), near});
+  }
+  StripOptions options;
+  options.within = net_windows;
+  // Every strip where it is now is an obstacle: a strip that finds no better place stays put.
+  const std::vector<GlueStrip> moved =
+      place_strips(layout.faces, layout.tabs, requests, layout.strips, options);
+  for (const GlueStrip& m : moved) {
+    bool held = false;
+    for (const auto& [lo, hi] : net_windows) held = held || contains({0, 0, lo, hi}, m);
+    if (!held) continue;
+    for (int i : stray)
+      if (layout.strips[i].edge == m.edge) {
+        layout.strips[i].corners = m.corners;
+        break;
+      }
+  }
+}
+
+PageLayout tile(PrintLayout& layout, double pw, double ph, const PageOptions& options, bool pull) {
   const double m = options.margin_mm, ov = options.overlap_mm;
   const double w = pw - 2 * m, h = ph - 2 * m;
   auto tiles = [ov](double content, double room) {
@@ -113,12 +183,24 @@ PageLayout tile(const PrintLayout& layout, double pw, double ph, const PageOptio
   // The tiles together cover (cols * (w - ov) + ov) x (rows * (h - ov) + ov); centre the net.
   const double tw = out.cols * (w - ov) + ov, th = out.rows * (h - ov) + ov;
   const Vec2 off{0.5 * (tw - layout.size.x), 0.5 * (th - layout.size.y)};
+  std::vector<Page> grid;
   for (int r = 0; r < out.rows; ++r)
     for (int c = 0; c < out.cols; ++c) {
       const double x0 = c * (w - ov) - off.x, y1 = th - r * (h - ov) - off.y;
-      const Page page{r, c, {x0, y1 - h}, {x0 + w, y1}};
-      if (shows_something(layout, page)) out.pages.push_back(page);
+      grid.push_back({r, c, {x0, y1 - h}, {x0 + w, y1}});
     }
+  if (pull) {
+    // Strips that no tile showing the net holds wholly would need a page of their own or print
+    // split: move them onto the net's tiles where there is room, else wholly onto any tile.
+    std::vector<std::pair<Vec2, Vec2>> net_windows, all_windows;
+    for (const Page& p : grid) {
+      all_windows.emplace_back(p.lo, p.hi);
+      if (shows_net(layout, p)) net_windows.push_back(all_windows.back());
+    }
+    pull_strips_onto(layout, net_windows);
+    pull_strips_onto(layout, all_windows);
+  }
+  out.pages = printed_tiles(layout, grid);
   return out;
 }
 
@@ -133,15 +215,23 @@ PageLayout paginate(PrintLayout& layout, const PageOptions& options) {
   turn_quarter(turned);
   const bool wide = layout.size.x > layout.size.y;
   PageLayout best;
+  double best_pw = 0, best_ph = 0;
   for (int c = 0; c < 4; ++c) {
     const bool landscape = c >= 2, turn = (c % 2 == 1) != (wide != landscape);
     const double pw = landscape ? options.paper.height : options.paper.width;
     const double ph = landscape ? options.paper.width : options.paper.height;
-    PageLayout candidate = tile(turn ? turned : layout, pw, ph, options);
+    PageLayout candidate = tile(turn ? turned : layout, pw, ph, options, false);
     candidate.quarter_turn = turn;
-    if (c == 0 || candidate.pages.size() < best.pages.size()) best = std::move(candidate);
+    if (c == 0 || candidate.pages.size() < best.pages.size())
+      best = std::move(candidate), best_pw = pw, best_ph = ph;
   }
   if (best.quarter_turn) layout = std::move(turned);
+  // The choice made, glue strips that would print alone or split move onto the net's pages.
+  if (!layout.strips.empty()) {
+    const bool turn = best.quarter_turn;
+    best = tile(layout, best_pw, best_ph, options, true);
+    best.quarter_turn = turn;
+  }
   return best;
 }
 
@@ -165,6 +255,19 @@ void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawin
   };
   for (const auto& f : layout.faces) add(Layer::Faces, {f[0], f[1], f[2]}, true);
   for (const Tab& t : layout.tabs) add(Layer::Tabs, {t.corners.begin(), t.corners.end()}, true);
+  for (const GlueStrip& t : layout.strips) {
+    if (!box_meets({t.corners.begin(), t.corners.end()}, lo, hi)) continue;
+    add(Layer::Strips, {t.corners.begin(), t.corners.end()}, true);
+    const StripMarks m = strip_marks(t);
+    add(Layer::Strips, {m.seam0, m.seam1}, false);
+    if (t.text.empty() || !(t.text_size > 0)) continue;
+    // The label on each half, upright on the page where it can be.
+    double angle = m.angle;
+    if (std::cos(angle) < -1e-9) angle += std::numbers::pi;
+    for (Vec2 p : m.label_at)
+      d.shapes.push_back(
+          {Layer::Strips, {map(p)}, false, t.text, t.text_size, -angle * 180 / std::numbers::pi});
+  }
   for (const Segment& s : layout.cut) add(Layer::Cut, {s.a, s.b}, false);
   for (const Segment& s : layout.mountain) add(Layer::Mountain, {s.a, s.b}, false);
   for (const Segment& s : layout.valley) add(Layer::Valley, {s.a, s.b}, false);

@@ -50,7 +50,10 @@ struct PageLayout {
 /// not) to use the fewest pages; ties prefer portrait pages, then the net's long side along
 /// the page's long side. Turns `layout` by a quarter when
 /// that is the choice. A layout that fits one page is centred on it. Tiles of the rows x cols
-/// grid that show nothing of the net are left out of `pages`.
+/// grid that show nothing of the net (faces, tabs) are left out of `pages`, unless one is
+/// needed to print a glue strip wholly (a strip that no printed tile holds wholly). Glue strips
+/// that no tile showing the net holds wholly are first moved into free space on such a tile
+/// where there is room (nearest their edge; same checks as place_strips).
 /// \throw InvalidInputException for invalid options (e.g. margins that leave no room).
 PageLayout paginate(PrintLayout& layout, const PageOptions& options);
 
@@ -58,7 +61,7 @@ PageLayout paginate(PrintLayout& layout, const PageOptions& options);
 void turn_quarter(PrintLayout& layout);
 
 /// Which drawing layer a shape belongs to (one SVG group or one PDF drawing pass each).
-enum class Layer { Faces, Tabs, Cut, Mountain, Valley, Labels, Marks };
+enum class Layer { Faces, Tabs, Strips, Cut, Mountain, Valley, Labels, Marks };
 
 /// A shape in page coordinates (mm, y down, origin at the page's top-left corner).
 struct Shape {

@@ -67,10 +67,27 @@ void draw(cairo_t* cr, const PageDrawing& d) {
   };
   fill_layer(Layer::Faces, 0xf3f6fb);
   fill_layer(Layer::Tabs, 0xe2e2e2);
+  set_rgb(cr, 0xfbf1d3);  // glue strips: filled, outlined as cut, seam dotted, labelled
+  for (const Shape& s : d.shapes)
+    if (s.layer == Layer::Strips && s.closed) trace(cr, s), cairo_fill(cr);
+  set_rgb(cr, 0x000000);
+  cairo_set_line_width(cr, 0.25);
+  for (const Shape& s : d.shapes)
+    if (s.layer == Layer::Strips && s.closed) trace(cr, s);
+  cairo_stroke(cr);
+  set_rgb(cr, 0x777777);
+  cairo_set_line_width(cr, 0.15);
+  const double seam_dash[] = {1, 0.8};
+  cairo_set_dash(cr, seam_dash, 2, 0);
+  for (const Shape& s : d.shapes)
+    if (s.layer == Layer::Strips && !s.closed && s.text.empty()) trace(cr, s);
+  cairo_stroke(cr);
+  cairo_set_dash(cr, nullptr, 0, 0);
   stroke_layer(Layer::Cut, 0x000000, 0.25, {});
   stroke_layer(Layer::Mountain, 0xc0392b, 0.2, {2, 1});
   stroke_layer(Layer::Valley, 0x1f5fbf, 0.2, {2, 0.7, 0.4, 0.7});
   text_layer(Layer::Labels, 0x333333);
+  text_layer(Layer::Strips, 0x333333);
   cairo_restore(cr);  // marks live in the margins: unclipped
   stroke_layer(Layer::Marks, 0x777777, 0.15, {1, 1});
   text_layer(Layer::Marks, 0x777777);
@@ -93,6 +110,7 @@ std::string write_pdf(const PrintLayout& layout, const PageLayout& pages) {
   const std::string subject = std::to_string(layout.faces.size()) + " faces, " +
                               std::to_string(layout.cut_edges) + " cut edges, " +
                               std::to_string(layout.tabs.size()) + " tabs, " +
+                              std::to_string(layout.strips.size()) + " glue strips, " +
                               std::to_string(layout.omitted_tabs.size()) + " tabs omitted";
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, subject.c_str());
   cairo_t* cr = cairo_create(surface);

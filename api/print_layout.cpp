@@ -9,6 +9,26 @@
 
 namespace papernet {
 
+TabMode parse_tab_mode(std::string_view text) {
+  if (text == "auto") return TabMode::Auto;
+  if (text == "strips") return TabMode::Strips;
+  if (text == "none") return TabMode::None;
+  throw InvalidInputException("unknown tab mode '" + std::string(text) +
+                              "': use auto, strips or none");
+}
+
+std::string tab_mode_name(TabMode mode) {
+  switch (mode) {
+    case TabMode::Auto:
+      return "auto";
+    case TabMode::Strips:
+      return "strips";
+    case TabMode::None:
+      return "none";
+  }
+  return "auto";
+}
+
 std::string PrintOptions::validate() const {
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   if (!(scale > 0) && !positive(size_mm)) return "size must be a positive length";
@@ -134,15 +154,38 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       out.faces[f][k] = out.scale * rotate(net.points[f][k], out.metrics.box.angle);
 
   out.edges = classify_edges(mesh, net, {options.flat_angle_deg});
-  TabOptions tab_options{options.tab_height_mm, options.tab_angle_deg, options.min_tab_height_mm,
-                         1e-6};
-  TabPlacement placed =
-      options.tab_height_mm > 0 ? place_tabs(out.faces, out.edges, tab_options) : TabPlacement{};
-  out.tabs = std::move(placed.tabs);
-  out.omitted_tabs = std::move(placed.omitted);
-  if (options.tab_height_mm <= 0)  // tabs switched off: every cut edge goes without
+  const TabMode mode = options.tab_height_mm > 0 ? options.tabs : TabMode::None;
+  std::vector<int> bare;  // cut edges that get no tab on the net
+  if (mode == TabMode::Auto) {
+    const TabOptions tab_options{options.tab_height_mm, options.tab_angle_deg,
+                                 options.min_tab_height_mm, 1e-6};
+    TabPlacement placed = place_tabs(out.faces, out.edges, tab_options);
+    out.tabs = std::move(placed.tabs);
+    bare = std::move(placed.omitted);
+  } else {
     for (int e = 0; e < static_cast<int>(out.edges.size()); ++e)
-      if (out.edges[e].cut_index >= 0) out.omitted_tabs.push_back(e);
+      if (out.edges[e].cut_index >= 0) bare.push_back(e);
+  }
+  if (mode == TabMode::None) {
+    out.omitted_tabs = std::move(bare);
+  } else {
+    StripOptions strip_options;
+    strip_options.max_half_width = options.tab_height_mm;
+    strip_options.min_half_width =
+        std::max(1.0, std::min(options.min_tab_height_mm, options.tab_height_mm));
+    out.strips =
+        place_strips(out.faces, out.tabs, strip_requests(out.faces, out.edges, bare, strip_options),
+                     {}, strip_options);
+    for (GlueStrip& s : out.strips) {
+      if (!options.labels) continue;
+      s.text = label_text(out.edges[s.edge].cut_index + 1);
+      // As tall as fits a half of the strip, and as long as fits its length.
+      const double length = norm(s.corners[1] - s.corners[0]);
+      const double half = 0.5 * norm(s.corners[3] - s.corners[0]);
+      const double chars = static_cast<double>(s.text.size());
+      s.text_size = std::min({options.max_label_mm, 0.6 * half, 0.8 * length / (0.6 * chars)});
+    }
+  }
 
   std::vector<int> tab_of(out.edges.size(), -1);
   for (int t = 0; t < static_cast<int>(out.tabs.size()); ++t) tab_of[out.tabs[t].edge] = t;
@@ -192,11 +235,15 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     for (Vec2 p : f) grow(p);
   for (const Tab& t : out.tabs)
     for (Vec2 p : t.corners) grow(p);
+  for (const GlueStrip& t : out.strips)
+    for (Vec2 p : t.corners) grow(p);
   if (out.faces.empty()) lo = hi = {0, 0};
   const Vec2 shift = Vec2{0, 0} - lo;
   for (auto& f : out.faces)
     for (Vec2& p : f) p = p + shift;
   for (Tab& t : out.tabs)
+    for (Vec2& p : t.corners) p = p + shift;
+  for (GlueStrip& t : out.strips)
     for (Vec2& p : t.corners) p = p + shift;
   for (auto* list : {&out.cut, &out.mountain, &out.valley})
     for (Segment& s : *list) s = {s.a + shift, s.b + shift};

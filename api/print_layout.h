@@ -2,8 +2,10 @@
 
 #include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "api/strips.h"
 #include "api/tabs.h"
 #include "core/folds.h"
 #include "core/mesh.h"
@@ -12,15 +14,26 @@
 
 namespace papernet {
 
+/// How cut edges get their glue: `Auto` puts a tab on the net where one fits and a separate
+/// glue strip elsewhere; `Strips` gives every cut edge a strip; `None` prints no glue at all.
+enum class TabMode { Auto, Strips, None };
+
+/// Parses "auto", "strips" or "none". \throw InvalidInputException for anything else.
+TabMode parse_tab_mode(std::string_view text);
+std::string tab_mode_name(TabMode mode);
+
 /// How a net is drawn on paper. Lengths are millimetres.
 struct PrintOptions {
   double size_mm = 200;          ///< longest side of the model's bounding box, as folded
   double scale = 0;              ///< millimetres per model unit; > 0 overrides size_mm
   double flat_angle_deg = 1;     ///< folds flatter than this are Flat
   bool draw_flat_folds = false;  ///< draw Flat folds (as mountain/valley by their sign)
-  double tab_height_mm = 6;
+  TabMode tabs = TabMode::Auto;
+  double tab_height_mm = 6;  ///< tallest tab (and widest strip half); 0 means TabMode::None
   double tab_angle_deg = 45;
-  double min_tab_height_mm = 0;  ///< lower tabs are not drawn (their edges count as omitted)
+  /// Lowest tab printed (half the edge where that is less); edges without room for it get a
+  /// glue strip.
+  double min_tab_height_mm = 2;
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
 
@@ -49,7 +62,8 @@ struct Label {
 std::array<Vec2, 4> label_box(const Label& label);
 
 /// A net ready to draw: millimetres, y up, rotated into its minimum-area box, everything (faces,
-/// tabs) inside [0, size.x] x [0, size.y].
+/// tabs, strips) inside [0, size.x] x [0, size.y]. Every interior cut edge has exactly one tab
+/// or one strip (unless TabMode::None), and none overlaps a face, a tab or a strip.
 struct PrintLayout {
   double scale = 1;  ///< millimetres per model unit
   std::vector<std::array<Vec2, 3>> faces;
@@ -58,7 +72,8 @@ struct PrintLayout {
   std::vector<Segment> mountain;  ///< mountain folds and tab hinges (tabs fold backwards)
   std::vector<Segment> valley;
   std::vector<Tab> tabs;
-  std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) that got no tab
+  std::vector<GlueStrip> strips;  ///< separate glue strips, for cut edges without a tab
+  std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) with neither (TabMode::None)
   std::vector<Label> labels;
   Vec2 size;
   NetBoxMetrics metrics;  ///< of the net itself, in model units

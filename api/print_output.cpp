@@ -56,6 +56,10 @@ bool apply_output_option(std::string_view name, std::string_view value, OutputOp
     options.page.overlap_mm = value == "0" ? 0 : parse_length_mm(value);
   } else if (name == "--tab-height") {
     options.print.tab_height_mm = value == "0" ? 0 : parse_length_mm(value);
+  } else if (name == "--tabs") {
+    options.print.tabs = parse_tab_mode(value);
+  } else if (name == "--min-tab-height") {
+    options.print.min_tab_height_mm = value == "0" ? 0 : parse_length_mm(value);
   } else if (name == "--flat-angle") {
     options.print.flat_angle_deg = number(0, 180);
   } else if (name == "--labels") {
@@ -74,7 +78,10 @@ std::string output_options_help() {
          "  --paper P          A4 (default), A3, Letter, WxHmm, or none (SVG sized to the net)\n"
          "  --margin LEN       page margin (default 10mm)\n"
          "  --overlap LEN      overlap between tiles of a net larger than a page (default 10mm)\n"
-         "  --tab-height LEN   tallest glue tab (default 6mm; 0: no tabs)\n"
+         "  --tabs MODE        auto (default): a glue tab on the net where one fits, else a\n"
+         "                     separate glue strip; strips: strips only; none: no glue\n"
+         "  --tab-height LEN   tallest glue tab, widest strip half (default 6mm; 0: no tabs)\n"
+         "  --min-tab-height LEN  lowest tab printed, or half a shorter edge (default 2mm)\n"
          "  --flat-angle DEG   folds flatter than this are not drawn (default 1)\n"
          "  --labels on|off    edge labels (default on)\n";
 }
@@ -99,6 +106,7 @@ WrittenOutput write_output_file(const std::string& path, const Mesh& mesh, const
   PrintLayout layout = layout_net(mesh, net, options.print);
   out.pages = 1;
   out.tabs = layout.tabs.size();
+  out.strips = layout.strips.size();
   out.tabs_omitted = layout.omitted_tabs.size();
   if (ext == "svg" && !options.paper) {
     write_file(path, write_net_svg(layout, options.page.margin_mm));

@@ -23,7 +23,7 @@ struct OutputOptions {
 struct WrittenOutput {
   std::vector<std::string> files;
   int pages = 0;  ///< printed pages (SVG/PDF), 0 for meshes
-  std::size_t tabs = 0, tabs_omitted = 0;
+  std::size_t tabs = 0, strips = 0, tabs_omitted = 0;
 };
 
 /// Writes one output file, the format chosen by the extension of `path` (case-insensitive):
@@ -37,7 +37,8 @@ WrittenOutput write_output_file(const std::string& path, const Mesh& mesh, const
 
 /// Applies one command-line option of the print writers to `options`; every one takes a value:
 /// --size 200mm | --scale 2 | --paper A4|A3|Letter|WxHmm|none | --margin 10mm |
-/// --overlap 10mm | --tab-height 6mm (0: no tabs) | --flat-angle 1 (degrees) |
+/// --overlap 10mm | --tabs auto|strips|none | --tab-height 6mm (0: no tabs) |
+/// --min-tab-height 2mm | --flat-angle 1 (degrees) |
 /// --labels on|off. Returns false when `name` is not one of them.
 /// \throw InvalidInputException naming the option when its value is bad.
 bool apply_output_option(std::string_view name, std::string_view value, OutputOptions& options);

@@ -44,11 +44,18 @@ struct LayerStyle {
   Layer layer;
   const char* id;
   const char* style;
+  const char* path_style = "";  ///< extra attributes of the layer's open polylines
+  const char* text_style = "";  ///< extra attributes of the layer's text
 };
 
 constexpr LayerStyle kLayers[] = {
     {Layer::Faces, "faces", "fill=\"#f3f6fb\" stroke=\"none\""},
     {Layer::Tabs, "tabs", "fill=\"#e2e2e2\" stroke=\"none\""},
+    {Layer::Strips, "strips",
+     "fill=\"#fbf1d3\" stroke=\"#000000\" stroke-width=\"0.25\" "
+     "font-family=\"sans-serif\" text-anchor=\"middle\"",
+     " fill=\"none\" stroke=\"#777777\" stroke-width=\"0.15\" stroke-dasharray=\"1 0.8\"",
+     " fill=\"#333333\""},
     {Layer::Cut, "cut",
      "fill=\"none\" stroke=\"#000000\" stroke-width=\"0.25\" "
      "stroke-linecap=\"round\""},
@@ -94,7 +101,8 @@ std::string write_svg(const PageDrawing& d,
         // The text's visual centre sits about 0.35 em above its baseline.
         o << "<text x=\"" << num(c.x) << "\" y=\"" << num(c.y + 0.35 * s.size) << "\" font-size=\""
           << num(s.size) << "\" stroke=\"none\" transform=\"rotate(" << num(s.angle_deg) << ' '
-          << num(c.x) << ' ' << num(c.y) << ")\">" << escape(s.text) << "</text>\n";
+          << num(c.x) << ' ' << num(c.y) << ")\"" << ls.text_style << ">" << escape(s.text)
+          << "</text>\n";
       } else if (s.closed) {
         o << "<polygon points=\"";
         for (std::size_t i = 0; i < s.points.size(); ++i)
@@ -109,7 +117,7 @@ std::string write_svg(const PageDrawing& d,
         }
       }
     }
-    if (!path.empty()) o << "<path d=\"" << path << "\"/>\n";
+    if (!path.empty()) o << "<path d=\"" << path << '"' << ls.path_style << "/>\n";
     o << "</g>\n";
   }
   o << "</svg>\n";
@@ -121,6 +129,7 @@ std::vector<std::pair<std::string, std::string>> layout_metadata(const PrintLayo
   return {{"faces", std::to_string(layout.faces.size())},
           {"cut-edges", std::to_string(layout.cut_edges)},
           {"tabs", std::to_string(layout.tabs.size())},
+          {"strips", std::to_string(layout.strips.size())},
           {"tabs-omitted", std::to_string(layout.omitted_tabs.size())},
           {"scale-mm-per-unit", num(layout.scale)},
           {"width-mm", num(layout.size.x)},

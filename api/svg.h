@@ -9,13 +9,15 @@
 namespace papernet {
 
 /// One SVG document for a drawing: width/height in mm, a viewBox in mm, and one <g> per layer
-/// with ids faces, tabs, cut, mountain, valley, labels, marks. Cut lines are solid, mountain
-/// folds dashed, valley folds dash-dotted. `metadata` (e.g. omitted tab counts) goes into a
-/// <metadata> element as data-* attributes of a <papernet> element.
+/// with ids faces, tabs, strips, cut, mountain, valley, labels, marks (strips: glue strips'
+/// outlines solid, their seams dotted, their labels). Cut lines are solid, mountain folds dashed,
+/// valley folds dash-dotted. `metadata` (e.g. omitted tab counts) goes into a <metadata> element as
+/// data-* attributes of a <papernet> element.
 std::string write_svg(const PageDrawing& drawing,
                       const std::vector<std::pair<std::string, std::string>>& metadata = {});
 
-/// Metadata every print output carries: faces, cut edges, tabs, omitted tabs, scale, pages.
+/// Metadata every print output carries: faces, cut edges, tabs, strips, omitted tabs, scale,
+/// pages.
 std::vector<std::pair<std::string, std::string>> layout_metadata(const PrintLayout& layout,
                                                                  int pages);
 

@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <numbers>
-#include <unordered_map>
 
 namespace papernet {
 
@@ -29,86 +27,90 @@ bool convex_overlap(std::span<const Vec2> a, std::span<const Vec2> b, double tol
   return !separated_by_edges_of(a) && !separated_by_edges_of(b);
 }
 
+PolygonGrid::PolygonGrid(double cell) : cell_(cell > 0 && std::isfinite(cell) ? cell : 1) {}
+
+template <class F>
+void PolygonGrid::for_cells(std::span<const Vec2> poly, F&& f) const {
+  double x0 = poly[0].x, x1 = x0, y0 = poly[0].y, y1 = y0;
+  for (Vec2 p : poly)
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  const auto i0 = static_cast<std::int64_t>(std::floor(x0 / cell_));
+  const auto i1 = static_cast<std::int64_t>(std::floor(x1 / cell_));
+  const auto j0 = static_cast<std::int64_t>(std::floor(y0 / cell_));
+  const auto j1 = static_cast<std::int64_t>(std::floor(y1 / cell_));
+  for (auto i = i0; i <= i1; ++i)
+    for (auto j = j0; j <= j1; ++j)
+      f((static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint32_t>(j));
+}
+
+void PolygonGrid::add(std::span<const Vec2> poly) {
+  const int id = static_cast<int>(polys_.size());
+  polys_.emplace_back(poly.begin(), poly.end());
+  for_cells(poly, [&](std::uint64_t key) { cells_[key].push_back(id); });
+}
+
+bool PolygonGrid::overlaps(std::span<const Vec2> poly, double tolerance) {
+  ++stamp_;
+  seen_.resize(polys_.size(), 0);
+  bool hit = false;
+  for_cells(poly, [&](std::uint64_t key) {
+    if (hit) return;
+    const auto it = cells_.find(key);
+    if (it == cells_.end()) return;
+    for (int id : it->second) {
+      if (seen_[id] == stamp_) continue;
+      seen_[id] = stamp_;
+      if (convex_overlap(poly, polys_[id], tolerance)) {
+        hit = true;
+        return;
+      }
+    }
+  });
+  return hit;
+}
+
 namespace {
 
-/// Uniform hash grid over polygon bounding boxes; polygons have 3 or 4 corners.
-class Grid {
- public:
-  explicit Grid(double cell) : cell_(cell) {}
-
-  int add(std::span<const Vec2> poly) {
-    const int id = static_cast<int>(polys_.size());
-    polys_.emplace_back(poly.begin(), poly.end());
-    for_cells(poly, [&](std::uint64_t key) { cells_[key].push_back(id); });
-    return id;
-  }
-
-  /// True when `poly` overlaps any stored polygon.
-  bool overlaps(std::span<const Vec2> poly, double tolerance) {
-    ++stamp_;
-    seen_.resize(polys_.size(), 0);
-    bool hit = false;
-    for_cells(poly, [&](std::uint64_t key) {
-      if (hit) return;
-      const auto it = cells_.find(key);
-      if (it == cells_.end()) return;
-      for (int id : it->second) {
-        if (seen_[id] == stamp_) continue;
-        seen_[id] = stamp_;
-        if (convex_overlap(poly, polys_[id], tolerance)) {
-          hit = true;
-          return;
-        }
-      }
-    });
-    return hit;
-  }
-
- private:
-  template <class F>
-  void for_cells(std::span<const Vec2> poly, F&& f) const {
-    double x0 = poly[0].x, x1 = x0, y0 = poly[0].y, y1 = y0;
-    for (Vec2 p : poly)
-      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y),
-      y1 = std::max(y1, p.y);
-    const auto i0 = static_cast<std::int64_t>(std::floor(x0 / cell_));
-    const auto i1 = static_cast<std::int64_t>(std::floor(x1 / cell_));
-    const auto j0 = static_cast<std::int64_t>(std::floor(y0 / cell_));
-    const auto j1 = static_cast<std::int64_t>(std::floor(y1 / cell_));
-    for (auto i = i0; i <= i1; ++i)
-      for (auto j = j0; j <= j1; ++j)
-        f((static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint32_t>(j));
-  }
-
-  double cell_;
-  std::vector<std::vector<Vec2>> polys_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-  std::vector<std::uint32_t> seen_;
-  std::uint32_t stamp_ = 0;
+/// A tab shape relative to its edge: the stretch [from, to] of the edge (fractions, measured
+/// from the side's first point) that the base covers, and the slant of each end.
+struct Shape {
+  double from, to;
+  double angle0, angle1;  ///< at the `from` end and at the `to` end, radians
 };
 
-/// The trapezoid on the outside of `side`, `height` tall with sides slanted by `angle`.
+/// The trapezoid of `shape` on the outside of `side`, `height` tall. The ends' insets shrink
+/// together so that the top keeps at least a tenth of the base.
 std::array<Vec2, 4> trapezoid(const std::vector<std::array<Vec2, 3>>& faces, EdgeSide side,
-                              double height, double angle, double from, double to) {
+                              const Shape& shape, double height) {
   const Vec2 e0 = faces[side.face][side.k], e1 = faces[side.face][(side.k + 1) % 3];
   const double full = norm(e1 - e0);
   const Vec2 d = (1 / full) * (e1 - e0), out{d.y, -d.x};  // the face is on the left of e0->e1
-  const Vec2 p0 = e0 + from * full * d, p1 = e0 + to * full * d;
-  const double len = (to - from) * full;
-  const double inset = std::min(height / std::tan(angle), 0.45 * len);
-  return {p1, p0, p0 + height * out + inset * d, p1 + height * out - inset * d};
+  const Vec2 p0 = e0 + shape.from * full * d, p1 = e0 + shape.to * full * d;
+  const double len = (shape.to - shape.from) * full;
+  double i0 = height / std::tan(shape.angle0), i1 = height / std::tan(shape.angle1);
+  if (i0 + i1 > 0.9 * len) {
+    const double s = 0.9 * len / (i0 + i1);
+    i0 *= s, i1 *= s;
+  }
+  return {p1, p0, p0 + height * out + i0 * d, p1 + height * out - i1 * d};
 }
 
-}  // namespace
+double area(const std::array<Vec2, 4>& t) {
+  return 0.5 * std::abs(cross(t[2] - t[0], t[3] - t[1]));
+}
 
-/// Tab shapes tried in turn: the stretch of the edge the base covers and the slant.
-struct Shape {
-  double from, to;
-  bool pointed;
-};
-constexpr Shape kShapes[] = {{0, 1, false},       {0, 1, true},        {0.2, 0.8, false},
-                             {0.05, 0.55, false}, {0.45, 0.95, false}, {0.3, 0.7, true},
-                             {0.05, 0.4, true},   {0.6, 0.95, true}};
+/// Stretches of the edge a tab's base may cover, best first.
+constexpr std::array<std::pair<double, double>, 9> kSpans = {{{0, 1},
+                                                              {0.1, 0.9},
+                                                              {0, 0.7},
+                                                              {0.3, 1},
+                                                              {0.2, 0.8},
+                                                              {0, 0.45},
+                                                              {0.55, 1},
+                                                              {0.3, 0.7},
+                                                              {0.05, 0.5}}};
+
+}  // namespace
 
 TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
                         const std::vector<NetEdge>& edges, const TabOptions& options) {
@@ -118,40 +120,61 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
   for (const auto& f : faces)
     for (int k = 0; k < 3; ++k) total += norm(f[(k + 1) % 3] - f[k]);
   const double mean_edge = total / (3.0 * static_cast<double>(faces.size()));
-  Grid grid(std::max(mean_edge, options.height) > 0 ? std::max(mean_edge, options.height) : 1);
+  PolygonGrid grid(std::max(mean_edge, options.height));
   for (const auto& f : faces) grid.add(f);
 
-  const double deg = std::numbers::pi / 180;
-  const double angles[] = {options.angle_deg * deg, 0.6 * options.angle_deg * deg};
-  const double scales[] = {1.0, 0.7, 0.45, 0.25};
+  const double deg = std::numbers::pi / 180, a = options.angle_deg * deg;
+  const double slants[] = {a, 0.4 * a};
+  std::vector<Shape> shapes;
+  for (const auto& [from, to] : kSpans)
+    for (double s0 : slants)
+      for (double s1 : slants) shapes.push_back({from, to, s0, s1});
+
   for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
     const NetEdge& edge = edges[e];
     if (edge.cut_index < 0) continue;
     const Vec2 p0 = faces[edge.a.face][edge.a.k], p1 = faces[edge.a.face][(edge.a.k + 1) % 3];
-    const double h0 = std::min(options.height, 0.5 * norm(p1 - p0));
-    bool placed = false;
-    for (double s : scales) {
-      for (const Shape& shape : kShapes) {
-        if (placed) break;
-        for (EdgeSide side : {edge.a, edge.b}) {
-          if (h0 <= 0 || s * h0 * (shape.to - shape.from) < options.min_height) continue;
-          // Along side b the edge runs the other way: mirror the span so both sides mean the
-          // same stretch of the edge.
-          const bool b = side.face == edge.b.face && side.k == edge.b.k;
-          const double from = b ? 1 - shape.to : shape.from, to = b ? 1 - shape.from : shape.to;
-          const auto t =
-              trapezoid(faces, side, s * h0 * (to - from), angles[shape.pointed], from, to);
-          if (grid.overlaps(t, options.tolerance)) continue;
-          grid.add(t);
-          result.tabs.push_back({e, side, t});
-          placed = true;
-          break;
-        }
-        if (placed) break;
-      }
-      if (placed) break;
+    const double len = norm(p1 - p0);
+    if (!(len > 0)) {
+      result.omitted.push_back(e);
+      continue;
     }
-    if (!placed) result.omitted.push_back(e);
+    const double lo = std::min(options.min_height, 0.5 * len);
+    const double hi = std::max(lo, std::min(options.height, 0.5 * len));
+    Tab best;
+    double best_area = 0;
+    for (EdgeSide side : {edge.a, edge.b}) {
+      // Along side b the edge runs the other way: mirror the span so both sides mean the same
+      // stretch of the edge.
+      const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
+      for (const Shape& s : shapes) {
+        const Shape shape = on_b ? Shape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
+        // The tallest tab this shape can be bounds what it can add: skip hopeless shapes.
+        if (area(trapezoid(faces, side, shape, hi)) <= best_area) continue;
+        if (lo > 0 && grid.overlaps(trapezoid(faces, side, shape, lo), options.tolerance)) continue;
+        double h = hi;
+        if (grid.overlaps(trapezoid(faces, side, shape, hi), options.tolerance)) {
+          double ok = lo, bad = hi;  // bisection: a lower tab of one shape lies inside a taller
+          for (int i = 0; i < 6; ++i) {
+            const double mid = 0.5 * (ok + bad);
+            (grid.overlaps(trapezoid(faces, side, shape, mid), options.tolerance) ? bad : ok) = mid;
+          }
+          h = ok;
+          if (!(h > 0)) continue;
+        }
+        const auto t = trapezoid(faces, side, shape, h);
+        if (const double ta = area(t); ta > best_area) best_area = ta, best = {e, side, t};
+      }
+      // A full-size tab over the whole edge cannot be beaten: leave side b alone.
+      if (best.edge >= 0 && best_area >= area(trapezoid(faces, side, shapes.front(), hi)) - 1e-12)
+        break;
+    }
+    if (best.edge < 0) {
+      result.omitted.push_back(e);
+      continue;
+    }
+    grid.add(best.corners);
+    result.tabs.push_back(best);
   }
   return result;
 }

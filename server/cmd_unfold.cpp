@@ -178,7 +178,8 @@ int unfold(int argc, char** argv) {
           std::cerr << "papernet unfold: wrote " << written << "\n";
         if (w.pages > 0)
           std::cerr << "papernet unfold: " << output << ": " << w.pages << " page(s), " << w.tabs
-                    << " glue tabs, " << w.tabs_omitted << " cut edges without a tab (no room)\n";
+                    << " glue tabs, " << w.strips << " glue strips, " << w.tabs_omitted
+                    << " cut edges without glue\n";
       } catch (const std::exception& e) {
         std::cerr << "papernet unfold: " << output << ": " << e.what() << "\n";
         return 1;

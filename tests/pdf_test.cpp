@@ -135,6 +135,55 @@ TEST(Pages, AWideNetThatFitsEitherWayRunsAlongThePortraitPage) {
   EXPECT_DOUBLE_EQ(layout.size.y, 150);
 }
 
+TEST(Pages, GlueStripsLandOnPagesAndTurnWithTheNet) {
+  // A strip far from the net, which would need a page of its own, moves onto the net's page;
+  // on real nets every strip prints whole on one page, whichever way the net is turned.
+  PrintLayout layout;
+  layout.faces = {{Vec2{0, 0}, Vec2{20, 0}, Vec2{0, 20}}};
+  layout.strips = {{-1, {Vec2{350, 520}, Vec2{370, 520}, Vec2{370, 532}, Vec2{350, 532}}, "7", 3}};
+  layout.size = {370, 540};
+  const PageLayout lone = paginate(layout, {});
+  ASSERT_EQ(lone.pages.size(), 1u);
+  for (Vec2 p : layout.strips[0].corners) {
+    EXPECT_TRUE(p.x >= lone.pages[0].lo.x && p.x <= lone.pages[0].hi.x) << p.x;
+    EXPECT_TRUE(p.y >= lone.pages[0].lo.y && p.y <= lone.pages[0].hi.y) << p.y;
+    EXPECT_FALSE(convex_overlap(layout.strips[0].corners, layout.faces[0], 0));
+  }
+  EXPECT_EQ(layout.strips[0].text, "7");
+  Mesh mesh;
+  for (auto& [name, m] : testing::test_data_meshes())
+    if (name == "sample.obj") mesh = std::move(m);
+  ASSERT_FALSE(mesh.faces.empty());
+  for (double size : {100.0, 400.0}) {
+    PrintOptions print;
+    print.size_mm = size;
+    print.tabs = TabMode::Strips;
+    PrintLayout net = layout_net(mesh, testing::bfs_net(mesh), print);
+    ASSERT_EQ(net.strips.size(), static_cast<std::size_t>(net.cut_edges));
+    const PageLayout pages = paginate(net, {});
+    int drawn = 0;
+    for (int i = 0; i < static_cast<int>(pages.pages.size()); ++i)
+      for (const Shape& s : draw_page(net, pages, i).shapes)
+        drawn += s.layer == Layer::Strips && s.closed;
+    EXPECT_GE(drawn, static_cast<int>(net.strips.size())) << size;
+    // Every strip prints whole on one page (strips are moved onto the net's pages for that).
+    for (const GlueStrip& strip : net.strips) {
+      bool whole = false;
+      for (const Page& page : pages.pages) {
+        bool inside = true;
+        for (Vec2 p : strip.corners)
+          inside = inside && p.x >= page.lo.x - 1e-9 && p.x <= page.hi.x + 1e-9 &&
+                   p.y >= page.lo.y - 1e-9 && p.y <= page.hi.y + 1e-9;
+        whole = whole || inside;
+      }
+      EXPECT_TRUE(whole) << size << ": strip " << strip.text << " is on no page whole";
+    }
+    if (size == 400) {
+      EXPECT_GT(pages.pages.size(), 1u);
+    }
+  }
+}
+
 TEST(Pdf, HasTheExpectedPageCountAndRenders) {
   const Mesh mesh = testing::octahedron(-0.4);
   for (double size : {60.0, 400.0}) {
@@ -152,7 +201,8 @@ TEST(Pdf, HasTheExpectedPageCountAndRenders) {
     const auto at = info.out.find("Pages:");
     ASSERT_NE(at, std::string::npos);
     EXPECT_EQ(std::stoi(info.out.substr(at + 6)), static_cast<int>(pages.pages.size()));
-    EXPECT_NE(info.out.find(std::to_string(layout.omitted_tabs.size()) + " tabs omitted"),
+    EXPECT_NE(info.out.find(std::to_string(layout.strips.size()) + " glue strips, " +
+                            std::to_string(layout.omitted_tabs.size()) + " tabs omitted"),
               std::string::npos)
         << info.out;
     if (size == 60) {

@@ -8,11 +8,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <regex>
 
 #include "api/print_layout.h"
 #include "api/tabs.h"
+#include "core/progressive.h"
 #include "core/unfolding.h"
 #include "tests/net_fixtures.h"
 
@@ -47,6 +49,20 @@ std::vector<Vec2> intersection(std::vector<Vec2> subject, std::vector<Vec2> clip
   return subject;
 }
 
+/// True when the bounding boxes of two polygons are apart by more than `gap`.
+bool boxes_apart(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double gap) {
+  auto box = [](const std::vector<Vec2>& p) {
+    Vec2 lo = p[0], hi = p[0];
+    for (Vec2 q : p)
+      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)},
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+    return std::pair{lo, hi};
+  };
+  const auto [alo, ahi] = box(a);
+  const auto [blo, bhi] = box(b);
+  return alo.x > bhi.x + gap || blo.x > ahi.x + gap || alo.y > bhi.y + gap || blo.y > ahi.y + gap;
+}
+
 double intersection_area(std::vector<Vec2> a, std::vector<Vec2> b) {
   const auto p = intersection(std::move(a), std::move(b));
   return p.size() < 3 ? 0 : std::abs(signed_area(p));
@@ -55,6 +71,7 @@ double intersection_area(std::vector<Vec2> a, std::vector<Vec2> b) {
 /// Mean thickness of the intersection (area / longest extent), in mm: how deep two shapes
 /// really overlap. Shapes that only touch give 0 up to rounding.
 double overlap_thickness(std::vector<Vec2> a, std::vector<Vec2> b) {
+  if (boxes_apart(a, b, 0)) return 0;
   const auto p = intersection(std::move(a), std::move(b));
   if (p.size() < 3) return 0;
   double extent = 0;
@@ -78,8 +95,9 @@ struct NamedNet {
 };
 
 /// Nets to check: breadth-first nets (overlapping, crowded) of the cube, octahedron,
-/// tetrahedron and every mesh of tests/data, and the Tabu Unfolder's overlap-free nets of the
-/// tests/data meshes. Built once.
+/// tetrahedron and every mesh of tests/data, the Tabu Unfolder's overlap-free nets (TU) of the
+/// tests/data meshes, and the progressive unfolder's (QQ, SEMP, SEQ) of those under 2000 faces
+/// (the Duck's take 10-30 s each). Built once.
 const std::vector<NamedNet>& all_nets() {
   static const std::vector<NamedNet> nets = [] {
     std::vector<NamedNet> out;
@@ -90,6 +108,19 @@ const std::vector<NamedNet>& all_nets() {
       options.time_limit_seconds = 30;
       out.push_back({name + " (TU)", mesh, unfold_tabu(mesh, options, quiet).net});
     }
+    for (const auto& [name, mesh] : meshes) {
+      if (mesh.faces.size() >= 2000) continue;
+      for (auto [strategy, tag] :
+           {std::pair{CollapseStrategy::QQ, " (QQ)"}, std::pair{CollapseStrategy::SEMP, " (SEMP)"},
+            std::pair{CollapseStrategy::SEQ, " (SEQ)"}}) {
+        Progress quiet;
+        ProgressiveOptions options;
+        options.strategy = strategy;
+        options.tabu.time_limit_seconds = 30;
+        ProgressiveResult r = unfold_progressive(mesh, options, quiet);
+        out.push_back({name + tag, std::move(r.mesh), std::move(r.net)});
+      }
+    }
     meshes.emplace_back("cube", testing::cube());
     meshes.emplace_back("octahedron", testing::octahedron());
     meshes.emplace_back("tetrahedron", testing::tetrahedron());
@@ -98,6 +129,24 @@ const std::vector<NamedNet>& all_nets() {
     return out;
   }();
   return nets;
+}
+
+/// The default print layout (200 mm, tabs auto) of every net of all_nets(), built once.
+const std::vector<PrintLayout>& all_layouts() {
+  static const std::vector<PrintLayout> layouts = [] {
+    std::vector<PrintLayout> out;
+    for (const auto& [name, mesh, net] : all_nets()) out.push_back(layout_net(mesh, net, {}));
+    return out;
+  }();
+  return layouts;
+}
+
+/// Height of a tab above its base.
+double tab_height(const Tab& t) {
+  const Vec2 e = t.corners[0] - t.corners[1];
+  return std::max(std::abs(cross(e, t.corners[2] - t.corners[1])),
+                  std::abs(cross(e, t.corners[3] - t.corners[1]))) /
+         norm(e);
 }
 
 /// Every cut side of the layout is drawn as cut (or as a tab's hinge) along its whole length.
@@ -134,39 +183,68 @@ TEST(Tabs, ConvexOverlapIgnoresTouchingAndSeesCrossing) {
   EXPECT_NEAR(intersection_area(a, b), 0, 1e-12);
 }
 
-TEST(Tabs, NeverOverlapFacesOrTabsOneTabPerCutEdgeOrCountedOutlineClosed) {
-  ASSERT_GE(all_nets().size(), 19u);
-  for (const auto& [name, mesh, net] : all_nets()) {
-    PrintOptions options;
-    options.size_mm = 200;
-    const PrintLayout layout = layout_net(mesh, net, options);
+/// The rectangle of a strip grown by `d` on every side.
+std::vector<Vec2> grown(const GlueStrip& strip, double d) {
+  const auto& c = strip.corners;
+  const Vec2 u = (1 / norm(c[1] - c[0])) * (c[1] - c[0]),
+             v = (1 / norm(c[3] - c[0])) * (c[3] - c[0]);
+  return {c[0] - d * u - d * v, c[1] + d * u - d * v, c[2] + d * u + d * v, c[3] - d * u + d * v};
+}
+
+TEST(Tabs, EveryCutEdgeGetsOneTabOrStripAndNothingOverlaps) {
+  ASSERT_GE(all_nets().size(), 40u);
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& layout = all_layouts()[n];
     expect_cut_sides_covered(layout, name);
+    EXPECT_TRUE(layout.omitted_tabs.empty())
+        << name << ": " << layout.omitted_tabs.size() << " cut edges without glue";
     // Overlaps thinner than 10 nm are touching (the placer's tolerance is a 1 nm depth).
     const double tol = 1e-5;
-    for (std::size_t t = 0; t < layout.tabs.size(); ++t) {
-      const Tab& tab = layout.tabs[t];
-      const std::vector<Vec2> tp(tab.corners.begin(), tab.corners.end());
-      EXPECT_GT(signed_area(tp), 0) << name << " tab " << t;
-      for (std::size_t f = 0; f < layout.faces.size(); ++f) {
-        const auto& tri = layout.faces[f];
-        ASSERT_LE(overlap_thickness(tp, {tri.begin(), tri.end()}), tol)
+    std::vector<std::vector<Vec2>> faces, tabs, strips;
+    for (const auto& f : layout.faces) faces.push_back({f.begin(), f.end()});
+    for (const Tab& t : layout.tabs) tabs.push_back({t.corners.begin(), t.corners.end()});
+    for (const GlueStrip& t : layout.strips) strips.push_back({t.corners.begin(), t.corners.end()});
+    for (std::size_t t = 0; t < tabs.size(); ++t) {
+      EXPECT_GT(signed_area(tabs[t]), 0) << name << " tab " << t;
+      for (std::size_t f = 0; f < faces.size(); ++f)
+        ASSERT_LE(overlap_thickness(tabs[t], faces[f]), tol)
             << name << ": tab " << t << " overlaps face " << f;
-      }
-      for (std::size_t u = t + 1; u < layout.tabs.size(); ++u) {
-        const auto& o = layout.tabs[u].corners;
-        ASSERT_LE(overlap_thickness(tp, {o.begin(), o.end()}), tol)
+      for (std::size_t u = t + 1; u < tabs.size(); ++u)
+        ASSERT_LE(overlap_thickness(tabs[t], tabs[u]), tol)
             << name << ": tabs " << t << " and " << u << " overlap";
+    }
+    // Strips keep a millimetre of free paper around them (0.5 mm checked) so they can be cut.
+    for (std::size_t t = 0; t < strips.size(); ++t) {
+      EXPECT_GT(signed_area(strips[t]), 0) << name << " strip " << t;
+      const std::vector<Vec2> around = grown(layout.strips[t], 0.5);
+      for (std::size_t f = 0; f < faces.size(); ++f)
+        ASSERT_LE(overlap_thickness(around, faces[f]), tol)
+            << name << ": strip " << t << " overlaps (or touches) face " << f;
+      for (std::size_t u = 0; u < tabs.size(); ++u)
+        ASSERT_LE(overlap_thickness(around, tabs[u]), tol)
+            << name << ": strip " << t << " overlaps (or touches) tab " << u;
+      for (std::size_t u = t + 1; u < strips.size(); ++u)
+        ASSERT_LE(overlap_thickness(around, strips[u]), tol)
+            << name << ": strips " << t << " and " << u << " overlap";
+      for (Vec2 p : strips[t]) {
+        EXPECT_GE(std::min(p.x, p.y), -1e-9) << name << ": strip outside the layout";
+        EXPECT_LE(p.x, layout.size.x + 1e-9) << name;
+        EXPECT_LE(p.y, layout.size.y + 1e-9) << name;
       }
     }
-    std::map<int, int> tabs_per_edge;
+    std::map<int, int> glue_per_edge;
+    double lowest = std::numeric_limits<double>::infinity();
+    std::size_t low = 0;
     for (const Tab& tab : layout.tabs) {
-      ++tabs_per_edge[tab.edge];
+      ++glue_per_edge[tab.edge];
       const NetEdge& e = layout.edges[tab.edge];
       ASSERT_GE(e.cut_index, 0) << name;
       const bool on_a = tab.side.face == e.a.face && tab.side.k == e.a.k;
       const bool on_b = tab.side.face == e.b.face && tab.side.k == e.b.k;
       EXPECT_TRUE(on_a || on_b) << name;
-      // The tab's base lies on the side it hangs from, and covers at least a third of it.
+      // The tab's base lies on the side it hangs from and covers at least 40 % of it; it is at
+      // least 2 mm tall, or half the edge on edges shorter than 4 mm, and at most 6 mm.
       const auto& tri = layout.faces[tab.side.face];
       const Vec2 e0 = tri[tab.side.k], e1 = tri[(tab.side.k + 1) % 3];
       const double len = norm(e1 - e0);
@@ -175,16 +253,43 @@ TEST(Tabs, NeverOverlapFacesOrTabsOneTabPerCutEdgeOrCountedOutlineClosed) {
         EXPECT_GE(dot(c - e0, e1 - e0) / len, -1e-9) << name;
         EXPECT_LE(dot(c - e0, e1 - e0) / len, len + 1e-9) << name;
       }
-      EXPECT_GE(norm(tab.corners[0] - tab.corners[1]), len / 3) << name;
+      EXPECT_GE(norm(tab.corners[0] - tab.corners[1]), 0.4 * len - 1e-9) << name;
+      const double h = tab_height(tab);
+      EXPECT_GE(h, std::min(2.0, 0.5 * len) - 1e-9) << name << ": tab too low to print";
+      EXPECT_LE(h, std::max(std::min(6.0, 0.5 * len), std::min(2.0, 0.5 * len)) + 1e-9) << name;
+      lowest = std::min(lowest, h);
+      low += h < 2;
     }
-    for (int e : layout.omitted_tabs) ++tabs_per_edge[e];
+    std::map<int, const Label*> label_of;
+    for (const Label& l : layout.labels) label_of[l.edge] = &l;
+    for (const GlueStrip& strip : layout.strips) {
+      ++glue_per_edge[strip.edge];
+      const NetEdge& e = layout.edges[strip.edge];
+      ASSERT_GE(e.cut_index, 0) << name;
+      // As long as its edge, at least 4 mm wide, carrying the edge's label.
+      const auto& tri = layout.faces[e.a.face];
+      const double len = norm(tri[(e.a.k + 1) % 3] - tri[e.a.k]);
+      EXPECT_GE(norm(strip.corners[1] - strip.corners[0]), len - 1e-9) << name;
+      EXPECT_GE(norm(strip.corners[3] - strip.corners[0]), 4 - 1e-9) << name;
+      EXPECT_NEAR(
+          cross(strip.corners[1] - strip.corners[0], strip.corners[3] - strip.corners[0]),
+          norm(strip.corners[1] - strip.corners[0]) * norm(strip.corners[3] - strip.corners[0]),
+          1e-6)
+          << name << ": a strip is a rectangle";
+      ASSERT_TRUE(label_of.count(strip.edge)) << name;
+      EXPECT_EQ(strip.text, label_of[strip.edge]->text) << name;
+      EXPECT_GT(strip.text_size, 0) << name;
+    }
     int cut_edges = 0;
     for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
       const NetEdge& edge = layout.edges[e];
-      if (edge.cut_index < 0) continue;
+      if (edge.cut_index < 0) {
+        EXPECT_EQ(glue_per_edge.count(e), 0u) << name << ": glue on a fold or boundary";
+        continue;
+      }
       ++cut_edges;
-      EXPECT_EQ(tabs_per_edge[e], 1) << name << " edge " << e;
-      // A cut edge (tabbed or omitted) never has its two sides on each other: those are folds.
+      EXPECT_EQ(glue_per_edge[e], 1) << name << ": cut edge " << e << " needs one tab or strip";
+      // A cut edge never has its two sides on each other: those are folds.
       const auto& fa = layout.faces[edge.a.face];
       const auto& fb = layout.faces[edge.b.face];
       const Vec2 a0 = fa[edge.a.k], a1 = fa[(edge.a.k + 1) % 3];
@@ -193,46 +298,63 @@ TEST(Tabs, NeverOverlapFacesOrTabsOneTabPerCutEdgeOrCountedOutlineClosed) {
           << name << ": cut edge " << e << " has coincident sides";
     }
     EXPECT_EQ(cut_edges, layout.cut_edges);
-    EXPECT_EQ(layout.tabs.size() + layout.omitted_tabs.size(), std::size_t(cut_edges)) << name;
-    // Faces: F - 1 tree edges, so E - F + 1 cut edges (closed meshes: all interior).
+    EXPECT_EQ(layout.tabs.size() + layout.strips.size(), std::size_t(cut_edges)) << name;
     EXPECT_GT(cut_edges, 0) << name;
-    std::printf("%s: %zu faces, %d cut edges, %zu tabs, %zu omitted\n", name.c_str(),
-                layout.faces.size(), cut_edges, layout.tabs.size(), layout.omitted_tabs.size());
+    std::printf(
+        "%s: %zu faces, %d cut edges, %zu tabs (lowest %.2f mm, %zu under 2 mm), "
+        "%zu strips, %zu omitted\n",
+        name.c_str(), layout.faces.size(), cut_edges, layout.tabs.size(),
+        layout.tabs.empty() ? 0.0 : lowest, low, layout.strips.size(), layout.omitted_tabs.size());
   }
 }
 
-TEST(Tabs, MinimumHeightDropsOnlyLowerTabs) {
+TEST(Tabs, ModesAndMinimumHeight) {
   const auto& nets = all_nets();
   const auto it = std::find_if(nets.begin(), nets.end(),
                                [](const NamedNet& n) { return n.name == "sample.obj (TU)"; });
   ASSERT_NE(it, nets.end());
   const auto& [name, mesh, net] = *it;
+  const PrintLayout& any = all_layouts()[static_cast<std::size_t>(it - nets.begin())];
+  // This dense net needs both: tabs where there is room, strips where there is none.
+  EXPECT_GT(any.tabs.size(), 0u) << name;
+  EXPECT_GT(any.strips.size(), 0u) << name;
   PrintOptions options;
-  const PrintLayout any = layout_net(mesh, net, options);
-  options.min_tab_height_mm = 2;
+  options.min_tab_height_mm = 3;
   const PrintLayout tall = layout_net(mesh, net, options);
-  auto height = [](const Tab& t) {
-    const Vec2 e = t.corners[0] - t.corners[1];
-    return std::abs(cross(e, t.corners[2] - t.corners[1])) / norm(e);
-  };
-  std::size_t low = 0;
-  for (const Tab& t : any.tabs) low += height(t) < 2 - 1e-9;
-  for (const Tab& t : tall.tabs) EXPECT_GE(height(t), 2 - 1e-9) << name;
-  EXPECT_EQ(tall.tabs.size() + tall.omitted_tabs.size(), any.tabs.size() + any.omitted_tabs.size());
-  // This dense net has tabs lower than 2 mm, and the floor leaves some of their edges bare.
-  EXPECT_GT(low, 0u) << name;
-  EXPECT_GT(tall.omitted_tabs.size(), any.omitted_tabs.size()) << name;
-  std::printf("%s: %zu of %zu tabs lower than 2 mm; omitted %zu, with a 2 mm floor %zu\n",
-              name.c_str(), low, any.tabs.size(), any.omitted_tabs.size(),
-              tall.omitted_tabs.size());
+  for (const Tab& t : tall.tabs) {
+    const double len = norm(t.corners[0] - t.corners[1]);  // base: at most the edge
+    EXPECT_GE(tab_height(t), std::min(3.0, 0.5 * len) - 1e-9) << name;
+  }
+  EXPECT_TRUE(tall.omitted_tabs.empty());
+  EXPECT_EQ(tall.tabs.size() + tall.strips.size(), static_cast<std::size_t>(tall.cut_edges));
+  EXPECT_GT(tall.strips.size(), any.strips.size()) << name;
+
+  options = {};
+  options.tabs = TabMode::Strips;
+  const PrintLayout strips = layout_net(mesh, net, options);
+  EXPECT_TRUE(strips.tabs.empty());
+  EXPECT_EQ(strips.strips.size(), static_cast<std::size_t>(strips.cut_edges));
+  options.tabs = TabMode::None;
+  const PrintLayout none = layout_net(mesh, net, options);
+  EXPECT_TRUE(none.tabs.empty() && none.strips.empty());
+  EXPECT_EQ(none.omitted_tabs.size(), static_cast<std::size_t>(none.cut_edges));
+  options.tabs = TabMode::Auto;
+  options.tab_height_mm = 0;  // the old way to switch tabs off
+  EXPECT_EQ(layout_net(mesh, net, options).omitted_tabs.size(),
+            static_cast<std::size_t>(none.cut_edges));
+
+  EXPECT_EQ(parse_tab_mode("strips"), TabMode::Strips);
+  EXPECT_EQ(tab_mode_name(TabMode::None), "none");
+  EXPECT_THROW(parse_tab_mode("some"), std::invalid_argument);
   PrintOptions bad;
   bad.min_tab_height_mm = -1;
   EXPECT_NE(bad.validate(), "");
 }
 
 TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
-  for (const auto& [name, mesh, net] : all_nets()) {
-    const PrintLayout layout = layout_net(mesh, net, {});
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& layout = all_layouts()[n];
     std::map<int, std::vector<const Label*>> by_edge;
     for (const Label& l : layout.labels) by_edge[l.edge].push_back(&l);
     EXPECT_EQ(static_cast<int>(by_edge.size()), layout.cut_edges) << name;
@@ -330,7 +452,7 @@ TEST(Svg, HasLayersTabsAndLabelsAndParsesAndRenders) {
   const std::string svg = write_net_svg(layout, 5);
   EXPECT_NE(svg.find("viewBox=\"0 0 "), std::string::npos);
   EXPECT_NE(svg.find("mm\" height=\""), std::string::npos);
-  for (const char* id : {"faces", "tabs", "cut", "mountain", "valley", "labels"})
+  for (const char* id : {"faces", "tabs", "strips", "cut", "mountain", "valley", "labels"})
     EXPECT_NE(svg.find(std::string("<g id=\"") + id + "\""), std::string::npos) << id;
   EXPECT_EQ(count(group(svg, "tabs"), "<polygon "), static_cast<int>(layout.tabs.size()));
   EXPECT_EQ(count(group(svg, "labels"), "<text "), 2 * layout.cut_edges);
@@ -340,6 +462,20 @@ TEST(Svg, HasLayersTabsAndLabelsAndParsesAndRenders) {
   EXPECT_EQ(group(svg, "cut").find("dasharray"), std::string::npos);
   EXPECT_NE(svg.find("data-tabs-omitted=\"" + std::to_string(layout.omitted_tabs.size())),
             std::string::npos);
+  // With strips only: one outline, a seam and the edge's label twice per strip.
+  PrintOptions strip_options;
+  strip_options.tabs = TabMode::Strips;
+  const PrintLayout stripped = layout_net(mesh, testing::bfs_net(mesh), strip_options);
+  ASSERT_GT(stripped.strips.size(), 0u);
+  const std::string strip_svg = write_net_svg(stripped, 5);
+  const std::string strips = group(strip_svg, "strips");
+  EXPECT_EQ(count(strips, "<polygon "), static_cast<int>(stripped.strips.size()));
+  EXPECT_EQ(count(strips, "<text "), 2 * static_cast<int>(stripped.strips.size()));
+  EXPECT_EQ(count(group(strip_svg, "tabs"), "<polygon "), 0);
+  EXPECT_NE(strip_svg.find("data-strips=\"" + std::to_string(stripped.strips.size())),
+            std::string::npos);
+  for (const GlueStrip& st : stripped.strips)
+    EXPECT_NE(strips.find(">" + st.text + "</text>"), std::string::npos) << st.text;
 
   const std::string path = temp_path("net.svg"), png = temp_path("net.png");
   write(path, svg);
