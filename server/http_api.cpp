@@ -56,20 +56,6 @@ JobView find_job(JobService& service, const httplib::Request& req) {
   return *view;
 }
 
-UploadRequest upload_of(const httplib::Request& req) {
-  UploadRequest up;
-  up.content_type = req.get_header_value("Content-Type");
-  up.query = {req.params.begin(), req.params.end()};
-  up.multipart = req.is_multipart_form_data();
-  if (up.multipart) {
-    for (const auto& [name, part] : req.files)
-      up.parts.push_back({part.name, part.filename, part.content_type, part.content});
-  } else {
-    up.body = req.body;
-  }
-  return up;
-}
-
 struct Api {
   Api(JobService& s, const ServerConfig& c, HttpMetrics& m) : service(s), config(c), metrics(m) {}
   JobService& service;
@@ -81,7 +67,7 @@ struct Api {
     OptionsLimits limits;
     limits.max_time_limit = config.max_job_time_limit;
     limits.max_target_faces = config.max_faces;
-    ParsedUpload upload = parse_upload(upload_of(req), limits);
+    ParsedUpload upload = parse_upload(upload_request_of(req), limits);
     const JobRecord job = service.submit(std::move(upload.input), std::move(upload.options));
     auto view = service.view(job.id);
     res.set_header("Location", "/v1/jobs/" + job.id);
