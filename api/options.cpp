@@ -10,13 +10,43 @@ namespace {
 
 using nlohmann::json;
 
+// An options document is a flat object of a dozen scalars. Bigger or deeper ones are refused
+// before the DOM grows: nesting is otherwise unbounded, and printing a deeply nested value in a
+// message recursed until the stack ran out (docs/reliability.md).
+constexpr std::size_t kMaxShownValue = 80;
+
+/// The deepest nesting of arrays and objects in JSON text (brackets in strings do not count).
+/// A scan rather than nlohmann's parse callback, whose DOM builder is quadratic in siblings.
+int json_depth(std::string_view text) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 std::string upper(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::toupper(c); });
   return s;
 }
 
 [[noreturn]] void bad_value(const std::string& name, const json& value, const std::string& want) {
-  const std::string shown = value.is_string() ? value.get<std::string>() : value.dump();
+  std::string shown = value.is_string() ? value.get<std::string>() : value.dump();
+  if (shown.size() > kMaxShownValue) shown = shown.substr(0, kMaxShownValue) + "...";
   throw OptionsError("invalid_option_value", name,
                      "option '" + name + "': '" + shown + "' is not " + want);
 }
@@ -182,24 +212,15 @@ JobOptions parse_options_query(const std::multimap<std::string, std::string>& pa
 }
 
 JobOptions parse_options_json(std::string_view text, const OptionsLimits& limits) {
-  // Options are a flat object of a dozen values: anything long or nested is refused while
-  // parsing, before a deep or huge document is built.
   if (text.size() > kMaxOptionsJsonBytes)
     throw OptionsError("malformed_options", "",
-                       "the options part has " + std::to_string(text.size()) +
-                           " bytes, more than " + std::to_string(kMaxOptionsJsonBytes));
-  bool too_deep = false;
-  const json doc = json::parse(
-      text,
-      [&too_deep](int depth, json::parse_event_t, json&) {
-        if (depth > kMaxOptionsJsonDepth) too_deep = true;
-        return !too_deep;
-      },
-      /*allow_exceptions=*/false);
-  if (too_deep)
+                       "the options part has " + std::to_string(text.size()) + " bytes; at most " +
+                           std::to_string(kMaxOptionsJsonBytes) + " are accepted");
+  if (json_depth(text) > kMaxOptionsJsonDepth)
     throw OptionsError(
         "malformed_options", "",
         "the options part nests deeper than " + std::to_string(kMaxOptionsJsonDepth) + " levels");
+  const json doc = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded())
     throw OptionsError("malformed_options", "", "the options part is not valid JSON");
   if (!doc.is_object())

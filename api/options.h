@@ -69,7 +69,7 @@ JobOptions parse_options_query(const std::multimap<std::string, std::string>& pa
 
 /// The options part's limits: a flat object needs neither.
 inline constexpr std::size_t kMaxOptionsJsonBytes = 64 << 10;
-inline constexpr int kMaxOptionsJsonDepth = 4;
+inline constexpr int kMaxOptionsJsonDepth = 16;
 
 /// Options from a JSON object (the `options` part of a multipart upload). Longer or deeper
 /// documents than the limits above are refused (malformed_options) before they are built.

@@ -267,19 +267,27 @@ struct Collector {
     }
   }
 
-  void node(int index, const Matrix& parent, std::unordered_set<int>& seen) {
-    if (index < 0 || std::size_t(index) >= model.nodes.size())
-      throw IOException("gltf: node " + std::to_string(index) + " does not exist");
-    if (!seen.insert(index).second) return;  // glTF forbids cycles and shared nodes
-    const tinygltf::Node& n = model.nodes[index];
-    const Matrix world = multiply(parent, local_matrix(n));
-    if (n.mesh >= 0) {
-      if (std::size_t(n.mesh) >= model.meshes.size())
-        throw IOException("gltf: mesh " + std::to_string(n.mesh) + " does not exist");
-      for (std::size_t p = 0; p < model.meshes[n.mesh].primitives.size(); ++p)
-        primitive(n.mesh, int(p), world);
+  /// Every node under `root`, depth first in file order. A loop with its own stack: a hostile
+  /// file chains hundreds of thousands of nodes, which recursion would follow off the stack.
+  void nodes(int root, std::unordered_set<int>& seen) {
+    std::vector<std::pair<int, Matrix>> stack{{root, kIdentity}};
+    while (!stack.empty()) {
+      const auto [index, parent] = stack.back();
+      stack.pop_back();
+      if (index < 0 || std::size_t(index) >= model.nodes.size())
+        throw IOException("gltf: node " + std::to_string(index) + " does not exist");
+      if (!seen.insert(index).second) continue;  // glTF forbids cycles and shared nodes
+      const tinygltf::Node& n = model.nodes[index];
+      const Matrix world = multiply(parent, local_matrix(n));
+      if (n.mesh >= 0) {
+        if (std::size_t(n.mesh) >= model.meshes.size())
+          throw IOException("gltf: mesh " + std::to_string(n.mesh) + " does not exist");
+        for (std::size_t p = 0; p < model.meshes[n.mesh].primitives.size(); ++p)
+          primitive(n.mesh, int(p), world);
+      }
+      for (auto child = n.children.rbegin(); child != n.children.rend(); ++child)
+        stack.emplace_back(*child, world);
     }
-    for (int child : n.children) node(child, world, seen);
   }
 };
 
@@ -375,7 +383,7 @@ RawMesh read_gltf(std::string_view bytes, bool binary, const LoadOptions& option
         model.defaultScene >= 0 && std::size_t(model.defaultScene) < model.scenes.size()
             ? model.defaultScene
             : 0;
-    for (int root : model.scenes[scene].nodes) c.node(root, kIdentity, seen);
+    for (int root : model.scenes[scene].nodes) c.nodes(root, seen);
   } else {
     for (std::size_t m = 0; m < model.meshes.size(); ++m)
       for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p)

@@ -242,7 +242,8 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
     }
     if (is_vertex && (ix < 0 || iy < 0 || iz < 0))
       throw IOException("ply: the vertex element lacks x, y or z");
-    if (is_vertex) check_vertices(e.count, options, "ply header");
+    // Summed over elements: a file may declare "vertex" more than once.
+    if (is_vertex) check_vertices(out.vertices.size() + e.count, options, "ply header");
     if (is_vertex) out.vertices.reserve(e.count);
     if (is_face) check_declared_faces(e.count, options, "ply header");
     for (std::uint64_t r = 0; r < e.count; ++r) {
@@ -256,8 +257,11 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
           if (int(k) == iz) v.z = value;
           continue;
         }
+        // Each listed value takes room in the data that is left: a longer list is refused
+        // before the face's index vector is sized for it.
         const double n = in.read(p.count_type);
-        if (!(n >= 0) || n > double(in.remaining()))
+        const std::size_t value_room = encoding == 0 ? 2 : type_size(p.type);
+        if (!(n >= 0) || n > double((in.remaining() + 1) / value_room))
           throw IOException("ply: bad list length in element '" + e.name + "'");
         if (int(k) == ilist) poly.assign(static_cast<std::size_t>(n), 0);
         for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {

@@ -17,6 +17,9 @@ fi
 # Tools the tests call: SVG rendering and XML checking, PDF inspection; curl for the curl
 # session; Chromium for the browser test of the web demo (driven by playwright-core from npm).
 test_tools=(librsvg2-bin poppler-utils libxml2-utils curl chromium)
+# clang with its sanitizer and libFuzzer runtimes: the ASan/UBSan/TSan builds and fuzz targets
+# of `make test` (docs/reliability.md).
+test_tools+=(clang libclang-rt-14-dev)
 
 case "${1:-all}" in
   runtime) wanted=("${runtime[@]}") ;;

@@ -1,5 +1,7 @@
 #include "server/upload.h"
 
+#include <httplib.h>
+
 #include <algorithm>
 #include <cctype>
 
@@ -83,6 +85,20 @@ std::string media_type_of(MeshFormat format) {
       break;
   }
   return "application/octet-stream";
+}
+
+UploadRequest upload_request_of(const httplib::Request& req) {
+  UploadRequest up;
+  up.content_type = req.get_header_value("Content-Type");
+  up.query = {req.params.begin(), req.params.end()};
+  up.multipart = req.is_multipart_form_data();
+  if (up.multipart) {
+    for (const auto& [name, part] : req.files)
+      up.parts.push_back({part.name, part.filename, part.content_type, part.content});
+  } else {
+    up.body = req.body;
+  }
+  return up;
 }
 
 ParsedUpload parse_upload(UploadRequest request, const OptionsLimits& limits) {

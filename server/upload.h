@@ -8,6 +8,10 @@
 #include "api/options.h"
 #include "server/job.h"
 
+namespace httplib {
+struct Request;
+}
+
 namespace papernet::server {
 
 /// One part of a multipart/form-data upload.
@@ -32,6 +36,12 @@ struct ParsedUpload {
   JobInput input;
   JobOptions options;
 };
+
+/// The parts of a request parse_upload() looks at, taken from an HTTP request that httplib has
+/// read whole (and, for multipart/form-data, split into parts). The route itself streams the
+/// body through a bounded reader instead (http_api.cpp); this buffered form serves the upload
+/// fuzz target, which drives httplib's own request and multipart parsing from memory.
+UploadRequest upload_request_of(const httplib::Request& req);
 
 /// Turns a request into a job's input and options: format from the `format` query parameter,
 /// the part's Content-Type or file name, the request's Content-Type, or else the content

@@ -105,6 +105,21 @@ TEST(LoadGltf, MatrixOfAParentNodeAndMirrorKeepsFacesOutward) {
   EXPECT_GT(face_normal(m.mesh, 1).z, 0);
 }
 
+// Regressions (docs/reliability.md): the node hierarchy was walked by recursion, so a chain of
+// 50,000 nodes (a 1 MB file) overflowed the stack; and the JSON pre-pass (nlohmann's parse
+// callback) was quadratic in the length of an array of objects, so parsing it took minutes.
+TEST(LoadGltf, LongNodeChainsLoadWithoutRecursion) {
+  json g = square_gltf(data_uri());
+  const int depth = 50'000;
+  json nodes = json::array();
+  for (int i = 0; i + 1 < depth; ++i) nodes.push_back({{"children", {i + 1}}});
+  nodes.push_back({{"mesh", 0}, {"translation", {0, 0, 1}}});
+  g["nodes"] = nodes;
+  const LoadedMesh m = load_mesh(g.dump(), MeshFormat::Gltf);
+  ASSERT_EQ(m.mesh.faces.size(), 2u);
+  EXPECT_EQ(m.mesh.vertices[0].z, 1.0);
+}
+
 TEST(LoadGltf, ExternalBufferComesOnlyFromTheSuppliedFiles) {
   const std::string text = square_gltf("square.bin").dump();
   LoadOptions with;

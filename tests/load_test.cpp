@@ -269,6 +269,26 @@ std::string varint(std::uint32_t v) {
   return s;
 }
 
+// Regressions (docs/reliability.md): the vertex limit was checked per "vertex" element, so a PLY
+// declaring the element twice read twice the limit; a face list was sized from its declared
+// length checked against bytes rather than values (8 bytes of index per byte of file).
+TEST(LoadLimits, PlyRepeatedVertexElementsAndLongListsAreBounded) {
+  std::string twice = binary_ply(false);
+  const std::string vertex_element =
+      "element vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty uchar "
+      "red\n";
+  twice.insert(twice.find("element face"), vertex_element);
+  const std::size_t body = twice.find("end_header\n") + 11;
+  twice.insert(body, twice.substr(body, 4 * 13));  // the second element's four vertices
+  LoadOptions six;
+  six.max_vertices = 6;
+  EXPECT_NE(message_of(twice, MeshFormat::Ply, six).find("limit of 6"), std::string::npos);
+  std::string long_list = binary_ply(false);
+  long_list[long_list.find("end_header\n") + 11 + 4 * 13] = 40;  // 40 ints, 51 bytes left
+  EXPECT_NE(message_of(long_list, MeshFormat::Ply).find("bad list length"), std::string::npos)
+      << message_of(long_list, MeshFormat::Ply);
+}
+
 TEST(LoadLimits, DracoCountsAreCheckedBeforeDecoding) {
   // Edgebreaker: traversal type, vertices, faces, attribute data, symbols, split symbols.
   const std::string edgebreaker = draco_header(1, 1) + '\0' + varint(3) + varint(1u << 30) + '\0' +

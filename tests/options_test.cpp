@@ -137,6 +137,33 @@ TEST(OptionsTest, MalformedJsonIsReported) {
   EXPECT_EQ(error_code([] { parse_options_json("[1,2]"); }), "malformed_options");
 }
 
+// Regression (docs/reliability.md): a value nested 200,000 deep crashed the parser's caller by
+// recursion (stack overflow while printing it in the message); oversized documents are refused
+// before they are parsed.
+TEST(OptionsTest, DeepOrHugeDocumentsAreRefusedWithAMessage) {
+  const std::string deep =
+      "{\"seed\": " + std::string(200'000, '[') + std::string(200'000, ']') + "}";
+  EXPECT_EQ(error_code([&] { parse_options_json(deep); }), "malformed_options");
+  const std::string nested = "{\"seed\": " + std::string(8, '[') + std::string(8, ']') + "}";
+  try {
+    parse_options_json(nested);
+    ADD_FAILURE() << "a nested array was accepted as a seed";
+  } catch (const OptionsError& e) {
+    EXPECT_EQ(e.code(), "invalid_option_value");
+    EXPECT_LT(std::string(e.what()).size(), 200u) << e.what();
+  }
+  const std::string huge = "{\"strategy\": \"" + std::string(100'000, 'x') + "\"}";
+  EXPECT_EQ(error_code([&] { parse_options_json(huge); }), "malformed_options");
+  const std::string long_value = "{\"strategy\": \"" + std::string(10'000, 'x') + "\"}";
+  try {
+    parse_options_json(long_value);
+    ADD_FAILURE() << "a 10,000-letter strategy was accepted";
+  } catch (const OptionsError& e) {
+    EXPECT_EQ(e.code(), "invalid_option_value");
+    EXPECT_LT(std::string(e.what()).size(), 200u);
+  }
+}
+
 TEST(OptionsTest, CanonicalJsonRoundTrips) {
   const JobOptions o = parse_options_query({{"strategy", "SEQ"}, {"seed", "9"}, {"scale", "3"}});
   const nlohmann::json doc = options_to_json(o);

@@ -1,0 +1,38 @@
+#include "fuzz/fuzz_pipeline.h"
+
+#include <cstdlib>
+#include <cstring>
+
+#include "core/errors.h"
+#include "core/validate.h"
+#include "server/pipeline_runner.h"
+
+namespace papernet::fuzz {
+
+void load_and_validate(std::string_view bytes, MeshFormat format,
+                       const std::map<std::string, std::string>& external_files) {
+  const server::PipelineLimits limits;
+  LoadOptions options;
+  options.max_bytes = limits.max_bytes;
+  options.max_faces = limits.max_faces * 4 + 16;
+  options.external_files = external_files;
+  LoadedMesh loaded;
+  try {
+    loaded = load_mesh(bytes, format, options);
+  } catch (const IOException& e) {
+    if (std::strlen(e.what()) == 0) std::abort();  // a refusal must name the fault
+    return;
+  }
+  // validate()'s precondition, which load_mesh promises.
+  for (const auto& f : loaded.mesh.faces)
+    for (const int v : f)
+      if (v < 0 || static_cast<std::size_t>(v) >= loaded.mesh.vertices.size()) std::abort();
+  for (const bool keep_largest : {false, true}) {
+    ValidateOptions validate_options;
+    validate_options.keep_largest_component = keep_largest;
+    const ValidationReport report = validate(loaded, validate_options);
+    if (!report.unfoldable() && report.reason().empty()) std::abort();
+  }
+}
+
+}  // namespace papernet::fuzz
