@@ -17,29 +17,6 @@ std::string num(double v) {
   return s == "-0" ? "0" : s;
 }
 
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 struct LayerStyle {
   Layer layer;
   const char* id;
@@ -76,6 +53,29 @@ constexpr LayerStyle kLayers[] = {
 
 }  // namespace
 
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
 std::string write_svg(const PageDrawing& d,
                       const std::vector<std::pair<std::string, std::string>>& metadata) {
   std::ostringstream o;
@@ -84,7 +84,8 @@ std::string write_svg(const PageDrawing& d,
     << "mm\" height=\"" << num(d.height) << "mm\" viewBox=\"0 0 " << num(d.width) << ' '
     << num(d.height) << "\">\n";
   o << "<metadata><papernet xmlns=\"https://papernet.invalid/ns/1\"";
-  for (const auto& [k, v] : metadata) o << " data-" << escape(k) << "=\"" << escape(v) << '"';
+  for (const auto& [k, v] : metadata)
+    o << " data-" << xml_escape(k) << "=\"" << xml_escape(v) << '"';
   o << "/></metadata>\n";
   o << "<defs><clipPath id=\"printable\"><rect x=\"" << num(d.clip_lo.x) << "\" y=\""
     << num(d.clip_lo.y) << "\" width=\"" << num(d.clip_hi.x - d.clip_lo.x) << "\" height=\""
@@ -101,7 +102,7 @@ std::string write_svg(const PageDrawing& d,
         // The text's visual centre sits about 0.35 em above its baseline.
         o << "<text x=\"" << num(c.x) << "\" y=\"" << num(c.y + 0.35 * s.size) << "\" font-size=\""
           << num(s.size) << "\" stroke=\"none\" transform=\"rotate(" << num(s.angle_deg) << ' '
-          << num(c.x) << ' ' << num(c.y) << ")\"" << ls.text_style << ">" << escape(s.text)
+          << num(c.x) << ' ' << num(c.y) << ")\"" << ls.text_style << ">" << xml_escape(s.text)
           << "</text>\n";
       } else if (s.closed) {
         o << "<polygon points=\"";

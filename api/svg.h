@@ -8,6 +8,9 @@
 
 namespace papernet {
 
+/// `s` with &, <, > and " replaced by their XML entities, for text and attribute values.
+std::string xml_escape(const std::string& s);
+
 /// One SVG document for a drawing: width/height in mm, a viewBox in mm, and one <g> per layer
 /// with ids faces, tabs, strips, cut, mountain, valley, labels, marks (strips: glue strips'
 /// outlines solid, their seams dotted, their labels). Cut lines are solid, mountain folds dashed,

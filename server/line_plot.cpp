@@ -1,5 +1,7 @@
 #include "server/line_plot.h"
 
+#include "api/svg.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,29 +10,6 @@
 namespace papernet {
 
 namespace {
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string num(double v) {
   char buf[32];
