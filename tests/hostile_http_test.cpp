@@ -11,8 +11,11 @@
 #include <atomic>
 #include <map>
 
+#include "tests/hostile_bytes.h"
 #include "tests/serve_process.h"
 
+using papernet::test::draco_header;
+using papernet::test::varint;
 using namespace papernet::serve_testing;
 
 namespace {
@@ -350,18 +353,6 @@ TEST(HostileHttp, WrongContentTypesAre415) {
   expect_problem(c.Post("/v1/jobs", kTetraObj, "multipart/form-data"), 400, "malformed_request");
   EXPECT_EQ(job_count(s), 0u);
   expect_normal_job_completes(s);
-}
-
-std::string draco_header(int type, int method) {
-  return std::string("DRACO") + char(2) + char(2) + char(type) + char(method) + '\0' + '\0';
-}
-std::string varint(std::uint32_t v) {
-  std::string s;
-  do {
-    s += char((v & 0x7f) | (v >= 0x80 ? 0x80 : 0));
-    v >>= 7;
-  } while (v);
-  return s;
 }
 
 // Headers that claim a billion elements are refused by the loader before it allocates: a count

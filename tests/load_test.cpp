@@ -10,9 +10,13 @@
 #include <map>
 
 #include "core/errors.h"
+#include "tests/hostile_bytes.h"
 
 namespace papernet {
 namespace {
+
+using test::draco_header;
+using test::varint;
 
 const std::string kData = PAPERNET_TEST_DATA;
 
@@ -255,18 +259,6 @@ TEST(LoadLimits, HeadersClaimingMoreThanTheFileHolds) {
   std::string off = tetra_off();
   off.replace(off.find("4 4 6"), 5, "900000000 4 6");
   EXPECT_NE(message_of(off, MeshFormat::Off).find("declares 900000000"), std::string::npos);
-}
-
-std::string draco_header(int type, int method) {
-  return std::string("DRACO") + char(2) + char(2) + char(type) + char(method) + '\0' + '\0';
-}
-std::string varint(std::uint32_t v) {
-  std::string s;
-  do {
-    s += char((v & 0x7f) | (v >= 0x80 ? 0x80 : 0));
-    v >>= 7;
-  } while (v);
-  return s;
 }
 
 // Regressions (docs/reliability.md): the vertex limit was checked per "vertex" element, so a PLY
