@@ -39,6 +39,8 @@ constexpr std::array<std::pair<double, double>, 9> kSpans = {{{0, 1},
 
 // Overlap tolerance relative to the mesh's bounding-box diagonal (as the unfolder's).
 constexpr double kRelativeTolerance = 1e-9;
+// Cut edges farther along the cut tree tried per link (see Clearance::fix).
+constexpr std::size_t kFarGlues = 32;
 
 class Clearance {
  public:
@@ -67,7 +69,7 @@ class Clearance {
   }
   void set_link(int f, int k, bool on);
   void place(int f, const Triangle2& p);
-  bool try_move(int lf, int lk, int cf, int ck);
+  bool try_move(int tf, int tk, int lf, int lk, int cf, int ck);
   bool fix(int f, int k);
 
   const Mesh& mesh_;
@@ -226,8 +228,9 @@ void Clearance::place(int f, const Triangle2& p) {
 }
 
 // Cuts the link across edge lk of face lf and glues cut edge ck of face cf; keeps the change
-// when it adds no overlap and lowers the number of blocked edges.
-bool Clearance::try_move(int lf, int lk, int cf, int ck) {
+// when it adds no overlap, gives blocked edge tk of face tf room (or glues it) and lowers the
+// number of blocked edges.
+bool Clearance::try_move(int tf, int tk, int lf, int lk, int cf, int ck) {
   const int lp = adj_[lf][lk];
   const int top = parent_[lf] == lp ? lf : lp;
   const int cq = adj_[cf][ck];
@@ -268,6 +271,22 @@ bool Clearance::try_move(int lf, int lk, int cf, int ck) {
       return false;
     }
   }
+  // Apply it, and drop it at once when the edge it is for still has no room.
+  old_pos_.resize(moving_.size());
+  for (std::size_t i = 0; i < moving_.size(); ++i) {
+    old_pos_[i] = pos_[moving_[i]];
+    place(moving_[i], new_pos_[i]);
+  }
+  set_link(lf, lk, false);
+  set_link(cf, ck, true);
+  const auto undo = [&] {
+    set_link(cf, ck, false);
+    set_link(lf, lk, true);
+    for (std::size_t i = 0; i < moving_.size(); ++i) place(moving_[i], old_pos_[i]);
+    clear_moving();
+    return false;
+  };
+  if (blocked(tf, tk)) return undo();
   // Edges whose room may change: cut edges of faces near the border between the two sides,
   // before and after the move (a tab is at most height_ away from its edge).
   if (++epoch_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), epoch_ = 1;
@@ -291,21 +310,14 @@ bool Clearance::try_move(int lf, int lk, int cf, int ck) {
     });
   };
   for (std::size_t i = 0; i < moving_.size(); ++i) {
+    near(triangle_box(old_pos_[i]), moving_[i]);
     near(box_[moving_[i]], moving_[i]);
-    near(triangle_box(new_pos_[i]), moving_[i]);
   }
   mark(lf);
   mark(cf);
   long long before = 0;
   for (int h : affected_) before += blocked_[h];
 
-  old_pos_.resize(moving_.size());
-  for (std::size_t i = 0; i < moving_.size(); ++i) {
-    old_pos_[i] = pos_[moving_[i]];
-    place(moving_[i], new_pos_[i]);
-  }
-  set_link(lf, lk, false);
-  set_link(cf, ck, true);
   long long after = 0;
   mark_.clear();
   for (int h : affected_) {
@@ -313,51 +325,121 @@ bool Clearance::try_move(int lf, int lk, int cf, int ck) {
     mark_.push_back(b);
     after += b;
   }
+  if (after >= before) return undo();
   clear_moving();
-  if (after < before) {
-    for (std::size_t i = 0; i < affected_.size(); ++i) blocked_[affected_[i]] = mark_[i];
-    blocked_count_ -= static_cast<std::size_t>(before - after);
-    root_tree();
-    ++moves_;
-    return true;
-  }
-  set_link(cf, ck, false);
-  set_link(lf, lk, true);
-  for (std::size_t i = 0; i < moving_.size(); ++i) place(moving_[i], old_pos_[i]);
-  return false;
+  for (std::size_t i = 0; i < affected_.size(); ++i) blocked_[affected_[i]] = mark_[i];
+  blocked_count_ -= static_cast<std::size_t>(before - after);
+  root_tree();
+  ++moves_;
+  return true;
 }
 
-// Tries the moves around blocked edge k of face f: cut a link across an edge at one of its ends,
-// glue a cut edge between nearby faces. Returns true when one was kept.
+// Tries the moves around blocked edge k of face f: first cut a link across an edge at one of
+// its ends and glue a cut edge between nearby faces (the fan of its ends and one ring around);
+// then, wider, cut any link in that ring and glue a cut edge within two rings. Returns true
+// when a move was kept.
 bool Clearance::fix(int f, int k) {
   const int u = mesh_.faces[f][k], v = mesh_.faces[f][(k + 1) % 3];
   std::vector<int> fan;  // faces at u or v
   for (int w : {u, v})
     for (int x : vertex_faces_[w])
       if (std::find(fan.begin(), fan.end(), x) == fan.end()) fan.push_back(x);
-  std::vector<int> local = fan;  // ... and their neighbours
-  for (int x : fan)
-    for (int y : adj_[x])
-      if (y >= 0 && std::find(local.begin(), local.end(), y) == local.end()) local.push_back(y);
-  std::sort(local.begin(), local.end());
-  std::vector<std::pair<int, int>> cuts, glues;
-  for (int x : fan)
-    for (int j = 0; j < 3; ++j) {
-      const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
-      if (linked(x, j) && x < adj_[x][j] && (a == u || a == v || b == u || b == v))
-        cuts.push_back({x, j});
+  const auto grow = [&](std::vector<int> faces) {
+    const std::size_t n = faces.size();
+    for (std::size_t i = 0; i < n; ++i)
+      for (int y : adj_[faces[i]])
+        if (y >= 0 && std::find(faces.begin(), faces.end(), y) == faces.end()) faces.push_back(y);
+    std::sort(faces.begin(), faces.end());
+    return faces;
+  };
+  const std::vector<int> ring1 = grow(fan), ring2 = grow(ring1);
+  const auto at_ends = [&](int x, int j) {
+    const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
+    return a == u || a == v || b == u || b == v;
+  };
+  const auto links_in = [&](const std::vector<int>& faces, bool ends_only) {
+    std::vector<std::pair<int, int>> out;
+    for (int x : faces)
+      for (int j = 0; j < 3; ++j)
+        if (linked(x, j) && x < adj_[x][j] && (!ends_only || at_ends(x, j)) &&
+            std::binary_search(faces.begin(), faces.end(), adj_[x][j]))
+          out.push_back({x, j});
+    return out;
+  };
+  const auto cuts_in = [&](const std::vector<int>& faces) {
+    std::vector<std::pair<int, int>> out;
+    for (int x : faces)
+      for (int j = 0; j < 3; ++j) {
+        const int y = adj_[x][j];
+        if (y > x && !linked(x, j) && std::binary_search(faces.begin(), faces.end(), y))
+          out.push_back({x, j});
+      }
+    return out;
+  };
+  const auto try_all = [&](const std::vector<std::pair<int, int>>& cuts,
+                           const std::vector<std::pair<int, int>>& glues) {
+    for (const auto& [lf, lk] : cuts)
+      for (const auto& [cf, ck] : glues) {
+        if (evaluations_ >= budget_) return false;
+        if (try_move(f, k, lf, lk, cf, ck)) return true;
+      }
+    return false;
+  };
+  const auto narrow_cuts = links_in(ring1, true), narrow_glues = cuts_in(ring1);
+  if (try_all(narrow_cuts, narrow_glues)) return true;
+  std::vector<std::pair<int, int>> wide_cuts;
+  for (const auto& c : links_in(ring1, false))
+    if (std::find(narrow_cuts.begin(), narrow_cuts.end(), c) == narrow_cuts.end())
+      wide_cuts.push_back(c);
+  std::vector<std::pair<int, int>> wide_glues;
+  for (const auto& c : cuts_in(ring2))
+    if (std::find(narrow_glues.begin(), narrow_glues.end(), c) == narrow_glues.end())
+      wide_glues.push_back(c);
+  if (try_all(narrow_cuts, wide_glues) || try_all(wide_cuts, narrow_glues) ||
+      try_all(wide_cuts, wide_glues))
+    return true;
+  // Farther: for a link at an end, the cut edges anywhere on the cycle it closes in the cut
+  // tree (one face on each side of the link), nearest first, that leave no new leaf of the cut
+  // tree (both ends keep another cut edge): gluing those cannot create a new near-slit.
+  const Vec3 mid = 0.5 * (mesh_.vertices[u] + mesh_.vertices[v]);
+  std::vector<int> degree(mesh_.vertices.size(), 0);
+  for (int x = 0; x < nf_; ++x)
+    for (int j = 0; j < 3; ++j)
+      if (adj_[x][j] > x && !linked(x, j))
+        ++degree[mesh_.faces[x][j]], ++degree[mesh_.faces[x][(j + 1) % 3]];
+  std::vector<std::pair<int, int>> all_cuts = narrow_cuts;
+  all_cuts.insert(all_cuts.end(), wide_cuts.begin(), wide_cuts.end());
+  for (const auto& [lf, lk] : all_cuts) {
+    const int lp = adj_[lf][lk], top = parent_[lf] == lp ? lf : lp;
+    const bool sub_small = 2 * size_[top] <= nf_;
+    std::vector<std::pair<double, std::pair<int, int>>> far;
+    const auto side = [&](int x) {  // the cut edges from face x of the smaller side
+      for (int j = 0; j < 3; ++j) {
+        const int y = adj_[x][j];
+        if (y < 0 || linked(x, j) || in_sub(top, y) == sub_small) continue;
+        const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
+        const int gain = [&](int w) {
+          return w == mesh_.faces[lf][lk] || w == mesh_.faces[lf][(lk + 1) % 3] ? 1 : 0;
+        }(a);
+        const int gain_b = b == mesh_.faces[lf][lk] || b == mesh_.faces[lf][(lk + 1) % 3] ? 1 : 0;
+        if (degree[a] + gain - 1 < 2 || degree[b] + gain_b - 1 < 2) continue;
+        const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
+        far.push_back({norm(m - mid), {x, j}});
+      }
+    };
+    const int lo = tin_[top], hi = tin_[top] + size_[top];
+    if (sub_small) {
+      for (int i = lo; i < hi; ++i) side(order_[i]);
+    } else {
+      for (int i = 0; i < lo; ++i) side(order_[i]);
+      for (int i = hi; i < nf_; ++i) side(order_[i]);
     }
-  for (int x : local)
-    for (int j = 0; j < 3; ++j) {
-      const int y = adj_[x][j];
-      if (y > x && !linked(x, j) && std::binary_search(local.begin(), local.end(), y))
-        glues.push_back({x, j});
-    }
-  for (const auto& [lf, lk] : cuts)
-    for (const auto& [cf, ck] : glues) {
-      if (evaluations_ >= budget_) return false;
-      if (try_move(lf, lk, cf, ck)) return true;
-    }
+    std::sort(far.begin(), far.end());
+    if (far.size() > kFarGlues) far.resize(kFarGlues);
+    std::vector<std::pair<int, int>> glues;
+    for (const auto& [d, g] : far) glues.push_back(g);
+    if (try_all({{lf, lk}}, glues)) return true;
+  }
   return false;
 }
 
