@@ -134,7 +134,8 @@ double print_scale(const Mesh& mesh, const PrintOptions& options) {
 TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
                                  Progress& progress) {
   if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
-  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0)) return {net, 0, 0, 0, 0};
+  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || !options.tab_room)
+    return {net, 0, 0, 0, 0};
   TabClearanceOptions clearance;
   const double mm = std::min(options.min_tab_height_mm, options.tab_height_mm);
   clearance.min_height = mm / print_scale(mesh, options);

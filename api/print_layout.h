@@ -29,6 +29,8 @@ struct PrintOptions {
   /// Lowest tab printed (half the edge where that is less); edges without room for it get a
   /// glue strip.
   double min_tab_height_mm = 2;
+  /// Change the net before printing so that more cut edges have room for a tab (make_tab_room).
+  bool tab_room = true;
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
 
@@ -81,7 +83,7 @@ double print_scale(const Mesh& mesh, const PrintOptions& options);
 
 /// Makes room for glue tabs before printing (core/tab_clearance.h): the net with fewer cut
 /// edges lacking room for a tab of `options.min_tab_height_mm` at the print scale. Only in
-/// TabMode::Auto with tabs switched on; otherwise returns `net` unchanged (no moves). The
+/// TabMode::Auto with tabs and `tab_room` on; otherwise returns `net` unchanged (no moves). The
 /// returned net folds into the same mesh; print it, and write it as the net JSON, instead of
 /// the input. \throw CancelledException when `progress` asks to stop.
 TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,

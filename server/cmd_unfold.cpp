@@ -156,7 +156,8 @@ int unfold(int argc, char** argv) {
     const std::string ext = o.size() > 4 ? o.substr(o.size() - 4) : "";
     return ext == ".svg" || ext == ".pdf" || ext == ".SVG" || ext == ".PDF";
   });
-  if (prints && print.print.tabs == TabMode::Auto && print.print.tab_height_mm > 0) {
+  if (prints && print.print.tabs == TabMode::Auto && print.print.tab_height_mm > 0 &&
+      print.print.tab_room) {
     const auto t0 = std::chrono::steady_clock::now();
     Progress quiet;
     TabClearanceResult room = make_tab_room(doc.mesh, result.net, print.print, quiet);

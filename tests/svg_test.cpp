@@ -14,6 +14,7 @@
 
 #include "api/print_layout.h"
 #include "api/tabs.h"
+#include "core/net_check.h"
 #include "core/progressive.h"
 #include "core/unfolding.h"
 #include "tests/net_fixtures.h"
@@ -131,11 +132,30 @@ const std::vector<NamedNet>& all_nets() {
   return nets;
 }
 
-/// The default print layout (200 mm, tabs auto) of every net of all_nets(), built once.
+/// True for the nets of all_nets() that are overlap-free (all but the breadth-first ones).
+bool unfolded(const std::string& name) { return name.find("(BFS)") == std::string::npos; }
+
+/// The nets of all_nets() as printed at the default 200 mm: the overlap-free ones after the tab
+/// clearance pass (make_tab_room), the breadth-first ones as they are. Built once.
+const std::vector<TabClearanceResult>& all_print_nets() {
+  static const std::vector<TabClearanceResult> nets = [] {
+    std::vector<TabClearanceResult> out;
+    for (const auto& [name, mesh, net] : all_nets()) {
+      Progress quiet;
+      out.push_back(unfolded(name) ? make_tab_room(mesh, net, {}, quiet)
+                                   : TabClearanceResult{net, 0, 0, 0, 0});
+    }
+    return out;
+  }();
+  return nets;
+}
+
+/// The default print layout (200 mm, tabs auto) of every net of all_print_nets(), built once.
 const std::vector<PrintLayout>& all_layouts() {
   static const std::vector<PrintLayout> layouts = [] {
     std::vector<PrintLayout> out;
-    for (const auto& [name, mesh, net] : all_nets()) out.push_back(layout_net(mesh, net, {}));
+    for (std::size_t n = 0; n < all_nets().size(); ++n)
+      out.push_back(layout_net(all_nets()[n].mesh, all_print_nets()[n].net, {}));
     return out;
   }();
   return layouts;
@@ -313,8 +333,11 @@ TEST(Tabs, ModesAndMinimumHeight) {
   const auto it = std::find_if(nets.begin(), nets.end(),
                                [](const NamedNet& n) { return n.name == "sample.obj (TU)"; });
   ASSERT_NE(it, nets.end());
-  const auto& [name, mesh, net] = *it;
-  const PrintLayout& any = all_layouts()[static_cast<std::size_t>(it - nets.begin())];
+  const std::string& name = it->name;
+  const Mesh& mesh = it->mesh;
+  const std::size_t index = static_cast<std::size_t>(it - nets.begin());
+  const Net& net = all_print_nets()[index].net;  // the printed net
+  const PrintLayout& any = all_layouts()[index];
   // This dense net needs both: tabs where there is room, strips where there is none.
   EXPECT_GT(any.tabs.size(), 0u) << name;
   EXPECT_GT(any.strips.size(), 0u) << name;
@@ -349,6 +372,55 @@ TEST(Tabs, ModesAndMinimumHeight) {
   PrintOptions bad;
   bad.min_tab_height_mm = -1;
   EXPECT_NE(bad.validate(), "");
+}
+
+// The tab clearance pass (core/tab_clearance.h) before printing: it never makes things worse,
+// its nets pass the net checker, the layout's strips are (about) its edges without room, and
+// on the nets where it opens every near-slit each cut edge gets exactly one tab and no strip.
+TEST(Tabs, ClearancePassMakesRoomAndKeepsNetsValid) {
+  std::size_t before = 0, after = 0, nets_without_strips = 0;  // over the unfolders' nets
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const auto& [name, mesh, net] = all_nets()[n];
+    if (!unfolded(name)) continue;
+    const TabClearanceResult& room = all_print_nets()[n];
+    const PrintLayout& layout = all_layouts()[n];
+    EXPECT_LE(room.blocked_after, room.blocked_before) << name;
+    EXPECT_EQ(room.moves == 0, room.blocked_after == room.blocked_before) << name;
+    before += room.blocked_before;
+    after += room.blocked_after;
+    if (room.moves > 0) {
+      const NetCheckReport check = check_net(mesh, room.net);
+      EXPECT_TRUE(check.ok()) << name << ": " << check.summary();
+    }
+    // Edges without room get strips; the others get tabs (at most a couple lose their room
+    // to neighbours' tabs), so a net where the pass opened every near-slit has no strip.
+    EXPECT_GE(layout.strips.size(), room.blocked_after) << name;
+    EXPECT_LE(layout.strips.size(), room.blocked_after + 3) << name;
+    if (room.blocked_after == 0) {
+      EXPECT_TRUE(layout.strips.empty()) << name << ": " << layout.strips.size() << " strips";
+      EXPECT_EQ(layout.tabs.size(), static_cast<std::size_t>(layout.cut_edges)) << name;
+      ++nets_without_strips;
+    }
+    std::printf("%s: %zu -> %zu cut edges without tab room (%zu moves), %zu tabs, %zu strips\n",
+                name.c_str(), room.blocked_before, room.blocked_after, room.moves,
+                layout.tabs.size(), layout.strips.size());
+  }
+  EXPECT_LT(after, before / 2) << "the pass should open most near-slits";
+  // Nets where the pass reaches exactly one tab per cut edge (figures in docs/tabs.md);
+  // testplate.glb's had 10 strips before it.
+  for (const char* want : {"mirror.ply (TU)", "mirror.ply (QQ)", "testplate.glb (TU)",
+                           "testplate.glb (QQ)", "testplate.glb (SEMP)", "testplate.glb (SEQ)"}) {
+    const auto& nets = all_nets();
+    const auto it =
+        std::find_if(nets.begin(), nets.end(), [&](const NamedNet& x) { return x.name == want; });
+    ASSERT_NE(it, nets.end()) << want;
+    const auto n = static_cast<std::size_t>(it - nets.begin());
+    EXPECT_EQ(all_print_nets()[n].blocked_after, 0u) << want;
+    EXPECT_TRUE(all_layouts()[n].strips.empty()) << want;
+    EXPECT_EQ(all_layouts()[n].tabs.size(), static_cast<std::size_t>(all_layouts()[n].cut_edges))
+        << want;
+  }
+  EXPECT_GE(nets_without_strips, 10u);
 }
 
 TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
