@@ -84,6 +84,8 @@ class Clearance {
   OverlapGrid grid_;
   double tol_ = 0, height_ = 0;
   std::size_t budget_ = 0;
+  bool keep_bounds_ = true;
+  Box2 bounds_;  // of the input net
   std::vector<TabShape> shapes_;
   std::vector<char> blocked_;  // by canonical half-edge 3 * f + k
   std::size_t blocked_count_ = 0;
@@ -130,9 +132,14 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
     for (int k = 0; k < 3; ++k) total += norm(t[(k + 1) % 3] - t[k]);
   const double mean = total / (3.0 * std::max(1, nf_));
   grid_.reset(mean > 0 && std::isfinite(mean) ? mean : 1.0);
+  keep_bounds_ = options.keep_bounds;
   for (int f = 0; f < nf_; ++f) {
     box_[f] = triangle_box(pos_[f]);
     grid_.insert(f, box_[f]);
+    const Box2& b = box_[f];
+    bounds_ = f == 0 ? b
+                     : Box2{{std::min(bounds_.lo.x, b.lo.x), std::min(bounds_.lo.y, b.lo.y)},
+                            {std::max(bounds_.hi.x, b.hi.x), std::max(bounds_.hi.y, b.hi.y)}};
   }
   blocked_.assign(3 * static_cast<std::size_t>(nf_), 0);
   for (int f = 0; f < nf_; ++f)
@@ -259,9 +266,17 @@ bool Clearance::try_move(int tf, int tk, int lf, int lk, int cf, int ck) {
   const auto clear_moving = [&] {
     for (int x : moving_) is_moving_[x] = 0;
   };
-  // No overlap with the side that stays.
+  // No overlap with the side that stays, and (keep_bounds) nothing outside the net's box.
   for (std::size_t i = 0; i < moving_.size(); ++i) {
     const Triangle2& t = new_pos_[i];
+    if (keep_bounds_) {
+      const Box2 b = triangle_box(t);
+      if (b.lo.x < bounds_.lo.x || b.lo.y < bounds_.lo.y || b.hi.x > bounds_.hi.x ||
+          b.hi.y > bounds_.hi.y) {
+        clear_moving();
+        return false;
+      }
+    }
     bool hit = false;
     grid_.query(triangle_box(t), [&](int c) {
       if (!hit && !is_moving_[c]) hit = triangles_overlap(t, pos_[c], tol_);

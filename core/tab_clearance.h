@@ -37,6 +37,11 @@ struct TabClearanceOptions {
   /// Candidate moves evaluated at most: a deterministic budget (no clock), so the same net
   /// and options always give the same result.
   std::size_t max_evaluations = 100'000;
+  /// Refuse moves that take faces outside the input net's axis-aligned bounding box, so that
+  /// the net does not grow while it makes room for tabs. Off by default: it leaves about a
+  /// quarter more edges without room and does not bound the page count anyway (pages follow
+  /// the net's minimum-area rotated box; docs/tabs.md).
+  bool keep_bounds = false;
 };
 
 /// Interior cut edges of `net` where no tab of `options.min_height` (of any of tab_shapes)

@@ -64,6 +64,27 @@ TEST(TabClearance, OpensNearSlitsAndKeepsTheNetValid) {
       EXPECT_EQ(again.net.points[f][k].x, r.net.points[f][k].x);
       EXPECT_EQ(again.net.points[f][k].y, r.net.points[f][k].y);
     }
+  // Keeping the net inside its box: no face leaves the input's bounding box.
+  options.keep_bounds = true;
+  const TabClearanceResult boxed = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_LT(boxed.blocked_after, blocked);
+  EXPECT_TRUE(check_net(c.mesh, boxed.net).ok());
+  const auto box = [](const Net& net) {
+    Vec2 lo = net.points[0][0], hi = lo;
+    for (const auto& t : net.points)
+      for (Vec2 p : t)
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    return std::pair{lo, hi};
+  };
+  const auto [lo0, hi0] = box(c.net);
+  const auto [lo1, hi1] = box(boxed.net);
+  const double eps = 1e-9 * (hi0.x - lo0.x + hi0.y - lo0.y);
+  EXPECT_GE(lo1.x, lo0.x - eps);
+  EXPECT_GE(lo1.y, lo0.y - eps);
+  EXPECT_LE(hi1.x, hi0.x + eps);
+  EXPECT_LE(hi1.y, hi0.y + eps);
+  options.keep_bounds = false;
   // A smaller budget stops earlier, and never leaves more than it started with.
   options.max_evaluations = 10;
   const TabClearanceResult short_run = clear_tab_room(c.mesh, c.net, options, quiet);
