@@ -84,6 +84,9 @@ class Clearance {
   OverlapGrid grid_;
   double tol_ = 0, height_ = 0;
   std::size_t budget_ = 0;
+  std::vector<std::uint8_t> sideways_;  // sideways moves made for each edge
+  std::size_t sideways_left_ = 0;
+  bool improved_ = false;
   bool keep_bounds_ = true;
   Box2 bounds_;  // of the input net
   std::vector<TabShape> shapes_;
@@ -142,6 +145,7 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
                             {std::max(bounds_.hi.x, b.hi.x), std::max(bounds_.hi.y, b.hi.y)}};
   }
   blocked_.assign(3 * static_cast<std::size_t>(nf_), 0);
+  sideways_.assign(3 * static_cast<std::size_t>(nf_), 0);
   for (int f = 0; f < nf_; ++f)
     for (int k = 0; k < 3; ++k)
       if (canon(f, k) == 3 * f + k && blocked(f, k)) {
@@ -340,10 +344,15 @@ bool Clearance::try_move(int tf, int tk, int lf, int lk, int cf, int ck) {
     mark_.push_back(b);
     after += b;
   }
-  if (after >= before) return undo();
+  // A sideways move (the target opens, another edge closes) is allowed a few times per edge:
+  // it can carry a slit to where the next move opens it.
+  const bool sideways = after == before && sideways_[canon(tf, tk)] < 2 && sideways_left_ > 0;
+  if (after > before || (after == before && !sideways)) return undo();
+  if (sideways) ++sideways_[canon(tf, tk)], --sideways_left_;
   clear_moving();
   for (std::size_t i = 0; i < affected_.size(); ++i) blocked_[affected_[i]] = mark_[i];
   blocked_count_ -= static_cast<std::size_t>(before - after);
+  if (after < before) improved_ = true;
   root_tree();
   ++moves_;
   return true;
@@ -459,12 +468,18 @@ bool Clearance::fix(int f, int k) {
 }
 
 void Clearance::run(Progress& progress) {
-  for (bool improved = true; improved && blocked_count_ > 0 && evaluations_ < budget_;) {
-    improved = false;
-    for (int h = 0; h < 3 * nf_ && evaluations_ < budget_; ++h) {
-      if (!blocked_[h]) continue;
-      if (progress.cancelled()) throw CancelledException();
-      if (fix(h / 3, h % 3)) improved = true;
+  // First strict improvements only; then, from that state (the count never rises), also a few
+  // sideways moves, which carry some slits to where a later move opens them.
+  for (int phase = 0; phase < 2; ++phase) {
+    sideways_left_ = phase == 0 ? 0 : 2 * blocked_count_;
+    for (bool improved = true; improved && blocked_count_ > 0 && evaluations_ < budget_;) {
+      improved = false;
+      for (int h = 0; h < 3 * nf_ && evaluations_ < budget_; ++h) {
+        if (!blocked_[h]) continue;
+        if (progress.cancelled()) throw CancelledException();
+        improved_ = false;
+        if (fix(h / 3, h % 3) && improved_) improved = true;
+      }
     }
   }
 }
