@@ -1,6 +1,7 @@
 #include "api/options.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -84,6 +85,20 @@ bool boolean(const std::string& name, const json& value) {
   bad_value(name, value, "true or false");
 }
 
+// true/false (the option was a boolean first) or a mode name.
+TabMode tab_mode(const std::string& name, const json& value) {
+  if (value.is_boolean()) return value.get<bool>() ? TabMode::Auto : TabMode::None;
+  if (value.is_string()) {
+    std::string s = value.get<std::string>();
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (s == "auto" || s == "true" || s == "1" || s == "yes") return TabMode::Auto;
+    if (s == "strips") return TabMode::Strips;
+    if (s == "none" || s == "false" || s == "0" || s == "no") return TabMode::None;
+  }
+  bad_value(name, value, "one of auto, strips, none (or true, false)");
+}
+
 std::string text(const std::string& name, const json& value) {
   if (value.is_string()) return value.get<std::string>();
   bad_value(name, value, "a string");
@@ -127,7 +142,7 @@ void apply(JobOptions& o, const std::string& name, const json& v) {
   } else if (name == "margin_mm") {
     o.margin_mm = number(name, v);
   } else if (name == "tabs") {
-    o.tabs = boolean(name, v);
+    o.tabs = tab_mode(name, v);
   } else if (name == "flat_fold_degrees") {
     o.flat_fold_degrees = number(name, v);
   } else if (name == "keep_largest_component") {
@@ -244,7 +259,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"scale", opt(o.scale)},
               {"paper", paper_name(o.paper)},
               {"margin_mm", o.margin_mm},
-              {"tabs", o.tabs},
+              {"tabs", tab_mode_name(o.tabs)},
               {"flat_fold_degrees", o.flat_fold_degrees},
               {"keep_largest_component", o.keep_largest_component}};
 }

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "api/tab_mode.h"
+
 namespace papernet {
 
 /// Collapse strategy of Progressive Mesh Unfolding (DESIGN.md §1.3); TU unfolds the full mesh.
@@ -34,7 +36,9 @@ struct JobOptions {
   std::optional<double> scale;
   PaperSize paper = PaperSize::A4;
   double margin_mm = 10;
-  bool tabs = true;
+  /// Glue: auto (tabs on the net where they fit, after making room for them; strips for the
+  /// rest), strips (only strips) or none. JSON/query `true` means auto, `false` none.
+  TabMode tabs = TabMode::Auto;
   /// Folds flatter than this many degrees are not drawn.
   double flat_fold_degrees = 1;
   bool keep_largest_component = false;

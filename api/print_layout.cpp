@@ -117,6 +117,32 @@ std::string label_text(int number) {
 
 }  // namespace
 
+double print_scale(const Mesh& mesh, const PrintOptions& options) {
+  if (options.scale > 0) return options.scale;
+  double extent = 0;  // longest side of the model's bounding box
+  if (!mesh.vertices.empty()) {
+    Vec3 lo = mesh.vertices[0], hi = lo;
+    for (const Vec3& v : mesh.vertices) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    }
+    extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  }
+  return extent > 0 && std::isfinite(extent) ? options.size_mm / extent : 1;
+}
+
+TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
+                                 Progress& progress) {
+  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || !options.tab_room)
+    return {net, 0, 0, 0, 0};
+  TabClearanceOptions clearance;
+  const double mm = std::min(options.min_tab_height_mm, options.tab_height_mm);
+  clearance.min_height = mm / print_scale(mesh, options);
+  clearance.angle_deg = options.tab_angle_deg;
+  return clear_tab_room(mesh, net, clearance, progress);
+}
+
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options) {
   if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
   if (mesh.faces.empty()) throw InvalidInputException("nothing to print: the mesh has no faces");
@@ -135,17 +161,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
         throw InvalidInputException("net face " + std::to_string(f) + " has a non-finite point");
   PrintLayout out;
   out.metrics = net_metrics(mesh, net);
-
-  double extent = 0;  // longest side of the model's bounding box
-  if (!mesh.vertices.empty()) {
-    Vec3 lo = mesh.vertices[0], hi = lo;
-    for (const Vec3& v : mesh.vertices) {
-      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-    }
-    extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  }
-  out.scale = options.scale > 0 ? options.scale : extent > 0 ? options.size_mm / extent : 1;
+  out.scale = print_scale(mesh, options);
 
   // Rotate into the minimum-area box and scale to millimetres.
   out.faces.resize(net.points.size());

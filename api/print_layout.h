@@ -6,21 +6,16 @@
 #include <vector>
 
 #include "api/strips.h"
+#include "api/tab_mode.h"
 #include "api/tabs.h"
 #include "core/folds.h"
 #include "core/mesh.h"
 #include "core/metrics.h"
 #include "core/net.h"
+#include "core/progress.h"
+#include "core/tab_clearance.h"
 
 namespace papernet {
-
-/// How cut edges get their glue: `Auto` puts a tab on the net where one fits and a separate
-/// glue strip elsewhere; `Strips` gives every cut edge a strip; `None` prints no glue at all.
-enum class TabMode { Auto, Strips, None };
-
-/// Parses "auto", "strips" or "none". \throw InvalidInputException for anything else.
-TabMode parse_tab_mode(std::string_view text);
-std::string tab_mode_name(TabMode mode);
 
 /// How a net is drawn on paper. Lengths are millimetres.
 struct PrintOptions {
@@ -34,6 +29,8 @@ struct PrintOptions {
   /// Lowest tab printed (half the edge where that is less); edges without room for it get a
   /// glue strip.
   double min_tab_height_mm = 2;
+  /// Change the net before printing so that more cut edges have room for a tab (make_tab_room).
+  bool tab_room = true;
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
 
@@ -79,6 +76,18 @@ struct PrintLayout {
   NetBoxMetrics metrics;  ///< of the net itself, in model units
   int cut_edges = 0;      ///< interior cut edges (label numbers run 1..cut_edges)
 };
+
+/// Millimetres per model unit: `options.scale` when set, else `options.size_mm` over the
+/// longest side of the mesh's bounding box (1 for a mesh without extent).
+double print_scale(const Mesh& mesh, const PrintOptions& options);
+
+/// Makes room for glue tabs before printing (core/tab_clearance.h): the net with fewer cut
+/// edges lacking room for a tab of `options.min_tab_height_mm` at the print scale. Only in
+/// TabMode::Auto with tabs and `tab_room` on; otherwise returns `net` unchanged (no moves). The
+/// returned net folds into the same mesh; print it, and write it as the net JSON, instead of
+/// the input. \throw CancelledException when `progress` asks to stop.
+TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
+                                 Progress& progress);
 
 /// Lays out a net for printing.
 /// \throw InvalidInputException for invalid options, an empty mesh, or a net that does not

@@ -60,6 +60,11 @@ bool apply_output_option(std::string_view name, std::string_view value, OutputOp
     options.print.tabs = parse_tab_mode(value);
   } else if (name == "--min-tab-height") {
     options.print.min_tab_height_mm = value == "0" ? 0 : parse_length_mm(value);
+  } else if (name == "--tab-room") {
+    if (value != "on" && value != "off")
+      throw InvalidInputException("--tab-room: expected on or off, got '" + std::string(value) +
+                                  "'");
+    options.print.tab_room = value == "on";
   } else if (name == "--flat-angle") {
     options.print.flat_angle_deg = number(0, 180);
   } else if (name == "--labels") {
@@ -82,6 +87,8 @@ std::string output_options_help() {
          "                     separate glue strip; strips: strips only; none: no glue\n"
          "  --tab-height LEN   tallest glue tab, widest strip half (default 6mm; 0: no tabs)\n"
          "  --min-tab-height LEN  lowest tab printed, or half a shorter edge (default 2mm)\n"
+         "  --tab-room on|off  change the cuts so more edges have room for a tab (default on;\n"
+         "                     with --tabs auto; the net JSON written with it is that net)\n"
          "  --flat-angle DEG   folds flatter than this are not drawn (default 1)\n"
          "  --labels on|off    edge labels (default on)\n";
 }

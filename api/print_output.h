@@ -38,7 +38,7 @@ WrittenOutput write_output_file(const std::string& path, const Mesh& mesh, const
 /// Applies one command-line option of the print writers to `options`; every one takes a value:
 /// --size 200mm | --scale 2 | --paper A4|A3|Letter|WxHmm|none | --margin 10mm |
 /// --overlap 10mm | --tabs auto|strips|none | --tab-height 6mm (0: no tabs) |
-/// --min-tab-height 2mm | --flat-angle 1 (degrees) |
+/// --min-tab-height 2mm | --tab-room on|off | --flat-angle 1 (degrees) |
 /// --labels on|off. Returns false when `name` is not one of them.
 /// \throw InvalidInputException naming the option when its value is bad.
 bool apply_output_option(std::string_view name, std::string_view value, OutputOptions& options);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 namespace papernet {
 
@@ -110,6 +111,99 @@ constexpr std::array<std::pair<double, double>, 9> kSpans = {{{0, 1},
                                                               {0.3, 0.7},
                                                               {0.05, 0.5}}};
 
+/// Box of a polygon, grown by `d`.
+std::pair<Vec2, Vec2> bounds(std::span<const Vec2> p, double d) {
+  Vec2 lo = p[0], hi = p[0];
+  for (Vec2 q : p)
+    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)},
+    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+  return {{lo.x - d, lo.y - d}, {hi.x + d, hi.y + d}};
+}
+
+bool boxes_meet(const std::pair<Vec2, Vec2>& a, const std::pair<Vec2, Vec2>& b) {
+  return a.first.x <= b.second.x && b.first.x <= a.second.x && a.first.y <= b.second.y &&
+         b.first.y <= a.second.y;
+}
+
+/// Second stage of place_tabs: an edge left without a tab often has room against the faces
+/// but lost it to a neighbour's tab placed first (greedily, as large as fits). For each such
+/// edge, try a lowest tab (min_height) that overlaps no face and at most two tabs, and move
+/// those tabs to a lowest tab elsewhere on their own edge (either side, any shape) that
+/// overlaps nothing. Every tab stays checked against faces and all other tabs.
+void make_room_between_tabs(const std::vector<std::array<Vec2, 3>>& faces,
+                            const std::vector<NetEdge>& edges, const TabOptions& options,
+                            const std::vector<Shape>& shapes, TabPlacement& result) {
+  double total = 0;
+  for (const auto& f : faces)
+    for (int k = 0; k < 3; ++k) total += norm(f[(k + 1) % 3] - f[k]);
+  PolygonGrid face_grid(
+      std::max(total / (3.0 * static_cast<double>(faces.size())), options.height));
+  for (const auto& f : faces) face_grid.add(f);
+  const auto low = [&](int e) {
+    const NetEdge& edge = edges[e];
+    const double len = norm(faces[edge.a.face][(edge.a.k + 1) % 3] - faces[edge.a.face][edge.a.k]);
+    return std::min(options.min_height, 0.5 * len);
+  };
+  // Every lowest tab of edge e that overlaps no face, as (side, corners).
+  const auto candidates = [&](int e) {
+    std::vector<Tab> out;
+    const NetEdge& edge = edges[e];
+    const double h = low(e);
+    if (!(h > 0)) return out;
+    for (EdgeSide side : {edge.a, edge.b}) {
+      const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
+      for (const Shape& s : shapes) {
+        const Shape shape = on_b ? Shape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
+        const auto t = trapezoid(faces, side, shape, h);
+        if (!face_grid.overlaps(t, options.tolerance)) out.push_back({e, side, t});
+      }
+    }
+    return out;
+  };
+  std::vector<int> still;
+  for (int e : result.omitted) {
+    bool done = false;
+    for (const Tab& want : candidates(e)) {
+      const auto box = bounds(want.corners, 0);
+      std::vector<int> conflicts;
+      for (int t = 0; t < static_cast<int>(result.tabs.size()) && conflicts.size() <= 2; ++t)
+        if (boxes_meet(box, bounds(result.tabs[t].corners, 0)) &&
+            convex_overlap(want.corners, result.tabs[t].corners, options.tolerance))
+          conflicts.push_back(t);
+      if (conflicts.empty() || conflicts.size() > 2) continue;
+      // New places for the conflicting tabs, avoiding `want`, each other and all other tabs.
+      std::vector<Tab> moved;
+      for (int c : conflicts) {
+        bool placed = false;
+        for (const Tab& r : candidates(result.tabs[c].edge)) {
+          if (convex_overlap(r.corners, want.corners, options.tolerance)) continue;
+          bool free = true;
+          const auto rbox = bounds(r.corners, 0);
+          for (int t = 0; t < static_cast<int>(result.tabs.size()) && free; ++t)
+            if (std::find(conflicts.begin(), conflicts.end(), t) == conflicts.end() &&
+                boxes_meet(rbox, bounds(result.tabs[t].corners, 0)))
+              free = !convex_overlap(r.corners, result.tabs[t].corners, options.tolerance);
+          for (const Tab& m : moved)
+            if (free) free = !convex_overlap(r.corners, m.corners, options.tolerance);
+          if (free) {
+            moved.push_back(r);
+            placed = true;
+            break;
+          }
+        }
+        if (!placed) break;
+      }
+      if (moved.size() != conflicts.size()) continue;
+      for (std::size_t i = 0; i < conflicts.size(); ++i) result.tabs[conflicts[i]] = moved[i];
+      result.tabs.push_back(want);
+      done = true;
+      break;
+    }
+    if (!done) still.push_back(e);
+  }
+  result.omitted = std::move(still);
+}
+
 }  // namespace
 
 TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
@@ -176,6 +270,7 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
     grid.add(best.corners);
     result.tabs.push_back(best);
   }
+  if (!result.omitted.empty()) make_room_between_tabs(faces, edges, options, shapes, result);
   return result;
 }
 

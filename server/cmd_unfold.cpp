@@ -1,5 +1,6 @@
 // `papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o OUT [-o OUT]...
 //  [--seed N] [--time-limit S] [print options]`
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <exception>
@@ -148,6 +149,32 @@ int unfold(int argc, char** argv) {
               << result.overlaps << " overlapping pairs left after " << result.stats.iterations
               << " iterations)\n";
     return 3;
+  }
+  // Printing with tabs: first give the cut edges room for them (docs/tabs.md). The net JSON
+  // written alongside is this net too, so that every output shows the same cuts.
+  const bool prints = std::any_of(outputs.begin(), outputs.end(), [](const std::string& o) {
+    const std::string ext = o.size() > 4 ? o.substr(o.size() - 4) : "";
+    return ext == ".svg" || ext == ".pdf" || ext == ".SVG" || ext == ".PDF";
+  });
+  if (prints && print.print.tabs == TabMode::Auto && print.print.tab_height_mm > 0 &&
+      print.print.tab_room) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Progress quiet;
+    TabClearanceResult room = make_tab_room(doc.mesh, result.net, print.print, quiet);
+    const double room_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (room.moves > 0) {
+      if (const NetCheckReport again = check_net(doc.mesh, room.net); again.ok()) {
+        result.net = std::move(room.net);
+      } else {
+        std::cerr << "papernet unfold: internal error, the net with tab room fails its check ("
+                  << again.summary() << "); printing the unfolder's net\n";
+        room.blocked_after = room.blocked_before;
+      }
+    }
+    std::cerr << "papernet unfold: tab room: " << room.blocked_before << " -> "
+              << room.blocked_after << " cut edges without room for a tab (" << room.moves
+              << " moves, " << room.evaluations << " evaluated, " << room_seconds << " s)\n";
   }
   const NetCheckReport check = check_net(doc.mesh, result.net);
   const NetBoxMetrics box = net_metrics(doc.mesh, result.net);

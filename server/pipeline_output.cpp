@@ -4,15 +4,33 @@
 #include "api/pdf.h"
 #include "api/print_output.h"
 #include "api/svg.h"
+#include "core/net_check.h"
 
 namespace papernet::server {
 
+namespace {
+
+PrintOptions print_options(const JobOptions& options) {
+  PrintOptions print;
+  if (options.size_mm) print.size_mm = *options.size_mm;
+  if (options.scale) print.scale = *options.scale;
+  print.flat_angle_deg = options.flat_fold_degrees;
+  print.tabs = options.tabs;
+  return print;
+}
+
+}  // namespace
+
+Net make_room_for_tabs(const Mesh& mesh, const Net& net, const JobOptions& options,
+                       Progress& progress) {
+  TabClearanceResult room = make_tab_room(mesh, net, print_options(options), progress);
+  if (room.moves == 0 || !check_net(mesh, room.net).ok()) return net;
+  return std::move(room.net);
+}
+
 PrintFiles render_print_files(const Mesh& mesh, const Net& net, const JobOptions& options) {
   OutputOptions out;
-  if (options.size_mm) out.print.size_mm = *options.size_mm;
-  if (options.scale) out.print.scale = *options.scale;
-  out.print.flat_angle_deg = options.flat_fold_degrees;
-  if (!options.tabs) out.print.tab_height_mm = 0;
+  out.print = print_options(options);
   out.paper = options.paper != papernet::PaperSize::None;
   if (out.paper) out.page.paper = parse_paper(paper_name(options.paper));
   out.page.margin_mm = options.margin_mm;

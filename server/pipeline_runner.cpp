@@ -176,7 +176,8 @@ JobRunner make_pipeline_runner(PipelineLimits limits) {
     const auto start = Clock::now();
     const Validated v = load_and_validate(input, options, limits, sink);
     JobProgress progress(sink, v.input, options);
-    const Unfolded u = unfold(v.mesh, v.input, options, progress);
+    Unfolded u = unfold(v.mesh, v.input, options, progress);
+    u.net = make_room_for_tabs(u.mesh, u.net, options, progress);
     const NetCheckReport check = check_net(u.mesh, u.net);
     if (!check.ok())
       throw std::logic_error("the unfolder's net fails the net checker: " + check.summary());

@@ -29,7 +29,7 @@ TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   EXPECT_FALSE(o.target_faces);
   EXPECT_FALSE(o.time_limit);
   EXPECT_EQ(o.paper, PaperSize::A4);
-  EXPECT_TRUE(o.tabs);
+  EXPECT_EQ(o.tabs, TabMode::Auto);
   EXPECT_FALSE(o.keep_largest_component);
 }
 
@@ -50,7 +50,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_DOUBLE_EQ(*o.size_mm, 120);
   EXPECT_EQ(o.paper, PaperSize::Letter);
   EXPECT_DOUBLE_EQ(o.margin_mm, 5);
-  EXPECT_FALSE(o.tabs);
+  EXPECT_EQ(o.tabs, TabMode::None);
   EXPECT_TRUE(o.keep_largest_component);
 }
 
@@ -61,8 +61,25 @@ TEST(OptionsTest, JsonObjectIsParsedWithTypedValues) {
   EXPECT_EQ(o.seed, 7u);
   EXPECT_DOUBLE_EQ(*o.scale, 2.0);
   EXPECT_EQ(o.paper, PaperSize::None);
-  EXPECT_FALSE(o.tabs);
+  EXPECT_EQ(o.tabs, TabMode::None);
   EXPECT_FALSE(o.time_limit);
+}
+
+TEST(OptionsTest, TabsTakeAModeOrABoolean) {
+  EXPECT_EQ(parse_options_json(R"({"tabs":true})").tabs, TabMode::Auto);
+  EXPECT_EQ(parse_options_json(R"({"tabs":false})").tabs, TabMode::None);
+  EXPECT_EQ(parse_options_json(R"({"tabs":"strips"})").tabs, TabMode::Strips);
+  EXPECT_EQ(parse_options_json(R"({"tabs":"Auto"})").tabs, TabMode::Auto);
+  EXPECT_EQ(parse_options_query({{"tabs", "strips"}}).tabs, TabMode::Strips);
+  EXPECT_EQ(parse_options_query({{"tabs", "none"}}).tabs, TabMode::None);
+  EXPECT_EQ(parse_options_query({{"tabs", "true"}}).tabs, TabMode::Auto);
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"tabs":"glue"})"); }), "invalid_option_value");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"tabs":1})"); }), "invalid_option_value");
+  // The canonical form names the mode; it parses back to the same options.
+  JobOptions strips;
+  strips.tabs = TabMode::Strips;
+  EXPECT_EQ(options_to_json(strips)["tabs"], "strips");
+  EXPECT_EQ(parse_options_json(options_to_json(strips).dump()).tabs, TabMode::Strips);
 }
 
 TEST(OptionsTest, UnknownOptionIsNamed) {

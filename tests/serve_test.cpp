@@ -68,6 +68,47 @@ TEST(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(glb->body.substr(0, 4), "glTF");
 }
 
+namespace {
+
+// The value of attribute data-NAME in an SVG document ("" when absent).
+std::string svg_data(const std::string& svg, const std::string& name) {
+  const std::string key = "data-" + name + "=\"";
+  const auto at = svg.find(key);
+  if (at == std::string::npos) return "";
+  const auto from = at + key.size();
+  return svg.substr(from, svg.find('"', from) - from);
+}
+
+}  // namespace
+
+// The `tabs` option takes a mode (auto, strips, none) or, as first, a boolean.
+TEST(ServeTest, TabsOptionTakesModesOrABoolean) {
+  Server s({"--workers", "1"});
+  auto c = s.client();
+  const std::string strips =
+      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tabs=strips");
+  const std::string yes =
+      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tabs=true");
+  const json a = wait_final(s, strips), b = wait_final(s, yes);
+  ASSERT_EQ(a["status"], "succeeded") << a.dump();
+  ASSERT_EQ(b["status"], "succeeded") << b.dump();
+  EXPECT_EQ(a["options"]["tabs"], "strips");
+  EXPECT_EQ(b["options"]["tabs"], "auto");
+  const std::string svg_a = c.Get("/v1/jobs/" + strips + "/net.svg")->body;
+  const std::string svg_b = c.Get("/v1/jobs/" + yes + "/net.svg")->body;
+  ASSERT_NE(svg_data(svg_a, "cut-edges"), "");
+  EXPECT_EQ(svg_data(svg_a, "tabs"), "0");
+  EXPECT_EQ(svg_data(svg_a, "strips"), svg_data(svg_a, "cut-edges"));
+  // auto: tabs on the net, after the cuts were changed to make room for them (docs/tabs.md),
+  // and the delivered net JSON is that net, valid.
+  EXPECT_GT(std::stoi(svg_data(svg_b, "tabs")), 4 * std::stoi(svg_data(svg_b, "strips")));
+  const papernet::NetDocument doc =
+      papernet::read_net_json(c.Get("/v1/jobs/" + yes + "/net.json")->body);
+  EXPECT_TRUE(papernet::check_net(doc.mesh, doc.net).ok());
+  expect_problem(c.Post("/v1/jobs?tabs=glue", test_mesh("sample.obj"), "model/obj"), 400,
+                 "invalid_option_value");
+}
+
 // Progressive unfolding (the default, QQ): while the job runs, the result URLs serve the latest
 // overlap-free intermediate, said so in a header and in the body; then the complete net.
 TEST(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {

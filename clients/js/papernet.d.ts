@@ -18,7 +18,8 @@ export interface Options {
   scale?: number;
   paper?: Paper;
   margin_mm?: number;
-  tabs?: boolean;
+  /** Glue: "auto" (tabs where they fit, strips elsewhere), "strips", "none"; true = "auto", false = "none". */
+  tabs?: "auto" | "strips" | "none" | boolean;
   flat_fold_degrees?: number;
   keep_largest_component?: boolean;
 }

@@ -78,7 +78,7 @@ test("GLB upload followed by polling", async () => {
   const done = await client.poll(job.id, { interval: 100, timeout: 60000, onProgress: (j) => progress.push(j) });
   assert.equal(done.status, "succeeded", JSON.stringify(done.error));
   assert.equal(done.options.paper, "Letter");
-  assert.equal(done.options.tabs, false);
+  assert.equal(done.options.tabs, "none"); // false means none; the job shows the mode
   assert.ok(progress.length >= 1);
   assert.equal(done.input.format, "glb");
   checkNet(await client.netJson(job.id));

@@ -1,0 +1,16 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace papernet {
+
+/// How cut edges get their glue: `Auto` puts a tab on the net where one fits and a separate
+/// glue strip elsewhere; `Strips` gives every cut edge a strip; `None` prints no glue at all.
+enum class TabMode { Auto, Strips, None };
+
+/// Parses "auto", "strips" or "none". \throw InvalidInputException for anything else.
+TabMode parse_tab_mode(std::string_view text);
+std::string tab_mode_name(TabMode mode);
+
+}  // namespace papernet

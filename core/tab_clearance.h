@@ -1,0 +1,74 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "core/folds.h"
+#include "core/mesh.h"
+#include "core/net.h"
+#include "core/progress.h"
+#include "core/vec.h"
+
+namespace papernet {
+
+/// A glue tab's shape relative to its edge: the stretch [from, to] of the edge (fractions from
+/// the side's first point) its base covers and the slant of each end (radians).
+struct TabShape {
+  double from = 0, to = 1;
+  double angle0 = 0.785398163397448, angle1 = 0.785398163397448;
+};
+
+/// The tab shapes a printed net may use, best first: bases over the whole edge and over
+/// stretches of it (at least 40 %), ends slanted by `angle_deg` or 40 % of it.
+std::vector<TabShape> tab_shapes(double angle_deg);
+
+/// The trapezoid of `shape` on the outside of edge k of the counter-clockwise triangle `face`,
+/// `height` tall, counter-clockwise: the base's two ends (the one nearer corner k second), then
+/// the two top corners. The ends' insets shrink together so the top keeps a tenth of the base.
+std::array<Vec2, 4> tab_trapezoid(const std::array<Vec2, 3>& face, int k, const TabShape& shape,
+                                  double height);
+
+struct TabClearanceOptions {
+  /// Lowest tab worth printing, in model units (print: millimetres / scale); on an edge shorter
+  /// than twice this, half the edge. <= 0: every edge has room, nothing to do.
+  double min_height = 0;
+  double angle_deg = 45;  ///< slant of a tab's sides, as the print layout's
+  /// Candidate moves evaluated at most: a deterministic budget (no clock), so the same net
+  /// and options always give the same result.
+  std::size_t max_evaluations = 100'000;
+  /// Refuse moves that take faces outside the input net's axis-aligned bounding box, so that
+  /// the net does not grow while it makes room for tabs. Off by default: it leaves about a
+  /// quarter more edges without room and does not bound the page count anyway (pages follow
+  /// the net's minimum-area rotated box; docs/tabs.md).
+  bool keep_bounds = false;
+};
+
+/// Interior cut edges of `net` where no tab of `options.min_height` (of any of tab_shapes)
+/// fits on either side without overlapping a face; each edge once, as its side on the face with
+/// the smaller index. Edges whose two sides lie on each other (glued without a tree link) are
+/// not cut. Tabs are not obstacles here: this is room, not a placement.
+std::vector<EdgeSide> edges_without_tab_room(const Mesh& mesh, const Net& net,
+                                             const TabClearanceOptions& options);
+
+struct TabClearanceResult {
+  Net net;
+  std::size_t blocked_before = 0;  ///< cut edges without tab room in the input net
+  std::size_t blocked_after = 0;   ///< ... and in `net`
+  std::size_t moves = 0;           ///< accepted moves
+  std::size_t evaluations = 0;     ///< candidate moves evaluated
+};
+
+/// Makes room for tabs: changes which edges of an overlap-free `net` are cut so that fewer cut
+/// edges lack room for a tab (edges_without_tab_room). A move cuts a tree link at an end of
+/// such an edge (typically at a leaf of the cut tree, where the edge's two sides lie a few
+/// degrees apart around an almost flat vertex) and glues a nearby cut edge instead, rotating
+/// the smaller side of the tree rigidly; it is kept only when it adds no overlap and lowers the
+/// number of edges without room. The result is an overlap-free net of the same mesh (glued
+/// edges copied exactly), or the input when nothing helped. Deterministic.
+/// \pre `net` is an overlap-free net of `mesh` (check_net passes).
+/// \throw CancelledException when `progress` asks to stop.
+TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
+                                  const TabClearanceOptions& options, Progress& progress);
+
+}  // namespace papernet

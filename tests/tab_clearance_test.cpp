@@ -1,0 +1,160 @@
+#include "core/tab_clearance.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/load.h"
+#include "core/net_check.h"
+#include "core/progressive.h"
+#include "core/unfolding.h"
+#include "tests/net_fixtures.h"
+
+namespace papernet {
+namespace {
+
+/// The Tabu Unfolder's net of a tests/data mesh, and the lowest printable tab (2 mm) in model
+/// units when the mesh is printed 200 mm long.
+struct Case {
+  Mesh mesh;
+  Net net;
+  double min_height = 0;
+};
+
+Case unfolded(const std::string& file) {
+  for (auto& [name, mesh] : testing::test_data_meshes()) {
+    if (name != file) continue;
+    Progress quiet;
+    TabuOptions options;
+    options.time_limit_seconds = 30;
+    Case c{mesh, unfold_tabu(mesh, options, quiet).net, 0};
+    Vec3 lo = mesh.vertices[0], hi = lo;
+    for (const Vec3& v : mesh.vertices) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    }
+    c.min_height = 2.0 / (200.0 / std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}));
+    return c;
+  }
+  ADD_FAILURE() << "tests/data has no " << file;
+  return {};
+}
+
+TEST(TabClearance, OpensNearSlitsAndKeepsTheNetValid) {
+  const Case c = unfolded("sample.obj");
+  ASSERT_FALSE(c.mesh.faces.empty());
+  TabClearanceOptions options;
+  options.min_height = c.min_height;
+  const std::size_t blocked = edges_without_tab_room(c.mesh, c.net, options).size();
+  ASSERT_GT(blocked, 50u) << "sample.obj's dense net has near-slits";
+  Progress quiet;
+  const TabClearanceResult r = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_EQ(r.blocked_before, blocked);
+  EXPECT_LT(r.blocked_after, blocked / 2);
+  EXPECT_GT(r.moves, 0u);
+  // What the pass says is what an independent recount of its net finds.
+  const std::vector<EdgeSide> left = edges_without_tab_room(c.mesh, r.net, options);
+  EXPECT_EQ(left.size(), r.blocked_after);
+  const NetCheckReport check = check_net(c.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  // Deterministic: the same net and options give the same net.
+  const TabClearanceResult again = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_EQ(again.net.parent, r.net.parent);
+  ASSERT_EQ(again.net.points.size(), r.net.points.size());
+  for (std::size_t f = 0; f < r.net.points.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(again.net.points[f][k].x, r.net.points[f][k].x);
+      EXPECT_EQ(again.net.points[f][k].y, r.net.points[f][k].y);
+    }
+  // Keeping the net inside its box: no face leaves the input's bounding box.
+  options.keep_bounds = true;
+  const TabClearanceResult boxed = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_LT(boxed.blocked_after, blocked);
+  EXPECT_TRUE(check_net(c.mesh, boxed.net).ok());
+  const auto box = [](const Net& net) {
+    Vec2 lo = net.points[0][0], hi = lo;
+    for (const auto& t : net.points)
+      for (Vec2 p : t)
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)},
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    return std::pair{lo, hi};
+  };
+  const auto [lo0, hi0] = box(c.net);
+  const auto [lo1, hi1] = box(boxed.net);
+  const double eps = 1e-9 * (hi0.x - lo0.x + hi0.y - lo0.y);
+  EXPECT_GE(lo1.x, lo0.x - eps);
+  EXPECT_GE(lo1.y, lo0.y - eps);
+  EXPECT_LE(hi1.x, hi0.x + eps);
+  EXPECT_LE(hi1.y, hi0.y + eps);
+  options.keep_bounds = false;
+  // A smaller budget stops earlier, and never leaves more than it started with.
+  options.max_evaluations = 10;
+  const TabClearanceResult short_run = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_LE(short_run.evaluations, 10u);
+  EXPECT_LE(short_run.blocked_after, blocked);
+  EXPECT_GE(short_run.blocked_after, r.blocked_after);
+}
+
+// The showcase: the Stanford bunny (2000 faces) at 200 mm, progressive QQ.
+TEST(TabClearance, BunnyAt200mm) {
+  const std::filesystem::path file =
+      std::filesystem::path(PAPERNET_SHARED_DATA) / "bench/2000/draco__bun_zipper.obj";
+  if (!std::filesystem::exists(file))
+    GTEST_SKIP() << "needs ../shared/data: " << file << " is absent";
+  const Mesh mesh = load_mesh_file(file.string()).mesh;
+  Progress quiet;
+  ProgressiveOptions unfold;
+  unfold.tabu.time_limit_seconds = 60;
+  const ProgressiveResult r = unfold_progressive(mesh, unfold, quiet);
+  ASSERT_TRUE(r.overlap_free);
+  Vec3 lo = r.mesh.vertices[0], hi = lo;
+  for (const Vec3& v : r.mesh.vertices) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  }
+  TabClearanceOptions options;
+  options.min_height = 2.0 / (200.0 / std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}));
+  const TabClearanceResult room = clear_tab_room(r.mesh, r.net, options, quiet);
+  EXPECT_GT(room.blocked_before, 100u);
+  EXPECT_LT(3 * room.blocked_after, room.blocked_before);  // 247 -> 77 at seed 1
+  EXPECT_TRUE(check_net(r.mesh, room.net).ok());
+}
+
+TEST(TabClearance, NothingToDoLeavesTheNetAlone) {
+  const Mesh cube = testing::cube();
+  const Net net = testing::bfs_net(cube);  // the cube's BFS net does not overlap
+  ASSERT_TRUE(check_net(cube, net).ok());
+  Progress quiet;
+  TabClearanceOptions options;  // min_height 0: every edge has room
+  TabClearanceResult r = clear_tab_room(cube, net, options, quiet);
+  EXPECT_EQ(r.moves, 0u);
+  EXPECT_EQ(r.net.parent, net.parent);
+  // Tabs of a tenth of the edge fit everywhere around the cube's net.
+  options.min_height = 0.1;
+  EXPECT_TRUE(edges_without_tab_room(cube, net, options).empty());
+  r = clear_tab_room(cube, net, options, quiet);
+  EXPECT_EQ(r.blocked_before, 0u);
+  EXPECT_EQ(r.moves, 0u);
+  EXPECT_EQ(r.net.parent, net.parent);
+}
+
+TEST(TabClearance, TabShapesLieOutsideTheirEdge) {
+  const std::array<Vec2, 3> face{Vec2{0, 0}, Vec2{4, 0}, Vec2{1, 3}};
+  for (const TabShape& shape : tab_shapes(45)) {
+    const auto t = tab_trapezoid(face, 0, shape, 1);
+    // Base on the edge y = 0 within [0, 4], top one unit below it (the face is above).
+    EXPECT_NEAR(t[0].y, 0, 1e-12);
+    EXPECT_NEAR(t[1].y, 0, 1e-12);
+    EXPECT_NEAR(t[2].y, -1, 1e-12);
+    EXPECT_NEAR(t[3].y, -1, 1e-12);
+    EXPECT_GE(std::min(t[0].x, t[1].x), -1e-12);
+    EXPECT_LE(std::max(t[0].x, t[1].x), 4 + 1e-12);
+    EXPECT_GT(t[0].x - t[1].x, 0.4 * 4 - 1e-9);  // at least 40 % of the edge
+    EXPECT_GT(t[3].x, t[2].x);                   // the top keeps some length
+  }
+  EXPECT_EQ(tab_shapes(45).size(), 36u);
+}
+
+}  // namespace
+}  // namespace papernet
