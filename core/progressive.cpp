@@ -275,8 +275,9 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   result.splits_total = pm.splits_left();
   if (!coarse_ok && pm.face_count() < input_faces && (limit <= 0 || remaining() > 0)) {
     // No coarse mesh could be unfolded: plain Tabu Unfolding of the input itself with what is
-    // left of the budget (on the Twin plate, whose slivers keep every coarse mesh overlapping,
-    // its minimum-perimeter start is already a net).
+    // left of the budget (unfold_tabu starts from the better of two trees; on meshes of slivers
+    // such as the Twin plate the input's minimum-perimeter tree can be a net when no collapsed
+    // version is unfolded).
     TabuOptions tabu = options.tabu;
     tabu.input_faces = input_faces;
     if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
