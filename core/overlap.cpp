@@ -17,6 +17,14 @@ bool separates(Vec2 p, Vec2 q, const Triangle2& t, double tolerance) {
 // Largest number of cells a face may cover in its level.
 constexpr double kMaxCells = 16;
 
+Box2 merged(const Box2& a, const Box2& b) {
+  return {{std::min(a.lo.x, b.lo.x), std::min(a.lo.y, b.lo.y)},
+          {std::max(a.hi.x, b.hi.x), std::max(a.hi.y, b.hi.y)}};
+}
+
+// Half the perimeter: the cost of a tree node (the chance that a random query meets it).
+double half_perimeter(const Box2& b) { return (b.hi.x - b.lo.x) + (b.hi.y - b.lo.y); }
+
 }  // namespace
 
 bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance) {
@@ -41,6 +49,84 @@ void OverlapGrid::reset(double cell_size) {
     inv *= 0.25;
   }
   range_.clear();
+  nodes_.clear();
+  free_nodes_.clear();
+  tree_root_ = -1;
+}
+
+int OverlapGrid::new_node() {
+  if (!free_nodes_.empty()) {
+    const int i = free_nodes_.back();
+    free_nodes_.pop_back();
+    nodes_[i] = Node{};
+    return i;
+  }
+  nodes_.emplace_back();
+  return static_cast<int>(nodes_.size()) - 1;
+}
+
+// Inserts a leaf next to the sibling that enlarges the tree least (the branch-and-bound descent
+// of dynamic bounding-volume trees), then refits the boxes above it.
+void OverlapGrid::tree_insert(int leaf) {
+  if (tree_root_ < 0) {
+    tree_root_ = leaf;
+    nodes_[leaf].parent = -1;
+    return;
+  }
+  const Box2 box = nodes_[leaf].box;
+  int i = tree_root_;
+  while (nodes_[i].face < 0) {
+    const Node& n = nodes_[i];
+    const double area = half_perimeter(n.box);
+    const double combined = half_perimeter(merged(n.box, box));
+    const double here = 2 * combined;  // a new parent of n and the leaf
+    const double inherited = 2 * (combined - area);
+    const auto descend = [&](int c) {
+      const double grown = half_perimeter(merged(nodes_[c].box, box));
+      return (nodes_[c].face >= 0 ? grown : grown - half_perimeter(nodes_[c].box)) + inherited;
+    };
+    const double left = descend(n.left), right = descend(n.right);
+    if (here < left && here < right) break;
+    i = left < right ? n.left : n.right;
+  }
+  const int sibling = i;
+  const int old_parent = nodes_[sibling].parent;
+  const int p = new_node();  // may reallocate nodes_: no references kept across it
+  nodes_[p].parent = old_parent;
+  nodes_[p].box = merged(nodes_[sibling].box, box);
+  nodes_[p].left = sibling;
+  nodes_[p].right = leaf;
+  nodes_[sibling].parent = p;
+  nodes_[leaf].parent = p;
+  if (old_parent < 0) {
+    tree_root_ = p;
+  } else {
+    Node& op = nodes_[old_parent];
+    (op.left == sibling ? op.left : op.right) = p;
+  }
+  for (int a = old_parent; a >= 0; a = nodes_[a].parent)
+    nodes_[a].box = merged(nodes_[nodes_[a].left].box, nodes_[nodes_[a].right].box);
+}
+
+void OverlapGrid::tree_remove(int leaf) {
+  const int p = nodes_[leaf].parent;
+  free_nodes_.push_back(leaf);
+  if (p < 0) {
+    tree_root_ = -1;
+    return;
+  }
+  const int sibling = nodes_[p].left == leaf ? nodes_[p].right : nodes_[p].left;
+  const int gp = nodes_[p].parent;
+  nodes_[sibling].parent = gp;
+  free_nodes_.push_back(p);
+  if (gp < 0) {
+    tree_root_ = sibling;
+    return;
+  }
+  Node& g = nodes_[gp];
+  (g.left == p ? g.left : g.right) = sibling;
+  for (int a = gp; a >= 0; a = nodes_[a].parent)
+    nodes_[a].box = merged(nodes_[nodes_[a].left].box, nodes_[nodes_[a].right].box);
 }
 
 void OverlapGrid::place(int f) {
@@ -71,6 +157,16 @@ void OverlapGrid::insert(int f, const Box2& box) {
       r.x0 = x0, r.x1 = x1, r.y0 = y0, r.y1 = y1, r.level = i;
       break;
     }
+    if (i + 1 == kGridLevels && std::isfinite(box.hi.x - box.lo.x) &&
+        std::isfinite(box.hi.y - box.lo.y) && std::abs(box.lo.x) < 1e300 &&
+        std::abs(box.lo.y) < 1e300) {
+      r.level = kTree;
+      r.slot = new_node();
+      nodes_[r.slot].box = box;
+      nodes_[r.slot].face = f;
+      tree_insert(r.slot);
+      return;
+    }
   }
   Level& l = levels_[r.level];
   r.slot = static_cast<int>(l.members.size());
@@ -84,6 +180,11 @@ void OverlapGrid::insert(int f, const Box2& box) {
 
 void OverlapGrid::remove(int f) {
   Range& r = range_[f];
+  if (r.level == kTree) {
+    tree_remove(r.slot);
+    r.valid = false;
+    return;
+  }
   Level& l = levels_[r.level];
   range_[l.members.back()].slot = r.slot;
   l.members[r.slot] = l.members.back();

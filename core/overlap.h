@@ -24,20 +24,24 @@ inline Box2 triangle_box(const Triangle2& t) {
 }
 
 /// True when the interiors of the counter-clockwise triangles a and b intersect by more than
-/// `tolerance` (a length; use a small fraction of the mesh's size, e.g. 1e-9 of its bounding-box
+/// `tolerance` (a length; use a small fraction of the mesh's size, e.g. 5e-8 of its bounding-box
 /// diagonal). Triangles that touch along an edge or at a vertex, or whose shared corners differ
 /// by rounding, do not overlap. Exact for glued neighbours: a shared edge copied bit for bit
 /// separates them even with tolerance 0. Uses separating axes along the six edges, which is
 /// exact for convex polygons in the plane.
 bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance);
 
-/// Hierarchical hash grid over face boxes, updated incrementally: the spatial index of a net.
-/// Level L has cells `cell_size * 4^L` wide; a face goes to the finest level where its box
-/// covers at most a few cells, so faces of very different sizes (CAD meshes with edges from 1 to
-/// 10,000 units) all cost a few cells. In each level cells hash into a power-of-two table of
-/// buckets without keys (cells that collide share a bucket, which only adds candidates), so a
-/// query is a few array lookups per non-empty level; a level where the query box covers more
-/// cells than the level has faces is scanned as a list instead.
+/// Spatial index of a net, updated incrementally: a hierarchical hash grid over face boxes for
+/// compact faces, and a dynamic bounding-box tree for faces far longer than the finest cell.
+/// Grid level L has cells `cell_size * 4^L` wide; a face goes to the finest level where its box
+/// covers at most a few cells. In each level cells hash into a power-of-two table of buckets
+/// without keys (cells that collide share a bucket, which only adds candidates), so a query is a
+/// few array lookups per non-empty level; a level where the query box covers more cells than the
+/// level has faces is scanned as a list instead. Faces whose box needs a coarser level than
+/// kGridLevels - 1 (slivers and huge faces: CAD meshes with faces from 1 to 10,000 units long,
+/// aspect ratios up to 1e8) go into the tree instead, which returns only the faces whose boxes
+/// meet the query box, each once: in a net that is one long strip of slivers, every grid cell
+/// coarse enough for them would hold nearly every face, many times over.
 class OverlapGrid {
  public:
   /// Empties the grid and sets its finest cell size (> 0), typically about an edge length.
@@ -48,15 +52,23 @@ class OverlapGrid {
   void remove(int f);
   bool contains(int f) const { return f < static_cast<int>(range_.size()) && range_[f].valid; }
   /// Calls visit(face) for every face whose cells meet `box`; a face may be visited more than
-  /// once, and faces whose boxes do not meet `box` may be visited too.
+  /// once, and faces whose boxes do not meet `box` may be visited too (faces in the tree: only
+  /// those whose boxes meet `box`, once each).
   template <class Visit>
   void query(const Box2& box, Visit&& visit) const;
 
  private:
   struct Range {
     int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-    int level = 0, slot = 0;  // level (kLevels: the list of unbounded faces), place in members
+    // level: grid level, kTree (slot: its leaf) or kLevels (the list of unbounded faces, slot:
+    // its place in members)
+    int level = 0, slot = 0;
     bool valid = false;
+  };
+  // A node of the bounding-box tree: a leaf holds one face, an inner node two children.
+  struct Node {
+    Box2 box;
+    int parent = -1, left = -1, right = -1, face = -1;
   };
   struct Level {
     double inv_cell = 1;
@@ -65,6 +77,8 @@ class OverlapGrid {
     std::vector<int> members;
   };
   static constexpr int kLevels = 24;
+  static constexpr int kGridLevels = 2;  // levels kept as hash grids; coarser faces: the tree
+  static constexpr int kTree = -1;
   static std::size_t bucket(const Level& l, int x, int y) {
     const std::uint64_t h = static_cast<std::uint32_t>(x) * 0x9e3779b1u ^
                             static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0x85ebca6bu;
@@ -76,9 +90,16 @@ class OverlapGrid {
   }
   void place(int f);
   void grow(Level& l);
+  int new_node();
+  void tree_insert(int leaf);
+  void tree_remove(int leaf);
 
   std::array<Level, kLevels + 1> levels_;
   std::vector<Range> range_;
+  std::vector<Node> nodes_;
+  std::vector<int> free_nodes_;
+  int tree_root_ = -1;
+  mutable std::vector<int> stack_;
 };
 
 template <class Visit>
@@ -98,6 +119,22 @@ void OverlapGrid::query(const Box2& box, Visit&& visit) const {
       }
     }
     for (int f : l.members) visit(f);
+  }
+  if (tree_root_ < 0) return;
+  const auto meets = [&box](const Box2& b) {
+    return b.lo.x <= box.hi.x && box.lo.x <= b.hi.x && b.lo.y <= box.hi.y && box.lo.y <= b.hi.y;
+  };
+  stack_.assign(1, tree_root_);
+  while (!stack_.empty()) {
+    const Node& n = nodes_[stack_.back()];
+    stack_.pop_back();
+    if (!meets(n.box)) continue;
+    if (n.face >= 0) {
+      visit(n.face);
+    } else {
+      stack_.push_back(n.left);
+      stack_.push_back(n.right);
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/dual_graph.h"
 #include "core/errors.h"
 #include "core/hausdorff.h"
 #include "core/progressive_mesh.h"
@@ -180,12 +181,19 @@ std::size_t place_splits(State& st, const std::vector<VertexSplit>& splits, std:
   return overlaps;
 }
 
-// The unfolding of pm's current mesh from the steepest-edge tree of `seed`, with id maps.
-State make_state(const ProgressiveMesh& pm, const Mesh& input, std::uint64_t seed) {
+// The unfolding of pm's current mesh from the steepest-edge tree of `seed`, with id maps. A
+// retry (`retry`) starts from the minimum-perimeter tree instead when it has fewer overlapping
+// pairs: on CAD meshes of slivers it often has none where steepest edges have thousands (the
+// Twin plate at 486 faces: 0 against 5,931).
+State make_state(const ProgressiveMesh& pm, const Mesh& input, std::uint64_t seed, bool retry) {
   std::vector<int> face_ids, vertex_ids;
   Mesh coarse = pm.compact(&face_ids, &vertex_ids);
-  State st{Unfolding::steepest_edge(std::move(coarse), seed),
-           std::vector<int>(pm.input_face_count(), -1),
+  Unfolding start = Unfolding::steepest_edge(coarse, seed);
+  if (retry && start.overlap_count() > 0) {
+    Unfolding other(coarse, min_perimeter_tree(coarse, build_dual_graph(coarse), seed));
+    if (other.overlap_count() < start.overlap_count()) start = std::move(other);
+  }
+  State st{std::move(start), std::vector<int>(pm.input_face_count(), -1),
            std::vector<int>(input.vertices.size(), -1)};
   for (std::size_t i = 0; i < face_ids.size(); ++i) st.face[face_ids[i]] = static_cast<int>(i);
   for (std::size_t i = 0; i < vertex_ids.size(); ++i)
@@ -233,13 +241,16 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     const std::size_t next = faces / 2;
     const bool last = !can_go_coarser || next < kMinCoarseFaces || (limit > 0 && remaining() <= 0);
     relay.context.faces = faces;
-    coarse = make_state(pm, mesh, options.tabu.seed + attempt);
+    coarse = make_state(pm, mesh, options.tabu.seed + attempt, attempt > 0);
     Unfolding& u = coarse->unfolding;
     TabuOptions tabu = options.tabu;
     tabu.seed = options.tabu.seed + attempt;
     tabu.phase = "unfold";
     tabu.input_faces = input_faces;
     if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
+    // The last coarse attempt leaves half the budget to plain Tabu Unfolding of the input.
+    if (last && limit > 0 && faces < input_faces)
+      tabu.time_limit_seconds = std::max(1e-3, remaining() / 2);
     if (!last) {
       if (options.coarse_iterations > 0) {
         tabu.max_iterations = options.coarse_iterations;
@@ -262,6 +273,36 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   }
   result.coarse_faces = pm.face_count();
   result.splits_total = pm.splits_left();
+  if (!coarse_ok && pm.face_count() < input_faces && (limit <= 0 || remaining() > 0)) {
+    // No coarse mesh could be unfolded: plain Tabu Unfolding of the input itself with what is
+    // left of the budget (unfold_tabu starts from the better of two trees; on meshes of slivers
+    // such as the Twin plate the input's minimum-perimeter tree can be a net when no collapsed
+    // version is unfolded).
+    TabuOptions tabu = options.tabu;
+    tabu.input_faces = input_faces;
+    if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
+    relay.context.faces = input_faces;
+    UnfoldResult full;
+    try {
+      full = unfold_tabu(mesh, tabu, relay);
+    } catch (const InvalidInputException&) {
+      // The input has no net at all (a dual graph that is a tree): keep the coarse attempt.
+    }
+    result.stats.iterations += full.stats.iterations;
+    result.stats.evaluations += full.stats.evaluations;
+    if (full.overlap_free) {
+      result.complete = result.overlap_free = true;
+      result.mesh = mesh;
+      result.net = std::move(full.net);
+      result.face_ids.resize(input_faces);
+      for (std::size_t f = 0; f < input_faces; ++f) result.face_ids[f] = static_cast<int>(f);
+      result.splits = result.splits_total;
+      ProgressInfo done;
+      relay.report(done);
+      result.seconds = seconds_since(start);
+      return result;
+    }
+  }
   State st = std::move(*coarse);
   coarse.reset();
 

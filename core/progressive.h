@@ -60,7 +60,11 @@ struct ProgressiveResult {
 /// appear. When that fails within the budget, the last overlap-free state is returned
 /// (`complete` false). When the coarse mesh itself cannot be unfolded within a budget that grows
 /// with its size, it is collapsed further (half the faces each time) and unfolded again, so that
-/// meshes too detailed for their shape still give an approximate net; a split whose overlaps need
+/// meshes too detailed for their shape still give an approximate net (a retry starts from the
+/// minimum-perimeter tree when it has fewer overlaps than the steepest-edge one). When no coarse
+/// mesh can be unfolded, plain Tabu Unfolding (unfold_tabu) of the input gets what is left of the
+/// budget (the last coarse attempt gets half of it) and gives a complete net when it finds one;
+/// a split whose overlaps need
 /// more Tabu iterations than everything before it (and than 2,000 + 5 per face) ends the run
 /// early with the last overlap-free state.
 ///

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <deque>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "core/dual_graph.h"
@@ -20,6 +21,15 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// True when the faces' adjacency has no cycle: then the unfold tree is the whole dual graph.
+bool dual_graph_is_tree(const Mesh& mesh) {
+  const DualGraph graph = build_dual_graph(mesh);
+  std::size_t twice_edges = 0;
+  for (const auto& n : graph.neighbour)
+    for (int q : n) twice_edges += q >= 0 ? 1 : 0;
+  return twice_edges / 2 + 1 == mesh.faces.size();
 }
 
 // A dual edge {a, b} as an ordered pair.
@@ -167,6 +177,11 @@ UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress&
       Unfolding other(mesh, min_perimeter_tree(mesh, build_dual_graph(mesh), seed));
       if (other.overlap_count() < unfolding.overlap_count()) unfolding = std::move(other);
     }
+    if (attempt == 0 && unfolding.overlap_count() > 0 && dual_graph_is_tree(mesh))
+      throw InvalidInputException(
+          "its dual graph is a tree (every edge between two faces must stay uncut to keep the "
+          "net in one piece), so it has a single edge unfolding, and that one has " +
+          std::to_string(unfolding.overlap_count()) + " overlapping face pairs");
     TabuOptions rest = options;
     rest.seed = seed;
     rest.max_iterations = iterations_left;

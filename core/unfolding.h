@@ -60,7 +60,8 @@ struct TabuStats {
 ///
 /// Faces are laid out per DESIGN.md §2: each face has its own 2D triangle; a child is placed
 /// across the edge it shares with its parent, counter-clockwise. Two faces overlap when their
-/// interiors intersect by more than 1e-9 of the mesh's bounding-box diagonal.
+/// interiors intersect by more than 5e-8 of the mesh's bounding-box diagonal (half of what the
+/// net checker ignores).
 ///
 /// Growing the mesh (vertex splits): change vertices and faces with add_vertex,
 /// set_vertex_position, set_face_corners and add_face; fix the tree with attach and
@@ -210,7 +211,8 @@ struct UnfoldResult {
 /// with each restart) the walk restarts from the steepest-edge tree of another direction derived
 /// from the seed, within the same budget; the result is the state with the fewest overlaps seen at
 /// the end of an attempt. Deterministic for a seed (up to the time limit). The net is of `mesh`
-/// itself. \throw InvalidInputException when the mesh cannot be unfolded as one piece.
+/// itself. \throw InvalidInputException when the mesh cannot be unfolded as one piece, and when its
+/// dual graph is a tree (a single edge unfolding exists) whose unfolding overlaps, at once.
 UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress);
 
 }  // namespace papernet

@@ -110,5 +110,56 @@ TEST(OverlapGrid, FindsEveryMeetingBoxAcrossSizes) {
   }
 }
 
+// A net that is one long strip of slivers (the Twin plate: faces 9,000 units long and a hundredth
+// wide, all in a strip 12 units high): such faces go into the grid's tree, whose query returns
+// each face whose box meets the query box exactly once, and no other. Faces are moved (removed
+// and inserted elsewhere) as the Tabu Unfolder does.
+TEST(OverlapGrid, StripOfSliversReturnsEachMeetingBoxOnce) {
+  OverlapGrid grid;
+  grid.reset(1.0);
+  std::uint64_t s = 777;
+  const auto next = [&s] {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(s >> 11) / 9007199254740992.0;
+  };
+  const auto sliver = [&] {
+    const double x = 9000 * next(), y = 12 * next();
+    return Box2{{x, y}, {x + 100 + 8900 * next(), y + 0.01 + next()}};
+  };
+  constexpr int kFaces = 300;
+  std::vector<Box2> boxes;
+  for (int f = 0; f < kFaces; ++f) {
+    boxes.push_back(f % 10 == 0 ? Box2{{9000 * next(), 12 * next()}, {0, 0}} : sliver());
+    if (f % 10 == 0) boxes[f].hi = {boxes[f].lo.x + 0.5, boxes[f].lo.y + 0.5};  // compact ones
+    grid.insert(f, boxes[f]);
+  }
+  for (int f = 0; f < kFaces; f += 4) {  // moves
+    grid.remove(f);
+    boxes[f] = sliver();
+    grid.insert(f, boxes[f]);
+  }
+  const auto meets = [](const Box2& a, const Box2& b) {
+    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y;
+  };
+  for (int f = 0; f < kFaces; ++f) {
+    std::vector<int> count(kFaces, 0);
+    grid.query(boxes[f], [&](int c) { ++count[c]; });
+    for (int c = 0; c < kFaces; ++c) {
+      if (meets(boxes[f], boxes[c])) {
+        EXPECT_GE(count[c], 1) << "face " << c << " missed by the query of " << f;
+      } else if (c % 10 != 0) {
+        EXPECT_EQ(count[c], 0) << "sliver " << c << " does not meet " << f;
+      }
+      if (c % 10 != 0) {
+        EXPECT_LE(count[c], 1) << "sliver " << c << " returned twice";
+      }
+    }
+  }
+  for (int f = 0; f < kFaces; ++f) grid.remove(f);
+  int left = 0;
+  grid.query({{-1e6, -1e6}, {1e6, 1e6}}, [&](int) { ++left; });
+  EXPECT_EQ(left, 0);
+}
+
 }  // namespace
 }  // namespace papernet

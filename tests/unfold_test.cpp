@@ -227,5 +227,38 @@ TEST(Unfold, CadSliverMeshesAt400Faces) {
   }
 }
 
+// The Twin plate (5,756 faces, aspect ratios up to 1.6e8, a long bar whose sides are fans of
+// slivers): the minimum-perimeter tree lays its flat sides out as they are; what overlapped
+// there before was rounding of the float input (pairs of faces adjacent in 3D, 1e-8 of the
+// diagonal deep), which the overlap test now ignores as the net checker does.
+TEST(Unfold, TwinPlateOfSliversUnfolds) {
+  const fs::path file = fs::path(PAPERNET_SHARED_DATA) / "bench" / "100" /
+                        "manifold__Generic_Twin_7081.1.t0_right.obj";
+  if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
+  unfold_and_check(load_mesh_file(file.string()).mesh, 1, 20);
+}
+
+// An open fan of 7 triangles with 60° at the centre (420° laid flat): its dual graph is a path,
+// so its only edge unfolding is the fan itself, which overlaps. TU says so at once.
+TEST(Unfold, MeshWhoseOnlyUnfoldingOverlapsIsRefused) {
+  Mesh fan;
+  fan.vertices.push_back({0, 0, 0});
+  const double h = std::sqrt((std::cos(M_PI / 4) - 0.5) / (1 + std::cos(M_PI / 4)));
+  for (int i = 0; i <= 7; ++i) {
+    const double r = std::sqrt(1 - h * h), a = i * M_PI / 4;
+    fan.vertices.push_back({r * std::cos(a), r * std::sin(a), i % 2 ? h : -h});
+  }
+  for (int i = 0; i < 7; ++i) fan.faces.push_back({0, i + 1, i + 2});
+  TabuOptions options;
+  options.time_limit_seconds = 60;
+  Progress quiet;
+  try {
+    unfold_tabu(fan, options, quiet);
+    ADD_FAILURE() << "no InvalidInputException";
+  } catch (const InvalidInputException& e) {
+    EXPECT_NE(std::string(e.what()).find("dual graph is a tree"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace papernet
