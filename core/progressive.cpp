@@ -61,8 +61,9 @@ struct Applied {
 // Hausdorff refinement budget per direction for approximate results (a few tenths of a second).
 constexpr std::size_t kHausdorffRefinements = 20000;
 
-// Local moves tried after a split before the Tabu Unfolder runs.
-constexpr int kLocalTrials = 16;
+// Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests.
+constexpr std::size_t kRepairTestsBase = 4000;
+constexpr std::size_t kRepairTestsPerFace = 4;
 // Above this face count, several splits share one update() (whose cost grows with the mesh).
 constexpr std::size_t kBatchFaces = 4000;
 
@@ -129,55 +130,16 @@ void apply_split(State& st, const VertexSplit& s, std::uint64_t seed) {
   }
 }
 
-// Applies splits and lays them out. When faces of the split's neighbourhood overlap, moving one
-// of them (with its subtree) to another neighbour is tried first, a few cheap updates each, before
-// the caller falls back on the Tabu Unfolder: most new overlaps are local. Returns the overlap
-// count.
+// Applies splits and lays them out. When faces overlap, local moves of small parts of the tree
+// are tried first (Unfolding::repair_locally, O(moved side) each) before the caller falls back on
+// the Tabu Unfolder: most new overlaps are local. Returns the overlap count.
 std::size_t place_splits(State& st, const std::vector<VertexSplit>& splits, std::uint64_t seed) {
   for (std::size_t i = 0; i < splits.size(); ++i) apply_split(st, splits[i], seed + i);
   Unfolding& u = st.unfolding;
-  std::size_t overlaps = u.update();
-  if (overlaps == 0) return 0;
-  std::vector<int> local;
-  for (const VertexSplit& s : splits) {
-    for (const SplitFace& nf : s.new_faces) local.push_back(st.face[nf.face]);
-    for (int f : s.reshaped) local.push_back(st.face[f]);
-  }
-  const auto in_subtree = [&u](int q, int f) {
-    for (int x = q; x >= 0; x = u.parent(x))
-      if (x == f) return true;
-    return false;
-  };
-  int trials = 0;
-  for (int f : local) {
-    if (overlaps == 0 || trials >= kLocalTrials) break;
-    const auto& list = u.overlapping_faces();
-    if (std::find(list.begin(), list.end(), f) == list.end()) continue;
-    for (int k = 0; k < 3 && overlaps > 0 && trials < kLocalTrials; ++k) {
-      const int q = u.neighbour(f, k);
-      const int before = u.parent(f);
-      if (q < 0 || q == before || before < 0 || in_subtree(q, f)) continue;
-      ++trials;
-      u.attach(f, q);
-      const std::size_t now = u.update();
-      if (now < overlaps) {
-        overlaps = now;
-        continue;
-      }
-      // Undo: update() may have re-rooted the tree, so restore the link f-before whichever
-      // way the link f-q now points.
-      if (u.parent(f) == q) {
-        u.attach(f, before);
-      } else {
-        std::vector<int> path;  // before, ..., q: q's subtree holds `before`
-        for (int x = before; x != f; x = u.parent(x)) path.push_back(x);
-        for (std::size_t i = path.size() - 1; i > 0; --i) u.attach(path[i], path[i - 1]);
-        u.attach(before, f);
-      }
-      overlaps = u.update();  // the old layout again (from another anchor: recount)
-    }
-  }
-  return overlaps;
+  if (u.update() == 0) return 0;
+  LocalRepairOptions repair;
+  repair.max_tests = kRepairTestsBase + kRepairTestsPerFace * u.face_count();
+  return u.repair_locally(repair);
 }
 
 // The unfolding of pm's current mesh from the steepest-edge tree of `seed`, with id maps.

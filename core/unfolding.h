@@ -54,6 +54,27 @@ struct TabuStats {
   double seconds = 0;
 };
 
+/// Budget of Unfolding::repair_locally.
+struct LocalRepairOptions {
+  /// Largest side of a cut that is moved (tried from 16 faces up, fourfold while nothing helps).
+  std::size_t max_side = 256;
+  /// Moved-face tests (one grid query each) at most, summed over the whole repair.
+  std::size_t max_tests = 100'000;
+  /// Moves that do not lower the count (raising it by at most `max_rise` pairs) allowed when no
+  /// move lowers it; the links they cut or make are tabu for the next few moves.
+  std::size_t max_sideways = 32;
+  std::size_t max_rise = 1;
+};
+
+/// What Unfolding::repair_locally did.
+struct LocalRepairStats {
+  std::size_t moves = 0;        ///< moves applied
+  std::size_t sideways = 0;     ///< of which did not lower the overlap count
+  std::size_t evaluations = 0;  ///< candidate moves evaluated
+  std::size_t tests = 0;        ///< moved-face tests
+  std::size_t overlaps = 0;     ///< overlapping pairs left
+};
+
 /// The incremental state of an edge unfolding: mesh, unfold tree, 2D layout, spatial index and
 /// the set of overlapping face pairs. Both the plain Tabu Unfolder and progressive unfolding
 /// drive this one state; nothing that did not move is recomputed.
@@ -100,6 +121,14 @@ class Unfolding {
   /// budget is spent. Returns true when the state is overlap-free. Reports progress (overlaps
   /// left, iterations) through `progress`; \throw CancelledException when it asks to stop.
   bool resolve_overlaps(const TabuOptions& options, Progress& progress, TabuStats* stats = nullptr);
+
+  /// Removes overlaps by local moves: for an overlapping pair, a link on the tree path between
+  /// the two faces is cut where one side has few faces (at most `options.max_side`), and that
+  /// side is glued back along another of its edges (any face of it, any edge to the rest); the
+  /// move that lowers the overlap count most is applied, until none is left or no such move
+  /// lowers it. Deterministic; costs O(side) per evaluated move, never O(|F|). The moved side is
+  /// laid out exactly from its new parent. Returns the overlap count left (0: overlap-free).
+  std::size_t repair_locally(const LocalRepairOptions& options, LocalRepairStats* stats = nullptr);
 
   // ---- Editing for uncollapse steps (then call update()) ----
 
@@ -165,6 +194,14 @@ class Unfolding {
   void relayout_all();
   std::uint32_t next_seen_epoch();
 
+  // unfolding_repair.cpp: local repair.
+  std::uint32_t next_side_epoch();
+  // Faces reached from x over links without crossing to y, into side_ (marked with the epoch);
+  // false (side_ incomplete) when there are more than `limit`.
+  bool collect_side(int x, int y, std::size_t limit);
+  // The tree path a .. b into path_.
+  void tree_path(int a, int b);
+
   Mesh mesh_;
   std::vector<std::array<int, 3>> adj_;
   std::vector<std::array<std::int8_t, 3>> adj_edge_;
@@ -194,6 +231,9 @@ class Unfolding {
   std::vector<std::pair<int, int>> crossing_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t seen_epoch_ = 0;
+  std::vector<int> side_, path_;
+  std::vector<std::uint32_t> side_mark_;
+  std::uint32_t side_epoch_ = 0;
 };
 
 /// Result of an unfolding strategy.
