@@ -166,6 +166,10 @@ class Unfolding {
   void add_pair(int a, int b);
   void remove_pair(int a, int b);
   void test_moved(const std::vector<int>& moved);
+  // update() when few faces were edited: keeps the largest unedited part of the tree in place,
+  // lays out the rest (into `moved`) and tests it for overlaps, in time proportional to it. False
+  // when it cannot (then the full update runs). \throw TopologyException as update().
+  bool update_locally(const std::vector<int>& around, std::vector<int>& moved);
 
   // unfolding_moves.cpp: the move primitives of the Tabu Unfolder.
   void root_at(int r);
@@ -222,6 +226,10 @@ class Unfolding {
   std::vector<std::vector<int>> vertex_faces_;
   std::vector<int> dirty_;  // faces whose shape, corners or parent changed since update()
   std::vector<char> is_dirty_;
+  std::size_t link_bits_ = 0;  // set bits of links_ (2 (|F| - 1) for a tree; 0: recount)
+  std::vector<int> part_;      // update_locally: part of each explored face
+  std::vector<std::vector<int>> part_queue_;
+  std::vector<std::pair<int, int>> todo_;
 
   // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
   // is the pre-order range [cut_lo_, cut_hi_), the other its complement.
