@@ -72,6 +72,8 @@ constexpr std::size_t kBatchFaces = 4000;
 constexpr std::size_t kCoarseIterationsBase = 2000;
 constexpr std::size_t kCoarseIterationsPerFace = 20;
 constexpr std::size_t kCoarseStallBase = 2000;
+constexpr double kCoarseSecondsMin = 0.5;
+constexpr double kCoarseSecondsPerFace = 5e-4;
 // A retry halves the face count; it does not go below this.
 constexpr std::size_t kMinCoarseFaces = 8;
 // Iterations a split's Tabu run may take at least (base + per face of the current mesh);
@@ -209,7 +211,10 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         tabu.max_iterations =
             at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
         tabu.stall_iterations = std::max<std::size_t>(kCoarseStallBase, 5 * faces);
-        if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining() / 4);
+        // A share of the time limit, and at most a little time per face: a coarse mesh that
+        // needs more is usually better retried coarser (CAD parts of genus 20+).
+        const double cap = std::max(kCoarseSecondsMin, kCoarseSecondsPerFace * faces);
+        if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, std::min(remaining() / 4, cap));
       }
     }
     coarse_ok = u.resolve_overlaps(tabu, relay, &stats);
@@ -244,6 +249,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   relay.context.phase = "uncollapse";
   Clock::time_point last_output = Clock::now();
   std::size_t index = 0;
+  std::size_t split_evaluations = 0;  // Tabu work after splits, against its budget
   while (!failed && pm.splits_left() > 0) {
     if (progress.cancelled()) throw CancelledException();
     // One split per update on meshes up to kBatchFaces faces; beyond, batches that keep the
@@ -267,6 +273,14 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
                         std::max(kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count(),
                                  result.stats.iterations));
       if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
+      if (options.split_evaluations_per_face > 0) {
+        const std::size_t budget = options.split_evaluations_per_face * input_faces;
+        if (split_evaluations >= budget) {
+          failed = true;
+          break;
+        }
+        t.max_evaluations = budget - split_evaluations;
+      }
       if (limit > 0 && t.time_limit_seconds <= 0) {
         failed = true;
         break;
@@ -274,6 +288,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       if (!st.unfolding.resolve_overlaps(t, relay, &stats)) failed = true;
       result.stats.iterations += stats.iterations;
       result.stats.evaluations += stats.evaluations;
+      split_evaluations += stats.evaluations;
       step.iterations = stats.iterations;
       if (failed) break;
     }

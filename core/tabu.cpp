@@ -123,7 +123,9 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
           if (crossing < 0) crossing = crossing_pairs();
           const long long delta = evaluate_move(g, k, crossing, best_delta);
           ++st.evaluations;
-          if (out_of_time(Clock::now())) stop = true;
+          if (out_of_time(Clock::now()) ||
+              (options.max_evaluations && st.evaluations >= options.max_evaluations))
+            stop = true;
           if (st.evaluations % 32 == 0 && progress.cancelled()) throw CancelledException();
           if (delta < best_delta) best_delta = delta, best_g = g, best_k = k, best_other = up;
           if (delta < 0) improved = true;

@@ -29,6 +29,7 @@ struct Rigid {
 struct TabuOptions {
   std::uint64_t seed = 1;                   ///< every random choice derives from it
   std::size_t max_iterations = 10'000'000;  ///< moves (0: no limit)
+  std::size_t max_evaluations = 0;          ///< candidate moves evaluated (0: no limit)
   double time_limit_seconds = 60;           ///< wall-clock budget (<= 0: no limit)
   std::string phase = "unfold";             ///< ProgressInfo::phase of the reports
   std::size_t input_faces = 0;              ///< ProgressInfo::input_faces (0: current faces)
