@@ -72,7 +72,7 @@ constexpr std::size_t kBatchFaces = 4000;
 constexpr std::size_t kCoarseIterationsBase = 2000;
 constexpr std::size_t kCoarseIterationsPerFace = 20;
 constexpr std::size_t kCoarseStallBase = 2000;
-constexpr double kCoarseSecondsMin = 0.5;
+constexpr double kCoarseSecondsMin = 0.25;
 constexpr double kCoarseSecondsPerFace = 5e-4;
 // A retry halves the face count; it does not go below this.
 constexpr std::size_t kMinCoarseFaces = 8;
@@ -81,6 +81,9 @@ constexpr std::size_t kMinCoarseFaces = 8;
 // the result becomes approximate).
 constexpr std::size_t kSplitIterationsBase = 2000;
 constexpr std::size_t kSplitIterationsPerFace = 5;
+// Small meshes get the split work budget of this many faces (their moves are cheap, but they may
+// need more of them per face).
+constexpr std::size_t kSplitTestsMinFaces = 2000;
 
 // The smaller of an iteration limit (0: none) and n.
 std::size_t at_most(std::size_t limit, std::size_t n) {
@@ -220,6 +223,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     coarse_ok = u.resolve_overlaps(tabu, relay, &stats);
     result.stats.iterations += stats.iterations;
     result.stats.evaluations += stats.evaluations;
+    result.stats.tests += stats.tests;
     stats = {};
     if (coarse_ok || last) break;
     collapse_further(pm, options.strategy, next, progress);
@@ -249,7 +253,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   relay.context.phase = "uncollapse";
   Clock::time_point last_output = Clock::now();
   std::size_t index = 0;
-  std::size_t split_evaluations = 0;  // Tabu work after splits, against its budget
+  std::size_t split_tests = 0;  // Tabu work after splits, against its budget
   while (!failed && pm.splits_left() > 0) {
     if (progress.cancelled()) throw CancelledException();
     // One split per update on meshes up to kBatchFaces faces; beyond, batches that keep the
@@ -273,13 +277,14 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
                         std::max(kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count(),
                                  result.stats.iterations));
       if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
-      if (options.split_evaluations_per_face > 0) {
-        const std::size_t budget = options.split_evaluations_per_face * input_faces;
-        if (split_evaluations >= budget) {
+      if (options.split_tests_per_face > 0) {
+        const std::size_t budget =
+            options.split_tests_per_face * std::max(input_faces, kSplitTestsMinFaces);
+        if (split_tests >= budget) {
           failed = true;
           break;
         }
-        t.max_evaluations = budget - split_evaluations;
+        t.max_tests = budget - split_tests;
       }
       if (limit > 0 && t.time_limit_seconds <= 0) {
         failed = true;
@@ -288,7 +293,8 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       if (!st.unfolding.resolve_overlaps(t, relay, &stats)) failed = true;
       result.stats.iterations += stats.iterations;
       result.stats.evaluations += stats.evaluations;
-      split_evaluations += stats.evaluations;
+      result.stats.tests += stats.tests;
+      split_tests += stats.tests;
       step.iterations = stats.iterations;
       if (failed) break;
     }

@@ -29,10 +29,12 @@ struct Rigid {
 struct TabuOptions {
   std::uint64_t seed = 1;                   ///< every random choice derives from it
   std::size_t max_iterations = 10'000'000;  ///< moves (0: no limit)
-  std::size_t max_evaluations = 0;          ///< candidate moves evaluated (0: no limit)
-  double time_limit_seconds = 60;           ///< wall-clock budget (<= 0: no limit)
-  std::string phase = "unfold";             ///< ProgressInfo::phase of the reports
-  std::size_t input_faces = 0;              ///< ProgressInfo::input_faces (0: current faces)
+  /// Faces moved and tested while evaluating candidate moves, at most (0: no limit): a
+  /// deterministic measure of work (an evaluation costs the size of the side it moves).
+  std::size_t max_tests = 0;
+  double time_limit_seconds = 60;  ///< wall-clock budget (<= 0: no limit)
+  std::string phase = "unfold";    ///< ProgressInfo::phase of the reports
+  std::size_t input_faces = 0;     ///< ProgressInfo::input_faces (0: current faces)
   /// resolve_overlaps stops (returns false) when the fewest overlaps seen have not dropped for
   /// this many iterations (0: never); unfold_tabu then restarts from another start.
   std::size_t stall_iterations = 0;
@@ -52,6 +54,7 @@ struct TabuOptions {
 struct TabuStats {
   std::size_t iterations = 0;   ///< rounds (a random overlapping face each)
   std::size_t evaluations = 0;  ///< candidate moves evaluated
+  std::size_t tests = 0;        ///< faces moved and tested by those evaluations
   double seconds = 0;
 };
 
@@ -240,6 +243,7 @@ class Unfolding {
   std::vector<std::pair<int, int>> crossing_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t seen_epoch_ = 0;
+  std::size_t tested_ = 0;  // faces tested by evaluate_move, ever
   std::vector<int> side_, path_;
   std::vector<std::uint32_t> side_mark_;
   std::uint32_t side_epoch_ = 0;

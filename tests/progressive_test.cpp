@@ -144,14 +144,14 @@ TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
   EXPECT_GE(approximations, 1) << "no seed produced an approximate result";
 }
 
-// The Tabu work after splits has a budget (evaluated moves per input face): a run that spends it
+// The Tabu work after splits has a budget (faces tested per input face): a run that spends it
 // returns the last overlap-free state, deterministically.
 TEST(Progressive, SplitWorkBudgetEndsWithTheLastOverlapFreeState) {
   const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/2000/trimesh__fixed_top.obj";
   if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
   const Mesh input = load_mesh_file(file).mesh;
   ProgressiveOptions options;
-  options.split_evaluations_per_face = 1;
+  options.split_tests_per_face = 20;
   options.tabu.time_limit_seconds = 0;  // no time limits: the budget alone ends the run
   options.split_time_limit_seconds = 0;
   Progress quiet;
