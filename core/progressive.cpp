@@ -62,8 +62,9 @@ struct Applied {
 // Hausdorff refinement budget per direction for approximate results (a few tenths of a second).
 constexpr std::size_t kHausdorffRefinements = 20000;
 
-// Local moves tried after a split before the Tabu Unfolder runs.
-constexpr int kLocalTrials = 16;
+// Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests.
+constexpr std::size_t kRepairTestsBase = 4000;
+constexpr std::size_t kRepairTestsPerFace = 4;
 // Above this face count, several splits share one update() (whose cost grows with the mesh).
 constexpr std::size_t kBatchFaces = 4000;
 
@@ -72,6 +73,8 @@ constexpr std::size_t kBatchFaces = 4000;
 constexpr std::size_t kCoarseIterationsBase = 2000;
 constexpr std::size_t kCoarseIterationsPerFace = 20;
 constexpr std::size_t kCoarseStallBase = 2000;
+constexpr double kCoarseSecondsMin = 0.25;
+constexpr double kCoarseSecondsPerFace = 5e-4;
 // A retry halves the face count; it does not go below this.
 constexpr std::size_t kMinCoarseFaces = 8;
 // Iterations a split's Tabu run may take at least (base + per face of the current mesh);
@@ -79,6 +82,9 @@ constexpr std::size_t kMinCoarseFaces = 8;
 // the result becomes approximate).
 constexpr std::size_t kSplitIterationsBase = 2000;
 constexpr std::size_t kSplitIterationsPerFace = 5;
+// Small meshes get the split work budget of this many faces (their moves are cheap, but they may
+// need more of them per face).
+constexpr std::size_t kSplitTestsMinFaces = 2000;
 
 // The smaller of an iteration limit (0: none) and n.
 std::size_t at_most(std::size_t limit, std::size_t n) {
@@ -130,55 +136,16 @@ void apply_split(State& st, const VertexSplit& s, std::uint64_t seed) {
   }
 }
 
-// Applies splits and lays them out. When faces of the split's neighbourhood overlap, moving one
-// of them (with its subtree) to another neighbour is tried first, a few cheap updates each, before
-// the caller falls back on the Tabu Unfolder: most new overlaps are local. Returns the overlap
-// count.
+// Applies splits and lays them out. When faces overlap, local moves of small parts of the tree
+// are tried first (Unfolding::repair_locally, O(moved side) each) before the caller falls back on
+// the Tabu Unfolder: most new overlaps are local. Returns the overlap count.
 std::size_t place_splits(State& st, const std::vector<VertexSplit>& splits, std::uint64_t seed) {
   for (std::size_t i = 0; i < splits.size(); ++i) apply_split(st, splits[i], seed + i);
   Unfolding& u = st.unfolding;
-  std::size_t overlaps = u.update();
-  if (overlaps == 0) return 0;
-  std::vector<int> local;
-  for (const VertexSplit& s : splits) {
-    for (const SplitFace& nf : s.new_faces) local.push_back(st.face[nf.face]);
-    for (int f : s.reshaped) local.push_back(st.face[f]);
-  }
-  const auto in_subtree = [&u](int q, int f) {
-    for (int x = q; x >= 0; x = u.parent(x))
-      if (x == f) return true;
-    return false;
-  };
-  int trials = 0;
-  for (int f : local) {
-    if (overlaps == 0 || trials >= kLocalTrials) break;
-    const auto& list = u.overlapping_faces();
-    if (std::find(list.begin(), list.end(), f) == list.end()) continue;
-    for (int k = 0; k < 3 && overlaps > 0 && trials < kLocalTrials; ++k) {
-      const int q = u.neighbour(f, k);
-      const int before = u.parent(f);
-      if (q < 0 || q == before || before < 0 || in_subtree(q, f)) continue;
-      ++trials;
-      u.attach(f, q);
-      const std::size_t now = u.update();
-      if (now < overlaps) {
-        overlaps = now;
-        continue;
-      }
-      // Undo: update() may have re-rooted the tree, so restore the link f-before whichever
-      // way the link f-q now points.
-      if (u.parent(f) == q) {
-        u.attach(f, before);
-      } else {
-        std::vector<int> path;  // before, ..., q: q's subtree holds `before`
-        for (int x = before; x != f; x = u.parent(x)) path.push_back(x);
-        for (std::size_t i = path.size() - 1; i > 0; --i) u.attach(path[i], path[i - 1]);
-        u.attach(before, f);
-      }
-      overlaps = u.update();  // the old layout again (from another anchor: recount)
-    }
-  }
-  return overlaps;
+  if (u.update() == 0) return 0;
+  LocalRepairOptions repair;
+  repair.max_tests = kRepairTestsBase + kRepairTestsPerFace * u.face_count();
+  return u.repair_locally(repair);
 }
 
 // The unfolding of pm's current mesh from the steepest-edge tree of `seed`, with id maps. A
@@ -258,12 +225,16 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         tabu.max_iterations =
             at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
         tabu.stall_iterations = std::max<std::size_t>(kCoarseStallBase, 5 * faces);
-        if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining() / 4);
+        // A share of the time limit, and at most a little time per face: a coarse mesh that
+        // needs more is usually better retried coarser (CAD parts of genus 20+).
+        const double cap = std::max(kCoarseSecondsMin, kCoarseSecondsPerFace * faces);
+        if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, std::min(remaining() / 4, cap));
       }
     }
     coarse_ok = u.resolve_overlaps(tabu, relay, &stats);
     result.stats.iterations += stats.iterations;
     result.stats.evaluations += stats.evaluations;
+    result.stats.tests += stats.tests;
     stats = {};
     if (coarse_ok || last) break;
     collapse_further(pm, options.strategy, next, progress);
@@ -323,6 +294,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   relay.context.phase = "uncollapse";
   Clock::time_point last_output = Clock::now();
   std::size_t index = 0;
+  std::size_t split_tests = 0;  // Tabu work after splits, against its budget
   while (!failed && pm.splits_left() > 0) {
     if (progress.cancelled()) throw CancelledException();
     // One split per update on meshes up to kBatchFaces faces; beyond, batches that keep the
@@ -346,6 +318,15 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
                         std::max(kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count(),
                                  result.stats.iterations));
       if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
+      if (options.split_tests_per_face > 0) {
+        const std::size_t budget =
+            options.split_tests_per_face * std::max(input_faces, kSplitTestsMinFaces);
+        if (split_tests >= budget) {
+          failed = true;
+          break;
+        }
+        t.max_tests = budget - split_tests;
+      }
       if (limit > 0 && t.time_limit_seconds <= 0) {
         failed = true;
         break;
@@ -353,6 +334,8 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       if (!st.unfolding.resolve_overlaps(t, relay, &stats)) failed = true;
       result.stats.iterations += stats.iterations;
       result.stats.evaluations += stats.evaluations;
+      result.stats.tests += stats.tests;
+      split_tests += stats.tests;
       step.iterations = stats.iterations;
       if (failed) break;
     }

@@ -25,6 +25,12 @@ struct ProgressiveOptions {
   /// 2,000 + 5 per face of the current mesh and all Tabu iterations before that split (capped by
   /// tabu.max_iterations).
   std::size_t split_iterations = 0;
+  /// Work budget of the Tabu Unfolder over all splits, in faces moved and tested while evaluating
+  /// candidate moves (TabuStats::tests), per input face (at least 2,000 faces; 0: none). Most
+  /// splits need none (the local repair clears their overlaps); a mesh whose splits keep needing
+  /// long Tabu runs (CAD parts with slivers) ends as an approximation once the budget is spent,
+  /// instead of taking up to the whole time limit. Deterministic.
+  std::size_t split_tests_per_face = 1250;
   /// Iteration limit of the Tabu Unfolder on a coarse mesh that may still be collapsed further
   /// when it fails; 0 means automatic (growing with its face count, ended early by a stall).
   std::size_t coarse_iterations = 0;

@@ -63,6 +63,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
   };
 
   TabuStats st;
+  const std::size_t tested_before = tested_;
   ProgressInfo info;
   info.phase = options.phase;
   info.faces = face_count();
@@ -133,7 +134,9 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
           if (crossing < 0) crossing = crossing_pairs();
           const long long delta = evaluate_move(g, k, crossing, best_delta);
           ++st.evaluations;
-          if (out_of_time(Clock::now())) stop = true;
+          if (out_of_time(Clock::now()) ||
+              (options.max_tests && tested_ - tested_before >= options.max_tests))
+            stop = true;
           if (st.evaluations % 32 == 0 && progress.cancelled()) throw CancelledException();
           if (delta < best_delta) best_delta = delta, best_g = g, best_k = k, best_other = up;
           if (delta < 0) improved = true;
@@ -154,6 +157,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
     if (tabu.size() > tabu_length) tabu.pop_front();
   }
   if (moved) relayout_all();
+  st.tests = tested_ - tested_before;
   st.seconds = seconds_since(start);
   report();
   if (stats) *stats = st;

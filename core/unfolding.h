@@ -29,9 +29,12 @@ struct Rigid {
 struct TabuOptions {
   std::uint64_t seed = 1;                   ///< every random choice derives from it
   std::size_t max_iterations = 10'000'000;  ///< moves (0: no limit)
-  double time_limit_seconds = 60;           ///< wall-clock budget (<= 0: no limit)
-  std::string phase = "unfold";             ///< ProgressInfo::phase of the reports
-  std::size_t input_faces = 0;              ///< ProgressInfo::input_faces (0: current faces)
+  /// Faces moved and tested while evaluating candidate moves, at most (0: no limit): a
+  /// deterministic measure of work (an evaluation costs the size of the side it moves).
+  std::size_t max_tests = 0;
+  double time_limit_seconds = 60;  ///< wall-clock budget (<= 0: no limit)
+  std::string phase = "unfold";    ///< ProgressInfo::phase of the reports
+  std::size_t input_faces = 0;     ///< ProgressInfo::input_faces (0: current faces)
   /// resolve_overlaps stops (returns false) when the fewest overlaps seen have not dropped for
   /// this many iterations (0: never); unfold_tabu then restarts from another start.
   std::size_t stall_iterations = 0;
@@ -51,7 +54,29 @@ struct TabuOptions {
 struct TabuStats {
   std::size_t iterations = 0;   ///< rounds (a random overlapping face each)
   std::size_t evaluations = 0;  ///< candidate moves evaluated
+  std::size_t tests = 0;        ///< faces moved and tested by those evaluations
   double seconds = 0;
+};
+
+/// Budget of Unfolding::repair_locally.
+struct LocalRepairOptions {
+  /// Largest side of a cut that is moved (tried from 16 faces up, fourfold while nothing helps).
+  std::size_t max_side = 256;
+  /// Moved-face tests (one grid query each) at most, summed over the whole repair.
+  std::size_t max_tests = 100'000;
+  /// Moves that do not lower the count (raising it by at most `max_rise` pairs) allowed when no
+  /// move lowers it; the links they cut or make are tabu for the next few moves.
+  std::size_t max_sideways = 32;
+  std::size_t max_rise = 1;
+};
+
+/// What Unfolding::repair_locally did.
+struct LocalRepairStats {
+  std::size_t moves = 0;        ///< moves applied
+  std::size_t sideways = 0;     ///< of which did not lower the overlap count
+  std::size_t evaluations = 0;  ///< candidate moves evaluated
+  std::size_t tests = 0;        ///< moved-face tests
+  std::size_t overlaps = 0;     ///< overlapping pairs left
 };
 
 /// The incremental state of an edge unfolding: mesh, unfold tree, 2D layout, spatial index and
@@ -102,6 +127,14 @@ class Unfolding {
   /// left, iterations) through `progress`; \throw CancelledException when it asks to stop.
   bool resolve_overlaps(const TabuOptions& options, Progress& progress, TabuStats* stats = nullptr);
 
+  /// Removes overlaps by local moves: for an overlapping pair, a link on the tree path between
+  /// the two faces is cut where one side has few faces (at most `options.max_side`), and that
+  /// side is glued back along another of its edges (any face of it, any edge to the rest); the
+  /// move that lowers the overlap count most is applied, until none is left or no such move
+  /// lowers it. Deterministic; costs O(side) per evaluated move, never O(|F|). The moved side is
+  /// laid out exactly from its new parent. Returns the overlap count left (0: overlap-free).
+  std::size_t repair_locally(const LocalRepairOptions& options, LocalRepairStats* stats = nullptr);
+
   // ---- Editing for uncollapse steps (then call update()) ----
 
   /// Appends a vertex; returns its index.
@@ -138,6 +171,10 @@ class Unfolding {
   void add_pair(int a, int b);
   void remove_pair(int a, int b);
   void test_moved(const std::vector<int>& moved);
+  // update() when few faces were edited: keeps the largest unedited part of the tree in place,
+  // lays out the rest (into `moved`) and tests it for overlaps, in time proportional to it. False
+  // when it cannot (then the full update runs). \throw TopologyException as update().
+  bool update_locally(const std::vector<int>& around, std::vector<int>& moved);
 
   // unfolding_moves.cpp: the move primitives of the Tabu Unfolder.
   void root_at(int r);
@@ -166,6 +203,14 @@ class Unfolding {
   void relayout_all();
   std::uint32_t next_seen_epoch();
 
+  // unfolding_repair.cpp: local repair.
+  std::uint32_t next_side_epoch();
+  // Faces reached from x over links without crossing to y, into side_ (marked with the epoch);
+  // false (side_ incomplete) when there are more than `limit`.
+  bool collect_side(int x, int y, std::size_t limit);
+  // The tree path a .. b into path_.
+  void tree_path(int a, int b);
+
   Mesh mesh_;
   std::vector<std::array<int, 3>> adj_;
   std::vector<std::array<std::int8_t, 3>> adj_edge_;
@@ -186,6 +231,10 @@ class Unfolding {
   std::vector<std::vector<int>> vertex_faces_;
   std::vector<int> dirty_;  // faces whose shape, corners or parent changed since update()
   std::vector<char> is_dirty_;
+  std::size_t link_bits_ = 0;  // set bits of links_ (2 (|F| - 1) for a tree; 0: recount)
+  std::vector<int> part_;      // update_locally: part of each explored face
+  std::vector<std::vector<int>> part_queue_;
+  std::vector<std::pair<int, int>> todo_;
 
   // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
   // is the pre-order range [cut_lo_, cut_hi_), the other its complement.
@@ -195,6 +244,10 @@ class Unfolding {
   std::vector<std::pair<int, int>> crossing_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t seen_epoch_ = 0;
+  std::size_t tested_ = 0;  // faces tested by evaluate_move, ever
+  std::vector<int> side_, path_;
+  std::vector<std::uint32_t> side_mark_;
+  std::uint32_t side_epoch_ = 0;
 };
 
 /// Result of an unfolding strategy.

@@ -115,6 +115,7 @@ long long Unfolding::evaluate_move(int g, int k, long long crossing, long long c
   const int anchor = move_anchor(g, k, anchor_pos, motion);
   const int nf = static_cast<int>(face_count());
   const auto test = [&](int s) {
+    ++tested_;
     const Triangle2 t = s == anchor
                             ? anchor_pos
                             : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};

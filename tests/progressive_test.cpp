@@ -144,6 +144,29 @@ TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
   EXPECT_GE(approximations, 1) << "no seed produced an approximate result";
 }
 
+// The Tabu work after splits has a budget (faces tested per input face): a run that spends it
+// returns the last overlap-free state, deterministically.
+TEST(Progressive, SplitWorkBudgetEndsWithTheLastOverlapFreeState) {
+  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/2000/trimesh__fixed_top.obj";
+  if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
+  const Mesh input = load_mesh_file(file).mesh;
+  ProgressiveOptions options;
+  options.split_tests_per_face = 20;
+  options.tabu.time_limit_seconds = 0;  // no time limits: the budget alone ends the run
+  options.split_time_limit_seconds = 0;
+  Progress quiet;
+  const ProgressiveResult r = unfold_progressive(input, options, quiet);
+  ASSERT_TRUE(r.overlap_free);
+  EXPECT_FALSE(r.complete);
+  EXPECT_LT(r.splits, r.splits_total);
+  EXPECT_GT(r.hausdorff, 0);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  const ProgressiveResult again = unfold_progressive(input, options, quiet);
+  EXPECT_EQ(again.splits, r.splits);
+  EXPECT_EQ(again.net.parent, r.net.parent);
+}
+
 // A coarse mesh that fails within its (here one-iteration) Tabu budget is collapsed further and
 // unfolded again; the net of that coarser start still passes the checker and uncollapses.
 TEST(Progressive, CoarseFailureRetriesOnACoarserMesh) {

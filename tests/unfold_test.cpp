@@ -143,6 +143,53 @@ TEST(Unfold, UpdateRefusesAFaceLeftOutOfTheTree) {
   EXPECT_THROW(u.update(), TopologyException);
 }
 
+// Small edits of a large net take update()'s local path (only the parts of the tree cut off by
+// the edited faces move): the state must match a fresh build of the same tree every time, and
+// broken trees are still refused.
+TEST(Unfold, SmallEditsOfALargeNetMatchAFreshBuild) {
+  const Mesh mesh = test::torus(40, 16);  // 1,280 faces
+  Unfolding u = Unfolding::steepest_edge(mesh, 3);
+  const auto expect_fresh = [&u](const std::string& what) {
+    const Unfolding fresh(u.mesh(), u.net().parent);
+    EXPECT_EQ(u.overlap_count(), fresh.overlap_count()) << what;
+    const NetCheckReport report = check_net(u.mesh(), u.net());
+    EXPECT_EQ(report.failure_count, report.overlapping_pairs) << what << ": " << report.summary();
+  };
+  expect_fresh("start");
+  for (int v = 0; v < static_cast<int>(mesh.vertices.size()); v += 97) {
+    const Vec3 p = u.mesh().vertices[v];
+    u.set_vertex_position(v, {p.x * 1.05, p.y * 0.97, p.z + 0.08});
+    u.update();
+    expect_fresh("vertex " + std::to_string(v) + " moved");
+  }
+  // Re-hang faces (with their subtrees) from another neighbour outside their subtree.
+  int moves = 0;
+  for (int f = 0; f < static_cast<int>(u.face_count()) && moves < 10; f += 37) {
+    for (int k = 0; k < 3; ++k) {
+      const int q = u.neighbour(f, k);
+      bool inside = false;
+      for (int x = q; x >= 0 && !inside; x = u.parent(x)) inside = x == f;
+      if (q < 0 || q == u.parent(f) || u.parent(f) < 0 || inside) continue;
+      u.attach(f, q);
+      u.update();
+      expect_fresh("face " + std::to_string(f) + " re-hung");
+      ++moves;
+      break;
+    }
+  }
+  EXPECT_GT(moves, 0);
+  // Hanging a face from its own child makes a cycle.
+  for (int f = 0; f < static_cast<int>(u.face_count()); ++f) {
+    int child = -1;
+    for (int k = 0; k < 3; ++k)
+      if (u.neighbour(f, k) >= 0 && u.parent(u.neighbour(f, k)) == f) child = u.neighbour(f, k);
+    if (child < 0 || u.parent(f) < 0) continue;
+    u.attach(f, child);
+    EXPECT_THROW(u.update(), TopologyException);
+    break;
+  }
+}
+
 void unfold_folder(const fs::path& dir, std::size_t max_faces) {
   std::size_t done = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
