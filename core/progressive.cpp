@@ -168,6 +168,16 @@ State make_state(const ProgressiveMesh& pm, const Mesh& input, std::uint64_t see
   return st;
 }
 
+// The net of `mesh`'s steepest-edge tree, else of its minimum-perimeter tree, when one of them
+// has no overlapping pair.
+std::optional<Net> start_tree_net(const Mesh& mesh, std::uint64_t seed) {
+  Unfolding steepest = Unfolding::steepest_edge(mesh, seed);
+  if (steepest.overlap_count() == 0) return steepest.net();
+  Unfolding other(mesh, min_perimeter_tree(mesh, build_dual_graph(mesh), seed));
+  if (other.overlap_count() == 0) return other.net();
+  return std::nullopt;
+}
+
 Net net_in_input_ids(const State& st, std::size_t faces) {
   Net net;
   net.parent.assign(faces, -1);
@@ -191,6 +201,18 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   const double limit = options.tabu.time_limit_seconds;
   const auto remaining = [&] { return limit > 0 ? limit - seconds_since(start) : 0.0; };
   ProgressiveResult result;
+  const auto complete_with = [&](Net net, Relay& relay) {
+    result.complete = result.overlap_free = true;
+    result.mesh = mesh;
+    result.net = std::move(net);
+    result.face_ids.resize(mesh.faces.size());
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) result.face_ids[f] = static_cast<int>(f);
+    result.splits = result.splits_total;
+    ProgressInfo done;
+    relay.report(done);
+    result.seconds = seconds_since(start);
+    return result;
+  };
   ProgressiveMesh pm = decimate(mesh, {options.strategy, options.target_faces}, progress);
   const std::size_t input_faces = pm.input_face_count();
 
@@ -205,6 +227,16 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     // try again: a coarser net that uncollapses part of the way is still an approximate result.
     // The coarsest attempt gets the whole remaining budget.
     const std::size_t faces = pm.face_count();
+    if (attempt == 1) {
+      // The coarse mesh resisted: before collapsing further, see whether the input needs no
+      // search at all, the unfolding of its steepest-edge or minimum-perimeter tree being
+      // overlap-free already. On CAD plates of slivers (the Twin plate) the input's
+      // minimum-perimeter tree is a net while every collapsed version overlaps and the splits
+      // back stall. It costs two layouts of the input, so only meshes that resist pay it.
+      relay.context.faces = input_faces;
+      if (std::optional<Net> net = start_tree_net(mesh, options.tabu.seed))
+        return complete_with(std::move(*net), relay);
+    }
     const std::size_t next = faces / 2;
     const bool last = !can_go_coarser || next < kMinCoarseFaces || (limit > 0 && remaining() <= 0);
     relay.context.faces = faces;
@@ -261,18 +293,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     }
     result.stats.iterations += full.stats.iterations;
     result.stats.evaluations += full.stats.evaluations;
-    if (full.overlap_free) {
-      result.complete = result.overlap_free = true;
-      result.mesh = mesh;
-      result.net = std::move(full.net);
-      result.face_ids.resize(input_faces);
-      for (std::size_t f = 0; f < input_faces; ++f) result.face_ids[f] = static_cast<int>(f);
-      result.splits = result.splits_total;
-      ProgressInfo done;
-      relay.report(done);
-      result.seconds = seconds_since(start);
-      return result;
-    }
+    if (full.overlap_free) return complete_with(std::move(full.net), relay);
   }
   State st = std::move(*coarse);
   coarse.reset();
