@@ -93,7 +93,7 @@ run: build
 	PAPERNET_WEB_ROOT="$${PAPERNET_WEB_ROOT:-$(WEB_ROOT)}" $(BUILD)/server/papernet serve
 
 # Regenerates docs/benchmarks.md, docs/benchmarks/*.svg and runs.csv from a full benchmark run
-# (1,080 runs; 30-40 min on 2 idle cores). Needs ../shared/data.
+# (1,080 runs, 60 s limit each; about 8 min on 2 idle cores). Needs ../shared/data.
 benchmarks: deps
 	bash scripts/benchmarks.sh
 
