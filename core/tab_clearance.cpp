@@ -433,7 +433,10 @@ bool Clearance::fix(int f, int k) {
         ++degree[mesh_.faces[x][j]], ++degree[mesh_.faces[x][(j + 1) % 3]];
   std::vector<std::pair<int, int>> all_cuts = narrow_cuts;
   all_cuts.insert(all_cuts.end(), wide_cuts.begin(), wide_cuts.end());
-  for (const auto& [lf, lk] : all_cuts) {
+  for (const std::pair<int, int>& cut : all_cuts) {
+    // Not a structured binding: the lambda below uses them, which clang 14 refuses.
+    const int lf = cut.first, lk = cut.second;
+    const int l0 = mesh_.faces[lf][lk], l1 = mesh_.faces[lf][(lk + 1) % 3];
     const int lp = adj_[lf][lk], top = parent_[lf] == lp ? lf : lp;
     const bool sub_small = 2 * size_[top] <= nf_;
     std::vector<std::pair<double, std::pair<int, int>>> far;
@@ -442,11 +445,9 @@ bool Clearance::fix(int f, int k) {
         const int y = adj_[x][j];
         if (y < 0 || linked(x, j) || in_sub(top, y) == sub_small) continue;
         const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
-        const int gain = [&](int w) {
-          return w == mesh_.faces[lf][lk] || w == mesh_.faces[lf][(lk + 1) % 3] ? 1 : 0;
-        }(a);
-        const int gain_b = b == mesh_.faces[lf][lk] || b == mesh_.faces[lf][(lk + 1) % 3] ? 1 : 0;
-        if (degree[a] + gain - 1 < 2 || degree[b] + gain_b - 1 < 2) continue;
+        const int gain_a = a == l0 || a == l1 ? 1 : 0;
+        const int gain_b = b == l0 || b == l1 ? 1 : 0;
+        if (degree[a] + gain_a - 1 < 2 || degree[b] + gain_b - 1 < 2) continue;
         const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
         far.push_back({norm(m - mid), {x, j}});
       }
