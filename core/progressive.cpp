@@ -234,8 +234,11 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       // minimum-perimeter tree is a net while every collapsed version overlaps and the splits
       // back stall. It costs two layouts of the input, so only meshes that resist pay it.
       relay.context.faces = input_faces;
-      if (std::optional<Net> net = start_tree_net(mesh, options.tabu.seed))
+      if (std::optional<Net> net = start_tree_net(mesh, options.tabu.seed)) {
+        result.coarse_faces = faces;
+        result.splits_total = pm.splits_left();
         return complete_with(std::move(*net), relay);
+      }
     }
     const std::size_t next = faces / 2;
     const bool last = !can_go_coarser || next < kMinCoarseFaces || (limit > 0 && remaining() <= 0);

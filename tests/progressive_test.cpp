@@ -233,6 +233,8 @@ TEST(Progressive, TwinPlateIsCompleteOnceItsCoarseMeshResists) {
   ASSERT_TRUE(r.overlap_free);
   EXPECT_TRUE(r.complete);
   EXPECT_EQ(r.mesh.faces.size(), input.faces.size());
+  EXPECT_GT(r.coarse_faces, 0u);
+  EXPECT_EQ(r.splits, r.splits_total);
   EXPECT_EQ(r.hausdorff, 0);
   const NetCheckReport check = check_net(r.mesh, r.net);
   EXPECT_TRUE(check.ok()) << check.summary();
