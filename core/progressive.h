@@ -62,17 +62,20 @@ struct ProgressiveResult {
 /// mesh with `options.strategy`, unfold the coarse mesh (steepest edge, then the Tabu Unfolder),
 /// then undo the collapses one vertex split at a time, inserting each new face into the unfold
 /// tree between the two faces linked across its wing (else as a leaf of a random neighbour),
-/// re-laying out and testing only what moved, and running the Tabu Unfolder when overlaps
-/// appear. When that fails within the budget, the last overlap-free state is returned
-/// (`complete` false). When the coarse mesh itself cannot be unfolded within a budget that grows
-/// with its size, it is collapsed further (half the faces each time) and unfolded again, so that
-/// meshes too detailed for their shape still give an approximate net (a retry starts from the
-/// minimum-perimeter tree when it has fewer overlaps than the steepest-edge one). When no coarse
-/// mesh can be unfolded, plain Tabu Unfolding (unfold_tabu) of the input gets what is left of the
-/// budget (the last coarse attempt gets half of it) and gives a complete net when it finds one;
-/// a split whose overlaps need
-/// more Tabu iterations than everything before it (and than 2,000 + 5 per face) ends the run
-/// early with the last overlap-free state.
+/// re-laying out and testing only what moved, repairing new overlaps by local moves
+/// (Unfolding::repair_locally) and running the Tabu Unfolder only when those leave some. When
+/// that fails within the budget (the time limit, `split_tests_per_face`, or a split whose
+/// overlaps need more Tabu iterations than everything before it and than 2,000 + 5 per face),
+/// the last overlap-free state is returned (`complete` false).
+///
+/// When the coarse mesh itself cannot be unfolded within a budget that grows with its size:
+/// first, if the input's own steepest-edge or minimum-perimeter tree is already overlap-free,
+/// that net is returned (complete); else the coarse mesh is collapsed further (half the faces
+/// each time) and unfolded again, so that meshes too detailed for their shape still give an
+/// approximate net (a retry starts from the minimum-perimeter tree when it has fewer overlaps
+/// than the steepest-edge one). When no coarse mesh can be unfolded, plain Tabu Unfolding
+/// (unfold_tabu) of the input gets what is left of the budget (the last coarse attempt gets half
+/// of it) and gives a complete net when it finds one.
 ///
 /// Progress: phases "collapse", "unfold", "uncollapse" in that order, faces never decreasing
 /// during "uncollapse", the last report at the face count of the returned mesh; `intermediate`
