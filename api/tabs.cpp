@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <utility>
+
+#include "core/tab_clearance.h"
 
 namespace papernet {
 
@@ -72,44 +73,16 @@ bool PolygonGrid::overlaps(std::span<const Vec2> poly, double tolerance) {
 
 namespace {
 
-/// A tab shape relative to its edge: the stretch [from, to] of the edge (fractions, measured
-/// from the side's first point) that the base covers, and the slant of each end.
-struct Shape {
-  double from, to;
-  double angle0, angle1;  ///< at the `from` end and at the `to` end, radians
-};
-
-/// The trapezoid of `shape` on the outside of `side`, `height` tall. The ends' insets shrink
-/// together so that the top keeps at least a tenth of the base.
+/// The trapezoid of `shape` on the outside of `side`, `height` tall (core's tab_trapezoid, the
+/// shapes the clearance pass makes room for).
 std::array<Vec2, 4> trapezoid(const std::vector<std::array<Vec2, 3>>& faces, EdgeSide side,
-                              const Shape& shape, double height) {
-  const Vec2 e0 = faces[side.face][side.k], e1 = faces[side.face][(side.k + 1) % 3];
-  const double full = norm(e1 - e0);
-  const Vec2 d = (1 / full) * (e1 - e0), out{d.y, -d.x};  // the face is on the left of e0->e1
-  const Vec2 p0 = e0 + shape.from * full * d, p1 = e0 + shape.to * full * d;
-  const double len = (shape.to - shape.from) * full;
-  double i0 = height / std::tan(shape.angle0), i1 = height / std::tan(shape.angle1);
-  if (i0 + i1 > 0.9 * len) {
-    const double s = 0.9 * len / (i0 + i1);
-    i0 *= s, i1 *= s;
-  }
-  return {p1, p0, p0 + height * out + i0 * d, p1 + height * out - i1 * d};
+                              const TabShape& shape, double height) {
+  return tab_trapezoid(faces[side.face], side.k, shape, height);
 }
 
 double area(const std::array<Vec2, 4>& t) {
   return 0.5 * std::abs(cross(t[2] - t[0], t[3] - t[1]));
 }
-
-/// Stretches of the edge a tab's base may cover, best first.
-constexpr std::array<std::pair<double, double>, 9> kSpans = {{{0, 1},
-                                                              {0.1, 0.9},
-                                                              {0, 0.7},
-                                                              {0.3, 1},
-                                                              {0.2, 0.8},
-                                                              {0, 0.45},
-                                                              {0.55, 1},
-                                                              {0.3, 0.7},
-                                                              {0.05, 0.5}}};
 
 /// Box of a polygon, grown by `d`.
 std::pair<Vec2, Vec2> bounds(std::span<const Vec2> p, double d) {
@@ -132,7 +105,7 @@ bool boxes_meet(const std::pair<Vec2, Vec2>& a, const std::pair<Vec2, Vec2>& b) 
 /// overlaps nothing. Every tab stays checked against faces and all other tabs.
 void make_room_between_tabs(const std::vector<std::array<Vec2, 3>>& faces,
                             const std::vector<NetEdge>& edges, const TabOptions& options,
-                            const std::vector<Shape>& shapes, TabPlacement& result) {
+                            const std::vector<TabShape>& shapes, TabPlacement& result) {
   double total = 0;
   for (const auto& f : faces)
     for (int k = 0; k < 3; ++k) total += norm(f[(k + 1) % 3] - f[k]);
@@ -152,8 +125,8 @@ void make_room_between_tabs(const std::vector<std::array<Vec2, 3>>& faces,
     if (!(h > 0)) return out;
     for (EdgeSide side : {edge.a, edge.b}) {
       const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
-      for (const Shape& s : shapes) {
-        const Shape shape = on_b ? Shape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
+      for (const TabShape& s : shapes) {
+        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
         const auto t = trapezoid(faces, side, shape, h);
         if (!face_grid.overlaps(t, options.tolerance)) out.push_back({e, side, t});
       }
@@ -217,12 +190,7 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
   PolygonGrid grid(std::max(mean_edge, options.height));
   for (const auto& f : faces) grid.add(f);
 
-  const double deg = std::numbers::pi / 180, a = options.angle_deg * deg;
-  const double slants[] = {a, 0.4 * a};
-  std::vector<Shape> shapes;
-  for (const auto& [from, to] : kSpans)
-    for (double s0 : slants)
-      for (double s1 : slants) shapes.push_back({from, to, s0, s1});
+  const std::vector<TabShape> shapes = tab_shapes(options.angle_deg);
 
   for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
     const NetEdge& edge = edges[e];
@@ -241,8 +209,8 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
       // Along side b the edge runs the other way: mirror the span so both sides mean the same
       // stretch of the edge.
       const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
-      for (const Shape& s : shapes) {
-        const Shape shape = on_b ? Shape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
+      for (const TabShape& s : shapes) {
+        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
         // The tallest tab this shape can be bounds what it can add: skip hopeless shapes.
         if (area(trapezoid(faces, side, shape, hi)) <= best_area) continue;
         if (lo > 0 && grid.overlaps(trapezoid(faces, side, shape, lo), options.tolerance)) continue;
