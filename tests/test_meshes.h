@@ -2,6 +2,7 @@
 // Small hand-made meshes for the unfolder's tests, built in code.
 
 #include <cmath>
+#include <vector>
 
 #include "core/mesh.h"
 
@@ -76,6 +77,19 @@ inline Mesh saddle(int n = 8, double h = 0.3) {
     m.faces.push_back({ring(i), outer(i + 1), ring(i + 1)});
   }
   return m;
+}
+
+/// An unfold tree of saddle(n) (parent per face, -1 at the root) whose fan around the centre is
+/// one path, face i hanging from face i-1, so that the fan's angle sum above 360 degrees makes
+/// its ends overlap; each outer band face pair hangs from its fan face.
+inline std::vector<int> saddle_path_tree(int n = 8) {
+  std::vector<int> parent(3 * n);
+  for (int i = 0; i < n; ++i) parent[i] = i - 1;
+  for (int i = 0; i < n; ++i) {
+    parent[n + 2 * i] = n + 2 * i + 1;
+    parent[n + 2 * i + 1] = i;
+  }
+  return parent;
 }
 
 }  // namespace papernet::test

@@ -53,13 +53,7 @@ TEST(Unfold, SameSeedGivesTheSameNet) {
 TEST(Unfold, SaddleOverlapIsDetectedAndResolved) {
   const Mesh mesh = test::saddle();
   const int n = 8;
-  std::vector<int> parent(mesh.faces.size());
-  for (int i = 0; i < n; ++i) parent[i] = i - 1;  // the fan as one path around the centre
-  for (int i = 0; i < n; ++i) {
-    parent[n + 2 * i] = n + 2 * i + 1;
-    parent[n + 2 * i + 1] = i;
-  }
-  Unfolding u(mesh, parent);
+  Unfolding u(mesh, test::saddle_path_tree(n));
   EXPECT_GT(u.overlap_count(), 0u);  // the centre's angle sum is above 360 degrees
   bool fan_pair = false;
   for (int f : u.overlapping_faces()) fan_pair = fan_pair || f < n;

@@ -56,14 +56,7 @@ TEST(LocalRepair, LowersOverlapsAndKeepsNetsValidOnTestMeshes) {
 
 TEST(LocalRepair, ResolvesASaddleOverlap) {
   const Mesh mesh = test::saddle();
-  const int n = 8;
-  std::vector<int> parent(mesh.faces.size());
-  for (int i = 0; i < n; ++i) parent[i] = i - 1;  // the fan as one path around the centre
-  for (int i = 0; i < n; ++i) {
-    parent[n + 2 * i] = n + 2 * i + 1;
-    parent[n + 2 * i + 1] = i;
-  }
-  Unfolding u(mesh, parent);
+  Unfolding u(mesh, test::saddle_path_tree());
   ASSERT_GT(u.overlap_count(), 0u);
   LocalRepairStats stats;
   EXPECT_EQ(u.repair_locally({}, &stats), 0u);
