@@ -217,6 +217,10 @@ std::string markdown_report(const std::vector<BenchRun>& runs, const ReportConte
           << speedup(p->median / g->median) << ")";
     out << "; success " << fmt("%.1f", g->success()) << " % complete, "
         << fmt("%.1f", g->success_approx()) << " % incl. approximations";
+    if (g->impossible)
+      out << " (" << g->impossible << " of " << g->runs
+          << " inputs refused as impossible; complete: " << fmt("%.1f", g->success_possible())
+          << " % of the others)";
     if (p)
       out << " (paper " << fmt("%.1f", p->success) << " %, " << fmt("%.1f", p->success_approx)
           << " %)";

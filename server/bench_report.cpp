@@ -190,6 +190,7 @@ std::vector<BenchGroup> summarize(const std::vector<BenchRun>& runs) {
         ++g.runs;
         g.complete += r->complete();
         g.approx += r->status == "approx";
+        g.impossible += r->status == "invalid";
         all.push_back(r->seconds);
         cpu.push_back(r->cpu_seconds);
         if (!r->has_net()) continue;
@@ -322,6 +323,14 @@ std::string markdown_table(const std::vector<BenchGroup>& groups) {
   rows(
       "Approx", [](const BenchGroup& g) { return g.success_approx(); },
       [](const PaperResult& p) { return p.success_approx; }, 1);
+  if (std::any_of(groups.begin(), groups.end(), [](const BenchGroup& g) { return g.impossible; })) {
+    rows(
+        "Inputs refused as impossible (exit 2)", [](const BenchGroup& g) { return g.impossible; },
+        none, 0);
+    rows(
+        "Regular, of the inputs not refused (where any were)",
+        [](const BenchGroup& g) { return g.impossible ? g.success_possible() : kNaN; }, none, 1);
+  }
   section("Nets (means over runs that wrote a net)");
   rows(
       "Coverage (%)", [](const BenchGroup& g) { return 100 * g.coverage; }, none, 1);

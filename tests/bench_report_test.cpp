@@ -185,6 +185,28 @@ TEST(BenchReport, FailedAndTimedOutRunsCountAsFailures) {
   EXPECT_FALSE(timeout.has_net());
 }
 
+TEST(BenchReport, InputsRefusedAsImpossibleAreCountedApart) {
+  // TU at 100: 3 nets, 1 budget failure, 1 input refused as impossible (exit 2).
+  const std::vector<BenchRun> runs = {
+      make_run("a", "TU", 100, "ok", 1, 0.2, 2), make_run("b", "TU", 100, "ok", 1, 0.2, 2),
+      make_run("c", "TU", 100, "ok", 1, 0.2, 2), make_run("d", "TU", 100, "budget", 60),
+      make_run("e", "TU", 100, "invalid", 0.01),
+  };
+  const std::vector<BenchGroup> groups = summarize(runs);
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(groups[0].impossible, 1);
+  EXPECT_DOUBLE_EQ(groups[0].success(), 60.0) << "the refused input still fails the plain rate";
+  EXPECT_DOUBLE_EQ(groups[0].success_possible(), 75.0);
+  const std::string md = markdown_table(groups);
+  EXPECT_NE(md.find("| Inputs refused as impossible (exit 2) | 100 | 1 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| Regular, of the inputs not refused (where any were) | 100 | 75.0 |"),
+            std::string::npos)
+      << md;
+  // Without refused inputs the two rows stay out of the table.
+  EXPECT_EQ(markdown_table(summarize({runs[0], runs[3]})).find("refused"), std::string::npos);
+}
+
 TEST(BenchReport, SharedHausdorffIsOverMeshesEveryProgressiveStrategyApproximated) {
   // x: approximated by QQ and SEMP (shared); y: only by QQ (SEMP complete): not shared.
   const std::vector<BenchRun> runs = {
