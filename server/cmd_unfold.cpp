@@ -156,6 +156,7 @@ int unfold(int argc, char** argv) {
     const std::string ext = o.size() > 4 ? o.substr(o.size() - 4) : "";
     return ext == ".svg" || ext == ".pdf" || ext == ".SVG" || ext == ".PDF";
   });
+  std::optional<NetCheckReport> checked;  // of result.net, when the tab-room pass changed it
   if (prints && print.print.tabs == TabMode::Auto && print.print.tab_height_mm > 0 &&
       print.print.tab_room) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -164,8 +165,9 @@ int unfold(int argc, char** argv) {
     const double room_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (room.moves > 0) {
-      if (const NetCheckReport again = check_net(doc.mesh, room.net); again.ok()) {
+      if (NetCheckReport again = check_net(doc.mesh, room.net); again.ok()) {
         result.net = std::move(room.net);
+        checked = std::move(again);
       } else {
         std::cerr << "papernet unfold: internal error, the net with tab room fails its check ("
                   << again.summary() << "); printing the unfolder's net\n";
@@ -176,7 +178,7 @@ int unfold(int argc, char** argv) {
               << room.blocked_after << " cut edges without room for a tab (" << room.moves
               << " moves, " << room.evaluations << " evaluated, " << room_seconds << " s)\n";
   }
-  const NetCheckReport check = check_net(doc.mesh, result.net);
+  const NetCheckReport check = checked ? std::move(*checked) : check_net(doc.mesh, result.net);
   const NetBoxMetrics box = net_metrics(doc.mesh, result.net);
   std::cout << " coverage=" << box.coverage << " aspect_ratio=" << box.aspect_ratio
             << " check=" << (check.ok() ? "ok" : "failed") << "\n";

@@ -21,11 +21,17 @@ PrintOptions print_options(const JobOptions& options) {
 
 }  // namespace
 
-Net make_room_for_tabs(const Mesh& mesh, const Net& net, const JobOptions& options,
-                       Progress& progress) {
+NetCheckReport make_room_for_tabs(const Mesh& mesh, Net& net, const JobOptions& options,
+                                  Progress& progress) {
   TabClearanceResult room = make_tab_room(mesh, net, print_options(options), progress);
-  if (room.moves == 0 || !check_net(mesh, room.net).ok()) return net;
-  return std::move(room.net);
+  if (room.moves > 0) {
+    NetCheckReport report = check_net(mesh, room.net);
+    if (report.ok()) {
+      net = std::move(room.net);
+      return report;
+    }
+  }
+  return check_net(mesh, net);
 }
 
 PrintFiles render_print_files(const Mesh& mesh, const Net& net, const JobOptions& options) {

@@ -5,6 +5,7 @@
 #include "api/options.h"
 #include "core/mesh.h"
 #include "core/net.h"
+#include "core/net_check.h"
 #include "core/progress.h"
 
 namespace papernet::server {
@@ -19,11 +20,12 @@ struct PrintFiles {
   double aspect_ratio = 1;
 };
 
-/// The net to print and deliver: with tab mode auto, `net` changed so that more cut edges have
-/// room for a glue tab at the job's print size (api make_tab_room), checked by the net
-/// checker; else, or when the check fails, `net` itself. \throw CancelledException.
-Net make_room_for_tabs(const Mesh& mesh, const Net& net, const JobOptions& options,
-                       Progress& progress);
+/// Makes `net` the net to print and deliver: with tab mode auto, changed so that more cut edges
+/// have room for a glue tab at the job's print size (api make_tab_room) when that net passes the
+/// net checker; else left as it is. Returns the checker's report on the net it leaves, so that
+/// no net is checked twice. \throw CancelledException.
+NetCheckReport make_room_for_tabs(const Mesh& mesh, Net& net, const JobOptions& options,
+                                  Progress& progress);
 
 /// Lays out `net` for print with the job's options (size or scale, paper, margin, tabs, flat
 /// folds) and writes SVG, PDF and GLB. Kept apart from the net JSON writer: api/net_json.h and

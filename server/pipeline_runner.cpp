@@ -177,8 +177,7 @@ JobRunner make_pipeline_runner(PipelineLimits limits) {
     const Validated v = load_and_validate(input, options, limits, sink);
     JobProgress progress(sink, v.input, options);
     Unfolded u = unfold(v.mesh, v.input, options, progress);
-    u.net = make_room_for_tabs(u.mesh, u.net, options, progress);
-    const NetCheckReport check = check_net(u.mesh, u.net);
+    const NetCheckReport check = make_room_for_tabs(u.mesh, u.net, options, progress);
     if (!check.ok())
       throw std::logic_error("the unfolder's net fails the net checker: " + check.summary());
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
