@@ -177,6 +177,13 @@ JobRunner make_pipeline_runner(PipelineLimits limits) {
     const Validated v = load_and_validate(input, options, limits, sink);
     JobProgress progress(sink, v.input, options);
     Unfolded u = unfold(v.mesh, v.input, options, progress);
+    if (options.tabs == TabMode::Auto) {
+      ProgressInfo info;
+      info.phase = "tabs";  // changing cuts so that glue tabs fit (docs/tabs.md, stage 0)
+      info.faces = u.mesh.faces.size();
+      info.input_faces = v.input.faces;
+      sink.report(info);
+    }
     const NetCheckReport check = make_room_for_tabs(u.mesh, u.net, options, progress);
     if (!check.ok())
       throw std::logic_error("the unfolder's net fails the net checker: " + check.summary());

@@ -13,7 +13,9 @@ struct PipelineLimits {
 
 /// The real job: load (core/load), validate (core/validate; 422 with reasons), unfold (TU:
 /// unfold_tabu; QQ/SEMP/SEQ: unfold_progressive, which may end approximate), check the net
-/// (core/net_check), write net JSON, SVG, PDF and GLB. Intermediate overlap-free nets are
+/// (core/net_check), write net JSON, SVG, PDF and GLB. Progress phases: load, validate, the
+/// unfolder's (collapse, unfold, uncollapse), tabs (tab mode auto: cuts changed so that glue
+/// tabs fit), write. Intermediate overlap-free nets are
 /// rendered at most every two seconds and handed to the sink.
 JobRunner make_pipeline_runner(PipelineLimits limits);
 
