@@ -1,14 +1,14 @@
 // Tab clearance: changes which edges of a net are cut so that cut edges get room for a glue tab.
 //
 // Why moves and not tab shapes: an edge without room is almost always a near-slit, a leaf of the
-// cut tree at an almost flat vertex v. The faces around v are then all linked but across that
-// edge, so the edge's two sides meet at v at the angle defect of v (a few degrees) and no tab of
-// printable height fits between them. Only cutting a second edge at v opens the slit: then the
-// two fans of v hang from different parts of the tree and their angle is no longer the defect.
-// A move therefore cuts a tree link across an edge at an end of the blocked edge and glues a
-// nearby cut edge instead (an edge swap of the spanning tree); the side of the tree that moves
-// is laid out again from the new link, and the move is kept when it adds no overlap and leaves
-// fewer cut edges without room.
+// cut tree at an almost flat vertex v (or an edge of a hair, a path of cut edges from such a
+// leaf). The faces around v are then all linked but across that edge, so the edge's two sides
+// meet at v at the angle defect of v (a few degrees) and no tab of printable height fits between
+// them. Only cutting a second edge at v opens the slit. A move therefore cuts a tree link across
+// an edge at an end of the blocked edge and glues a cut edge on the cycle that link closes (an
+// edge swap of the spanning tree); the side of the tree that moves is laid out again from the new
+// link and must not overlap the rest. A tabu search over these moves (Clearance::run) keeps the
+// net with the fewest blocked edges it has seen.
 #include "core/tab_clearance.h"
 
 #include <algorithm>
@@ -20,27 +20,27 @@
 #include "core/dual_graph.h"
 #include "core/errors.h"
 #include "core/overlap.h"
+#include "core/tab_clearance_report.h"
 #include "core/unfold_tree.h"
 
 namespace papernet {
 
 namespace {
 
-/// Stretches of the edge a tab's base may cover, best first (as the print layout's placer).
-constexpr std::array<std::pair<double, double>, 9> kSpans = {{{0, 1},
-                                                              {0.1, 0.9},
-                                                              {0, 0.7},
-                                                              {0.3, 1},
-                                                              {0.2, 0.8},
-                                                              {0, 0.45},
-                                                              {0.55, 1},
-                                                              {0.3, 0.7},
-                                                              {0.05, 0.5}}};
-
 // Overlap tolerance relative to the mesh's bounding-box diagonal (as the unfolder's).
 constexpr double kRelativeTolerance = 1e-9;
-// Cut edges farther along the cut tree tried per link (see Clearance::fix).
+// Cut edges farther along the cut tree tried per link (see Clearance::candidates).
 constexpr std::size_t kFarGlues = 32;
+// A vertex this far from flat (angle defect, radians: 10 degrees) hosts a leaf of the cut tree
+// without harm: its slit opens by that angle.
+constexpr double kSharpDefect = 10 * std::numbers::pi / 180;
+// Tabu search (Clearance::run): how many blocked edges a move may close net, for how many
+// steps a move's edges stay tabu, how many sweeps without a new best end a stage, and the
+// candidate moves evaluated per step in each stage.
+constexpr long long kMaxWorsening = 1;
+constexpr int kTenure = 40;
+constexpr int kStallSweeps = 3;
+constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
 
 class Clearance {
  public:
@@ -69,8 +69,17 @@ class Clearance {
   }
   void set_link(int f, int k, bool on);
   void place(int f, const Triangle2& p);
-  bool try_move(int tf, int tk, int lf, int lk, int cf, int ck);
-  bool fix(int f, int k);
+  /// What a move changes: blocked edges and flat leaves of the cut tree (after - before).
+  struct Change {
+    long long blocked = 0, flat_leaves = 0;
+  };
+  bool apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Change& out);
+  void undo();
+  void commit();
+  template <class Consider>
+  bool candidates(int f, int k, Consider&& consider);
+  /// A leaf of the cut tree at v does no harm: v is on the boundary or far from flat.
+  bool harmless(int v) const { return vboundary_[v] || std::abs(defect_[v]) >= kSharpDefect; }
 
   const Mesh& mesh_;
   int nf_ = 0;
@@ -84,17 +93,20 @@ class Clearance {
   OverlapGrid grid_;
   double tol_ = 0, height_ = 0;
   std::size_t budget_ = 0;
-  std::vector<std::uint8_t> sideways_;  // sideways moves made for each edge
-  std::size_t sideways_left_ = 0;
-  bool improved_ = false;
+  std::size_t step_limit_ = 0;  // evaluations_ allowed up to in the current step of run()
   bool keep_bounds_ = true;
   Box2 bounds_;  // of the input net
   std::vector<TabShape> shapes_;
   std::vector<char> blocked_;  // by canonical half-edge 3 * f + k
   std::size_t blocked_count_ = 0;
   std::vector<int> parent_, tin_, size_, order_;
+  std::vector<double> defect_;             // angle defect by vertex (0 on the boundary)
+  std::vector<char> vboundary_;            // vertex on the mesh's boundary
+  std::vector<int> cut_degree_;            // cut edges (unlinked interior edges) at each vertex
+  std::array<int, 4> pending_{};           // the applied move: lf, lk, cf, ck
+  std::vector<std::uint32_t> tabu_until_;  // by canonical half-edge: step until which it stays
 
-  // Scratch of try_move.
+  // Scratch of apply_move.
   std::vector<int> moving_, from_, mark_;
   std::vector<char> is_moving_;
   std::vector<Triangle2> new_pos_, old_pos_;
@@ -145,7 +157,6 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
                             {std::max(bounds_.hi.x, b.hi.x), std::max(bounds_.hi.y, b.hi.y)}};
   }
   blocked_.assign(3 * static_cast<std::size_t>(nf_), 0);
-  sideways_.assign(3 * static_cast<std::size_t>(nf_), 0);
   for (int f = 0; f < nf_; ++f)
     for (int k = 0; k < 3; ++k)
       if (canon(f, k) == 3 * f + k && blocked(f, k)) {
@@ -158,6 +169,17 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   is_moving_.assign(nf_, 0);
   from_.assign(nf_, -1);
   stamp_.assign(3 * static_cast<std::size_t>(nf_), 0);
+  defect_ = angle_defects(mesh);
+  vboundary_.assign(mesh.vertices.size(), 0);
+  cut_degree_.assign(mesh.vertices.size(), 0);
+  for (int f = 0; f < nf_; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
+      if (adj_[f][k] < 0)
+        vboundary_[a] = vboundary_[b] = 1;
+      else if (f < adj_[f][k] && !linked(f, k))
+        ++cut_degree_[a], ++cut_degree_[b];
+    }
   root_tree();
 }
 
@@ -238,10 +260,11 @@ void Clearance::place(int f, const Triangle2& p) {
   grid_.insert(f, box_[f]);
 }
 
-// Cuts the link across edge lk of face lf and glues cut edge ck of face cf; keeps the change
-// when it adds no overlap, gives blocked edge tk of face tf room (or glues it) and lowers the
-// number of blocked edges.
-bool Clearance::try_move(int tf, int tk, int lf, int lk, int cf, int ck) {
+// Cuts the link across edge lk of face lf and glues cut edge ck of face cf and leaves the change
+// applied (commit() or undo() next) when it adds no overlap and gives blocked edge tk of face tf
+// room (or glues it); `out` then says how the number of blocked edges and of flat leaves would
+// change. Returns false, with nothing changed, otherwise.
+bool Clearance::apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Change& out) {
   const int lp = adj_[lf][lk];
   const int top = parent_[lf] == lp ? lf : lp;
   const int cq = adj_[cf][ck];
@@ -252,10 +275,25 @@ bool Clearance::try_move(int tf, int tk, int lf, int lk, int cf, int ck) {
   const int anchor = moving(cf) ? cf : cq, fixed = anchor == cf ? cq : cf;
   const int ka = anchor == cf ? ck : adj_edge_[cf][ck], kf = anchor == cf ? adj_edge_[cf][ck] : ck;
 
-  // Lay out the moving side again from the new link, nearest faces first.
+  // Lay out the moving side again from the new link, nearest faces first, each checked at once
+  // for overlap with the side that stays (and, keep_bounds, for leaving the net's box).
+  const auto clashes = [&](const Triangle2& t) {
+    const Box2 b = triangle_box(t);
+    bool hit = keep_bounds_ && (b.lo.x < bounds_.lo.x || b.lo.y < bounds_.lo.y ||
+                                b.hi.x > bounds_.hi.x || b.hi.y > bounds_.hi.y);
+    grid_.query(b, [&](int c) {
+      if (!hit && !moving(c)) hit = triangles_overlap(t, pos_[c], tol_);
+    });
+    return hit;
+  };
+  const auto give_up = [&] {
+    for (int x : moving_) is_moving_[x] = 0;
+    return false;
+  };
   moving_.assign(1, anchor);
   new_pos_.assign(1, place_across(pos_[fixed], kf, ka, shape_[anchor]));
   is_moving_[anchor] = 1;
+  if (clashes(new_pos_[0])) return give_up();
   for (std::size_t i = 0; i < moving_.size(); ++i) {
     const int x = moving_[i];
     for (int k = 0; k < 3; ++k) {
@@ -265,29 +303,7 @@ bool Clearance::try_move(int tf, int tk, int lf, int lk, int cf, int ck) {
       is_moving_[y] = 1;
       moving_.push_back(y);
       new_pos_.push_back(place_across(new_pos_[i], k, adj_edge_[x][k], shape_[y]));
-    }
-  }
-  const auto clear_moving = [&] {
-    for (int x : moving_) is_moving_[x] = 0;
-  };
-  // No overlap with the side that stays, and (keep_bounds) nothing outside the net's box.
-  for (std::size_t i = 0; i < moving_.size(); ++i) {
-    const Triangle2& t = new_pos_[i];
-    if (keep_bounds_) {
-      const Box2 b = triangle_box(t);
-      if (b.lo.x < bounds_.lo.x || b.lo.y < bounds_.lo.y || b.hi.x > bounds_.hi.x ||
-          b.hi.y > bounds_.hi.y) {
-        clear_moving();
-        return false;
-      }
-    }
-    bool hit = false;
-    grid_.query(triangle_box(t), [&](int c) {
-      if (!hit && !is_moving_[c]) hit = triangles_overlap(t, pos_[c], tol_);
-    });
-    if (hit) {
-      clear_moving();
-      return false;
+      if (clashes(new_pos_.back())) return give_up();
     }
   }
   // Apply it, and drop it at once when the edge it is for still has no room.
@@ -298,14 +314,11 @@ bool Clearance::try_move(int tf, int tk, int lf, int lk, int cf, int ck) {
   }
   set_link(lf, lk, false);
   set_link(cf, ck, true);
-  const auto undo = [&] {
-    set_link(cf, ck, false);
-    set_link(lf, lk, true);
-    for (std::size_t i = 0; i < moving_.size(); ++i) place(moving_[i], old_pos_[i]);
-    clear_moving();
+  pending_ = {lf, lk, cf, ck};
+  if (blocked(tf, tk)) {
+    undo();
     return false;
-  };
-  if (blocked(tf, tk)) return undo();
+  }
   // Edges whose room may change: cut edges of faces near the border between the two sides,
   // before and after the move (a tab is at most height_ away from its edge).
   if (++epoch_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), epoch_ = 1;
@@ -334,35 +347,63 @@ bool Clearance::try_move(int tf, int tk, int lf, int lk, int cf, int ck) {
   }
   mark(lf);
   mark(cf);
-  long long before = 0;
-  for (int h : affected_) before += blocked_[h];
-
-  long long after = 0;
+  long long before = 0, after = 0;
   mark_.clear();
   for (int h : affected_) {
+    before += blocked_[h];
     const int b = blocked(h / 3, h % 3) ? 1 : 0;
     mark_.push_back(b);
     after += b;
   }
-  // A sideways move (the target opens, another edge closes) is allowed a few times per edge:
-  // it can carry a slit to where the next move opens it.
-  const bool sideways = after == before && sideways_[canon(tf, tk)] < 2 && sideways_left_ > 0;
-  if (after > before || (after == before && !sideways)) return undo();
-  if (sideways) ++sideways_[canon(tf, tk)], --sideways_left_;
-  clear_moving();
-  for (std::size_t i = 0; i < affected_.size(); ++i) blocked_[affected_[i]] = mark_[i];
-  blocked_count_ -= static_cast<std::size_t>(before - after);
-  if (after < before) improved_ = true;
-  root_tree();
-  ++moves_;
+  out.blocked = after - before;
+  // Flat leaves: the cut link's ends gain a cut edge, the glued edge's ends lose one.
+  const int ends[4] = {mesh_.faces[lf][lk], mesh_.faces[lf][(lk + 1) % 3], mesh_.faces[cf][ck],
+                       mesh_.faces[cf][(ck + 1) % 3]};
+  const auto flat_leaf = [&](int v, int degree) { return degree == 1 && !harmless(v); };
+  out.flat_leaves = 0;
+  for (int i = 0; i < 4; ++i) {
+    bool seen = false;
+    for (int j = 0; j < i; ++j) seen = seen || ends[j] == ends[i];
+    if (seen) continue;
+    int degree = cut_degree_[ends[i]];
+    for (int j = 0; j < 4; ++j)
+      if (ends[j] == ends[i]) degree += j < 2 ? 1 : -1;
+    out.flat_leaves +=
+        (flat_leaf(ends[i], degree) ? 1 : 0) - (flat_leaf(ends[i], cut_degree_[ends[i]]) ? 1 : 0);
+  }
   return true;
 }
 
-// Tries the moves around blocked edge k of face f: first cut a link across an edge at one of
-// its ends and glue a cut edge between nearby faces (the fan of its ends and one ring around);
-// then, wider, cut any link in that ring and glue a cut edge within two rings. Returns true
-// when a move was kept.
-bool Clearance::fix(int f, int k) {
+void Clearance::undo() {
+  const auto [lf, lk, cf, ck] = pending_;
+  set_link(cf, ck, false);
+  set_link(lf, lk, true);
+  for (std::size_t i = 0; i < moving_.size(); ++i) place(moving_[i], old_pos_[i]);
+  for (int x : moving_) is_moving_[x] = 0;
+}
+
+void Clearance::commit() {
+  const auto [lf, lk, cf, ck] = pending_;
+  for (int x : moving_) is_moving_[x] = 0;
+  long long delta = 0;
+  for (std::size_t i = 0; i < affected_.size(); ++i) {
+    delta += mark_[i] - blocked_[affected_[i]];
+    blocked_[affected_[i]] = static_cast<char>(mark_[i]);
+  }
+  blocked_count_ = static_cast<std::size_t>(static_cast<long long>(blocked_count_) + delta);
+  ++cut_degree_[mesh_.faces[lf][lk]], ++cut_degree_[mesh_.faces[lf][(lk + 1) % 3]];
+  --cut_degree_[mesh_.faces[cf][ck]], --cut_degree_[mesh_.faces[cf][(ck + 1) % 3]];
+  root_tree();
+  ++moves_;
+}
+
+// Offers the moves around blocked edge k of face f to `consider(lf, lk, cf, ck)` (cut the link
+// across edge lk of face lf, glue cut edge ck of face cf), which returns true to stop: first cut
+// a link across an edge at one of its ends and glue a cut edge between nearby faces (the fan of
+// its ends and one ring around); then, wider, cut any link in that ring and glue a cut edge
+// within two rings; then farther glues (below). Returns true when `consider` stopped it.
+template <class Consider>
+bool Clearance::candidates(int f, int k, Consider&& consider) {
   const int u = mesh_.faces[f][k], v = mesh_.faces[f][(k + 1) % 3];
   std::vector<int> fan;  // faces at u or v
   for (int w : {u, v})
@@ -404,8 +445,8 @@ bool Clearance::fix(int f, int k) {
                            const std::vector<std::pair<int, int>>& glues) {
     for (const auto& [lf, lk] : cuts)
       for (const auto& [cf, ck] : glues) {
-        if (evaluations_ >= budget_) return false;
-        if (try_move(f, k, lf, lk, cf, ck)) return true;
+        if (evaluations_ >= std::min(budget_, step_limit_)) return false;
+        if (consider(lf, lk, cf, ck)) return true;
       }
     return false;
   };
@@ -423,14 +464,11 @@ bool Clearance::fix(int f, int k) {
       try_all(wide_cuts, wide_glues))
     return true;
   // Farther: for a link at an end, the cut edges anywhere on the cycle it closes in the cut
-  // tree (one face on each side of the link), nearest first, that leave no new leaf of the cut
-  // tree (both ends keep another cut edge): gluing those cannot create a new near-slit.
+  // tree (one face on each side of the link), nearest first, that leave no new flat leaf of the
+  // cut tree (each end keeps another cut edge, or is sharp or on the boundary): gluing those
+  // cannot create a new near-slit.
   const Vec3 mid = 0.5 * (mesh_.vertices[u] + mesh_.vertices[v]);
-  std::vector<int> degree(mesh_.vertices.size(), 0);
-  for (int x = 0; x < nf_; ++x)
-    for (int j = 0; j < 3; ++j)
-      if (adj_[x][j] > x && !linked(x, j))
-        ++degree[mesh_.faces[x][j]], ++degree[mesh_.faces[x][(j + 1) % 3]];
+  const std::vector<int>& degree = cut_degree_;
   std::vector<std::pair<int, int>> all_cuts = narrow_cuts;
   all_cuts.insert(all_cuts.end(), wide_cuts.begin(), wide_cuts.end());
   for (const std::pair<int, int>& cut : all_cuts) {
@@ -447,7 +485,9 @@ bool Clearance::fix(int f, int k) {
         const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
         const int gain_a = a == l0 || a == l1 ? 1 : 0;
         const int gain_b = b == l0 || b == l1 ? 1 : 0;
-        if (degree[a] + gain_a - 1 < 2 || degree[b] + gain_b - 1 < 2) continue;
+        if ((degree[a] + gain_a - 1 < 2 && !harmless(a)) ||
+            (degree[b] + gain_b - 1 < 2 && !harmless(b)))
+          continue;
         const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
         far.push_back({norm(m - mid), {x, j}});
       }
@@ -468,48 +508,92 @@ bool Clearance::fix(int f, int k) {
   return false;
 }
 
+// Tabu search over the moves of candidates(): for each blocked edge in turn, the first move
+// that lowers the number of blocked edges is made at once; when there is none, the best move
+// that opens the edge (fewest blocked edges, then fewest flat leaves) is made even when it closes
+// others, unless it closes more than kMaxWorsening edges net or re-cuts or re-glues an edge a
+// recent move changed (tabu for kTenure steps). The best net seen is kept. Each step first
+// offers an edge only its first kStepCaps[0] candidates (most overlap; the easy moves elsewhere
+// come first); after kStallSweeps sweeps over the blocked edges without a new best, the next cap;
+// after the last, it stops. It stops too when the budget is spent.
 void Clearance::run(Progress& progress) {
-  // First strict improvements only; then, from that state (the count never rises), also a few
-  // sideways moves, which carry some slits to where a later move opens them.
-  for (int phase = 0; phase < 2; ++phase) {
-    sideways_left_ = phase == 0 ? 0 : 2 * blocked_count_;
-    for (bool improved = true; improved && blocked_count_ > 0 && evaluations_ < budget_;) {
-      improved = false;
-      for (int h = 0; h < 3 * nf_ && evaluations_ < budget_; ++h) {
-        if (!blocked_[h]) continue;
-        if (progress.cancelled()) throw CancelledException();
-        improved_ = false;
-        if (fix(h / 3, h % 3) && improved_) improved = true;
+  std::vector<std::uint8_t> best_links = links_;
+  std::vector<Triangle2> best_pos = pos_;
+  std::vector<char> best_blocked = blocked_;
+  std::vector<int> best_degree = cut_degree_;
+  std::size_t best_count = blocked_count_, best_moves = moves_;
+  tabu_until_.assign(3 * static_cast<std::size_t>(nf_), 0);
+  std::uint32_t step = 0;
+  std::size_t level = 0;
+  for (int stall = 0; blocked_count_ > 0 && evaluations_ < budget_;) {
+    if (stall >= kStallSweeps) {
+      if (++level == kStepCaps.size()) break;
+      stall = 0;
+    }
+    const std::size_t sweep_best = best_count;
+    for (int h = 0; h < 3 * nf_ && evaluations_ < budget_; ++h) {
+      if (!blocked_[h]) continue;
+      if (progress.cancelled()) throw CancelledException();
+      ++step;
+      step_limit_ = evaluations_ + std::min(kStepCaps[level], budget_);
+      const int f = h / 3, k = h % 3;
+      struct Pick {
+        Change change{kMaxWorsening + 1, 0};
+        std::array<int, 4> move{-1, -1, -1, -1};
+      } pick;
+      const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step; };
+      const bool improved = candidates(f, k, [&](int lf, int lk, int cf, int ck) {
+        if (tabu(lf, lk) || tabu(cf, ck)) return false;
+        Change change;
+        if (!apply_move(f, k, lf, lk, cf, ck, change)) return false;
+        if (change.blocked < 0) {
+          commit();
+          return true;
+        }
+        if (change.blocked < pick.change.blocked ||
+            (change.blocked == pick.change.blocked &&
+             change.flat_leaves < pick.change.flat_leaves)) {
+          pick.change = change;
+          pick.move = {lf, lk, cf, ck};
+        }
+        undo();
+        return false;
+      });
+      if (!improved) {
+        Change change;
+        if (pick.move[0] < 0 ||
+            !apply_move(f, k, pick.move[0], pick.move[1], pick.move[2], pick.move[3], change))
+          continue;
+        commit();
+      }
+      // Neither undo this move nor redo the one it replaced for a while.
+      const std::uint32_t until = step + static_cast<std::uint32_t>(kTenure);
+      tabu_until_[canon(pending_[0], pending_[1])] = until;
+      tabu_until_[canon(pending_[2], pending_[3])] = until;
+      if (blocked_count_ < best_count) {
+        best_count = blocked_count_;
+        best_links = links_;
+        best_pos = pos_;
+        best_blocked = blocked_;
+        best_degree = cut_degree_;
+        best_moves = moves_;
       }
     }
+    stall = best_count < sweep_best ? 0 : stall + 1;
   }
+  if (moves_ == best_moves) return;
+  // Back to the best net seen.
+  links_ = std::move(best_links);
+  for (int f = 0; f < nf_; ++f)
+    if (pos_[f] != best_pos[f]) place(f, best_pos[f]);
+  blocked_ = std::move(best_blocked);
+  cut_degree_ = std::move(best_degree);
+  blocked_count_ = best_count;
+  moves_ = best_moves;
+  root_tree();
 }
 
 }  // namespace
-
-std::vector<TabShape> tab_shapes(double angle_deg) {
-  const double a = angle_deg * std::numbers::pi / 180;
-  std::vector<TabShape> out;
-  for (const auto& [from, to] : kSpans)
-    for (double s0 : {a, 0.4 * a})
-      for (double s1 : {a, 0.4 * a}) out.push_back({from, to, s0, s1});
-  return out;
-}
-
-std::array<Vec2, 4> tab_trapezoid(const std::array<Vec2, 3>& face, int k, const TabShape& shape,
-                                  double height) {
-  const Vec2 e0 = face[k], e1 = face[(k + 1) % 3];
-  const double full = norm(e1 - e0);
-  const Vec2 d = (1 / full) * (e1 - e0), out{d.y, -d.x};  // the face is on the left of e0->e1
-  const Vec2 p0 = e0 + shape.from * full * d, p1 = e0 + shape.to * full * d;
-  const double len = (shape.to - shape.from) * full;
-  double i0 = height / std::tan(shape.angle0), i1 = height / std::tan(shape.angle1);
-  if (i0 + i1 > 0.9 * len) {
-    const double s = 0.9 * len / (i0 + i1);
-    i0 *= s, i1 *= s;
-  }
-  return {p1, p0, p0 + height * out + i0 * d, p1 + height * out - i1 * d};
-}
 
 std::vector<EdgeSide> edges_without_tab_room(const Mesh& mesh, const Net& net,
                                              const TabClearanceOptions& options) {

@@ -35,7 +35,8 @@ struct TabClearanceOptions {
   double min_height = 0;
   double angle_deg = 45;  ///< slant of a tab's sides, as the print layout's
   /// Candidate moves evaluated at most: a deterministic budget (no clock), so the same net
-  /// and options always give the same result.
+  /// and options always give the same result. The search also stops earlier when it no longer
+  /// finds better nets.
   std::size_t max_evaluations = 100'000;
   /// Refuse moves that take faces outside the input net's axis-aligned bounding box, so that
   /// the net does not grow while it makes room for tabs. Off by default: it leaves about a
@@ -55,17 +56,19 @@ struct TabClearanceResult {
   Net net;
   std::size_t blocked_before = 0;  ///< cut edges without tab room in the input net
   std::size_t blocked_after = 0;   ///< ... and in `net`
-  std::size_t moves = 0;           ///< accepted moves
+  std::size_t moves = 0;           ///< moves from the input to `net`
   std::size_t evaluations = 0;     ///< candidate moves evaluated
 };
 
 /// Makes room for tabs: changes which edges of an overlap-free `net` are cut so that fewer cut
 /// edges lack room for a tab (edges_without_tab_room). A move cuts a tree link at an end of
 /// such an edge (typically at a leaf of the cut tree, where the edge's two sides lie a few
-/// degrees apart around an almost flat vertex) and glues a nearby cut edge instead, rotating
-/// the smaller side of the tree rigidly; it is kept only when it adds no overlap and lowers the
-/// number of edges without room. The result is an overlap-free net of the same mesh (glued
-/// edges copied exactly), or the input when nothing helped. Deterministic.
+/// degrees apart around an almost flat vertex) and glues a cut edge on the cycle that link
+/// closes, rotating the smaller side of the tree rigidly; a move that overlaps is never made. A
+/// tabu search over these moves (it also makes moves that close other edges, to get out of
+/// local minima) returns the net with the fewest edges without room it has seen: an
+/// overlap-free net of the same mesh (glued edges copied exactly), never worse than the input,
+/// or the input itself when nothing helped. Deterministic.
 /// \pre `net` is an overlap-free net of `mesh` (check_net passes).
 /// \throw CancelledException when `progress` asks to stop.
 TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,

@@ -142,11 +142,12 @@ const std::vector<TabClearanceResult>& all_print_nets() {
     std::vector<TabClearanceResult> out;
     for (const auto& [name, mesh, net] : all_nets()) {
       Progress quiet;
-      // make_tab_room's pass with a smaller budget than the default 100,000 moves, so that
-      // the test stays fast (the Duck's and reference.obj's nets use the default's budget up).
+      // make_tab_room's pass as printed by default (budget 100,000 candidate moves: about
+      // 3 s on the Duck, 1-2 s on reference.obj and sample.obj, less on the others) on the TU
+      // nets; on the progressive ones a fifth of it, so that the test stays fast.
       TabClearanceOptions options;
       options.min_height = PrintOptions{}.min_tab_height_mm / print_scale(mesh, {});
-      options.max_evaluations = 20'000;
+      if (name.find("(TU)") == std::string::npos) options.max_evaluations = 20'000;
       out.push_back(unfolded(name) ? clear_tab_room(mesh, net, options, quiet)
                                    : TabClearanceResult{net, 0, 0, 0, 0});
     }
@@ -234,10 +235,11 @@ void expect_clearance_pass_makes_room() {
       const NetCheckReport check = check_net(mesh, room.net);
       EXPECT_TRUE(check.ok()) << name << ": " << check.summary();
     }
-    // Edges without room get strips; the others get tabs (at most a couple lose their room
-    // to neighbours' tabs), so a net where the pass opened every near-slit has no strip.
+    // Edges without room get strips; the others get tabs (a few lose their room to
+    // neighbours' tabs: 5 of the Duck's 2106), so a net where the pass opened every near-slit
+    // has no strip.
     EXPECT_GE(layout.strips.size(), room.blocked_after) << name;
-    EXPECT_LE(layout.strips.size(), room.blocked_after + 3) << name;
+    EXPECT_LE(layout.strips.size(), room.blocked_after + 3 + room.blocked_after / 50) << name;
     if (room.blocked_after == 0) {
       EXPECT_TRUE(layout.strips.empty()) << name << ": " << layout.strips.size() << " strips";
       EXPECT_EQ(layout.tabs.size(), static_cast<std::size_t>(layout.cut_edges)) << name;

@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <numbers>
+#include <numeric>
 
 #include "core/load.h"
 #include "core/net_check.h"
 #include "core/progressive.h"
+#include "core/tab_clearance_report.h"
 #include "core/unfolding.h"
 #include "tests/net_fixtures.h"
 
@@ -94,6 +97,36 @@ TEST(TabClearance, OpensNearSlitsAndKeepsTheNetValid) {
   EXPECT_LE(short_run.evaluations, 10u);
   EXPECT_LE(short_run.blocked_after, blocked);
   EXPECT_GE(short_run.blocked_after, r.blocked_after);
+}
+
+// Where the blocked edges are: leaves of the cut tree at nearly flat vertices (their two sides
+// meet at the vertex's angle defect) and hairs; the pass turns flat leaves into path vertices.
+TEST(TabClearance, FlatLeavesAreNearSlitsAndThePassRemovesThem) {
+  const Case c = unfolded("sample.obj");
+  ASSERT_FALSE(c.mesh.faces.empty());
+  TabClearanceOptions options;
+  options.min_height = c.min_height;
+  const double flat = 10 * std::numbers::pi / 180;
+  const TabRoomReport before = describe_tab_room(c.mesh, c.net, options, flat);
+  EXPECT_EQ(before.blocked, edges_without_tab_room(c.mesh, c.net, options).size());
+  EXPECT_EQ(before.blocked, before.blocked_leaf + before.blocked_hair + before.blocked_other);
+  EXPECT_GT(before.blocked_leaf, before.blocked / 3);
+  EXPECT_EQ(before.boundary_vertices, 0u);  // a closed mesh
+  // Every leaf at a vertex with a defect under 2 degrees is a near-slit at 200 mm, and most
+  // leaves are such leaves on this smooth mesh.
+  const auto count = [](const std::vector<std::size_t>& by_degree, std::size_t lo, std::size_t hi) {
+    return std::accumulate(by_degree.begin() + lo, by_degree.begin() + hi, std::size_t{0});
+  };
+  EXPECT_GT(count(before.leaf_defects, 0, 2), before.leaves / 2);
+  EXPECT_EQ(count(before.blocked_leaf_defects, 0, 2), count(before.leaf_defects, 0, 2));
+  EXPECT_LE(before.flat_leaves, before.leaves);
+
+  Progress quiet;
+  const TabClearanceResult r = clear_tab_room(c.mesh, c.net, options, quiet);
+  const TabRoomReport after = describe_tab_room(c.mesh, r.net, options, flat);
+  EXPECT_EQ(after.blocked, r.blocked_after);
+  EXPECT_LT(4 * after.blocked, before.blocked);  // 215 -> 45 at seed 1
+  EXPECT_LT(3 * after.flat_leaves, before.flat_leaves);
 }
 
 // The showcase: the Stanford bunny (2000 faces) at 200 mm, progressive QQ.

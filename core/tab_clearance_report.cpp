@@ -1,0 +1,107 @@
+// Tab room report: blocked cut edges classified by where they sit in the cut graph.
+#include "core/tab_clearance_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/dual_graph.h"
+#include "core/folds.h"
+
+namespace papernet {
+
+std::vector<double> angle_defects(const Mesh& mesh) {
+  std::vector<double> sum(mesh.vertices.size(), 0);
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = mesh.vertices[f[k]];
+      const Vec3 a = mesh.vertices[f[(k + 1) % 3]] - p, b = mesh.vertices[f[(k + 2) % 3]] - p;
+      sum[f[k]] += std::atan2(norm(cross(a, b)), dot(a, b));
+      used[f[k]] = 1;
+    }
+  const DualGraph graph = build_dual_graph(mesh);
+  std::vector<char> boundary(mesh.vertices.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (graph.neighbour[f][k] < 0)
+        boundary[mesh.faces[f][k]] = boundary[mesh.faces[f][(k + 1) % 3]] = 1;
+  std::vector<double> out(mesh.vertices.size(), 0);
+  for (std::size_t v = 0; v < out.size(); ++v)
+    if (used[v] && !boundary[v]) out[v] = 2 * std::numbers::pi - sum[v];
+  return out;
+}
+
+TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
+                                const TabClearanceOptions& options, double flat_defect) {
+  TabRoomReport r;
+  r.blocked_leaf_defects.assign(180, 0);
+  r.leaf_defects.assign(180, 0);
+  const std::size_t nv = mesh.vertices.size();
+  const std::vector<double> defect = angle_defects(mesh);
+  const std::vector<NetEdge> edges = classify_edges(mesh, net);
+  std::vector<int> degree(nv, 0);
+  std::vector<char> boundary(nv, 0), used(nv, 0);
+  for (const auto& f : mesh.faces)
+    for (int v : f) used[v] = 1;
+  for (const NetEdge& e : edges) {
+    const int a = mesh.faces[e.a.face][e.a.k], b = mesh.faces[e.a.face][(e.a.k + 1) % 3];
+    if (e.b.face < 0) {
+      boundary[a] = boundary[b] = 1;
+    } else if (e.kind == EdgeKind::Cut) {
+      ++degree[a], ++degree[b], ++r.cut_edges;
+    }
+  }
+  const auto bucket = [](double d) {
+    return std::min<std::size_t>(179,
+                                 static_cast<std::size_t>(std::abs(d) * 180 / std::numbers::pi));
+  };
+  const auto leaf = [&](int v) { return !boundary[v] && degree[v] == 1; };
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!used[v]) continue;
+    if (boundary[v])
+      ++r.boundary_vertices;
+    else if (std::abs(defect[v]) >= flat_defect)
+      ++r.sharp_vertices;
+    if (degree[v] >= 3) ++r.branch_vertices;
+    if (leaf(static_cast<int>(v))) {
+      ++r.leaves;
+      ++r.leaf_defects[bucket(defect[v])];
+      if (std::abs(defect[v]) < flat_defect) ++r.flat_leaves;
+    }
+  }
+  // Cut edges by vertex, to walk hairs.
+  std::vector<std::vector<int>> cut_at(nv);
+  for (const NetEdge& e : edges)
+    if (e.kind == EdgeKind::Cut && e.b.face >= 0)
+      for (int j = 0; j < 2; ++j)
+        cut_at[mesh.faces[e.a.face][(e.a.k + j) % 3]].push_back(
+            j == 0 ? mesh.faces[e.a.face][(e.a.k + 1) % 3] : mesh.faces[e.a.face][e.a.k]);
+  // Walks from vertex `at`, arrived from `from`, through two-cut interior vertices; true when
+  // the walk ends at a leaf.
+  const auto reaches_leaf = [&](int from, int at) {
+    for (std::size_t steps = 0; steps < nv; ++steps) {
+      if (leaf(at)) return true;
+      if (boundary[at] || degree[at] != 2) return false;
+      const int next = cut_at[at][0] == from ? cut_at[at][1] : cut_at[at][0];
+      from = at, at = next;
+    }
+    return false;
+  };
+  for (const EdgeSide& s : edges_without_tab_room(mesh, net, options)) {
+    ++r.blocked;
+    const int a = mesh.faces[s.face][s.k], b = mesh.faces[s.face][(s.k + 1) % 3];
+    if (leaf(a) || leaf(b)) {
+      ++r.blocked_leaf;
+      for (int v : {a, b})
+        if (leaf(v)) ++r.blocked_leaf_defects[bucket(defect[v])];
+    } else if (reaches_leaf(b, a) || reaches_leaf(a, b)) {
+      ++r.blocked_hair;
+    } else {
+      ++r.blocked_other;
+    }
+  }
+  return r;
+}
+
+}  // namespace papernet
