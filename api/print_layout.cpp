@@ -140,6 +140,7 @@ TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOp
   const double mm = std::min(options.min_tab_height_mm, options.tab_height_mm);
   clearance.min_height = mm / print_scale(mesh, options);
   clearance.angle_deg = options.tab_angle_deg;
+  clearance.time_limit_seconds = options.tab_room_seconds;
   return clear_tab_room(mesh, net, clearance, progress);
 }
 

@@ -31,6 +31,9 @@ struct PrintOptions {
   double min_tab_height_mm = 2;
   /// Change the net before printing so that more cut edges have room for a tab (make_tab_room).
   bool tab_room = true;
+  /// Clock limit of that pass in seconds (TabClearanceOptions::time_limit_seconds); <= 0: only
+  /// its deterministic budget. The service sets it from the job's time limit.
+  double tab_room_seconds = 0;
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
 

@@ -12,6 +12,7 @@
 #include "core/tab_clearance.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -93,6 +94,7 @@ class Clearance {
   OverlapGrid grid_;
   double tol_ = 0, height_ = 0;
   std::size_t budget_ = 0;
+  double time_limit_ = 0;       // seconds; <= 0: none
   std::size_t step_limit_ = 0;  // evaluations_ allowed up to in the current step of run()
   bool keep_bounds_ = true;
   Box2 bounds_;  // of the input net
@@ -141,6 +143,7 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   tol_ = kRelativeTolerance * bounding_box_diagonal(mesh);
   height_ = options.min_height;
   budget_ = options.max_evaluations;
+  time_limit_ = options.time_limit_seconds;
   shapes_ = tab_shapes(options.angle_deg);
   double total = 0;
   for (const auto& t : pos_)
@@ -525,7 +528,13 @@ void Clearance::run(Progress& progress) {
   tabu_until_.assign(3 * static_cast<std::size_t>(nf_), 0);
   std::uint32_t step = 0;
   std::size_t level = 0;
-  for (int stall = 0; blocked_count_ > 0 && evaluations_ < budget_;) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto out_of_time = [&] {
+    return time_limit_ > 0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
+               time_limit_;
+  };
+  for (int stall = 0; blocked_count_ > 0 && evaluations_ < budget_ && !out_of_time();) {
     if (stall >= kStallSweeps) {
       if (++level == kStepCaps.size()) break;
       stall = 0;
@@ -534,6 +543,7 @@ void Clearance::run(Progress& progress) {
     for (int h = 0; h < 3 * nf_ && evaluations_ < budget_; ++h) {
       if (!blocked_[h]) continue;
       if (progress.cancelled()) throw CancelledException();
+      if (out_of_time()) break;
       ++step;
       step_limit_ = evaluations_ + std::min(kStepCaps[level], budget_);
       const int f = h / 3, k = h % 3;

@@ -38,6 +38,10 @@ struct TabClearanceOptions {
   /// and options always give the same result. The search also stops earlier when it no longer
   /// finds better nets.
   std::size_t max_evaluations = 100'000;
+  /// A clock limit in seconds besides the budget, for callers with a deadline (the service's
+  /// job time limit); <= 0: none. When it stops the search, the best net so far is returned
+  /// (overlap-free as always), and the result then depends on the machine's speed.
+  double time_limit_seconds = 0;
   /// Refuse moves that take faces outside the input net's axis-aligned bounding box, so that
   /// the net does not grow while it makes room for tabs. Off by default: it leaves about a
   /// quarter more edges without room and does not bound the page count anyway (pages follow

@@ -22,8 +22,10 @@ PrintOptions print_options(const JobOptions& options) {
 }  // namespace
 
 NetCheckReport make_room_for_tabs(const Mesh& mesh, Net& net, const JobOptions& options,
-                                  Progress& progress) {
-  TabClearanceResult room = make_tab_room(mesh, net, print_options(options), progress);
+                                  double seconds, Progress& progress) {
+  PrintOptions print = print_options(options);
+  print.tab_room_seconds = seconds;
+  TabClearanceResult room = make_tab_room(mesh, net, print, progress);
   if (room.moves > 0) {
     NetCheckReport report = check_net(mesh, room.net);
     if (report.ok()) {

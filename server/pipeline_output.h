@@ -23,9 +23,10 @@ struct PrintFiles {
 /// Makes `net` the net to print and deliver: with tab mode auto, changed so that more cut edges
 /// have room for a glue tab at the job's print size (api make_tab_room) when that net passes the
 /// net checker; else left as it is. Returns the checker's report on the net it leaves, so that
-/// no net is checked twice. \throw CancelledException.
+/// no net is checked twice. The pass stops after `seconds` (> 0) with the best net so far.
+/// \throw CancelledException.
 NetCheckReport make_room_for_tabs(const Mesh& mesh, Net& net, const JobOptions& options,
-                                  Progress& progress);
+                                  double seconds, Progress& progress);
 
 /// Lays out `net` for print with the job's options (size or scale, paper, margin, tabs, flat
 /// folds) and writes SVG, PDF and GLB. Kept apart from the net JSON writer: api/net_json.h and

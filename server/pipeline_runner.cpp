@@ -1,5 +1,6 @@
 #include "server/pipeline_runner.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "api/net_json.h"
@@ -16,6 +17,11 @@ namespace papernet::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Seconds the tab-room pass gets even when the unfolder used the job's whole time limit; the
+// service's grace beyond the limit (ServiceSettings::hard_time_grace, 5 s) covers it and the
+// final render.
+constexpr double kMinTabRoomSeconds = 1;
 
 struct Validated {
   Mesh mesh;
@@ -184,7 +190,12 @@ JobRunner make_pipeline_runner(PipelineLimits limits) {
       info.input_faces = v.input.faces;
       sink.report(info);
     }
-    const NetCheckReport check = make_room_for_tabs(u.mesh, u.net, options, progress);
+    // The pass gets what is left of the job's time limit, and at least kMinTabRoomSeconds (the
+    // service allows some grace beyond the limit for this and for writing the files).
+    const double left = options.time_limit.value_or(60) -
+                        std::chrono::duration<double>(Clock::now() - start).count();
+    const NetCheckReport check =
+        make_room_for_tabs(u.mesh, u.net, options, std::max(left, kMinTabRoomSeconds), progress);
     if (!check.ok())
       throw std::logic_error("the unfolder's net fails the net checker: " + check.summary());
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -97,6 +97,14 @@ TEST(TabClearance, OpensNearSlitsAndKeepsTheNetValid) {
   EXPECT_LE(short_run.evaluations, 10u);
   EXPECT_LE(short_run.blocked_after, blocked);
   EXPECT_GE(short_run.blocked_after, r.blocked_after);
+  // A clock limit (the service's job deadline) stops it too, with a valid net no worse than
+  // the input: a nanosecond leaves time for one step of at most a few hundred candidates.
+  options.max_evaluations = 100'000;
+  options.time_limit_seconds = 1e-9;
+  const TabClearanceResult timed = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_LT(timed.evaluations, r.evaluations / 10);
+  EXPECT_LE(timed.blocked_after, blocked);
+  EXPECT_TRUE(check_net(c.mesh, timed.net).ok());
 }
 
 // Where the blocked edges are: leaves of the cut tree at nearly flat vertices (their two sides
