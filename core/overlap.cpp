@@ -28,10 +28,7 @@ double half_perimeter(const Box2& b) { return (b.hi.x - b.lo.x) + (b.hi.y - b.lo
 }  // namespace
 
 bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance) {
-  const Box2 ba = triangle_box(a), bb = triangle_box(b);
-  if (ba.hi.x <= bb.lo.x + tolerance || bb.hi.x <= ba.lo.x + tolerance ||
-      ba.hi.y <= bb.lo.y + tolerance || bb.hi.y <= ba.lo.y + tolerance)
-    return false;
+  if (!boxes_overlap(triangle_box(a), triangle_box(b), tolerance)) return false;
   for (int k = 0; k < 3; ++k) {
     if (separates(a[k], a[(k + 1) % 3], b, tolerance)) return false;
     if (separates(b[k], b[(k + 1) % 3], a, tolerance)) return false;
@@ -48,6 +45,7 @@ void OverlapGrid::reset(double cell_size) {
     l.members.clear();
     inv *= 0.25;
   }
+  used_levels_ = 0;
   range_.clear();
   nodes_.clear();
   free_nodes_.clear();
@@ -171,6 +169,7 @@ void OverlapGrid::insert(int f, const Box2& box) {
   Level& l = levels_[r.level];
   r.slot = static_cast<int>(l.members.size());
   l.members.push_back(f);
+  used_levels_ |= 1u << r.level;
   if (r.level == kLevels) return;
   if (4 * l.members.size() > l.buckets.size())
     grow(l);  // grow() places f too
@@ -189,6 +188,7 @@ void OverlapGrid::remove(int f) {
   range_[l.members.back()].slot = r.slot;
   l.members[r.slot] = l.members.back();
   l.members.pop_back();
+  if (l.members.empty()) used_levels_ &= ~(1u << r.level);
   if (r.level < kLevels)
     for (int x = r.x0; x <= r.x1; ++x)
       for (int y = r.y0; y <= r.y1; ++y) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -21,6 +22,13 @@ struct Box2 {
 inline Box2 triangle_box(const Triangle2& t) {
   return {{std::min({t[0].x, t[1].x, t[2].x}), std::min({t[0].y, t[1].y, t[2].y})},
           {std::max({t[0].x, t[1].x, t[2].x}), std::max({t[0].y, t[1].y, t[2].y})}};
+}
+
+/// False when boxes `a` and `b` are apart or overlap by at most `tolerance` along an axis: then
+/// triangles_overlap is false for any triangles with these boxes (its own first test).
+inline bool boxes_overlap(const Box2& a, const Box2& b, double tolerance) {
+  return !(a.hi.x <= b.lo.x + tolerance || b.hi.x <= a.lo.x + tolerance ||
+           a.hi.y <= b.lo.y + tolerance || b.hi.y <= a.lo.y + tolerance);
 }
 
 /// True when the interiors of the counter-clockwise triangles a and b intersect by more than
@@ -84,8 +92,16 @@ class OverlapGrid {
                             static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0x85ebca6bu;
     return static_cast<std::size_t>((h ^ (h >> 15)) & l.mask);
   }
+  // floor(v / cell size), clamped to +-1e9 (NaN as before). Within the range the truncation
+  // below equals std::floor and costs fewer instructions on baseline x86-64 (no SSE4.1 round);
+  // it runs four times per level and query.
   static int cell(const Level& l, double v) {
-    const double c = std::floor(v * l.inv_cell);
+    const double x = v * l.inv_cell;
+    if (x >= -1e9 && x <= 1e9) {
+      const int i = static_cast<int>(x);
+      return i - (x < i ? 1 : 0);
+    }
+    const double c = std::floor(x);
     return c < -1e9 ? -1000000000 : c > 1e9 ? 1000000000 : static_cast<int>(c);
   }
   void place(int f);
@@ -95,6 +111,7 @@ class OverlapGrid {
   void tree_remove(int leaf);
 
   std::array<Level, kLevels + 1> levels_;
+  std::uint32_t used_levels_ = 0;  // bit i: levels_[i] has members (queries skip the others)
   std::vector<Range> range_;
   std::vector<Node> nodes_;
   std::vector<int> free_nodes_;
@@ -104,9 +121,10 @@ class OverlapGrid {
 
 template <class Visit>
 void OverlapGrid::query(const Box2& box, Visit&& visit) const {
-  for (int i = 0; i <= kLevels; ++i) {
+  static_assert(kLevels < 32);
+  for (std::uint32_t used = used_levels_; used != 0; used &= used - 1) {
+    const int i = std::countr_zero(used);
     const Level& l = levels_[i];
-    if (l.members.empty()) continue;
     if (i < kLevels) {
       const int x0 = cell(l, box.lo.x), x1 = cell(l, box.hi.x), y0 = cell(l, box.lo.y),
                 y1 = cell(l, box.hi.y);

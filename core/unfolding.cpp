@@ -146,7 +146,10 @@ void Unfolding::test_moved(const std::vector<int>& moved) {
     grid_.query(box_[f], [&](int c) {
       if (seen_[c] == seen_epoch_) return;
       seen_[c] = seen_epoch_;
-      if (triangles_overlap(pos_[f], pos_[c], tolerance_)) add_pair(f, c);
+      // Faces in the grid have their current box: most candidates end here, without the call.
+      if (boxes_overlap(box_[f], box_[c], tolerance_) &&
+          triangles_overlap(pos_[f], pos_[c], tolerance_))
+        add_pair(f, c);
     });
     grid_.insert(f, box_[f]);
   }
@@ -457,13 +460,16 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
       kept = smallest;
       break;
     }
-    // Expand a batch of faces of the smallest growing part.
+    // Expand a batch of faces of the smallest growing part, always from its first source with
+    // faces left. Sources before the current one only change part when two parts meet: only
+    // then does the search start again from the first.
+    std::size_t i = 0;
     for (int step = 0; step < 32; ++step) {
-      std::size_t i = 0;
       while (i < sources && !(head[i] < queue[i].size() && find(static_cast<int>(i)) == smallest))
         ++i;
       if (i == sources) break;
       const int x = queue[i][head[i]++];
+      bool met = false;
       for (int k = 0; k < 3; ++k) {
         const int n = adj_[x][k];
         if (!(links_[x] >> k & 1) || is_dirty_[n]) continue;
@@ -475,9 +481,11 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
             up[a] = b;
             size[b] += size[a];
             smallest = b;
+            met = true;
           }
         }
       }
+      if (met) i = 0;
     }
   }
   // The part of each source, final.
@@ -545,27 +553,29 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
 
   // Test what moved. A part moved rigidly: pairs inside it stay as they are; its faces are tested
   // against everything else, the edited faces against everything.
-  const auto group = [&](int x) {
-    return is_dirty_[x] ? -1 : side_mark_[x] == epoch ? part_of(x) : -2;
-  };
+  // group_: -1 for an edited face, the part for a face of a moved part, -2 for all others
+  // (kept in place).
+  if (group_.size() < static_cast<std::size_t>(nf)) group_.resize(nf, -2);
+  for (int f : moved) group_[f] = is_dirty_[f] ? -1 : part_of(f);
   for (int f : moved) {
     if (grid_.contains(f)) grid_.remove(f);
-    const int g = group(f);
+    const int g = group_[f];
     for (std::size_t i = overlaps_[f].size(); i-- > 0;)
-      if (g < 0 || group(overlaps_[f][i]) != g) remove_pair(f, overlaps_[f][i]);
+      if (g < 0 || group_[overlaps_[f][i]] != g) remove_pair(f, overlaps_[f][i]);
   }
   for (int f : moved) {
-    const int g = group(f);
+    const int g = group_[f];
     box_[f] = triangle_box(pos_[f]);
     const std::uint32_t tested = next_seen_epoch();
     grid_.query(box_[f], [&](int c) {
       if (seen_[c] == tested) return;
       seen_[c] = tested;
-      if (g >= 0 && group(c) == g) return;
+      if (!boxes_overlap(box_[f], box_[c], tolerance_) || (g >= 0 && group_[c] == g)) return;
       if (triangles_overlap(pos_[f], pos_[c], tolerance_)) add_pair(f, c);
     });
     grid_.insert(f, box_[f]);
   }
+  for (int f : moved) group_[f] = -2;
   return true;
 }
 

@@ -235,6 +235,7 @@ class Unfolding {
   std::vector<int> part_;      // update_locally: part of each explored face
   std::vector<std::vector<int>> part_queue_;
   std::vector<std::pair<int, int>> todo_;
+  std::vector<int> group_;  // update_locally: what moved together (-2 outside a call)
 
   // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
   // is the pre-order range [cut_lo_, cut_hi_), the other its complement.

@@ -76,6 +76,32 @@ TEST(OverlapGrid, FindsInsertedFacesAndForgetsRemovedOnes) {
   EXPECT_EQ(found({{-1, -1}, {10, 10}}), std::vector<int>{1});
 }
 
+// A level whose last face is removed is skipped by queries until a face lands there again; points
+// on cell boundaries and inside cells of negative coordinates find the faces there.
+TEST(OverlapGrid, EmptiedLevelsAndNegativeCellBoundaries) {
+  OverlapGrid grid;
+  grid.reset(1.0);
+  const auto found = [&](const Box2& box) {
+    std::vector<int> faces;
+    grid.query(box, [&](int f) { faces.push_back(f); });
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
+  };
+  grid.insert(0, {{-2, -2}, {-1, -1}});                           // finest level, cells -2..-1
+  grid.insert(1, {{-40, -40}, {-20, -20}});                       // a coarser level
+  EXPECT_EQ(found({{-1, -1}, {-1, -1}}), (std::vector<int>{0}));  // the corner, on a boundary
+  EXPECT_EQ(found({{-1.75, -1.25}, {-1.75, -1.25}}), (std::vector<int>{0}));
+  grid.remove(0);  // the finest level is empty now
+  EXPECT_EQ(found({{-30, -30}, {-1, -1}}), std::vector<int>{1});
+  grid.insert(2, {{-1.5, -1.5}, {-1.25, -1.25}});  // and used again
+  EXPECT_EQ(found({{-1.3, -1.3}, {-1.3, -1.3}}), (std::vector<int>{2}));
+  EXPECT_EQ(found({{-30, -30}, {-1, -1}}), (std::vector<int>{1, 2}));
+  grid.remove(1);
+  grid.remove(2);
+  EXPECT_EQ(found({{-1e6, -1e6}, {1e6, 1e6}}), std::vector<int>{});
+}
+
 // Faces from 0.01 to 10,000 units wide land in different levels of the grid; a query must still
 // return every face whose box meets the query box (checked against all pairs).
 TEST(OverlapGrid, FindsEveryMeetingBoxAcrossSizes) {

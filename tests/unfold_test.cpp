@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "core/dual_graph.h"
 #include "core/errors.h"
@@ -146,6 +148,21 @@ TEST(Unfold, SmallEditsOfALargeNetMatchAFreshBuild) {
   const auto expect_fresh = [&u](const std::string& what) {
     const Unfolding fresh(u.mesh(), u.net().parent);
     EXPECT_EQ(u.overlap_count(), fresh.overlap_count()) << what;
+    std::vector<int> faces = u.overlapping_faces(), fresh_faces = fresh.overlapping_faces();
+    std::sort(faces.begin(), faces.end());
+    std::sort(fresh_faces.begin(), fresh_faces.end());
+    EXPECT_EQ(faces, fresh_faces) << what;
+    // The same layout up to a rigid motion (the local update keeps its largest part in place,
+    // a fresh build lays out from the root): corners at the same distances from face 0's.
+    const Triangle2& a = u.points(0);
+    const Triangle2& b = fresh.points(0);
+    double worst = 0;
+    for (int f = 0; f < static_cast<int>(u.face_count()); ++f)
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+          worst = std::max(worst,
+                           std::abs(norm(u.points(f)[k] - a[j]) - norm(fresh.points(f)[k] - b[j])));
+    EXPECT_LT(worst, 1e-9) << what;
     const NetCheckReport report = check_net(u.mesh(), u.net());
     EXPECT_EQ(report.failure_count, report.overlapping_pairs) << what << ": " << report.summary();
   };
