@@ -53,7 +53,7 @@ struct TabuOptions {
   /// and the walk is as short as the tree path between them. The paper's walks go to a random
   /// root (0 restores that exactly); on CAD meshes of slivers their cuts are mostly far from
   /// the overlap and move large sides, and the count stalls (`thingi10k__79741` at 2,000 faces:
-  /// ~30 pairs left after 60 s; with half the walks to a partner, a net in ~20 s).
+  /// ~30 pairs left after 60 s; with half the walks to a partner, nets in 27-35 s for seeds 1-3).
   double partner_walks = 0.5;
 };
 
