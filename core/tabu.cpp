@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/dual_graph.h"
 #include "core/errors.h"
@@ -112,14 +113,19 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
     long long best_delta = LLONG_MAX;
     bool blocked = false, improved = false;
     // Walks from a random overlapping face towards a random root (re-rooting moves nothing, so
-    // the root is only where the walk ends; the pre-order stays as it is). Once stalled, when
+    // the root is only where the walk ends; the pre-order stays as it is), or, for a share
+    // `partner_walks` of the walks, towards a face it overlaps. Once stalled, when
     // the best move of the walks so far raises the count by more than accept_rise pairs,
     // another walk looks elsewhere; then the best move of all of them is applied.
     if (st.iterations - fewest_at > static_cast<std::size_t>(nf)) stalled = true;
     const std::size_t now_walks = stalled ? walks : 1;
     for (std::size_t walk = 0; walk < now_walks && best_delta > accept_rise && !stop; ++walk) {
-      const int r = static_cast<int>(rng.below(nf));
+      int r = static_cast<int>(rng.below(nf));
       const int f = overlapping_[rng.below(overlapping_.size())];
+      if (options.partner_walks > 0 && rng.uniform() < options.partner_walks) {
+        const std::vector<int>& partners = overlaps_[f];
+        r = partners[rng.below(partners.size())];
+      }
       for (int g = f; g != r && !improved && !stop;) {
         const int up = step_towards(g, r);
         cut(g, up);

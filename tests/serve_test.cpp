@@ -151,10 +151,12 @@ TEST(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
 }
 
 // A time limit too short to finish the uncollapse gives the last overlap-free approximation.
+// (QQ completes the Duck's 4,212 faces in ~0.4 s since TU's walks towards overlapping faces, so
+// 0.1 s.)
 TEST(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
   Server s({"--workers", "1"});
   const json job =
-      wait_final(s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?time_limit=0.5"));
+      wait_final(s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?time_limit=0.1"));
   ASSERT_EQ(job["status"], "approximated") << job.dump();
   EXPECT_EQ(job["result"]["kind"], "approximate");
   EXPECT_LT(job["result"]["faces"].get<int>(), 4212);

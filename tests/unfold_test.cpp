@@ -285,6 +285,31 @@ TEST(Unfold, CadSliverMeshesAt400Faces) {
   }
 }
 
+// A CAD tray of long slivers at 800 faces: walks from the paper's random roots cut links far
+// from the overlaps and leave ~40 pairs after 2,000 iterations; with half the walks going
+// towards a face the start face overlaps (every cut then separates that pair), a net. The
+// iteration budget, not time, bounds both runs, so the outcome is the same on any machine.
+TEST(Unfold, WalksTowardsAnOverlappingFaceResolveACadTray) {
+  const fs::path file =
+      fs::path(PAPERNET_SHARED_DATA) / "bench" / "800" / "trimesh__1002_tray_bottom.obj";
+  if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
+  const Mesh mesh = load_mesh_file(file.string()).mesh;
+  TabuOptions options;
+  options.seed = 1;
+  options.max_iterations = 2000;
+  options.time_limit_seconds = 0;
+  Progress quiet;
+  ASSERT_GT(options.partner_walks, 0.0);
+  const UnfoldResult with = unfold_tabu(mesh, options, quiet);
+  EXPECT_TRUE(with.overlap_free) << with.overlaps << " pairs left";
+  const NetCheckReport report = check_net(mesh, with.net);
+  EXPECT_TRUE(report.ok()) << report.summary();
+  options.partner_walks = 0;  // the paper's walks
+  const UnfoldResult without = unfold_tabu(mesh, options, quiet);
+  EXPECT_FALSE(without.overlap_free);
+  EXPECT_EQ(without.stats.iterations, options.max_iterations);
+}
+
 // The Twin plate (5,756 faces, aspect ratios up to 1.6e8, a long bar whose sides are fans of
 // slivers): the minimum-perimeter tree lays its flat sides out as they are; what overlapped
 // there before was rounding of the float input (pairs of faces adjacent in 3D, 1e-8 of the
