@@ -220,8 +220,12 @@ TEST(ServeTest, EventStreamEndsWithTheFinalState) {
   EXPECT_EQ(last["id"], id);
   EXPECT_EQ(last, wait_final(s, id)) << "the last event is the job's final state";
   EXPECT_NE(stream.find("event: progress"), std::string::npos) << stream;
-  EXPECT_NE(stream.find("\"phase\":\"unfold\""), std::string::npos)
-      << "the stream shows the unfolder's progress";
+  // The stream sends the state as it is when it looks (changes are coalesced, at most ten a
+  // second), so a short phase may pass unseen; the tab-room pass takes most of this job.
+  EXPECT_TRUE(stream.find("\"phase\":\"unfold\"") != std::string::npos ||
+              stream.find("\"phase\":\"tabs\"") != std::string::npos)
+      << "the stream shows the job's progress while it runs\n"
+      << stream;
 }
 
 TEST(ServeTest, EveryErrorCodeFromTheInputThatCausesIt) {
