@@ -53,19 +53,22 @@ TEST(TrianglesOverlap, OverlapThinnerThanTheToleranceIsIgnored) {
   EXPECT_TRUE(triangles_overlap(a, b, 0));
 }
 
+// The faces a grid query visits, each once, in order.
+std::vector<int> faces_found(const OverlapGrid& grid, const Box2& box) {
+  std::vector<int> faces;
+  grid.query(box, [&](int f) { faces.push_back(f); });
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
+}
+
 TEST(OverlapGrid, FindsInsertedFacesAndForgetsRemovedOnes) {
   OverlapGrid grid;
   grid.reset(1.0);
   grid.insert(0, {{0.1, 0.1}, {0.9, 0.9}});
   grid.insert(1, {{5.1, 5.1}, {5.9, 5.9}});
   grid.insert(2, {{-100, -100}, {100, 100}});  // far larger than a cell
-  const auto found = [&](const Box2& box) {
-    std::vector<int> faces;
-    grid.query(box, [&](int f) { faces.push_back(f); });
-    std::sort(faces.begin(), faces.end());
-    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-    return faces;
-  };
+  const auto found = [&](const Box2& box) { return faces_found(grid, box); };
   EXPECT_EQ(found({{0.5, 0.5}, {0.6, 0.6}}), (std::vector<int>{0, 2}));
   EXPECT_EQ(found({{5.5, 5.5}, {5.6, 5.6}}), (std::vector<int>{1, 2}));
   grid.remove(2);
@@ -81,13 +84,7 @@ TEST(OverlapGrid, FindsInsertedFacesAndForgetsRemovedOnes) {
 TEST(OverlapGrid, EmptiedLevelsAndNegativeCellBoundaries) {
   OverlapGrid grid;
   grid.reset(1.0);
-  const auto found = [&](const Box2& box) {
-    std::vector<int> faces;
-    grid.query(box, [&](int f) { faces.push_back(f); });
-    std::sort(faces.begin(), faces.end());
-    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-    return faces;
-  };
+  const auto found = [&](const Box2& box) { return faces_found(grid, box); };
   grid.insert(0, {{-2, -2}, {-1, -1}});                           // finest level, cells -2..-1
   grid.insert(1, {{-40, -40}, {-20, -20}});                       // a coarser level
   EXPECT_EQ(found({{-1, -1}, {-1, -1}}), (std::vector<int>{0}));  // the corner, on a boundary
