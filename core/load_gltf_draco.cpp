@@ -18,6 +18,18 @@ std::size_t get_index(const Json& object, const char* key, std::size_t size,
   return std::size_t(it->get<long long>());
 }
 
+// The accessor a Draco primitive decodes into must have one of glTF's component types: tinygltf
+// sizes the decoded buffer by it before it checks anything, and an unknown type (size -1) turns
+// that size into about 4 GB.
+void check_component_type(const Json& accessors, std::size_t index, const std::string& what) {
+  const Json& a = accessors[index];
+  const auto it = a.is_object() ? a.find("componentType") : a.end();
+  const long long type = it != a.end() && it->is_number_integer() ? it->get<long long>() : 0;
+  if (type < 5120 || type > 5126 || type == 5124)
+    throw IOException("gltf: " + what + ": accessor " + std::to_string(index) +
+                      " has no valid componentType (5120-5123, 5125 or 5126)");
+}
+
 std::uint64_t get_size(const Json& object, const char* key, std::uint64_t fallback) {
   const auto it = object.find(key);
   if (it == object.end()) return fallback;
@@ -141,7 +153,8 @@ DracoPrimitives predecode_gltf_draco(std::string_view json, std::string_view glb
       if (offset > buffer_length || length > buffer_length - offset)
         throw IOException("gltf: Draco buffer view " + std::to_string(vi) +
                           " lies outside its buffer");
-      if (prim.contains("indices")) get_index(prim, "indices", accessors.size(), what);
+      if (prim.contains("indices"))
+        check_component_type(accessors, get_index(prim, "indices", accessors.size(), what), what);
       const Json& attributes = prim.contains("attributes") ? prim["attributes"] : kEmpty;
       const auto draco_attributes = ext.find("attributes");
       if (draco_attributes == ext.end() || !draco_attributes->is_object())
@@ -149,7 +162,8 @@ DracoPrimitives predecode_gltf_draco(std::string_view json, std::string_view glb
       std::vector<int> ids;
       for (const auto& [name, id] : draco_attributes->items()) {
         if (!attributes.is_object()) throw IOException("gltf: " + what + " has no attributes");
-        get_index(attributes, name.c_str(), accessors.size(), what);
+        check_component_type(accessors, get_index(attributes, name.c_str(), accessors.size(), what),
+                             what);
         if (!id.is_number_integer() || id.get<long long>() < 0)
           throw IOException("gltf: " + what + ": bad Draco attribute id for " + name);
         ids.push_back(id.get<int>());

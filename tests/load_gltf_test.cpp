@@ -206,6 +206,40 @@ TEST(LoadGltf, DracoPayloadCountsAreCheckedBeforeTinygltfDecodesThem) {
   EXPECT_EQ(error(11, 12, 11), "drc header declares 12 faces, more than the limit of 11");
 }
 
+// Found by fuzz_upload: an accessor of a Draco primitive with an unknown componentType made
+// tinygltf size its decoded buffer as about 4 GB (component size -1) before checking anything.
+TEST(LoadGltf, DracoAccessorsWithoutAValidComponentTypeAreRefused) {
+  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb", std::ios::binary);
+  const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NO_THROW(load_mesh(glb, MeshFormat::Glb, {}));
+  // The indices accessor (0) is 5121, the POSITION and NORMAL accessors (1, 2) are 5126; the
+  // patches keep the JSON chunk's length.
+  const auto patched = [&](const std::string& from, const std::string& to, int nth) {
+    std::string out = glb;
+    std::size_t at = out.find(from);
+    for (int i = 0; i < nth; ++i) at = out.find(from, at + 1);
+    EXPECT_NE(at, std::string::npos);
+    return out.replace(at, from.size(), to);
+  };
+  const auto error = [](const std::string& bytes) {
+    try {
+      load_mesh(bytes, MeshFormat::Glb, {});
+    } catch (const IOException& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error(patched("5126", "5127", 1)),
+            "gltf: mesh 0 primitive 0: accessor 2 has no valid componentType (5120-5123, 5125 "
+            "or 5126)");
+  EXPECT_EQ(error(patched("5121", "5124", 0)),
+            "gltf: mesh 0 primitive 0: accessor 0 has no valid componentType (5120-5123, 5125 "
+            "or 5126)");
+  EXPECT_EQ(error(patched("\"componentType\": 5126", "\"componentTypo\": 5126", 0)),
+            "gltf: mesh 0 primitive 0: accessor 1 has no valid componentType (5120-5123, 5125 "
+            "or 5126)");
+}
+
 TEST(LoadGltf, NoSceneTakesAllMeshes) {
   json g = square_gltf(data_uri());
   g.erase("scene");
