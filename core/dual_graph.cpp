@@ -7,6 +7,14 @@
 
 namespace papernet {
 
+std::vector<char> boundary_vertices(const Mesh& mesh, const DualGraph& graph) {
+  std::vector<char> out(mesh.vertices.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (graph.neighbour[f][k] < 0) out[mesh.faces[f][k]] = out[mesh.faces[f][(k + 1) % 3]] = 1;
+  return out;
+}
+
 std::size_t DualGraph::edge_count() const {
   std::size_t twice = 0;
   for (const auto& n : neighbour)

@@ -27,6 +27,10 @@ struct DualGraph {
 ///        inconsistently. The message names the face and the edge.
 DualGraph build_dual_graph(const Mesh& mesh);
 
+/// 1 for each vertex of `mesh` on a boundary edge (an edge with a face on one side only), else 0;
+/// `graph` is mesh's dual graph.
+std::vector<char> boundary_vertices(const Mesh& mesh, const DualGraph& graph);
+
 /// Key of the directed edge a->b, for hash maps over half-edges.
 inline std::uint64_t half_edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |

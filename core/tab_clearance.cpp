@@ -120,6 +120,7 @@ class Clearance {
 Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions& options)
     : mesh_(mesh), nf_(static_cast<int>(mesh.faces.size())) {
   DualGraph graph = build_dual_graph(mesh);
+  vboundary_ = boundary_vertices(mesh, graph);
   adj_ = std::move(graph.neighbour);
   adj_edge_ = std::move(graph.neighbour_edge);
   shape_.resize(nf_);
@@ -173,16 +174,11 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   from_.assign(nf_, -1);
   stamp_.assign(3 * static_cast<std::size_t>(nf_), 0);
   defect_ = angle_defects(mesh);
-  vboundary_.assign(mesh.vertices.size(), 0);
   cut_degree_.assign(mesh.vertices.size(), 0);
   for (int f = 0; f < nf_; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
-      if (adj_[f][k] < 0)
-        vboundary_[a] = vboundary_[b] = 1;
-      else if (f < adj_[f][k] && !linked(f, k))
-        ++cut_degree_[a], ++cut_degree_[b];
-    }
+    for (int k = 0; k < 3; ++k)
+      if (f < adj_[f][k] && !linked(f, k))
+        ++cut_degree_[mesh.faces[f][k]], ++cut_degree_[mesh.faces[f][(k + 1) % 3]];
   root_tree();
 }
 

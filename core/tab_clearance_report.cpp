@@ -20,12 +20,7 @@ std::vector<double> angle_defects(const Mesh& mesh) {
       sum[f[k]] += std::atan2(norm(cross(a, b)), dot(a, b));
       used[f[k]] = 1;
     }
-  const DualGraph graph = build_dual_graph(mesh);
-  std::vector<char> boundary(mesh.vertices.size(), 0);
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (graph.neighbour[f][k] < 0)
-        boundary[mesh.faces[f][k]] = boundary[mesh.faces[f][(k + 1) % 3]] = 1;
+  const std::vector<char> boundary = boundary_vertices(mesh, build_dual_graph(mesh));
   std::vector<double> out(mesh.vertices.size(), 0);
   for (std::size_t v = 0; v < out.size(); ++v)
     if (used[v] && !boundary[v]) out[v] = 2 * std::numbers::pi - sum[v];
