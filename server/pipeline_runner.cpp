@@ -23,6 +23,9 @@ using Clock = std::chrono::steady_clock;
 // final render.
 constexpr double kMinTabRoomSeconds = 1;
 
+// The job's time limit in seconds (the service always fills it in; 60 as a fallback).
+double time_limit_of(const JobOptions& options) { return options.time_limit.value_or(60); }
+
 struct Validated {
   Mesh mesh;
   NetInput input;
@@ -153,7 +156,7 @@ Unfolded unfold(const Mesh& mesh, const NetInput& input, const JobOptions& optio
                 Progress& progress) {
   TabuOptions tabu;
   tabu.seed = options.seed;
-  tabu.time_limit_seconds = options.time_limit.value_or(60);
+  tabu.time_limit_seconds = time_limit_of(options);
   tabu.input_faces = input.faces;
   auto no_net = [](std::size_t overlaps, std::size_t iterations) {
     return ApiError("unfold_failed",
@@ -192,8 +195,8 @@ JobRunner make_pipeline_runner(PipelineLimits limits) {
     }
     // The pass gets what is left of the job's time limit, and at least kMinTabRoomSeconds (the
     // service allows some grace beyond the limit for this and for writing the files).
-    const double left = options.time_limit.value_or(60) -
-                        std::chrono::duration<double>(Clock::now() - start).count();
+    const double left =
+        time_limit_of(options) - std::chrono::duration<double>(Clock::now() - start).count();
     const NetCheckReport check =
         make_room_for_tabs(u.mesh, u.net, options, std::max(left, kMinTabRoomSeconds), progress);
     if (!check.ok())
