@@ -11,6 +11,43 @@
 
 namespace papernet::tab_clearance_detail {
 
+std::vector<int> Clearance::cut_neighbours(int x) const {
+  std::vector<int> out;
+  for (int f : vertex_faces_[x])
+    for (int j = 0; j < 3; ++j) {
+      const int a = mesh_.faces[f][j], b = mesh_.faces[f][(j + 1) % 3];
+      if ((a != x && b != x) || adj_[f][j] < 0 || linked(f, j)) continue;
+      const int other = a == x ? b : a;
+      if (std::find(out.begin(), out.end(), other) == out.end()) out.push_back(other);
+    }
+  return out;
+}
+
+std::vector<std::pair<int, int>> Clearance::hair_links(int u, int v) const {
+  std::vector<std::pair<int, int>> out;
+  for (auto [from, at] : {std::pair{v, u}, std::pair{u, v}}) {
+    // Walk away from the edge through two-cut interior vertices; a hair ends at a leaf.
+    std::vector<int> path;
+    for (std::size_t steps = 0; steps < kHairSteps; ++steps) {
+      if (vboundary_[at] || cut_degree_[at] > 2) break;
+      path.push_back(at);
+      if (cut_degree_[at] == 1) break;
+      const std::vector<int> next = cut_neighbours(at);
+      if (next.size() != 2) break;
+      const int to = next[0] == from ? next[1] : next[0];
+      from = at, at = to;
+    }
+    if (path.empty() || cut_degree_[path.back()] != 1) continue;
+    for (auto x = path.rbegin(); x != path.rend(); ++x)  // from the leaf on
+      for (int f : vertex_faces_[*x])
+        for (int j = 0; j < 3; ++j) {
+          const int a = mesh_.faces[f][j], b = mesh_.faces[f][(j + 1) % 3];
+          if ((a == *x || b == *x) && linked(f, j) && f < adj_[f][j]) out.push_back({f, j});
+        }
+  }
+  return out;
+}
+
 // Offers the moves around blocked edge k of face f to `consider(lf, lk, cf, ck)` (cut the link
 // across edge lk of face lf, glue cut edge ck of face cf), which returns true to stop: first cut
 // a link across an edge at one of its ends and glue a cut edge between nearby faces (the fan of
@@ -81,10 +118,17 @@ bool Clearance::candidates(int f, int k, Consider&& consider) {
   // tree (one face on each side of the link), nearest first, that leave no new flat leaf of the
   // cut tree (each end keeps another cut edge, or is sharp or on the boundary): gluing those
   // cannot create a new near-slit.
+  // A hair edge (both ends on a path of two-cut vertices to a leaf) also gets the links at the
+  // hair's vertices from its leaf on: cutting one there and gluing a cut edge beyond the hair
+  // makes the hair a path between two parts of the net, whose sides can part.
   const Vec3 mid = 0.5 * (mesh_.vertices[u] + mesh_.vertices[v]);
   const std::vector<int>& degree = cut_degree_;
   std::vector<std::pair<int, int>> all_cuts = narrow_cuts;
   all_cuts.insert(all_cuts.end(), wide_cuts.begin(), wide_cuts.end());
+  if (endgame_)
+    for (const std::pair<int, int>& link : hair_links(u, v))
+      if (std::find(all_cuts.begin(), all_cuts.end(), link) == all_cuts.end())
+        all_cuts.push_back(link);
   for (const std::pair<int, int>& cut : all_cuts) {
     // Not a structured binding: the lambda below uses them, which clang 14 refuses.
     const int lf = cut.first, lk = cut.second;
@@ -114,7 +158,7 @@ bool Clearance::candidates(int f, int k, Consider&& consider) {
       for (int i = hi; i < nf_; ++i) side(order_[i]);
     }
     std::sort(far.begin(), far.end());
-    if (far.size() > kFarGlues) far.resize(kFarGlues);
+    if (far.size() > far_glues_) far.resize(far_glues_);
     std::vector<std::pair<int, int>> glues;
     for (const auto& [d, g] : far) glues.push_back(g);
     if (try_all({{lf, lk}}, glues)) return true;
@@ -145,13 +189,44 @@ void Clearance::run(Progress& progress) {
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
                time_limit_;
   };
+  // Back to the best net seen.
+  const auto back_to_best = [&] {
+    links_ = best_links;
+    for (int f = 0; f < nf_; ++f)
+      if (pos_[f] != best_pos[f]) place(f, best_pos[f]);
+    blocked_ = best_blocked;
+    cut_degree_ = best_degree;
+    blocked_count_ = best_count;
+    moves_ = best_moves;
+    root_tree();
+  };
+  long long max_worsening = kMaxWorsening;
+  int restarts = 0;        // since the last new best
+  std::size_t offset = 0;  // where sweeps start (restarts start elsewhere)
+  const int halves = 3 * nf_;
   for (int stall = 0; blocked_count_ > 0 && evaluations_ < budget_ && !out_of_time();) {
     if (stall >= kStallSweeps) {
-      if (++level == kStepCaps.size()) break;
       stall = 0;
+      if (++level == kStepCaps.size()) {
+        // Endgame: again from the best net, with more far glues per link, moves that may close
+        // one more edge on every other restart and sweeps starting elsewhere, while the budget
+        // lasts (few blocked edges left: each is worth a wider search).
+        if (restarts == kRestarts) break;
+        ++restarts;
+        if (moves_ != best_moves) back_to_best();
+        std::fill(tabu_until_.begin(), tabu_until_.end(), 0);
+        step = 0;
+        level = kRestartLevel;
+        far_glues_ = kFarGlues << std::min(restarts, 4);
+        endgame_ = true;
+        max_worsening = kMaxWorsening + restarts % 2;
+        offset =
+            static_cast<std::size_t>(halves) * static_cast<std::size_t>(restarts) / (kRestarts + 1);
+      }
     }
     const std::size_t sweep_best = best_count;
-    for (int h = 0; h < 3 * nf_ && evaluations_ < budget_; ++h) {
+    for (int i = 0; i < halves && evaluations_ < budget_; ++i) {
+      const int h = static_cast<int>((static_cast<std::size_t>(i) + offset) % halves);
       if (!blocked_[h]) continue;
       if (progress.cancelled()) throw CancelledException();
       if (out_of_time()) break;
@@ -159,9 +234,10 @@ void Clearance::run(Progress& progress) {
       step_limit_ = evaluations_ + std::min(kStepCaps[level], budget_);
       const int f = h / 3, k = h % 3;
       struct Pick {
-        Change change{kMaxWorsening + 1, 0};
+        Change change;
         std::array<int, 4> move{-1, -1, -1, -1};
       } pick;
+      pick.change.blocked = max_worsening + 1;
       const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step; };
       const bool improved = candidates(f, k, [&](int lf, int lk, int cf, int ck) {
         if (tabu(lf, lk) || tabu(cf, ck)) return false;
@@ -198,20 +274,12 @@ void Clearance::run(Progress& progress) {
         best_blocked = blocked_;
         best_degree = cut_degree_;
         best_moves = moves_;
+        restarts = 0;
       }
     }
     stall = best_count < sweep_best ? 0 : stall + 1;
   }
-  if (moves_ == best_moves) return;
-  // Back to the best net seen.
-  links_ = std::move(best_links);
-  for (int f = 0; f < nf_; ++f)
-    if (pos_[f] != best_pos[f]) place(f, best_pos[f]);
-  blocked_ = std::move(best_blocked);
-  cut_degree_ = std::move(best_degree);
-  blocked_count_ = best_count;
-  moves_ = best_moves;
-  root_tree();
+  if (moves_ != best_moves) back_to_best();
 }
 
 }  // namespace papernet::tab_clearance_detail

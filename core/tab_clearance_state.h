@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "core/folds.h"
@@ -22,6 +23,8 @@ namespace papernet::tab_clearance_detail {
 constexpr double kRelativeTolerance = 1e-9;
 // Cut edges farther along the cut tree tried per link (see Clearance::candidates).
 constexpr std::size_t kFarGlues = 32;
+// Vertices walked at most along a hair (see Clearance::hair_links).
+constexpr std::size_t kHairSteps = 64;
 // A vertex this far from flat (angle defect, radians: 10 degrees) hosts a leaf of the cut tree
 // without harm: its slit opens by that angle.
 constexpr double kSharpDefect = 10 * std::numbers::pi / 180;
@@ -31,6 +34,10 @@ constexpr double kSharpDefect = 10 * std::numbers::pi / 180;
 constexpr long long kMaxWorsening = 1;
 constexpr int kTenure = 40;
 constexpr int kStallSweeps = 3;
+// Endgame of the search: restarts from the best net without a new best before it stops, and the
+// stage (kStepCaps) a restart begins with.
+constexpr int kRestarts = 4;
+constexpr std::size_t kRestartLevel = 1;
 constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
 
 class Clearance {
@@ -69,6 +76,11 @@ class Clearance {
   void commit();
   template <class Consider>
   bool candidates(int f, int k, Consider&& consider);
+  /// The other ends of the cut edges at vertex x.
+  std::vector<int> cut_neighbours(int x) const;
+  /// When edge (u, v) lies on a hair (a path of two-cut interior vertices ending at a leaf),
+  /// the tree links across edges at the hair's vertices, from the leaf on; else none.
+  std::vector<std::pair<int, int>> hair_links(int u, int v) const;
   /// A leaf of the cut tree at v does no harm: v is on the boundary or far from flat.
   bool harmless(int v) const { return vboundary_[v] || std::abs(defect_[v]) >= kSharpDefect; }
 
@@ -84,8 +96,10 @@ class Clearance {
   OverlapGrid grid_;
   double tol_ = 0, height_ = 0;
   std::size_t budget_ = 0;
-  double time_limit_ = 0;       // seconds; <= 0: none
-  std::size_t step_limit_ = 0;  // evaluations_ allowed up to in the current step of run()
+  double time_limit_ = 0;              // seconds; <= 0: none
+  std::size_t step_limit_ = 0;         // evaluations_ allowed up to in the current step of run()
+  std::size_t far_glues_ = kFarGlues;  // cut edges farther along the cut tree tried per link
+  bool endgame_ = false;               // after the first restart (see run): hair links too
   bool keep_bounds_ = true;
   Box2 bounds_;  // of the input net
   std::vector<TabShape> shapes_;
