@@ -1,6 +1,7 @@
 #include "api/print_layout.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -137,14 +138,37 @@ int estimated_pages(const Mesh& mesh, const Net& net, const PrintOptions& option
   const TabRoomPages& page = options.tab_room_pages;
   if (!(page.width > 0 && page.height > 0) || mesh.faces.empty()) return 0;
   const double scale = print_scale(mesh, options), ov = std::max(0.0, page.overlap);
-  const OrientedBox box = net_metrics(mesh, net).box;
+  // The net's minimum-area box from the points that can be on its convex hull: those not
+  // strictly inside the polygon of its extreme points in eight directions (Akl-Toussaint; the
+  // pass calls this about a thousand times on the Duck).
+  std::array<Vec2, 8> extreme;
+  std::array<double, 8> reach;
+  reach.fill(-std::numeric_limits<double>::infinity());
+  const std::array<Vec2, 8> dirs{Vec2{1, 0}, {1, 1},   {0, 1},  {-1, 1},
+                                 {-1, 0},    {-1, -1}, {0, -1}, {1, -1}};
+  for (const Triangle2& t : net.points)
+    for (Vec2 p : t)
+      for (int d = 0; d < 8; ++d)
+        if (const double r = dot(p, dirs[d]); r > reach[d]) reach[d] = r, extreme[d] = p;
+  std::vector<Vec2> hull_points(extreme.begin(), extreme.end());
+  for (const Triangle2& t : net.points)
+    for (Vec2 p : t) {
+      bool inside = true;  // strictly left of every edge of the (counter-clockwise) octagon
+      for (int d = 0; d < 8 && inside; ++d) {
+        const Vec2 a = extreme[d], b = extreme[(d + 1) % 8];
+        if (!(a == b)) inside = cross(b - a, p - a) > 0;
+      }
+      if (!inside) hull_points.push_back(p);
+    }
+  const OrientedBox box = min_area_box(hull_points);
   // Faces only: tabs and strips left out (a tab's height around every face overestimates).
   const double w = box.width() * scale, h = box.height() * scale;
   std::vector<Box2> rects;  // faces' boxes in layout millimetres
+  const double c = std::cos(box.angle), sn = std::sin(box.angle);  // as rotate(p, box.angle)
   for (const Triangle2& t : net.points) {
     Box2 r{{1e300, 1e300}, {-1e300, -1e300}};
     for (Vec2 p : t) {
-      const Vec2 q = scale * (rotate(p, box.angle) - box.lo);
+      const Vec2 q = scale * (Vec2{c * p.x - sn * p.y, sn * p.x + c * p.y} - box.lo);
       r = {{std::min(r.lo.x, q.x), std::min(r.lo.y, q.y)},
            {std::max(r.hi.x, q.x), std::max(r.hi.y, q.y)}};
     }
