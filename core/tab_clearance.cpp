@@ -12,110 +12,17 @@
 #include "core/tab_clearance.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdint>
-#include <numbers>
 #include <utility>
 
 #include "core/dual_graph.h"
-#include "core/errors.h"
-#include "core/overlap.h"
 #include "core/tab_clearance_report.h"
+#include "core/tab_clearance_state.h"
 #include "core/unfold_tree.h"
 
 namespace papernet {
 
-namespace {
-
-// Overlap tolerance relative to the mesh's bounding-box diagonal (as the unfolder's).
-constexpr double kRelativeTolerance = 1e-9;
-// Cut edges farther along the cut tree tried per link (see Clearance::candidates).
-constexpr std::size_t kFarGlues = 32;
-// A vertex this far from flat (angle defect, radians: 10 degrees) hosts a leaf of the cut tree
-// without harm: its slit opens by that angle.
-constexpr double kSharpDefect = 10 * std::numbers::pi / 180;
-// Tabu search (Clearance::run): how many blocked edges a move may close net, for how many
-// steps a move's edges stay tabu, how many sweeps without a new best end a stage, and the
-// candidate moves evaluated per step in each stage.
-constexpr long long kMaxWorsening = 1;
-constexpr int kTenure = 40;
-constexpr int kStallSweeps = 3;
-constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
-
-class Clearance {
- public:
-  Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions& options);
-  std::size_t blocked_count() const { return blocked_count_; }
-  std::vector<EdgeSide> blocked_edges() const;
-  void run(Progress& progress);
-  Net net() const { return Net{parent_, pos_}; }
-  std::size_t moves_ = 0, evaluations_ = 0;
-
- private:
-  int canon(int f, int k) const {
-    const int n = adj_[f][k];
-    return n < 0 || f < n ? 3 * f + k : 3 * n + adj_edge_[f][k];
-  }
-  bool linked(int f, int k) const { return links_[f] >> k & 1; }
-  bool coincident(int f, int k) const;
-  bool is_cut(int f, int k) const { return adj_[f][k] >= 0 && !linked(f, k) && !coincident(f, k); }
-  bool side_has_room(int f, int k) const;
-  bool blocked(int f, int k) const {
-    return is_cut(f, k) && !side_has_room(f, k) && !side_has_room(adj_[f][k], adj_edge_[f][k]);
-  }
-  void root_tree();
-  bool in_sub(int top, int x) const {
-    return static_cast<unsigned>(tin_[x] - tin_[top]) < static_cast<unsigned>(size_[top]);
-  }
-  void set_link(int f, int k, bool on);
-  void place(int f, const Triangle2& p);
-  /// What a move changes: blocked edges and flat leaves of the cut tree (after - before).
-  struct Change {
-    long long blocked = 0, flat_leaves = 0;
-  };
-  bool apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Change& out);
-  void undo();
-  void commit();
-  template <class Consider>
-  bool candidates(int f, int k, Consider&& consider);
-  /// A leaf of the cut tree at v does no harm: v is on the boundary or far from flat.
-  bool harmless(int v) const { return vboundary_[v] || std::abs(defect_[v]) >= kSharpDefect; }
-
-  const Mesh& mesh_;
-  int nf_ = 0;
-  std::vector<std::array<int, 3>> adj_;
-  std::vector<std::array<std::int8_t, 3>> adj_edge_;
-  std::vector<FaceShape> shape_;
-  std::vector<std::vector<int>> vertex_faces_;
-  std::vector<Triangle2> pos_;
-  std::vector<Box2> box_;
-  std::vector<std::uint8_t> links_;
-  OverlapGrid grid_;
-  double tol_ = 0, height_ = 0;
-  std::size_t budget_ = 0;
-  double time_limit_ = 0;       // seconds; <= 0: none
-  std::size_t step_limit_ = 0;  // evaluations_ allowed up to in the current step of run()
-  bool keep_bounds_ = true;
-  Box2 bounds_;  // of the input net
-  std::vector<TabShape> shapes_;
-  std::vector<char> blocked_;  // by canonical half-edge 3 * f + k
-  std::size_t blocked_count_ = 0;
-  std::vector<int> parent_, tin_, size_, order_;
-  std::vector<double> defect_;             // angle defect by vertex (0 on the boundary)
-  std::vector<char> vboundary_;            // vertex on the mesh's boundary
-  std::vector<int> cut_degree_;            // cut edges (unlinked interior edges) at each vertex
-  std::array<int, 4> pending_{};           // the applied move: lf, lk, cf, ck
-  std::vector<std::uint32_t> tabu_until_;  // by canonical half-edge: step until which it stays
-
-  // Scratch of apply_move.
-  std::vector<int> moving_, from_, mark_;
-  std::vector<char> is_moving_;
-  std::vector<Triangle2> new_pos_, old_pos_;
-  std::vector<int> affected_;
-  std::vector<std::uint32_t> stamp_;
-  std::uint32_t epoch_ = 0;
-};
+namespace tab_clearance_detail {
 
 Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions& options)
     : mesh_(mesh), nf_(static_cast<int>(mesh.faces.size())) {
@@ -152,6 +59,7 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   const double mean = total / (3.0 * std::max(1, nf_));
   grid_.reset(mean > 0 && std::isfinite(mean) ? mean : 1.0);
   keep_bounds_ = options.keep_bounds;
+  penalty_ = options.penalty;
   for (int f = 0; f < nf_; ++f) {
     box_[f] = triangle_box(pos_[f]);
     grid_.insert(f, box_[f]);
@@ -395,211 +303,9 @@ void Clearance::commit() {
   root_tree();
   ++moves_;
 }
+}  // namespace tab_clearance_detail
 
-// Offers the moves around blocked edge k of face f to `consider(lf, lk, cf, ck)` (cut the link
-// across edge lk of face lf, glue cut edge ck of face cf), which returns true to stop: first cut
-// a link across an edge at one of its ends and glue a cut edge between nearby faces (the fan of
-// its ends and one ring around); then, wider, cut any link in that ring and glue a cut edge
-// within two rings; then farther glues (below). Returns true when `consider` stopped it.
-template <class Consider>
-bool Clearance::candidates(int f, int k, Consider&& consider) {
-  const int u = mesh_.faces[f][k], v = mesh_.faces[f][(k + 1) % 3];
-  std::vector<int> fan;  // faces at u or v
-  for (int w : {u, v})
-    for (int x : vertex_faces_[w])
-      if (std::find(fan.begin(), fan.end(), x) == fan.end()) fan.push_back(x);
-  const auto grow = [&](std::vector<int> faces) {
-    const std::size_t n = faces.size();
-    for (std::size_t i = 0; i < n; ++i)
-      for (int y : adj_[faces[i]])
-        if (y >= 0 && std::find(faces.begin(), faces.end(), y) == faces.end()) faces.push_back(y);
-    std::sort(faces.begin(), faces.end());
-    return faces;
-  };
-  const std::vector<int> ring1 = grow(fan), ring2 = grow(ring1);
-  const auto at_ends = [&](int x, int j) {
-    const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
-    return a == u || a == v || b == u || b == v;
-  };
-  const auto links_in = [&](const std::vector<int>& faces, bool ends_only) {
-    std::vector<std::pair<int, int>> out;
-    for (int x : faces)
-      for (int j = 0; j < 3; ++j)
-        if (linked(x, j) && x < adj_[x][j] && (!ends_only || at_ends(x, j)) &&
-            std::binary_search(faces.begin(), faces.end(), adj_[x][j]))
-          out.push_back({x, j});
-    return out;
-  };
-  const auto cuts_in = [&](const std::vector<int>& faces) {
-    std::vector<std::pair<int, int>> out;
-    for (int x : faces)
-      for (int j = 0; j < 3; ++j) {
-        const int y = adj_[x][j];
-        if (y > x && !linked(x, j) && std::binary_search(faces.begin(), faces.end(), y))
-          out.push_back({x, j});
-      }
-    return out;
-  };
-  const auto try_all = [&](const std::vector<std::pair<int, int>>& cuts,
-                           const std::vector<std::pair<int, int>>& glues) {
-    for (const auto& [lf, lk] : cuts)
-      for (const auto& [cf, ck] : glues) {
-        if (evaluations_ >= std::min(budget_, step_limit_)) return false;
-        if (consider(lf, lk, cf, ck)) return true;
-      }
-    return false;
-  };
-  const auto narrow_cuts = links_in(ring1, true), narrow_glues = cuts_in(ring1);
-  if (try_all(narrow_cuts, narrow_glues)) return true;
-  std::vector<std::pair<int, int>> wide_cuts;
-  for (const auto& c : links_in(ring1, false))
-    if (std::find(narrow_cuts.begin(), narrow_cuts.end(), c) == narrow_cuts.end())
-      wide_cuts.push_back(c);
-  std::vector<std::pair<int, int>> wide_glues;
-  for (const auto& c : cuts_in(ring2))
-    if (std::find(narrow_glues.begin(), narrow_glues.end(), c) == narrow_glues.end())
-      wide_glues.push_back(c);
-  if (try_all(narrow_cuts, wide_glues) || try_all(wide_cuts, narrow_glues) ||
-      try_all(wide_cuts, wide_glues))
-    return true;
-  // Farther: for a link at an end, the cut edges anywhere on the cycle it closes in the cut
-  // tree (one face on each side of the link), nearest first, that leave no new flat leaf of the
-  // cut tree (each end keeps another cut edge, or is sharp or on the boundary): gluing those
-  // cannot create a new near-slit.
-  const Vec3 mid = 0.5 * (mesh_.vertices[u] + mesh_.vertices[v]);
-  const std::vector<int>& degree = cut_degree_;
-  std::vector<std::pair<int, int>> all_cuts = narrow_cuts;
-  all_cuts.insert(all_cuts.end(), wide_cuts.begin(), wide_cuts.end());
-  for (const std::pair<int, int>& cut : all_cuts) {
-    // Not a structured binding: the lambda below uses them, which clang 14 refuses.
-    const int lf = cut.first, lk = cut.second;
-    const int l0 = mesh_.faces[lf][lk], l1 = mesh_.faces[lf][(lk + 1) % 3];
-    const int lp = adj_[lf][lk], top = parent_[lf] == lp ? lf : lp;
-    const bool sub_small = 2 * size_[top] <= nf_;
-    std::vector<std::pair<double, std::pair<int, int>>> far;
-    const auto side = [&](int x) {  // the cut edges from face x of the smaller side
-      for (int j = 0; j < 3; ++j) {
-        const int y = adj_[x][j];
-        if (y < 0 || linked(x, j) || in_sub(top, y) == sub_small) continue;
-        const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
-        const int gain_a = a == l0 || a == l1 ? 1 : 0;
-        const int gain_b = b == l0 || b == l1 ? 1 : 0;
-        if ((degree[a] + gain_a - 1 < 2 && !harmless(a)) ||
-            (degree[b] + gain_b - 1 < 2 && !harmless(b)))
-          continue;
-        const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
-        far.push_back({norm(m - mid), {x, j}});
-      }
-    };
-    const int lo = tin_[top], hi = tin_[top] + size_[top];
-    if (sub_small) {
-      for (int i = lo; i < hi; ++i) side(order_[i]);
-    } else {
-      for (int i = 0; i < lo; ++i) side(order_[i]);
-      for (int i = hi; i < nf_; ++i) side(order_[i]);
-    }
-    std::sort(far.begin(), far.end());
-    if (far.size() > kFarGlues) far.resize(kFarGlues);
-    std::vector<std::pair<int, int>> glues;
-    for (const auto& [d, g] : far) glues.push_back(g);
-    if (try_all({{lf, lk}}, glues)) return true;
-  }
-  return false;
-}
-
-// Tabu search over the moves of candidates(): for each blocked edge in turn, the first move
-// that lowers the number of blocked edges is made at once; when there is none, the best move
-// that opens the edge (fewest blocked edges, then fewest flat leaves) is made even when it closes
-// others, unless it closes more than kMaxWorsening edges net or re-cuts or re-glues an edge a
-// recent move changed (tabu for kTenure steps). The best net seen is kept. Each step first
-// offers an edge only its first kStepCaps[0] candidates (most overlap; the easy moves elsewhere
-// come first); after kStallSweeps sweeps over the blocked edges without a new best, the next cap;
-// after the last, it stops. It stops too when the budget is spent.
-void Clearance::run(Progress& progress) {
-  std::vector<std::uint8_t> best_links = links_;
-  std::vector<Triangle2> best_pos = pos_;
-  std::vector<char> best_blocked = blocked_;
-  std::vector<int> best_degree = cut_degree_;
-  std::size_t best_count = blocked_count_, best_moves = moves_;
-  tabu_until_.assign(3 * static_cast<std::size_t>(nf_), 0);
-  std::uint32_t step = 0;
-  std::size_t level = 0;
-  const auto start = std::chrono::steady_clock::now();
-  const auto out_of_time = [&] {
-    return time_limit_ > 0 &&
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
-               time_limit_;
-  };
-  for (int stall = 0; blocked_count_ > 0 && evaluations_ < budget_ && !out_of_time();) {
-    if (stall >= kStallSweeps) {
-      if (++level == kStepCaps.size()) break;
-      stall = 0;
-    }
-    const std::size_t sweep_best = best_count;
-    for (int h = 0; h < 3 * nf_ && evaluations_ < budget_; ++h) {
-      if (!blocked_[h]) continue;
-      if (progress.cancelled()) throw CancelledException();
-      if (out_of_time()) break;
-      ++step;
-      step_limit_ = evaluations_ + std::min(kStepCaps[level], budget_);
-      const int f = h / 3, k = h % 3;
-      struct Pick {
-        Change change{kMaxWorsening + 1, 0};
-        std::array<int, 4> move{-1, -1, -1, -1};
-      } pick;
-      const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step; };
-      const bool improved = candidates(f, k, [&](int lf, int lk, int cf, int ck) {
-        if (tabu(lf, lk) || tabu(cf, ck)) return false;
-        Change change;
-        if (!apply_move(f, k, lf, lk, cf, ck, change)) return false;
-        if (change.blocked < 0) {
-          commit();
-          return true;
-        }
-        if (change.blocked < pick.change.blocked ||
-            (change.blocked == pick.change.blocked &&
-             change.flat_leaves < pick.change.flat_leaves)) {
-          pick.change = change;
-          pick.move = {lf, lk, cf, ck};
-        }
-        undo();
-        return false;
-      });
-      if (!improved) {
-        Change change;
-        if (pick.move[0] < 0 ||
-            !apply_move(f, k, pick.move[0], pick.move[1], pick.move[2], pick.move[3], change))
-          continue;
-        commit();
-      }
-      // Neither undo this move nor redo the one it replaced for a while.
-      const std::uint32_t until = step + static_cast<std::uint32_t>(kTenure);
-      tabu_until_[canon(pending_[0], pending_[1])] = until;
-      tabu_until_[canon(pending_[2], pending_[3])] = until;
-      if (blocked_count_ < best_count) {
-        best_count = blocked_count_;
-        best_links = links_;
-        best_pos = pos_;
-        best_blocked = blocked_;
-        best_degree = cut_degree_;
-        best_moves = moves_;
-      }
-    }
-    stall = best_count < sweep_best ? 0 : stall + 1;
-  }
-  if (moves_ == best_moves) return;
-  // Back to the best net seen.
-  links_ = std::move(best_links);
-  for (int f = 0; f < nf_; ++f)
-    if (pos_[f] != best_pos[f]) place(f, best_pos[f]);
-  blocked_ = std::move(best_blocked);
-  cut_degree_ = std::move(best_degree);
-  blocked_count_ = best_count;
-  moves_ = best_moves;
-  root_tree();
-}
-
-}  // namespace
+using tab_clearance_detail::Clearance;
 
 std::vector<EdgeSide> edges_without_tab_room(const Mesh& mesh, const Net& net,
                                              const TabClearanceOptions& options) {

@@ -12,6 +12,7 @@
 #include <map>
 #include <regex>
 
+#include "api/pages.h"
 #include "api/print_layout.h"
 #include "api/tabs.h"
 #include "core/net_check.h"
@@ -143,10 +144,10 @@ const std::vector<TabClearanceResult>& all_print_nets() {
     for (const auto& [name, mesh, net] : all_nets()) {
       Progress quiet;
       // make_tab_room's pass as printed by default (budget 100,000 candidate moves: about
-      // 3 s on the Duck, 1-2 s on reference.obj and sample.obj, less on the others) on the TU
-      // nets; on the progressive ones a fifth of it, so that the test stays fast.
-      TabClearanceOptions options;
-      options.min_height = PrintOptions{}.min_tab_height_mm / print_scale(mesh, {});
+      // 3 s on the Duck, 1-2 s on reference.obj and sample.obj, less on the others; pages
+      // beyond the input's count as 5 blocked edges each) on the TU nets; on the progressive
+      // ones a fifth of the budget, so that the test stays fast.
+      TabClearanceOptions options = tab_room_options(mesh, net, PrintOptions{});
       if (name.find("(TU)") == std::string::npos) options.max_evaluations = 20'000;
       out.push_back(unfolded(name) ? clear_tab_room(mesh, net, options, quiet)
                                    : TabClearanceResult{net, 0, 0, 0, 0});
@@ -251,11 +252,13 @@ void expect_clearance_pass_makes_room() {
   }
   // With the test's budget about 57 % of the blocked edges remain (with the default budget 40 %).
   EXPECT_LT(3 * after, 2 * before) << "the pass should open most near-slits";
-  // Nets where the pass reaches exactly one tab per cut edge (figures in docs/tabs.md);
-  // testplate.glb's had 10 strips before it. (testplate.glb (SEQ) left out since the Tabu
-  // Unfolder's walks towards overlapping faces: its net changed and keeps 1 of 10 blocked edges.)
-  for (const char* want : {"mirror.ply (TU)", "mirror.ply (QQ)", "testplate.glb (TU)",
-                           "testplate.glb (QQ)", "testplate.glb (SEMP)"}) {
+  // Nets where the pass reaches exactly one tab per cut edge and no strip (figures in
+  // docs/tabs.md): testplate.glb's had up to 12 blocked edges before it, thingi10k_134617's
+  // 11-22. (testplate.glb (SEQ) keeps 1 of 10.)
+  for (const char* want :
+       {"mirror.ply (TU)", "mirror.ply (QQ)", "testplate.glb (TU)", "testplate.glb (QQ)",
+        "testplate.glb (SEMP)", "thingi10k_134617.stl (TU)", "thingi10k_134617.stl (QQ)",
+        "thingi10k_134617.stl (SEMP)", "thingi10k_134617.stl (SEQ)"}) {
     const auto& nets = all_nets();
     const auto it =
         std::find_if(nets.begin(), nets.end(), [&](const NamedNet& x) { return x.name == want; });
@@ -266,7 +269,7 @@ void expect_clearance_pass_makes_room() {
     EXPECT_EQ(all_layouts()[n].tabs.size(), static_cast<std::size_t>(all_layouts()[n].cut_edges))
         << want;
   }
-  EXPECT_GE(nets_without_strips, 10u);
+  EXPECT_GE(nets_without_strips, 15u);
 }
 
 TEST(Tabs, EveryCutEdgeGetsOneTabOrStripAndNothingOverlaps) {
@@ -489,6 +492,28 @@ TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
               << " collide in face " << f;
         }
   }
+}
+
+// The tab-room pass weighs pages by estimated_pages: on a net printed without glue it is the
+// number of pages paginate prints (it looks at faces' boxes, paginate at the faces themselves,
+// so it may count a page more, never fewer).
+TEST(Layout, EstimatedPagesFollowPaginate) {
+  PrintOptions bare;
+  bare.tabs = TabMode::None;
+  std::size_t same = 0, checked = 0;
+  for (const auto& [name, mesh, net] : all_nets()) {
+    if (!unfolded(name)) continue;
+    PrintLayout layout = layout_net(mesh, net, bare);
+    const int pages = static_cast<int>(paginate(layout, {}).pages.size());
+    const int estimate = estimated_pages(mesh, net, bare);
+    EXPECT_GE(estimate, pages) << name;
+    EXPECT_LE(estimate, pages + 1) << name;
+    same += estimate == pages ? 1 : 0;
+    ++checked;
+  }
+  EXPECT_GE(4 * same, 3 * checked) << "the estimate should mostly be exact";
+  bare.tab_room_pages.width = 0;  // no paper
+  EXPECT_EQ(estimated_pages(all_nets()[0].mesh, all_nets()[0].net, bare), 0);
 }
 
 TEST(Layout, ScaleMakesTheLongestModelSideTheTargetSize) {

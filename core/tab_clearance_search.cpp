@@ -1,0 +1,295 @@
+// Tab clearance, the search: which moves are tried for a blocked edge (Clearance::candidates)
+// and the tabu search over them (Clearance::run). The state and the moves themselves are in
+// core/tab_clearance.cpp.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+#include "core/errors.h"
+#include "core/tab_clearance_state.h"
+
+namespace papernet::tab_clearance_detail {
+
+std::vector<int> Clearance::cut_neighbours(int x) const {
+  std::vector<int> out;
+  for (int f : vertex_faces_[x])
+    for (int j = 0; j < 3; ++j) {
+      const int a = mesh_.faces[f][j], b = mesh_.faces[f][(j + 1) % 3];
+      if ((a != x && b != x) || adj_[f][j] < 0 || linked(f, j)) continue;
+      const int other = a == x ? b : a;
+      if (std::find(out.begin(), out.end(), other) == out.end()) out.push_back(other);
+    }
+  return out;
+}
+
+std::vector<std::pair<int, int>> Clearance::hair_links(int u, int v) const {
+  std::vector<std::pair<int, int>> out;
+  for (auto [from, at] : {std::pair{v, u}, std::pair{u, v}}) {
+    // Walk away from the edge through two-cut interior vertices; a hair ends at a leaf.
+    std::vector<int> path;
+    for (std::size_t steps = 0; steps < kHairSteps; ++steps) {
+      if (vboundary_[at] || cut_degree_[at] > 2) break;
+      path.push_back(at);
+      if (cut_degree_[at] == 1) break;
+      const std::vector<int> next = cut_neighbours(at);
+      if (next.size() != 2) break;
+      const int to = next[0] == from ? next[1] : next[0];
+      from = at, at = to;
+    }
+    if (path.empty() || cut_degree_[path.back()] != 1) continue;
+    for (auto x = path.rbegin(); x != path.rend(); ++x)  // from the leaf on
+      for (int f : vertex_faces_[*x])
+        for (int j = 0; j < 3; ++j) {
+          const int a = mesh_.faces[f][j], b = mesh_.faces[f][(j + 1) % 3];
+          if ((a == *x || b == *x) && linked(f, j) && f < adj_[f][j]) out.push_back({f, j});
+        }
+  }
+  return out;
+}
+
+// Offers the moves around blocked edge k of face f to `consider(lf, lk, cf, ck)` (cut the link
+// across edge lk of face lf, glue cut edge ck of face cf), which returns true to stop: first cut
+// a link across an edge at one of its ends and glue a cut edge between nearby faces (the fan of
+// its ends and one ring around); then, wider, cut any link in that ring and glue a cut edge
+// within two rings; then farther glues (below). Returns true when `consider` stopped it.
+template <class Consider>
+bool Clearance::candidates(int f, int k, Consider&& consider) {
+  const int u = mesh_.faces[f][k], v = mesh_.faces[f][(k + 1) % 3];
+  std::vector<int> fan;  // faces at u or v
+  for (int w : {u, v})
+    for (int x : vertex_faces_[w])
+      if (std::find(fan.begin(), fan.end(), x) == fan.end()) fan.push_back(x);
+  const auto grow = [&](std::vector<int> faces) {
+    const std::size_t n = faces.size();
+    for (std::size_t i = 0; i < n; ++i)
+      for (int y : adj_[faces[i]])
+        if (y >= 0 && std::find(faces.begin(), faces.end(), y) == faces.end()) faces.push_back(y);
+    std::sort(faces.begin(), faces.end());
+    return faces;
+  };
+  const std::vector<int> ring1 = grow(fan), ring2 = grow(ring1);
+  const auto at_ends = [&](int x, int j) {
+    const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
+    return a == u || a == v || b == u || b == v;
+  };
+  const auto links_in = [&](const std::vector<int>& faces, bool ends_only) {
+    std::vector<std::pair<int, int>> out;
+    for (int x : faces)
+      for (int j = 0; j < 3; ++j)
+        if (linked(x, j) && x < adj_[x][j] && (!ends_only || at_ends(x, j)) &&
+            std::binary_search(faces.begin(), faces.end(), adj_[x][j]))
+          out.push_back({x, j});
+    return out;
+  };
+  const auto cuts_in = [&](const std::vector<int>& faces) {
+    std::vector<std::pair<int, int>> out;
+    for (int x : faces)
+      for (int j = 0; j < 3; ++j) {
+        const int y = adj_[x][j];
+        if (y > x && !linked(x, j) && std::binary_search(faces.begin(), faces.end(), y))
+          out.push_back({x, j});
+      }
+    return out;
+  };
+  const auto try_all = [&](const std::vector<std::pair<int, int>>& cuts,
+                           const std::vector<std::pair<int, int>>& glues) {
+    for (const auto& [lf, lk] : cuts)
+      for (const auto& [cf, ck] : glues) {
+        if (evaluations_ >= std::min(budget_, step_limit_)) return false;
+        if (consider(lf, lk, cf, ck)) return true;
+      }
+    return false;
+  };
+  const auto narrow_cuts = links_in(ring1, true), narrow_glues = cuts_in(ring1);
+  if (try_all(narrow_cuts, narrow_glues)) return true;
+  std::vector<std::pair<int, int>> wide_cuts;
+  for (const auto& c : links_in(ring1, false))
+    if (std::find(narrow_cuts.begin(), narrow_cuts.end(), c) == narrow_cuts.end())
+      wide_cuts.push_back(c);
+  std::vector<std::pair<int, int>> wide_glues;
+  for (const auto& c : cuts_in(ring2))
+    if (std::find(narrow_glues.begin(), narrow_glues.end(), c) == narrow_glues.end())
+      wide_glues.push_back(c);
+  if (try_all(narrow_cuts, wide_glues) || try_all(wide_cuts, narrow_glues) ||
+      try_all(wide_cuts, wide_glues))
+    return true;
+  // Farther: for a link at an end, the cut edges anywhere on the cycle it closes in the cut
+  // tree (one face on each side of the link), nearest first, that leave no new flat leaf of the
+  // cut tree (each end keeps another cut edge, or is sharp or on the boundary): gluing those
+  // cannot create a new near-slit.
+  // A hair edge (both ends on a path of two-cut vertices to a leaf) also gets the links at the
+  // hair's vertices from its leaf on: cutting one there and gluing a cut edge beyond the hair
+  // makes the hair a path between two parts of the net, whose sides can part.
+  const Vec3 mid = 0.5 * (mesh_.vertices[u] + mesh_.vertices[v]);
+  const std::vector<int>& degree = cut_degree_;
+  std::vector<std::pair<int, int>> all_cuts = narrow_cuts;
+  all_cuts.insert(all_cuts.end(), wide_cuts.begin(), wide_cuts.end());
+  if (endgame_)
+    for (const std::pair<int, int>& link : hair_links(u, v))
+      if (std::find(all_cuts.begin(), all_cuts.end(), link) == all_cuts.end())
+        all_cuts.push_back(link);
+  for (const std::pair<int, int>& cut : all_cuts) {
+    // Not a structured binding: the lambda below uses them, which clang 14 refuses.
+    const int lf = cut.first, lk = cut.second;
+    const int l0 = mesh_.faces[lf][lk], l1 = mesh_.faces[lf][(lk + 1) % 3];
+    const int lp = adj_[lf][lk], top = parent_[lf] == lp ? lf : lp;
+    const bool sub_small = 2 * size_[top] <= nf_;
+    std::vector<std::pair<double, std::pair<int, int>>> far;
+    const auto side = [&](int x) {  // the cut edges from face x of the smaller side
+      for (int j = 0; j < 3; ++j) {
+        const int y = adj_[x][j];
+        if (y < 0 || linked(x, j) || in_sub(top, y) == sub_small) continue;
+        const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
+        const int gain_a = a == l0 || a == l1 ? 1 : 0;
+        const int gain_b = b == l0 || b == l1 ? 1 : 0;
+        if ((degree[a] + gain_a - 1 < 2 && !harmless(a)) ||
+            (degree[b] + gain_b - 1 < 2 && !harmless(b)))
+          continue;
+        const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
+        far.push_back({norm(m - mid), {x, j}});
+      }
+    };
+    const int lo = tin_[top], hi = tin_[top] + size_[top];
+    if (sub_small) {
+      for (int i = lo; i < hi; ++i) side(order_[i]);
+    } else {
+      for (int i = 0; i < lo; ++i) side(order_[i]);
+      for (int i = hi; i < nf_; ++i) side(order_[i]);
+    }
+    std::sort(far.begin(), far.end());
+    if (far.size() > far_glues_) far.resize(far_glues_);
+    std::vector<std::pair<int, int>> glues;
+    for (const auto& [d, g] : far) glues.push_back(g);
+    if (try_all({{lf, lk}}, glues)) return true;
+  }
+  return false;
+}
+
+double Clearance::score(std::size_t blocked) const {
+  const double p = penalty_ ? std::max(0.0, penalty_(net())) : 0.0;
+  return blocked == 0 ? 0.5 * p / (1 + p) : static_cast<double>(blocked) + p;
+}
+
+// Tabu search over the moves of candidates(): for each blocked edge in turn, the first move
+// that lowers the number of blocked edges is made at once; when there is none, the best move
+// that opens the edge (fewest blocked edges, then fewest flat leaves) is made even when it closes
+// others, unless it closes more than kMaxWorsening edges net or re-cuts or re-glues an edge a
+// recent move changed (tabu for kTenure steps). The best net seen is kept. Each step first
+// offers an edge only its first kStepCaps[0] candidates (most overlap; the easy moves elsewhere
+// come first); after kStallSweeps sweeps over the blocked edges without a new best, the next cap;
+// after the last, it stops. It stops too when the budget is spent.
+void Clearance::run(Progress& progress) {
+  std::vector<std::uint8_t> best_links = links_;
+  std::vector<Triangle2> best_pos = pos_;
+  std::vector<char> best_blocked = blocked_;
+  std::vector<int> best_degree = cut_degree_;
+  std::size_t best_count = blocked_count_, best_moves = moves_;
+  double best_score = score(best_count);
+  tabu_until_.assign(3 * static_cast<std::size_t>(nf_), 0);
+  std::uint32_t step = 0;
+  std::size_t level = 0;
+  const auto start = std::chrono::steady_clock::now();
+  const auto out_of_time = [&] {
+    return time_limit_ > 0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
+               time_limit_;
+  };
+  // Back to the best net seen.
+  const auto back_to_best = [&] {
+    links_ = best_links;
+    for (int f = 0; f < nf_; ++f)
+      if (pos_[f] != best_pos[f]) place(f, best_pos[f]);
+    blocked_ = best_blocked;
+    cut_degree_ = best_degree;
+    blocked_count_ = best_count;
+    moves_ = best_moves;
+    root_tree();
+  };
+  long long max_worsening = kMaxWorsening;
+  int restarts = 0;        // since the last new best
+  std::size_t offset = 0;  // where sweeps start (restarts start elsewhere)
+  const int halves = 3 * nf_;
+  for (int stall = 0; blocked_count_ > 0 && evaluations_ < budget_ && !out_of_time();) {
+    if (stall >= kStallSweeps) {
+      stall = 0;
+      if (++level == kStepCaps.size()) {
+        // Endgame: again from the best net, with more far glues per link, moves that may close
+        // one more edge on every other restart and sweeps starting elsewhere, while the budget
+        // lasts (few blocked edges left: each is worth a wider search).
+        if (restarts == kRestarts) break;
+        ++restarts;
+        if (moves_ != best_moves) back_to_best();
+        std::fill(tabu_until_.begin(), tabu_until_.end(), 0);
+        step = 0;
+        level = kRestartLevel;
+        far_glues_ = kFarGlues << std::min(restarts, 4);
+        endgame_ = true;
+        max_worsening = kMaxWorsening + restarts % 2;
+        offset =
+            static_cast<std::size_t>(halves) * static_cast<std::size_t>(restarts) / (kRestarts + 1);
+      }
+    }
+    const std::size_t sweep_best = best_count;
+    for (int i = 0; i < halves && evaluations_ < budget_; ++i) {
+      const int h = static_cast<int>((static_cast<std::size_t>(i) + offset) % halves);
+      if (!blocked_[h]) continue;
+      if (progress.cancelled()) throw CancelledException();
+      if (out_of_time()) break;
+      ++step;
+      step_limit_ = evaluations_ + std::min(kStepCaps[level], budget_);
+      const int f = h / 3, k = h % 3;
+      struct Pick {
+        Change change;
+        std::array<int, 4> move{-1, -1, -1, -1};
+      } pick;
+      pick.change.blocked = max_worsening + 1;
+      const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step; };
+      const bool improved = candidates(f, k, [&](int lf, int lk, int cf, int ck) {
+        if (tabu(lf, lk) || tabu(cf, ck)) return false;
+        Change change;
+        if (!apply_move(f, k, lf, lk, cf, ck, change)) return false;
+        if (change.blocked < 0) {
+          commit();
+          return true;
+        }
+        if (change.blocked < pick.change.blocked ||
+            (change.blocked == pick.change.blocked &&
+             change.flat_leaves < pick.change.flat_leaves)) {
+          pick.change = change;
+          pick.move = {lf, lk, cf, ck};
+        }
+        undo();
+        return false;
+      });
+      if (!improved) {
+        Change change;
+        if (pick.move[0] < 0 ||
+            !apply_move(f, k, pick.move[0], pick.move[1], pick.move[2], pick.move[3], change))
+          continue;
+        commit();
+      }
+      // Neither undo this move nor redo the one it replaced for a while.
+      const std::uint32_t until = step + static_cast<std::uint32_t>(kTenure);
+      tabu_until_[canon(pending_[0], pending_[1])] = until;
+      tabu_until_[canon(pending_[2], pending_[3])] = until;
+      const double blocked = static_cast<double>(blocked_count_);
+      if (blocked < best_score) {
+        const double score = this->score(blocked_count_);
+        if (blocked_count_ < best_count) restarts = 0;
+        if (score >= best_score) continue;
+        best_score = score;
+        best_count = blocked_count_;
+        best_links = links_;
+        best_pos = pos_;
+        best_blocked = blocked_;
+        best_degree = cut_degree_;
+        best_moves = moves_;
+      }
+    }
+    stall = best_count < sweep_best ? 0 : stall + 1;
+  }
+  if (moves_ != best_moves) back_to_best();
+}
+
+}  // namespace papernet::tab_clearance_detail

@@ -1,0 +1,129 @@
+// Internal to the tab clearance pass (core/tab_clearance*.cpp): the search state, a net whose
+// cuts change by edge swaps of its unfold tree. Not part of the public API.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+#include "core/folds.h"
+#include "core/mesh.h"
+#include "core/net.h"
+#include "core/overlap.h"
+#include "core/progress.h"
+#include "core/tab_clearance.h"
+#include "core/unfold_tree.h"
+
+namespace papernet::tab_clearance_detail {
+
+// Overlap tolerance relative to the mesh's bounding-box diagonal (as the unfolder's).
+constexpr double kRelativeTolerance = 1e-9;
+// Cut edges farther along the cut tree tried per link (see Clearance::candidates).
+constexpr std::size_t kFarGlues = 32;
+// Vertices walked at most along a hair (see Clearance::hair_links).
+constexpr std::size_t kHairSteps = 64;
+// A vertex this far from flat (angle defect, radians: 10 degrees) hosts a leaf of the cut tree
+// without harm: its slit opens by that angle.
+constexpr double kSharpDefect = 10 * std::numbers::pi / 180;
+// Tabu search (Clearance::run): how many blocked edges a move may close net, for how many
+// steps a move's edges stay tabu, how many sweeps without a new best end a stage, and the
+// candidate moves evaluated per step in each stage.
+constexpr long long kMaxWorsening = 1;
+constexpr int kTenure = 40;
+constexpr int kStallSweeps = 3;
+// Endgame of the search: restarts from the best net without a new best before it stops, and the
+// stage (kStepCaps) a restart begins with.
+constexpr int kRestarts = 4;
+constexpr std::size_t kRestartLevel = 1;
+constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
+
+class Clearance {
+ public:
+  Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions& options);
+  std::size_t blocked_count() const { return blocked_count_; }
+  std::vector<EdgeSide> blocked_edges() const;
+  void run(Progress& progress);
+  /// What run() minimises for the current net with `blocked` blocked edges: that number plus
+  /// the caller's penalty; a net without blocked edges scores below every net with some.
+  double score(std::size_t blocked) const;
+  Net net() const { return Net{parent_, pos_}; }
+  std::size_t moves_ = 0, evaluations_ = 0;
+
+ private:
+  int canon(int f, int k) const {
+    const int n = adj_[f][k];
+    return n < 0 || f < n ? 3 * f + k : 3 * n + adj_edge_[f][k];
+  }
+  bool linked(int f, int k) const { return links_[f] >> k & 1; }
+  bool coincident(int f, int k) const;
+  bool is_cut(int f, int k) const { return adj_[f][k] >= 0 && !linked(f, k) && !coincident(f, k); }
+  bool side_has_room(int f, int k) const;
+  bool blocked(int f, int k) const {
+    return is_cut(f, k) && !side_has_room(f, k) && !side_has_room(adj_[f][k], adj_edge_[f][k]);
+  }
+  void root_tree();
+  bool in_sub(int top, int x) const {
+    return static_cast<unsigned>(tin_[x] - tin_[top]) < static_cast<unsigned>(size_[top]);
+  }
+  void set_link(int f, int k, bool on);
+  void place(int f, const Triangle2& p);
+  /// What a move changes: blocked edges and flat leaves of the cut tree (after - before).
+  struct Change {
+    long long blocked = 0, flat_leaves = 0;
+  };
+  bool apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Change& out);
+  void undo();
+  void commit();
+  template <class Consider>
+  bool candidates(int f, int k, Consider&& consider);
+  /// The other ends of the cut edges at vertex x.
+  std::vector<int> cut_neighbours(int x) const;
+  /// When edge (u, v) lies on a hair (a path of two-cut interior vertices ending at a leaf),
+  /// the tree links across edges at the hair's vertices, from the leaf on; else none.
+  std::vector<std::pair<int, int>> hair_links(int u, int v) const;
+  /// A leaf of the cut tree at v does no harm: v is on the boundary or far from flat.
+  bool harmless(int v) const { return vboundary_[v] || std::abs(defect_[v]) >= kSharpDefect; }
+
+  const Mesh& mesh_;
+  int nf_ = 0;
+  std::vector<std::array<int, 3>> adj_;
+  std::vector<std::array<std::int8_t, 3>> adj_edge_;
+  std::vector<FaceShape> shape_;
+  std::vector<std::vector<int>> vertex_faces_;
+  std::vector<Triangle2> pos_;
+  std::vector<Box2> box_;
+  std::vector<std::uint8_t> links_;
+  OverlapGrid grid_;
+  double tol_ = 0, height_ = 0;
+  std::size_t budget_ = 0;
+  double time_limit_ = 0;              // seconds; <= 0: none
+  std::size_t step_limit_ = 0;         // evaluations_ allowed up to in the current step of run()
+  std::size_t far_glues_ = kFarGlues;  // cut edges farther along the cut tree tried per link
+  bool endgame_ = false;               // after the first restart (see run): hair links too
+  bool keep_bounds_ = true;
+  Box2 bounds_;                                // of the input net
+  std::function<double(const Net&)> penalty_;  // TabClearanceOptions::penalty
+  std::vector<TabShape> shapes_;
+  std::vector<char> blocked_;  // by canonical half-edge 3 * f + k
+  std::size_t blocked_count_ = 0;
+  std::vector<int> parent_, tin_, size_, order_;
+  std::vector<double> defect_;             // angle defect by vertex (0 on the boundary)
+  std::vector<char> vboundary_;            // vertex on the mesh's boundary
+  std::vector<int> cut_degree_;            // cut edges (unlinked interior edges) at each vertex
+  std::array<int, 4> pending_{};           // the applied move: lf, lk, cf, ck
+  std::vector<std::uint32_t> tabu_until_;  // by canonical half-edge: step until which it stays
+
+  // Scratch of apply_move.
+  std::vector<int> moving_, from_, mark_;
+  std::vector<char> is_moving_;
+  std::vector<Triangle2> new_pos_, old_pos_;
+  std::vector<int> affected_;
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t epoch_ = 0;
+};
+
+}  // namespace papernet::tab_clearance_detail
