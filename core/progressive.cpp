@@ -65,7 +65,11 @@ constexpr std::size_t kHausdorffRefinements = 20000;
 // Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests.
 constexpr std::size_t kRepairTestsBase = 4000;
 constexpr std::size_t kRepairTestsPerFace = 4;
-// Above this face count, several splits share one update() (whose cost grows with the mesh).
+// Splits per update(): kSplitsPerUpdate, or one per kBatchFaces faces of the current mesh when
+// that is more. Consecutive splits often move the same parts of the tree (the branches that meet
+// their rings); together these are re-laid out and tested once. With eight per update the Tabu
+// runs after splits grew (more new overlaps at once) and ate the gain (2,000 faces, seeds 1-3).
+constexpr std::size_t kSplitsPerUpdate = 4;
 constexpr std::size_t kBatchFaces = 4000;
 
 // Tabu budget of a coarse attempt that may still be retried on a coarser mesh: iterations
@@ -325,11 +329,13 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   std::size_t split_tests = 0;  // Tabu work after splits, against its budget
   while (!failed && pm.splits_left() > 0) {
     if (progress.cancelled()) throw CancelledException();
-    // One split per update on meshes up to kBatchFaces faces; beyond, batches that keep the
-    // O(faces) cost of an update per face added bounded.
+    // A few splits per update: the parts they move are re-laid out and tested once; on large
+    // meshes batches also keep the O(faces) cost of a full update per face added bounded.
     Applied step;
     step.seed = split_seed(options.tabu.seed, index++);
-    const std::size_t batch = std::max<std::size_t>(1, pm.face_count() / kBatchFaces);
+    const std::size_t batch = options.splits_per_update > 0
+                                  ? options.splits_per_update
+                                  : std::max(kSplitsPerUpdate, pm.face_count() / kBatchFaces);
     for (std::size_t i = 0; i < batch && pm.splits_left() > 0; ++i)
       step.splits.push_back(pm.split());
     relay.context.faces = pm.face_count();

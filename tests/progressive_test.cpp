@@ -110,8 +110,11 @@ TEST(Progressive, ReportsArriveInOrderAndEndAtTheInputFaceCount) {
 
 // Tabu runs of a single iteration after each split make some split's overlaps unresolvable: the
 // result is then the last overlap-free state, which must be exactly the mesh after that many
-// splits.
-TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
+// splits. Both with one split per update (the paper's loop) and with batches of splits, whose
+// replay after a failed batch must stop at the right batch.
+class ProgressiveSplitsPerUpdate : public testing::TestWithParam<std::size_t> {};
+
+TEST_P(ProgressiveSplitsPerUpdate, ApproximateResultIsTheLastOverlapFreeState) {
   const Mesh input = load_test_mesh("sample.obj");
   int approximations = 0;
   for (std::uint64_t seed = 1; seed <= 12 && approximations < 2; ++seed) {
@@ -119,6 +122,7 @@ TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
     ProgressiveOptions options;
     options.tabu.seed = seed;
     options.split_iterations = 1;
+    options.splits_per_update = GetParam();
     Progress quiet;
     const ProgressiveResult r = unfold_progressive(input, options, quiet);
     if (!r.overlap_free || r.complete) continue;
@@ -146,6 +150,23 @@ TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
     }
   }
   EXPECT_GE(approximations, 1) << "no seed produced an approximate result";
+}
+
+INSTANTIATE_TEST_SUITE_P(Progressive, ProgressiveSplitsPerUpdate, testing::Values(1, 3, 8));
+
+// Batches of splits give complete nets that fold into the input itself, like single splits.
+TEST_P(ProgressiveSplitsPerUpdate, CompleteNetsOfTheInput) {
+  const Mesh input = load_test_mesh("reference.obj");
+  ProgressiveOptions options;
+  options.splits_per_update = GetParam();
+  options.tabu.time_limit_seconds = 120;
+  Progress quiet;
+  const ProgressiveResult r = unfold_progressive(input, options, quiet);
+  ASSERT_TRUE(r.complete);
+  EXPECT_EQ(r.mesh.faces, input.faces);
+  EXPECT_EQ(r.splits, r.splits_total);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
 }
 
 // The Tabu work after splits has a budget (faces tested per input face): a run that spends it
