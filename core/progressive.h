@@ -74,7 +74,8 @@ struct ProgressiveResult {
 /// overlaps need more Tabu iterations than everything before it and than 2,000 + 5 per face),
 /// the last overlap-free state is returned (`complete` false).
 ///
-/// When the coarse mesh itself cannot be unfolded within a budget that grows with its size:
+/// When the coarse mesh itself cannot be unfolded within a budget that grows with its size (or,
+/// when it may still be collapsed, starts with more than 10 overlapping pairs per face):
 /// first, if the input's own steepest-edge or minimum-perimeter tree is already overlap-free,
 /// that net is returned (complete); else the coarse mesh is collapsed further (half the faces
 /// each time) and unfolded again, so that meshes too detailed for their shape still give an

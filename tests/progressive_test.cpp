@@ -265,6 +265,33 @@ TEST(Progressive, TwinPlateIsCompleteOnceItsCoarseMeshResists) {
   EXPECT_TRUE(check.ok()) << check.summary();
 }
 
+// A coarse start with more than ten overlapping pairs per face (a CAD part of slivers) is
+// collapsed further without a Tabu run on it; the result is still an overlap-free net that the
+// checker accepts.
+TEST(Progressive, HopelessCoarseStartIsCollapsedFurtherAtOnce) {
+  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/2000/trimesh__ADIS16480.obj";
+  if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
+  const Mesh input = load_mesh_file(file).mesh;
+  Progress quiet;
+  const std::size_t first = decimate(input, {}, quiet).face_count();
+  Recorder recorder;
+  ProgressiveOptions options;
+  options.tabu.time_limit_seconds = 60;
+  const ProgressiveResult r = unfold_progressive(input, options, recorder);
+  EXPECT_GE(r.coarse_retries, 1u);
+  EXPECT_LT(r.coarse_faces, first);
+  bool searched_first = false, searched_later = false;
+  for (const ProgressInfo& info : recorder.reports) {
+    if (info.phase != "unfold" || info.iterations == 0) continue;
+    (info.faces == first ? searched_first : searched_later) = true;
+  }
+  EXPECT_FALSE(searched_first) << "a Tabu run on the first coarse mesh of " << first << " faces";
+  EXPECT_TRUE(searched_later);
+  ASSERT_TRUE(r.overlap_free);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+}
+
 TEST(Progressive, CancellationStops) {
   class Cancel : public Progress {
    public:
