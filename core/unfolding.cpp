@@ -183,9 +183,13 @@ void Unfolding::set_face_corners(int f, std::array<int, 3> corners) {
     if (it != half_edges_.end() && it->second == 3 * f + k) half_edges_.erase(it);
     auto& vf = vertex_faces_[c[k]];
     vf.erase(std::find(vf.begin(), vf.end(), f));
-    // The old neighbours lose f: their adjacency is rebuilt too.
+    // A neighbour across an edge that f loses is edited too. One across an edge f keeps (same
+    // corners in the same slot; a vertex split relabels one corner) stays as it is: update()
+    // refreshes the adjacency of f's neighbours anyway, and an edited face would cut the tree
+    // there and re-lay out the smaller side for nothing.
     const int n = adj_[f][k];
-    if (n >= 0 && !is_dirty_[n]) {
+    const bool kept_edge = corners[k] == c[k] && corners[(k + 1) % 3] == c[(k + 1) % 3];
+    if (n >= 0 && !kept_edge && !is_dirty_[n]) {
       is_dirty_[n] = 1;
       dirty_.push_back(n);
     }
@@ -285,6 +289,7 @@ std::size_t Unfolding::update() {
   std::vector<int> moved;
   if (link_bits_ > 0 && 8 * dirty_.size() < static_cast<std::size_t>(nf) &&
       update_locally(around, moved)) {
+    relaid_ += moved.size();
     for (int f : dirty_) is_dirty_[f] = 0;
     dirty_.clear();
     return pair_count_;
@@ -369,6 +374,7 @@ std::size_t Unfolding::update() {
                             std::to_string(reached) + " of " + std::to_string(nf) + " faces)");
 
   link_bits_ = 2 * link_count;
+  relaid_ += moved.size();
   test_moved(moved);
   for (int f : dirty_) is_dirty_[f] = 0;
   dirty_.clear();

@@ -169,6 +169,8 @@ class Unfolding {
   ///        outside the tree or a link between faces that share no edge; the state is then
   ///        unusable (keep a copy of the last good one: Unfolding is copyable).
   std::size_t update();
+  /// Faces update() has re-laid out (and tested), summed over all its calls.
+  std::size_t relaid_faces() const { return relaid_; }
 
  private:
   // unfolding.cpp: construction, editing, update.
@@ -243,6 +245,7 @@ class Unfolding {
   std::vector<std::vector<int>> part_queue_;
   std::vector<std::pair<int, int>> todo_;
   std::vector<int> group_;  // update_locally: what moved together (-2 outside a call)
+  std::size_t relaid_ = 0;  // faces re-laid out by update(), ever
 
   // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
   // is the pre-order range [cut_lo_, cut_hi_), the other its complement.

@@ -4,12 +4,14 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/decimate.h"
@@ -17,6 +19,8 @@
 #include "core/load.h"
 #include "core/net_check.h"
 #include "core/progressive_mesh.h"
+#include "core/unfolding.h"
+#include "test_meshes.h"
 
 namespace papernet {
 namespace {
@@ -106,8 +110,11 @@ TEST(Progressive, ReportsArriveInOrderAndEndAtTheInputFaceCount) {
 
 // Tabu runs of a single iteration after each split make some split's overlaps unresolvable: the
 // result is then the last overlap-free state, which must be exactly the mesh after that many
-// splits.
-TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
+// splits. Both with one split per update (the paper's loop) and with batches of splits, whose
+// replay after a failed batch must stop at the right batch.
+class ProgressiveSplitsPerUpdate : public testing::TestWithParam<std::size_t> {};
+
+TEST_P(ProgressiveSplitsPerUpdate, ApproximateResultIsTheLastOverlapFreeState) {
   const Mesh input = load_test_mesh("sample.obj");
   int approximations = 0;
   for (std::uint64_t seed = 1; seed <= 12 && approximations < 2; ++seed) {
@@ -115,6 +122,7 @@ TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
     ProgressiveOptions options;
     options.tabu.seed = seed;
     options.split_iterations = 1;
+    options.splits_per_update = GetParam();
     Progress quiet;
     const ProgressiveResult r = unfold_progressive(input, options, quiet);
     if (!r.overlap_free || r.complete) continue;
@@ -142,6 +150,23 @@ TEST(Progressive, ApproximateResultIsTheLastOverlapFreeState) {
     }
   }
   EXPECT_GE(approximations, 1) << "no seed produced an approximate result";
+}
+
+INSTANTIATE_TEST_SUITE_P(Progressive, ProgressiveSplitsPerUpdate, testing::Values(1, 3, 8));
+
+// Batches of splits give complete nets that fold into the input itself, like single splits.
+TEST_P(ProgressiveSplitsPerUpdate, CompleteNetsOfTheInput) {
+  const Mesh input = load_test_mesh("reference.obj");
+  ProgressiveOptions options;
+  options.splits_per_update = GetParam();
+  options.tabu.time_limit_seconds = 120;
+  Progress quiet;
+  const ProgressiveResult r = unfold_progressive(input, options, quiet);
+  ASSERT_TRUE(r.complete);
+  EXPECT_EQ(r.mesh.faces, input.faces);
+  EXPECT_EQ(r.splits, r.splits_total);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
 }
 
 // The Tabu work after splits has a budget (faces tested per input face): a run that spends it
@@ -240,6 +265,33 @@ TEST(Progressive, TwinPlateIsCompleteOnceItsCoarseMeshResists) {
   EXPECT_TRUE(check.ok()) << check.summary();
 }
 
+// A coarse start with more than ten overlapping pairs per face (a CAD part of slivers) is
+// collapsed further without a Tabu run on it; the result is still an overlap-free net that the
+// checker accepts.
+TEST(Progressive, HopelessCoarseStartIsCollapsedFurtherAtOnce) {
+  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/2000/trimesh__ADIS16480.obj";
+  if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
+  const Mesh input = load_mesh_file(file).mesh;
+  Progress quiet;
+  const std::size_t first = decimate(input, {}, quiet).face_count();
+  Recorder recorder;
+  ProgressiveOptions options;
+  options.tabu.time_limit_seconds = 60;
+  const ProgressiveResult r = unfold_progressive(input, options, recorder);
+  EXPECT_GE(r.coarse_retries, 1u);
+  EXPECT_LT(r.coarse_faces, first);
+  bool searched_first = false, searched_later = false;
+  for (const ProgressInfo& info : recorder.reports) {
+    if (info.phase != "unfold" || info.iterations == 0) continue;
+    (info.faces == first ? searched_first : searched_later) = true;
+  }
+  EXPECT_FALSE(searched_first) << "a Tabu run on the first coarse mesh of " << first << " faces";
+  EXPECT_TRUE(searched_later);
+  ASSERT_TRUE(r.overlap_free);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+}
+
 TEST(Progressive, CancellationStops) {
   class Cancel : public Progress {
    public:
@@ -266,6 +318,80 @@ int run_unfold(const std::string& args, std::string* output = nullptr) {
   const int status = pclose(p);
   if (output) *output = text;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Faces re-laid out when `removed` faces are edited in the tree `parent`: the edited faces plus
+// every part of the tree without them except the largest (which keeps its place).
+std::size_t expected_relaid(const std::vector<int>& parent, const std::vector<int>& removed) {
+  const std::size_t n = parent.size();
+  std::vector<char> cut(n, 0);
+  for (int f : removed) cut[f] = 1;
+  std::vector<std::vector<int>> links(n);
+  for (std::size_t f = 0; f < n; ++f)
+    if (parent[f] >= 0 && !cut[f] && !cut[parent[f]]) {
+      links[f].push_back(parent[f]);
+      links[parent[f]].push_back(static_cast<int>(f));
+    }
+  std::vector<char> seen(n, 0);
+  std::size_t rest = 0, largest = 0;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (seen[s] || cut[s]) continue;
+    std::size_t size = 0;
+    std::vector<int> stack{static_cast<int>(s)};
+    seen[s] = 1;
+    while (!stack.empty()) {
+      const int x = stack.back();
+      stack.pop_back();
+      ++size;
+      for (int y : links[x])
+        if (!seen[y]) seen[y] = 1, stack.push_back(y);
+    }
+    rest += size;
+    largest = std::max(largest, size);
+  }
+  return removed.size() + rest - largest;
+}
+
+std::vector<std::pair<int, int>> tree_links(const std::vector<int>& parent) {
+  std::vector<std::pair<int, int>> out;
+  for (std::size_t f = 0; f < parent.size(); ++f)
+    if (parent[f] >= 0) out.emplace_back(std::min<int>(f, parent[f]), std::max<int>(f, parent[f]));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A vertex split relabels one corner of the faces around the new vertex; their neighbours across
+// the edges they keep are not edited, so the tree is cut only at the relabelled face and only the
+// smaller parts around it move. An edit that changes the slots of the edges does edit them.
+TEST(Progressive, RelabellingACornerLeavesTheNeighboursAcrossKeptEdges) {
+  const Mesh mesh = test::torus(40, 16);  // 1,280 faces
+  Unfolding u = Unfolding::steepest_edge(mesh, 3);
+  int tried = 0;
+  for (int f = 0; f < static_cast<int>(u.face_count()) && tried < 3; f += 7) {
+    const std::vector<int> parent = u.net().parent;
+    std::vector<int> with_neighbours{f};
+    for (int k = 0; k < 3; ++k) with_neighbours.push_back(u.neighbour(f, k));
+    const std::size_t alone = expected_relaid(parent, {f});
+    // Only faces where editing the neighbours too would move more tell the two apart.
+    if (expected_relaid(parent, with_neighbours) <= alone) continue;
+    ++tried;
+    SCOPED_TRACE("face " + std::to_string(f));
+    const std::size_t before = u.relaid_faces();
+    u.set_face_corners(f, u.mesh().faces[f]);  // the same corners: every edge kept
+    EXPECT_EQ(u.update(), Unfolding(u.mesh(), parent).overlap_count());
+    EXPECT_EQ(u.relaid_faces() - before, alone);
+    EXPECT_EQ(tree_links(u.net().parent), tree_links(parent));  // re-rooted at most
+    // Rotated corners: every edge changes slot, the neighbours are edited and re-laid out.
+    const auto c = u.mesh().faces[f];
+    const std::size_t mid = u.relaid_faces();
+    u.set_face_corners(f, {c[1], c[2], c[0]});
+    u.update();
+    EXPECT_GE(u.relaid_faces() - mid, expected_relaid(u.net().parent, with_neighbours));
+    const NetCheckReport check = check_net(u.mesh(), u.net());
+    EXPECT_EQ(check.failure_count, check.overlapping_pairs) << check.summary();
+    EXPECT_EQ(u.overlap_count(), Unfolding(u.mesh(), u.net().parent).overlap_count());
+  }
+  EXPECT_EQ(tried, 3);
 }
 
 TEST(UnfoldCli, QQIsTheDefaultAndWritesACompleteNet) {
