@@ -141,6 +141,7 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
     };
 
     pairs.clear();
+    sort_overlapping();  // the first pairs in order of faces, however they were found
     for (int a : overlapping_) {
       for (int b : overlaps_[a])
         if (a < b) pairs.push_back({a, b});

@@ -236,10 +236,10 @@ void expect_clearance_pass_makes_room() {
       EXPECT_TRUE(check.ok()) << name << ": " << check.summary();
     }
     // Edges without room get strips; the others get tabs (a few lose their room to
-    // neighbours' tabs: 5 of the Duck's 2106), so a net where the pass opened every near-slit
-    // has no strip.
+    // neighbours' tabs: 5-11 of the Duck's 2106, by its net), so a net where the pass opened
+    // every near-slit has no strip.
     EXPECT_GE(layout.strips.size(), room.blocked_after) << name;
-    EXPECT_LE(layout.strips.size(), room.blocked_after + 3 + room.blocked_after / 50) << name;
+    EXPECT_LE(layout.strips.size(), room.blocked_after + 3 + room.blocked_after / 20) << name;
     if (room.blocked_after == 0) {
       EXPECT_TRUE(layout.strips.empty()) << name << ": " << layout.strips.size() << " strips";
       EXPECT_EQ(layout.tabs.size(), static_cast<std::size_t>(layout.cut_edges)) << name;
@@ -253,9 +253,10 @@ void expect_clearance_pass_makes_room() {
   EXPECT_LT(3 * after, 2 * before) << "the pass should open most near-slits";
   // Nets where the pass reaches exactly one tab per cut edge (figures in docs/tabs.md);
   // testplate.glb's had 10 strips before it. (testplate.glb (SEQ) left out since the Tabu
-  // Unfolder's walks towards overlapping faces: its net changed and keeps 1 of 10 blocked edges.)
-  for (const char* want : {"mirror.ply (TU)", "mirror.ply (QQ)", "testplate.glb (TU)",
-                           "testplate.glb (QQ)", "testplate.glb (SEMP)"}) {
+  // Unfolder's walks towards overlapping faces: its net changed and keeps 1 of 10 blocked edges;
+  // testplate.glb (SEMP) since the overlap lists are read in face order: the same.)
+  for (const char* want :
+       {"mirror.ply (TU)", "mirror.ply (QQ)", "testplate.glb (TU)", "testplate.glb (QQ)"}) {
     const auto& nets = all_nets();
     const auto it =
         std::find_if(nets.begin(), nets.end(), [&](const NamedNet& x) { return x.name == want; });
