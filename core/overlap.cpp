@@ -131,9 +131,7 @@ void OverlapGrid::place(int f) {
   const Range& r = range_[f];
   Level& l = levels_[r.level];
   for (int x = r.x0; x <= r.x1; ++x)
-    for (int y = r.y0; y <= r.y1; ++y)
-      l.buckets[bucket(l, x, y)].push_back(
-          {r.box, x, y, f, static_cast<std::uint8_t>((x == r.x0 ? 1 : 0) | (y == r.y0 ? 2 : 0))});
+    for (int y = r.y0; y <= r.y1; ++y) l.buckets[bucket(l, x, y)].push_back(f);
 }
 
 void OverlapGrid::grow(Level& l) {
@@ -146,34 +144,33 @@ void OverlapGrid::insert(int f, const Box2& box) {
   if (f >= static_cast<int>(range_.size())) range_.resize(f + 1);
   Range& r = range_[f];
   r.valid = true;
-  r.box = box;
-  r.level = kGridLevels;  // not finite (or beyond 1e300: sums overflow): every query visits it
-  const auto bounded = [](double v) { return std::abs(v) < 1e300; };  // false for NaN
-  if (bounded(box.lo.x) && bounded(box.lo.y) && bounded(box.hi.x) && bounded(box.hi.y)) {
-    r.level = kTree;
-    for (int i = 0; i < kGridLevels; ++i) {
-      const Level& l = levels_[i];
-      const int x0 = cell(l, box.lo.x), x1 = cell(l, box.hi.x), y0 = cell(l, box.lo.y),
-                y1 = cell(l, box.hi.y);
-      const double cells = (static_cast<double>(x1) - x0 + 1) * (static_cast<double>(y1) - y0 + 1);
-      if (cells <= kMaxCells) {
-        r.x0 = x0, r.x1 = std::max(x0, x1), r.y0 = y0, r.y1 = std::max(y0, y1), r.level = i;
-        break;
-      }
+  r.level = kLevels;
+  for (int i = 0; i < kLevels; ++i) {
+    const Level& l = levels_[i];
+    const int x0 = cell(l, box.lo.x), x1 = cell(l, box.hi.x), y0 = cell(l, box.lo.y),
+              y1 = cell(l, box.hi.y);
+    if (x1 < x0 || y1 < y0) break;  // not a number
+    const double cells = (static_cast<double>(x1) - x0 + 1) * (static_cast<double>(y1) - y0 + 1);
+    if (cells <= kMaxCells) {
+      r.x0 = x0, r.x1 = x1, r.y0 = y0, r.y1 = y1, r.level = i;
+      break;
     }
-  }
-  if (r.level == kTree) {
-    r.slot = new_node();
-    nodes_[r.slot].box = box;
-    nodes_[r.slot].face = f;
-    tree_insert(r.slot);
-    return;
+    if (i + 1 == kGridLevels && std::isfinite(box.hi.x - box.lo.x) &&
+        std::isfinite(box.hi.y - box.lo.y) && std::abs(box.lo.x) < 1e300 &&
+        std::abs(box.lo.y) < 1e300) {
+      r.level = kTree;
+      r.slot = new_node();
+      nodes_[r.slot].box = box;
+      nodes_[r.slot].face = f;
+      tree_insert(r.slot);
+      return;
+    }
   }
   Level& l = levels_[r.level];
   r.slot = static_cast<int>(l.members.size());
   l.members.push_back(f);
   used_levels_ |= 1u << r.level;
-  if (r.level == kGridLevels) return;
+  if (r.level == kLevels) return;
   if (4 * l.members.size() > l.buckets.size())
     grow(l);  // grow() places f too
   else
@@ -182,9 +179,9 @@ void OverlapGrid::insert(int f, const Box2& box) {
 
 void OverlapGrid::remove(int f) {
   Range& r = range_[f];
-  r.valid = false;
   if (r.level == kTree) {
     tree_remove(r.slot);
+    r.valid = false;
     return;
   }
   Level& l = levels_[r.level];
@@ -192,15 +189,15 @@ void OverlapGrid::remove(int f) {
   l.members[r.slot] = l.members.back();
   l.members.pop_back();
   if (l.members.empty()) used_levels_ &= ~(1u << r.level);
-  if (r.level == kGridLevels) return;
-  for (int x = r.x0; x <= r.x1; ++x)
-    for (int y = r.y0; y <= r.y1; ++y) {
-      std::vector<Entry>& v = l.buckets[bucket(l, x, y)];
-      auto it = v.begin();
-      while (it->face != f || it->x != x || it->y != y) ++it;
-      *it = v.back();
-      v.pop_back();
-    }
+  if (r.level < kLevels)
+    for (int x = r.x0; x <= r.x1; ++x)
+      for (int y = r.y0; y <= r.y1; ++y) {
+        std::vector<int>& v = l.buckets[bucket(l, x, y)];
+        const auto it = std::find(v.begin(), v.end(), f);
+        *it = v.back();
+        v.pop_back();
+      }
+  r.valid = false;
 }
 
 }  // namespace papernet

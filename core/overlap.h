@@ -42,15 +42,14 @@ bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance)
 /// Spatial index of a net, updated incrementally: a hierarchical hash grid over face boxes for
 /// compact faces, and a dynamic bounding-box tree for faces far longer than the finest cell.
 /// Grid level L has cells `cell_size * 4^L` wide; a face goes to the finest level where its box
-/// covers at most 4 x 4 cells and is entered, with its box, in each of them. In each level cells
-/// hash into a power-of-two table of buckets without keys (entries carry their cell, so cells
-/// that collide cost a comparison). A query reports a face only from the first of its cells that
-/// the query box meets, and only when the boxes meet, so each face once, with no per-face marks;
-/// a level where the query box covers more cells than the level has faces is scanned as a list
-/// instead. Faces too long for the coarsest grid level (slivers and huge faces: CAD meshes with
-/// faces from 1 to 10,000 units long, aspect ratios up to 1e8) go into the tree instead: in a net
-/// that is one long strip of slivers, every grid cell coarse enough for them would hold nearly
-/// every face, many times over.
+/// covers at most a few cells. In each level cells hash into a power-of-two table of buckets
+/// without keys (cells that collide share a bucket, which only adds candidates), so a query is a
+/// few array lookups per non-empty level; a level where the query box covers more cells than the
+/// level has faces is scanned as a list instead. Faces whose box needs a coarser level than
+/// kGridLevels - 1 (slivers and huge faces: CAD meshes with faces from 1 to 10,000 units long,
+/// aspect ratios up to 1e8) go into the tree instead, which returns only the faces whose boxes
+/// meet the query box, each once: in a net that is one long strip of slivers, every grid cell
+/// coarse enough for them would hold nearly every face, many times over.
 class OverlapGrid {
  public:
   /// Empties the grid and sets its finest cell size (> 0), typically about an edge length.
@@ -60,27 +59,19 @@ class OverlapGrid {
   /// Removes face f (in the grid).
   void remove(int f);
   bool contains(int f) const { return f < static_cast<int>(range_.size()) && range_[f].valid; }
-  /// Calls visit(face) exactly once for every face whose box meets `box` (closed boxes: touching
-  /// counts) and for no other face, except faces inserted with a box that is not finite (or has
-  /// a coordinate beyond 1e300), which every query visits once. The order is unspecified.
+  /// Calls visit(face) for every face whose cells meet `box`; a face may be visited more than
+  /// once, and faces whose boxes do not meet `box` may be visited too (faces in the tree: only
+  /// those whose boxes meet `box`, once each).
   template <class Visit>
   void query(const Box2& box, Visit&& visit) const;
 
  private:
   struct Range {
-    Box2 box;
-    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // the face's cells in its grid level
-    // level: grid level, kTree (slot: its leaf) or kGridLevels (the list of faces whose boxes
-    // are not finite or beyond 1e300); slot: place in the level's members
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+    // level: grid level, kTree (slot: its leaf) or kLevels (the list of unbounded faces, slot:
+    // its place in members)
     int level = 0, slot = 0;
     bool valid = false;
-  };
-  // A face in one of its cells, with its box: a query needs nothing else. first: bit 0 when x is
-  // the face's first column of cells, bit 1 when y is its first row.
-  struct Entry {
-    Box2 box;
-    int x, y, face;
-    std::uint8_t first;
   };
   // A node of the bounding-box tree: a leaf holds one face, an inner node two children.
   struct Node {
@@ -90,14 +81,12 @@ class OverlapGrid {
   struct Level {
     double inv_cell = 1;
     std::size_t mask = 0;
-    std::vector<std::vector<Entry>> buckets;
+    std::vector<std::vector<int>> buckets;
     std::vector<int> members;
   };
+  static constexpr int kLevels = 24;
   static constexpr int kGridLevels = 2;  // levels kept as hash grids; coarser faces: the tree
   static constexpr int kTree = -1;
-  static bool meets(const Box2& a, const Box2& b) {
-    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y;
-  }
   static std::size_t bucket(const Level& l, int x, int y) {
     const std::uint64_t h = static_cast<std::uint32_t>(x) * 0x9e3779b1u ^
                             static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0x85ebca6bu;
@@ -121,7 +110,7 @@ class OverlapGrid {
   void tree_insert(int leaf);
   void tree_remove(int leaf);
 
-  std::array<Level, kGridLevels + 1> levels_;
+  std::array<Level, kLevels + 1> levels_;
   std::uint32_t used_levels_ = 0;  // bit i: levels_[i] has members (queries skip the others)
   std::vector<Range> range_;
   std::vector<Node> nodes_;
@@ -132,37 +121,32 @@ class OverlapGrid {
 
 template <class Visit>
 void OverlapGrid::query(const Box2& box, Visit&& visit) const {
-  static_assert(kGridLevels < 32);
+  static_assert(kLevels < 32);
   for (std::uint32_t used = used_levels_; used != 0; used &= used - 1) {
     const int i = std::countr_zero(used);
     const Level& l = levels_[i];
-    if (i == kGridLevels) {  // boxes that are not finite
-      for (int f : l.members) visit(f);
-      continue;
+    if (i < kLevels) {
+      const int x0 = cell(l, box.lo.x), x1 = cell(l, box.hi.x), y0 = cell(l, box.lo.y),
+                y1 = cell(l, box.hi.y);
+      const double cells = (static_cast<double>(x1) - x0 + 1) * (static_cast<double>(y1) - y0 + 1);
+      if (cells <= static_cast<double>(l.members.size()) && x1 >= x0 && y1 >= y0) {
+        for (int x = x0; x <= x1; ++x)
+          for (int y = y0; y <= y1; ++y)
+            for (int f : l.buckets[bucket(l, x, y)]) visit(f);
+        continue;
+      }
     }
-    const int x0 = cell(l, box.lo.x), x1 = cell(l, box.hi.x), y0 = cell(l, box.lo.y),
-              y1 = cell(l, box.hi.y);
-    const double cells = (static_cast<double>(x1) - x0 + 1) * (static_cast<double>(y1) - y0 + 1);
-    if (cells <= static_cast<double>(l.members.size()) && x1 >= x0 && y1 >= y0) {
-      for (int x = x0; x <= x1; ++x)
-        for (int y = y0; y <= y1; ++y)
-          for (const Entry& e : l.buckets[bucket(l, x, y)])
-            // Reported from the face's first cell in the query's range, (max(its x0, x0),
-            // max(its y0, y0)), only.
-            if (e.x == x && e.y == y && (x == x0 || (e.first & 1)) && (y == y0 || (e.first & 2)) &&
-                meets(e.box, box))
-              visit(e.face);
-    } else {
-      for (int f : l.members)
-        if (meets(range_[f].box, box)) visit(f);
-    }
+    for (int f : l.members) visit(f);
   }
   if (tree_root_ < 0) return;
+  const auto meets = [&box](const Box2& b) {
+    return b.lo.x <= box.hi.x && box.lo.x <= b.hi.x && b.lo.y <= box.hi.y && box.lo.y <= b.hi.y;
+  };
   stack_.assign(1, tree_root_);
   while (!stack_.empty()) {
     const Node& n = nodes_[stack_.back()];
     stack_.pop_back();
-    if (!meets(n.box, box)) continue;
+    if (!meets(n.box)) continue;
     if (n.face >= 0) {
       visit(n.face);
     } else {

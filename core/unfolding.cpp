@@ -155,9 +155,11 @@ void Unfolding::test_moved(const std::vector<int>& moved) {
   }
   for (int f : moved) {
     box_[f] = triangle_box(pos_[f]);
-    // The grid reports each face whose box meets f's once; boxes must overlap by more than the
-    // tolerance, which most candidates do not (neighbours touch).
+    next_seen_epoch();
     grid_.query(box_[f], [&](int c) {
+      if (seen_[c] == seen_epoch_) return;
+      seen_[c] = seen_epoch_;
+      // Faces in the grid have their current box: most candidates end here, without the call.
       if (boxes_overlap(box_[f], box_[c], tolerance_) &&
           triangles_overlap(pos_[f], pos_[c], tolerance_))
         add_pair(f, c);
@@ -577,7 +579,10 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
   for (int f : moved) {
     const int g = group_[f];
     box_[f] = triangle_box(pos_[f]);
+    const std::uint32_t tested = next_seen_epoch();
     grid_.query(box_[f], [&](int c) {
+      if (seen_[c] == tested) return;
+      seen_[c] = tested;
       if (!boxes_overlap(box_[f], box_[c], tolerance_) || (g >= 0 && group_[c] == g)) return;
       if (triangles_overlap(pos_[f], pos_[c], tolerance_)) add_pair(f, c);
     });

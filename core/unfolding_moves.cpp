@@ -119,8 +119,11 @@ long long Unfolding::evaluate_move(int g, int k, long long crossing, long long c
     const Triangle2 t = s == anchor
                             ? anchor_pos
                             : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};
-    grid_.query(triangle_box(t), [&](int c) {  // each face once
-      if (!in_small(c) && triangles_overlap(t, pos_[c], tolerance_)) ++delta;
+    const std::uint32_t epoch = next_seen_epoch();
+    grid_.query(triangle_box(t), [&](int c) {
+      if (seen_[c] == epoch || in_small(c)) return;
+      seen_[c] = epoch;
+      if (triangles_overlap(t, pos_[c], tolerance_)) ++delta;
     });
     return delta < cutoff;
   };
@@ -155,8 +158,11 @@ void Unfolding::apply_move(int g, int k) {
     grid_.insert(s, box_[s]);
   };
   const auto retest = [&](int s) {
-    grid_.query(box_[s], [&](int c) {  // each face once
-      if (!in_small(c) && triangles_overlap(pos_[s], pos_[c], tolerance_)) add_pair(s, c);
+    const std::uint32_t epoch = next_seen_epoch();
+    grid_.query(box_[s], [&](int c) {
+      if (seen_[c] == epoch || in_small(c)) return;
+      seen_[c] = epoch;
+      if (triangles_overlap(pos_[s], pos_[c], tolerance_)) add_pair(s, c);
     });
   };
   const auto each_small = [&](const auto& visit) {

@@ -123,9 +123,12 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
             const Triangle2 moved =
                 t == s ? placed
                        : Triangle2{motion(pos_[t][0]), motion(pos_[t][1]), motion(pos_[t][2])};
+            const std::uint32_t seen = next_seen_epoch();
             ++st.tests;
-            grid_.query(triangle_box(moved), [&](int c) {  // each face once
-              if (side_mark_[c] != epoch && triangles_overlap(moved, pos_[c], tolerance_)) ++delta;
+            grid_.query(triangle_box(moved), [&](int c) {
+              if (seen_[c] == seen || side_mark_[c] == epoch) return;
+              seen_[c] = seen;
+              if (triangles_overlap(moved, pos_[c], tolerance_)) ++delta;
             });
             // Only a move that lowers the count is applied: stop once this one cannot win.
             if (delta > rise || delta > best.delta ||
