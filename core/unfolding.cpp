@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "core/dual_graph.h"
@@ -142,7 +143,7 @@ void Unfolding::remove_pair(int a, int b) {
 
 void Unfolding::sort_overlapping() {
   if (overlapping_sorted_) return;
-  std::sort(overlapping_.begin(), overlapping_.end());
+  std::sort(overlapping_.begin(), overlapping_.end(), std::greater<>());
   for (std::size_t i = 0; i < overlapping_.size(); ++i)
     overlapping_index_[overlapping_[i]] = static_cast<int>(i);
   overlapping_sorted_ = true;
