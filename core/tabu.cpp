@@ -121,6 +121,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
     const std::size_t now_walks = stalled ? walks : 1;
     for (std::size_t walk = 0; walk < now_walks && best_delta > accept_rise && !stop; ++walk) {
       int r = static_cast<int>(rng.below(nf));
+      sort_overlapping();
       const int f = overlapping_[rng.below(overlapping_.size())];
       if (options.partner_walks > 0 && rng.uniform() < options.partner_walks) {
         const std::vector<int>& partners = overlaps_[f];

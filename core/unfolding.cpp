@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "core/dual_graph.h"
@@ -110,29 +111,42 @@ void Unfolding::add_pair(int a, int b) {
     if (overlaps_[f].empty()) {
       overlapping_index_[f] = static_cast<int>(overlapping_.size());
       overlapping_.push_back(f);
+      overlapping_sorted_ = false;
     }
   }
-  overlaps_[a].push_back(b);
-  overlaps_[b].push_back(a);
+  // Partner lists stay sorted: which partner a walk takes must not depend on the order in which
+  // the spatial index reported the pairs.
+  for (const auto& [f, other] : {std::pair{a, b}, std::pair{b, a}}) {
+    auto& v = overlaps_[f];
+    v.insert(std::lower_bound(v.begin(), v.end(), other), other);
+  }
   ++pair_count_;
 }
 
 void Unfolding::remove_pair(int a, int b) {
   const auto erase = [this](int f, int other) {
     auto& v = overlaps_[f];
-    *std::find(v.begin(), v.end(), other) = v.back();
-    v.pop_back();
+    v.erase(std::lower_bound(v.begin(), v.end(), other));
     if (v.empty()) {
       const int i = overlapping_index_[f];
       overlapping_[i] = overlapping_.back();
       overlapping_index_[overlapping_[i]] = i;
       overlapping_.pop_back();
       overlapping_index_[f] = -1;
+      overlapping_sorted_ = overlapping_sorted_ && i == static_cast<int>(overlapping_.size());
     }
   };
   erase(a, b);
   erase(b, a);
   --pair_count_;
+}
+
+void Unfolding::sort_overlapping() {
+  if (overlapping_sorted_) return;
+  std::sort(overlapping_.begin(), overlapping_.end(), std::greater<>());
+  for (std::size_t i = 0; i < overlapping_.size(); ++i)
+    overlapping_index_[overlapping_[i]] = static_cast<int>(i);
+  overlapping_sorted_ = true;
 }
 
 void Unfolding::test_moved(const std::vector<int>& moved) {

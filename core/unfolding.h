@@ -179,6 +179,10 @@ class Unfolding {
   void reroot(int r);
   void add_pair(int a, int b);
   void remove_pair(int a, int b);
+  // Sorts overlapping_ by face, newest (highest) first: the random choices of the Tabu Unfolder
+  // and the local repair read it in this order, so that they do not depend on the order in which
+  // pairs were found.
+  void sort_overlapping();
   void test_moved(const std::vector<int>& moved);
   // update() when few faces were edited: keeps the largest unedited part of the tree in place,
   // lays out the rest (into `moved`) and tests it for overlaps, in time proportional to it. False
@@ -229,9 +233,10 @@ class Unfolding {
   std::vector<Triangle2> pos_;
   std::vector<Box2> box_;
   OverlapGrid grid_;
-  std::vector<std::vector<int>> overlaps_;  // partners of each face
+  std::vector<std::vector<int>> overlaps_;  // partners of each face, in increasing order
   std::vector<int> overlapping_;            // faces with partners
   std::vector<int> overlapping_index_;      // position in overlapping_, -1 if absent
+  bool overlapping_sorted_ = true;          // overlapping_ is in decreasing order
   std::size_t pair_count_ = 0;
   double tolerance_ = 0;
 

@@ -141,9 +141,12 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
     };
 
     pairs.clear();
+    // The first pairs by their newer face (faces are numbered in order of addition: after a
+    // split, its new faces first), however the grid found them.
+    sort_overlapping();
     for (int a : overlapping_) {
       for (int b : overlaps_[a])
-        if (a < b) pairs.push_back({a, b});
+        if (b < a) pairs.push_back({a, b});
       if (pairs.size() >= kPairsPerRound) break;
     }
     for (const auto& [a, b] : pairs) {

@@ -5,7 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <string>
 #include <vector>
+
+#include "core/load.h"
+#include "core/unfolding.h"
 
 namespace papernet {
 namespace {
@@ -182,6 +187,76 @@ TEST(OverlapGrid, StripOfSliversReturnsEachMeetingBoxOnce) {
   int left = 0;
   grid.query({{-1e6, -1e6}, {1e6, 1e6}}, [&](int) { ++left; });
   EXPECT_EQ(left, 0);
+}
+
+// Real nets (steepest-edge unfoldings of an organic mesh and of CAD parts of slivers, whose
+// layouts overlap and whose glued neighbours' boxes touch exactly), with the finest cell at the
+// median edge as Unfolding sets it: every face's box query finds every face whose box meets it
+// (brute force over all pairs), also after a third of the faces moved by a rigid motion (remove,
+// insert elsewhere) as the Tabu Unfolder's moves do and a seventh were removed, and for boxes
+// grown to ten times their size. Removed faces are never returned.
+TEST(OverlapGrid, RealNetsMatchBruteForce) {
+  for (const char* name : {"c3d__spot", "thingi10k__79741", "trimesh__1002_tray_bottom"}) {
+    SCOPED_TRACE(name);
+    const std::filesystem::path file = std::filesystem::path(PAPERNET_SHARED_DATA) / "bench" /
+                                       "800" / (std::string(name) + ".obj");
+    if (!std::filesystem::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
+    const Mesh mesh = load_mesh_file(file.string()).mesh;
+    const Unfolding u = Unfolding::steepest_edge(mesh, 1);
+    const int nf = static_cast<int>(u.face_count());
+    std::vector<double> lengths;
+    for (const auto& t : mesh.faces)
+      for (int k = 0; k < 3; ++k)
+        lengths.push_back(norm(mesh.vertices[t[(k + 1) % 3]] - mesh.vertices[t[k]]));
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    OverlapGrid grid;
+    grid.reset(lengths[lengths.size() / 2]);
+    std::vector<Box2> boxes(nf);
+    std::vector<char> in(nf, 1);
+    for (int f = 0; f < nf; ++f) {
+      boxes[f] = triangle_box(u.points(f));
+      grid.insert(f, boxes[f]);
+    }
+    const auto meets = [](const Box2& a, const Box2& b) {
+      return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y;
+    };
+    std::size_t pairs = 0;
+    const auto check = [&](const Box2& box) {
+      std::vector<char> seen(nf, 0);
+      grid.query(box, [&](int c) { seen[c] = 1; });
+      for (int c = 0; c < nf; ++c) {
+        if (!in[c]) {
+          ASSERT_FALSE(seen[c]) << "removed face " << c << " returned";
+        } else if (meets(box, boxes[c])) {
+          ASSERT_TRUE(seen[c]) << "face " << c << " missed";
+          ++pairs;
+        }
+      }
+    };
+    for (int f = 0; f < nf; ++f) check(boxes[f]);
+    EXPECT_GT(pairs, static_cast<std::size_t>(3 * nf));  // each face meets itself and neighbours
+    // Move every third face: rotate its triangle by 0.3 rad about a corner of face 0.
+    const Vec2 o = u.points(0)[0];
+    const double c = std::cos(0.3), s = std::sin(0.3);
+    for (int f = 0; f < nf; f += 3) {
+      grid.remove(f);
+      Triangle2 t = u.points(f);
+      for (Vec2& p : t)
+        p = {o.x + c * (p.x - o.x) - s * (p.y - o.y), o.y + s * (p.x - o.x) + c * (p.y - o.y)};
+      boxes[f] = triangle_box(t);
+      grid.insert(f, boxes[f]);
+    }
+    for (int f = 1; f < nf; f += 7) {
+      grid.remove(f);
+      in[f] = 0;
+    }
+    for (int f = 0; f < nf; ++f) check(boxes[f]);
+    for (int f = 0; f < nf; f += 5) {
+      const Box2& b = boxes[f];
+      const Vec2 d{10 * (b.hi.x - b.lo.x), 10 * (b.hi.y - b.lo.y)};
+      check({{b.lo.x - d.x, b.lo.y - d.y}, {b.hi.x + d.x, b.hi.y + d.y}});
+    }
+  }
 }
 
 }  // namespace
