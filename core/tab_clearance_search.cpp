@@ -186,6 +186,9 @@ void Clearance::run(Progress& progress) {
   std::vector<int> best_degree = cut_degree_;
   std::size_t best_count = blocked_count_, best_moves = moves_;
   double best_score = score(best_count);
+  // Progress is the fewest blocked edges reached, kept or not: a penalty that makes the search
+  // keep an earlier net must not make it stall while it still opens edges.
+  std::size_t lowest = blocked_count_;
   tabu_until_.assign(3 * static_cast<std::size_t>(nf_), 0);
   std::uint32_t step = 0;
   std::size_t level = 0;
@@ -230,7 +233,7 @@ void Clearance::run(Progress& progress) {
             static_cast<std::size_t>(halves) * static_cast<std::size_t>(restarts) / (kRestarts + 1);
       }
     }
-    const std::size_t sweep_best = best_count;
+    const std::size_t sweep_best = lowest;
     for (int i = 0; i < halves && evaluations_ < budget_; ++i) {
       const int h = static_cast<int>((static_cast<std::size_t>(i) + offset) % halves);
       if (!blocked_[h]) continue;
@@ -273,10 +276,12 @@ void Clearance::run(Progress& progress) {
       const std::uint32_t until = step + static_cast<std::uint32_t>(kTenure);
       tabu_until_[canon(pending_[0], pending_[1])] = until;
       tabu_until_[canon(pending_[2], pending_[3])] = until;
-      const double blocked = static_cast<double>(blocked_count_);
-      if (blocked < best_score) {
+      if (blocked_count_ < lowest) {
+        lowest = blocked_count_;
+        restarts = 0;
+      }
+      if (static_cast<double>(blocked_count_) < best_score) {
         const double score = this->score(blocked_count_);
-        if (blocked_count_ < best_count) restarts = 0;
         if (score >= best_score) continue;
         best_score = score;
         best_count = blocked_count_;
@@ -287,7 +292,7 @@ void Clearance::run(Progress& progress) {
         best_moves = moves_;
       }
     }
-    stall = best_count < sweep_best ? 0 : stall + 1;
+    stall = lowest < sweep_best ? 0 : stall + 1;
   }
   if (moves_ != best_moves) back_to_best();
 }
