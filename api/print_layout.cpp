@@ -1,14 +1,11 @@
 #include "api/print_layout.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <utility>
 
 #include "core/errors.h"
-#include "core/overlap.h"
 
 namespace papernet {
 
@@ -134,92 +131,17 @@ double print_scale(const Mesh& mesh, const PrintOptions& options) {
   return extent > 0 && std::isfinite(extent) ? options.size_mm / extent : 1;
 }
 
-int estimated_pages(const Mesh& mesh, const Net& net, const PrintOptions& options) {
-  const TabRoomPages& page = options.tab_room_pages;
-  if (!(page.width > 0 && page.height > 0) || mesh.faces.empty()) return 0;
-  const double scale = print_scale(mesh, options), ov = std::max(0.0, page.overlap);
-  // The net's minimum-area box from the points that can be on its convex hull: those not
-  // strictly inside the polygon of its extreme points in eight directions (Akl-Toussaint; the
-  // pass calls this about a thousand times on the Duck).
-  std::array<Vec2, 8> extreme;
-  std::array<double, 8> reach;
-  reach.fill(-std::numeric_limits<double>::infinity());
-  const std::array<Vec2, 8> dirs{Vec2{1, 0}, {1, 1},   {0, 1},  {-1, 1},
-                                 {-1, 0},    {-1, -1}, {0, -1}, {1, -1}};
-  for (const Triangle2& t : net.points)
-    for (Vec2 p : t)
-      for (int d = 0; d < 8; ++d)
-        if (const double r = dot(p, dirs[d]); r > reach[d]) reach[d] = r, extreme[d] = p;
-  std::vector<Vec2> hull_points(extreme.begin(), extreme.end());
-  for (const Triangle2& t : net.points)
-    for (Vec2 p : t) {
-      bool inside = true;  // strictly left of every edge of the (counter-clockwise) octagon
-      for (int d = 0; d < 8 && inside; ++d) {
-        const Vec2 a = extreme[d], b = extreme[(d + 1) % 8];
-        if (!(a == b)) inside = cross(b - a, p - a) > 0;
-      }
-      if (!inside) hull_points.push_back(p);
-    }
-  const OrientedBox box = min_area_box(hull_points);
-  // Faces only: tabs and strips left out (a tab's height around every face overestimates).
-  const double w = box.width() * scale, h = box.height() * scale;
-  std::vector<Box2> rects;  // faces' boxes in layout millimetres
-  const double c = std::cos(box.angle), sn = std::sin(box.angle);  // as rotate(p, box.angle)
-  for (const Triangle2& t : net.points) {
-    Box2 r{{1e300, 1e300}, {-1e300, -1e300}};
-    for (Vec2 p : t) {
-      const Vec2 q = scale * (Vec2{c * p.x - sn * p.y, sn * p.x + c * p.y} - box.lo);
-      r = {{std::min(r.lo.x, q.x), std::min(r.lo.y, q.y)},
-           {std::max(r.hi.x, q.x), std::max(r.hi.y, q.y)}};
-    }
-    rects.push_back(r);
-  }
-  const auto tiles = [ov](double content, double room) {
-    return content <= room ? 1 : static_cast<int>(std::ceil((content - ov) / (room - ov)));
-  };
-  int best = -1;
-  for (const auto& [pw, ph] : {std::pair{page.width, page.height}, {page.height, page.width}}) {
-    if (!(pw > ov && ph > ov)) continue;
-    const int cols = tiles(w, pw), rows = tiles(h, ph);
-    const double tw = cols * (pw - ov) + ov, th = rows * (ph - ov) + ov;
-    const Vec2 off{0.5 * (tw - w), 0.5 * (th - h)};
-    int shown = 0;
-    for (int r = 0; r < rows; ++r)
-      for (int c = 0; c < cols; ++c) {
-        const double x0 = c * (pw - ov) - off.x, y1 = th - r * (ph - ov) - off.y;
-        const bool any = std::any_of(rects.begin(), rects.end(), [&](const Box2& b) {
-          return b.hi.x > x0 && b.lo.x < x0 + pw && b.hi.y > y1 - ph && b.lo.y < y1;
-        });
-        shown += any ? 1 : 0;
-      }
-    if (best < 0 || shown < best) best = shown;
-  }
-  return std::max(best, 0);
-}
-
-TabClearanceOptions tab_room_options(const Mesh& mesh, const Net& net,
-                                     const PrintOptions& options) {
-  TabClearanceOptions clearance;
-  const double mm = std::min(options.min_tab_height_mm, options.tab_height_mm);
-  clearance.min_height = mm / print_scale(mesh, options);
-  clearance.angle_deg = options.tab_angle_deg;
-  clearance.time_limit_seconds = options.tab_room_seconds;
-  // Each page beyond the input's counts as `tab_room_page_weight` blocked edges.
-  const int pages = estimated_pages(mesh, net, options);
-  const double weight = options.tab_room_page_weight;
-  if (pages > 0 && weight > 0)
-    clearance.penalty = [mesh_ptr = &mesh, options, pages, weight](const Net& changed) {
-      return weight * std::max(0, estimated_pages(*mesh_ptr, changed, options) - pages);
-    };
-  return clearance;
-}
-
 TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
                                  Progress& progress) {
   if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
   if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || !options.tab_room)
     return {net, 0, 0, 0, 0};
-  return clear_tab_room(mesh, net, tab_room_options(mesh, net, options), progress);
+  TabClearanceOptions clearance;
+  const double mm = std::min(options.min_tab_height_mm, options.tab_height_mm);
+  clearance.min_height = mm / print_scale(mesh, options);
+  clearance.angle_deg = options.tab_angle_deg;
+  clearance.time_limit_seconds = options.tab_room_seconds;
+  return clear_tab_room(mesh, net, clearance, progress);
 }
 
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options) {

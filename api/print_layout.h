@@ -17,12 +17,6 @@
 
 namespace papernet {
 
-/// The printable area of a page and the overlap of neighbouring tiles, millimetres (api/pages.h
-/// tiles a layout with these).
-struct TabRoomPages {
-  double width = 190, height = 277, overlap = 10;
-};
-
 /// How a net is drawn on paper. Lengths are millimetres.
 struct PrintOptions {
   double size_mm = 200;          ///< longest side of the model's bounding box, as folded
@@ -40,14 +34,6 @@ struct PrintOptions {
   /// Clock limit of that pass in seconds (TabClearanceOptions::time_limit_seconds); <= 0: only
   /// its deterministic budget. The service sets it from the job's time limit.
   double tab_room_seconds = 0;
-  /// The pages the net is printed on, for that pass's page count (below): their printable
-  /// area (paper less margins) and the overlap of neighbouring tiles, millimetres (as
-  /// PageOptions; default A4 with 10 mm margins). Width <= 0: no paper, pages do not count.
-  TabRoomPages tab_room_pages;
-  /// What a page more than the unchanged net needs (estimated_pages) costs that pass, in cut
-  /// edges without room for a tab: it keeps the net with the fewest such edges plus this per
-  /// extra page. 0: pages do not count.
-  double tab_room_page_weight = 5;
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
 
@@ -99,26 +85,12 @@ struct PrintLayout {
 double print_scale(const Mesh& mesh, const PrintOptions& options);
 
 /// Makes room for glue tabs before printing (core/tab_clearance.h): the net with fewer cut
-/// edges lacking room for a tab of `options.min_tab_height_mm` at the print scale, where each
-/// page more than the input needs (estimated_pages) counts as `options.tab_room_page_weight`
-/// such edges. Only in
+/// edges lacking room for a tab of `options.min_tab_height_mm` at the print scale. Only in
 /// TabMode::Auto with tabs and `tab_room` on; otherwise returns `net` unchanged (no moves). The
 /// returned net folds into the same mesh; print it, and write it as the net JSON, instead of
 /// the input. \throw CancelledException when `progress` asks to stop.
 TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
                                  Progress& progress);
-
-/// The options make_tab_room runs the pass with: tabs of `options.min_tab_height_mm` at the
-/// print scale, and each page beyond the input's (estimated_pages) counted as
-/// `options.tab_room_page_weight` blocked edges. The penalty refers to `mesh`, which must
-/// outlive the options.
-TabClearanceOptions tab_room_options(const Mesh& mesh, const Net& net, const PrintOptions& options);
-
-/// How many pages `net` needs, as paginate tiles its minimum-area box onto the pages of
-/// `options.tab_room_pages` (fewest over the page's two orientations; tiles that no face's box
-/// reaches are not printed). An estimate for the tab-room pass (tabs and glue strips left out);
-/// 0 when `options.tab_room_pages` has no width.
-int estimated_pages(const Mesh& mesh, const Net& net, const PrintOptions& options);
 
 /// Lays out a net for printing.
 /// \throw InvalidInputException for invalid options, an empty mesh, or a net that does not

@@ -59,7 +59,6 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   const double mean = total / (3.0 * std::max(1, nf_));
   grid_.reset(mean > 0 && std::isfinite(mean) ? mean : 1.0);
   keep_bounds_ = options.keep_bounds;
-  penalty_ = options.penalty;
   for (int f = 0; f < nf_; ++f) {
     box_[f] = triangle_box(pos_[f]);
     grid_.insert(f, box_[f]);

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cstddef>
-#include <functional>
 #include <vector>
 
 #include "core/folds.h"
@@ -48,12 +47,6 @@ struct TabClearanceOptions {
   /// quarter more edges without room and does not bound the page count anyway (pages follow
   /// the net's minimum-area rotated box; docs/tabs.md).
   bool keep_bounds = false;
-  /// When set, the search keeps the net with the lowest number of blocked edges plus this
-  /// (>= 0; e.g. a weight times the pages it prints on beyond the input's), else the one with
-  /// the fewest blocked edges; a net without blocked edges is preferred to every net with some,
-  /// whatever the penalty. Called for nets the search reaches with fewer blocked edges than
-  /// that score of its best so far.
-  std::function<double(const Net&)> penalty;
 };
 
 /// Interior cut edges of `net` where no tab of `options.min_height` (of any of tab_shapes)

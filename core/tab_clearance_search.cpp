@@ -166,11 +166,6 @@ bool Clearance::candidates(int f, int k, Consider&& consider) {
   return false;
 }
 
-double Clearance::score(std::size_t blocked) const {
-  const double p = penalty_ ? std::max(0.0, penalty_(net())) : 0.0;
-  return blocked == 0 ? 0.5 * p / (1 + p) : static_cast<double>(blocked) + p;
-}
-
 // Tabu search over the moves of candidates(): for each blocked edge in turn, the first move
 // that lowers the number of blocked edges is made at once; when there is none, the best move
 // that opens the edge (fewest blocked edges, then fewest flat leaves) is made even when it closes
@@ -185,10 +180,6 @@ void Clearance::run(Progress& progress) {
   std::vector<char> best_blocked = blocked_;
   std::vector<int> best_degree = cut_degree_;
   std::size_t best_count = blocked_count_, best_moves = moves_;
-  double best_score = score(best_count);
-  // Progress is the fewest blocked edges reached, kept or not: a penalty that makes the search
-  // keep an earlier net must not make it stall while it still opens edges.
-  std::size_t lowest = blocked_count_;
   tabu_until_.assign(3 * static_cast<std::size_t>(nf_), 0);
   std::uint32_t step = 0;
   std::size_t level = 0;
@@ -233,7 +224,7 @@ void Clearance::run(Progress& progress) {
             static_cast<std::size_t>(halves) * static_cast<std::size_t>(restarts) / (kRestarts + 1);
       }
     }
-    const std::size_t sweep_best = lowest;
+    const std::size_t sweep_best = best_count;
     for (int i = 0; i < halves && evaluations_ < budget_; ++i) {
       const int h = static_cast<int>((static_cast<std::size_t>(i) + offset) % halves);
       if (!blocked_[h]) continue;
@@ -276,23 +267,17 @@ void Clearance::run(Progress& progress) {
       const std::uint32_t until = step + static_cast<std::uint32_t>(kTenure);
       tabu_until_[canon(pending_[0], pending_[1])] = until;
       tabu_until_[canon(pending_[2], pending_[3])] = until;
-      if (blocked_count_ < lowest) {
-        lowest = blocked_count_;
-        restarts = 0;
-      }
-      if (static_cast<double>(blocked_count_) < best_score) {
-        const double score = this->score(blocked_count_);
-        if (score >= best_score) continue;
-        best_score = score;
+      if (blocked_count_ < best_count) {
         best_count = blocked_count_;
         best_links = links_;
         best_pos = pos_;
         best_blocked = blocked_;
         best_degree = cut_degree_;
         best_moves = moves_;
+        restarts = 0;
       }
     }
-    stall = lowest < sweep_best ? 0 : stall + 1;
+    stall = best_count < sweep_best ? 0 : stall + 1;
   }
   if (moves_ != best_moves) back_to_best();
 }

@@ -5,7 +5,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <numbers>
 #include <utility>
 #include <vector>
@@ -47,9 +46,6 @@ class Clearance {
   std::size_t blocked_count() const { return blocked_count_; }
   std::vector<EdgeSide> blocked_edges() const;
   void run(Progress& progress);
-  /// What run() minimises for the current net with `blocked` blocked edges: that number plus
-  /// the caller's penalty; a net without blocked edges scores below every net with some.
-  double score(std::size_t blocked) const;
   Net net() const { return Net{parent_, pos_}; }
   std::size_t moves_ = 0, evaluations_ = 0;
 
@@ -105,8 +101,7 @@ class Clearance {
   std::size_t far_glues_ = kFarGlues;  // cut edges farther along the cut tree tried per link
   bool endgame_ = false;               // after the first restart (see run): hair links too
   bool keep_bounds_ = true;
-  Box2 bounds_;                                // of the input net
-  std::function<double(const Net&)> penalty_;  // TabClearanceOptions::penalty
+  Box2 bounds_;  // of the input net
   std::vector<TabShape> shapes_;
   std::vector<char> blocked_;  // by canonical half-edge 3 * f + k
   std::size_t blocked_count_ = 0;

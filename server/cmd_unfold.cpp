@@ -161,11 +161,7 @@ int unfold(int argc, char** argv) {
       print.print.tab_room) {
     const auto t0 = std::chrono::steady_clock::now();
     Progress quiet;
-    PrintOptions room_options = print.print;  // the pass keeps the net on as many pages
-    const double margin = print.page.margin_mm;
-    room_options.tab_room_pages = {print.paper ? print.page.paper.width - 2 * margin : 0,
-                                   print.page.paper.height - 2 * margin, print.page.overlap_mm};
-    TabClearanceResult room = make_tab_room(doc.mesh, result.net, room_options, quiet);
+    TabClearanceResult room = make_tab_room(doc.mesh, result.net, print.print, quiet);
     const double room_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (room.moves > 0) {

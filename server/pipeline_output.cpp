@@ -25,13 +25,6 @@ NetCheckReport make_room_for_tabs(const Mesh& mesh, Net& net, const JobOptions& 
                                   double seconds, Progress& progress) {
   PrintOptions print = print_options(options);
   print.tab_room_seconds = seconds;
-  if (options.paper == papernet::PaperSize::None) {
-    print.tab_room_pages.width = 0;  // the pass keeps the net on as many pages (if any)
-  } else {
-    const Paper paper = parse_paper(paper_name(options.paper));
-    print.tab_room_pages = {paper.width - 2 * options.margin_mm,
-                            paper.height - 2 * options.margin_mm, PageOptions{}.overlap_mm};
-  }
   TabClearanceResult room = make_tab_room(mesh, net, print, progress);
   if (room.moves > 0) {
     NetCheckReport report = check_net(mesh, room.net);

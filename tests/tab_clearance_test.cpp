@@ -107,48 +107,6 @@ TEST(TabClearance, OpensNearSlitsAndKeepsTheNetValid) {
   EXPECT_TRUE(check_net(c.mesh, timed.net).ok());
 }
 
-// A penalty weighs nets besides their blocked edges (make_tab_room: pages beyond the input's):
-// the same for every net changes nothing; one that rules out every change keeps the input,
-// unless the search finds a net without blocked edges.
-TEST(TabClearance, PenaltyWeighsTheNetsKept) {
-  const Case c = unfolded("thingi10k_134617.stl");
-  ASSERT_FALSE(c.mesh.faces.empty());
-  TabClearanceOptions options;
-  options.min_height = c.min_height;
-  Progress quiet;
-  const TabClearanceResult plain = clear_tab_room(c.mesh, c.net, options, quiet);
-  ASSERT_GT(plain.moves, 0u);
-  ASSERT_LT(plain.blocked_after, plain.blocked_before);
-  std::size_t calls = 0;
-  options.penalty = [&calls](const Net&) {
-    ++calls;
-    return 7.0;
-  };
-  const TabClearanceResult flat = clear_tab_room(c.mesh, c.net, options, quiet);
-  EXPECT_GT(calls, 0u);
-  EXPECT_EQ(flat.net.parent, plain.net.parent);
-  EXPECT_EQ(flat.blocked_after, plain.blocked_after);
-  // A net without blocked edges beats every net with some, whatever the penalty.
-  ASSERT_EQ(plain.blocked_after, 0u);  // at seed 1
-  const Net input = c.net;
-  options.penalty = [&input](const Net& n) { return n.points == input.points ? 0.0 : 1e6; };
-  const TabClearanceResult zero = clear_tab_room(c.mesh, c.net, options, quiet);
-  EXPECT_EQ(zero.blocked_after, 0u);
-  // Short of that, a penalty that rules out every change keeps the input: with 6 mm tabs the
-  // pass leaves some edges blocked.
-  options.min_height = 3 * c.min_height;
-  options.penalty = nullptr;
-  const TabClearanceResult tall = clear_tab_room(c.mesh, c.net, options, quiet);
-  ASSERT_GT(tall.blocked_after, 0u);
-  ASSERT_GT(tall.moves, 0u);
-  options.penalty = [&input](const Net& n) { return n.points == input.points ? 0.0 : 1e6; };
-  const TabClearanceResult kept = clear_tab_room(c.mesh, c.net, options, quiet);
-  EXPECT_EQ(kept.moves, 0u);
-  EXPECT_EQ(kept.blocked_after, kept.blocked_before);
-  EXPECT_TRUE(kept.net.points == c.net.points);
-  EXPECT_GT(kept.evaluations, 0u);  // it searched, and kept none of what it found
-}
-
 // Where the blocked edges are: leaves of the cut tree at nearly flat vertices (their two sides
 // meet at the vertex's angle defect) and hairs; the pass turns flat leaves into path vertices.
 TEST(TabClearance, FlatLeavesAreNearSlitsAndThePassRemovesThem) {
