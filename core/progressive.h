@@ -69,10 +69,9 @@ struct ProgressiveResult {
 /// new face into the unfold tree between the two faces linked across its wing (else as a leaf
 /// of a random neighbour), re-laying out and testing only what moved, repairing new overlaps by
 /// local moves (Unfolding::repair_locally) and running the Tabu Unfolder only when those leave
-/// some. When
-/// that fails within the budget (the time limit, `split_tests_per_face`, or a split whose
-/// overlaps need more Tabu iterations than everything before it and than 2,000 + 5 per face),
-/// the last overlap-free state is returned (`complete` false).
+/// some. When that fails within the budget (the time limit, `split_tests_per_face`, or a split
+/// whose overlaps need more Tabu iterations than everything before it and than 2,000 + 5 per
+/// face), the last overlap-free state is returned (`complete` false).
 ///
 /// When the coarse mesh itself cannot be unfolded within a budget that grows with its size (or,
 /// when it may still be collapsed, starts with more than 10 overlapping pairs per face):
