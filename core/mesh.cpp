@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 namespace papernet {
 
@@ -22,6 +23,17 @@ double bounding_box_diagonal(const Mesh& mesh) {
     hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
   }
   return norm(hi - lo);
+}
+
+double median_edge_length(const Mesh& mesh) {
+  std::vector<double> lengths;
+  lengths.reserve(3 * mesh.faces.size());
+  for (const auto& t : mesh.faces)
+    for (int k = 0; k < 3; ++k)
+      lengths.push_back(norm(mesh.vertices[t[(k + 1) % 3]] - mesh.vertices[t[k]]));
+  if (lengths.empty()) return 0;
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  return lengths[lengths.size() / 2];
 }
 
 }  // namespace papernet

@@ -24,4 +24,8 @@ double face_area(const Mesh& mesh, int f);
 /// Length of the diagonal of the mesh's axis-aligned bounding box (0 for an empty mesh).
 double bounding_box_diagonal(const Mesh& mesh);
 
+/// Median length of the faces' edges, each edge counted once per face (0 for a mesh without
+/// faces).
+double median_edge_length(const Mesh& mesh);
+
 }  // namespace papernet

@@ -66,14 +66,7 @@ Unfolding::Unfolding(Mesh mesh, const std::vector<int>& parent) : mesh_(std::mov
 
   // The finest grid cell is the median edge length: robust to a few huge faces (coarser levels
   // of the grid take those).
-  std::vector<double> lengths;
-  lengths.reserve(3 * static_cast<std::size_t>(nf));
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k)
-      lengths.push_back(
-          norm(mesh_.vertices[mesh_.faces[f][(k + 1) % 3]] - mesh_.vertices[mesh_.faces[f][k]]));
-  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
-  const double median = lengths.empty() ? 0 : lengths[lengths.size() / 2];
+  const double median = median_edge_length(mesh_);
   grid_.reset(median > 0 && std::isfinite(median) ? median : 1.0);
 
   // Everything is "dirty": update() checks the tree, lays out all faces and finds all overlaps.

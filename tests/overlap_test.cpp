@@ -204,13 +204,8 @@ TEST(OverlapGrid, RealNetsMatchBruteForce) {
     const Mesh mesh = load_mesh_file(file.string()).mesh;
     const Unfolding u = Unfolding::steepest_edge(mesh, 1);
     const int nf = static_cast<int>(u.face_count());
-    std::vector<double> lengths;
-    for (const auto& t : mesh.faces)
-      for (int k = 0; k < 3; ++k)
-        lengths.push_back(norm(mesh.vertices[t[(k + 1) % 3]] - mesh.vertices[t[k]]));
-    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     OverlapGrid grid;
-    grid.reset(lengths[lengths.size() / 2]);
+    grid.reset(median_edge_length(mesh));
     std::vector<Box2> boxes(nf);
     std::vector<char> in(nf, 1);
     for (int f = 0; f < nf; ++f) {
