@@ -148,6 +148,26 @@ RawMesh read_draco(std::string_view bytes, const LoadOptions& options, int posit
       throw IOException("drc: the stream has no attribute with id " + std::to_string(id));
   if (position->num_components() < 3)
     throw IOException("drc: positions have fewer than 3 components");
+  // Draco converts stored values by reading them as their declared type: bytes declared bool
+  // that are neither 0 nor 1 are undefined behaviour there (found by fuzz_draco). Positions are
+  // numbers.
+  switch (position->data_type()) {
+    case draco::DT_INT8:
+    case draco::DT_UINT8:
+    case draco::DT_INT16:
+    case draco::DT_UINT16:
+    case draco::DT_INT32:
+    case draco::DT_UINT32:
+    case draco::DT_INT64:
+    case draco::DT_UINT64:
+    case draco::DT_FLOAT32:
+    case draco::DT_FLOAT64:
+      break;
+    default:
+      throw IOException("drc: positions have data type " +
+                        std::to_string(static_cast<int>(position->data_type())) +
+                        ", not a number type (Draco DT_INT8 to DT_FLOAT64)");
+  }
   RawMesh out;
   out.vertices.reserve(mesh->num_points());
   for (draco::PointIndex i(0); i < mesh->num_points(); ++i) {
