@@ -127,6 +127,29 @@ void check_header(std::string_view bytes, const LoadOptions& options) {
   check_vertices(points, options, "drc header");
 }
 
+// Draco converts stored values by reading them as their declared type: bytes declared bool that
+// are neither 0 nor 1 are undefined behaviour there (found by fuzz_draco). Attributes we or
+// tinygltf convert must be numbers.
+void check_number_type(const draco::PointAttribute& attribute, const std::string& what) {
+  switch (attribute.data_type()) {
+    case draco::DT_INT8:
+    case draco::DT_UINT8:
+    case draco::DT_INT16:
+    case draco::DT_UINT16:
+    case draco::DT_INT32:
+    case draco::DT_UINT32:
+    case draco::DT_INT64:
+    case draco::DT_UINT64:
+    case draco::DT_FLOAT32:
+    case draco::DT_FLOAT64:
+      return;
+    default:
+      throw IOException("drc: " + what + " have data type " +
+                        std::to_string(static_cast<int>(attribute.data_type())) +
+                        ", not a number type (Draco DT_INT8 to DT_FLOAT64)");
+  }
+}
+
 }  // namespace
 
 RawMesh read_draco(std::string_view bytes, const LoadOptions& options, int position_id,
@@ -143,31 +166,15 @@ RawMesh read_draco(std::string_view bytes, const LoadOptions& options, int posit
       position_id >= 0 ? mesh->GetAttributeByUniqueId(static_cast<std::uint32_t>(position_id))
                        : mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (position == nullptr) throw IOException("drc: the mesh has no position attribute");
-  for (int id : required_ids)
-    if (mesh->GetAttributeByUniqueId(static_cast<std::uint32_t>(id)) == nullptr)
+  for (int id : required_ids) {
+    const draco::PointAttribute* a = mesh->GetAttributeByUniqueId(static_cast<std::uint32_t>(id));
+    if (a == nullptr)
       throw IOException("drc: the stream has no attribute with id " + std::to_string(id));
+    check_number_type(*a, "values of attribute " + std::to_string(id));  // tinygltf converts it too
+  }
   if (position->num_components() < 3)
     throw IOException("drc: positions have fewer than 3 components");
-  // Draco converts stored values by reading them as their declared type: bytes declared bool
-  // that are neither 0 nor 1 are undefined behaviour there (found by fuzz_draco). Positions are
-  // numbers.
-  switch (position->data_type()) {
-    case draco::DT_INT8:
-    case draco::DT_UINT8:
-    case draco::DT_INT16:
-    case draco::DT_UINT16:
-    case draco::DT_INT32:
-    case draco::DT_UINT32:
-    case draco::DT_INT64:
-    case draco::DT_UINT64:
-    case draco::DT_FLOAT32:
-    case draco::DT_FLOAT64:
-      break;
-    default:
-      throw IOException("drc: positions have data type " +
-                        std::to_string(static_cast<int>(position->data_type())) +
-                        ", not a number type (Draco DT_INT8 to DT_FLOAT64)");
-  }
+  check_number_type(*position, "positions");
   RawMesh out;
   out.vertices.reserve(mesh->num_points());
   for (draco::PointIndex i(0); i < mesh->num_points(); ++i) {
