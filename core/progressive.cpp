@@ -240,8 +240,18 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     // When the coarse mesh cannot be unfolded within a modest budget, collapse it further and
     // try again: a coarser net that uncollapses part of the way is still an approximate result.
     // The coarsest attempt gets the whole remaining budget.
+    // Out of time before any coarse net: one last attempt on the coarsest mesh the collapses
+    // reach, bounded by iterations instead of the clock (a few milliseconds at that size), so
+    // that a time limit too short for the coarse mesh still gives an approximate net, not none.
+    const bool out_of_time = limit > 0 && remaining() <= 0;
+    if (out_of_time && can_go_coarser && pm.face_count() > kMinCoarseFaces) {
+      const std::size_t before = pm.face_count();
+      collapse_further(pm, options.strategy, kMinCoarseFaces, progress);
+      if (pm.face_count() < before) ++result.coarse_retries;
+      can_go_coarser = false;
+    }
     const std::size_t faces = pm.face_count();
-    if (attempt == 1) {
+    if (attempt == 1 && !out_of_time) {
       // The coarse mesh resisted: before collapsing further, see whether the input needs no
       // search at all, the unfolding of its steepest-edge or minimum-perimeter tree being
       // overlap-free already. On CAD plates of slivers (the Twin plate) the input's
@@ -255,7 +265,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       }
     }
     const std::size_t next = faces / 2;
-    const bool last = !can_go_coarser || next < kMinCoarseFaces || (limit > 0 && remaining() <= 0);
+    const bool last = !can_go_coarser || next < kMinCoarseFaces || out_of_time;
     relay.context.faces = faces;
     coarse = make_state(pm, mesh, options.tabu.seed + attempt, attempt > 0);
     Unfolding& u = coarse->unfolding;
@@ -267,6 +277,11 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     // The last coarse attempt leaves half the budget to plain Tabu Unfolding of the input.
     if (last && limit > 0 && faces < input_faces)
       tabu.time_limit_seconds = std::max(1e-3, remaining() / 2);
+    if (out_of_time) {
+      tabu.time_limit_seconds = 0;
+      tabu.max_iterations =
+          at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
+    }
     if (!last) {
       if (options.coarse_iterations > 0) {
         tabu.max_iterations = options.coarse_iterations;
@@ -336,6 +351,9 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   std::size_t split_tests = 0;  // Tabu work after splits, against its budget
   while (!failed && pm.splits_left() > 0) {
     if (progress.cancelled()) throw CancelledException();
+    // The time limit ends the uncollapse also between splits that need no search: the state is
+    // overlap-free here, an approximate result.
+    if (limit > 0 && remaining() <= 0) break;
     // A few splits per update: the parts they move are re-laid out and tested once; on large
     // meshes batches also keep the O(faces) cost of a full update per face added bounded.
     Applied step;

@@ -291,6 +291,25 @@ TEST(Progressive, HopelessCoarseStartIsCollapsedFurtherAtOnce) {
   EXPECT_TRUE(check.ok()) << check.summary();
 }
 
+// A time limit spent before any coarse mesh is unfolded (here, at once) still gives a net: the
+// coarsest mesh the collapses reach, unfolded within an iteration budget instead of the clock.
+TEST(Progressive, TimeSpentBeforeTheCoarseNetStillGivesAnApproximation) {
+  const Mesh input = load_test_mesh("Duck.glb");
+  Progress quiet;
+  const std::size_t first = decimate(input, {}, quiet).face_count();
+  ProgressiveOptions options;
+  options.tabu.time_limit_seconds = 1e-9;
+  const ProgressiveResult r = unfold_progressive(input, options, quiet);
+  EXPECT_GE(r.coarse_retries, 1u);
+  EXPECT_LT(r.coarse_faces, first / 4);
+  ASSERT_TRUE(r.overlap_free) << r.overlaps << " overlapping pairs";
+  EXPECT_FALSE(r.complete);
+  EXPECT_LT(r.mesh.faces.size(), input.faces.size());
+  EXPECT_GT(r.hausdorff, 0);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+}
+
 TEST(Progressive, CancellationStops) {
   class Cancel : public Progress {
    public:
