@@ -208,7 +208,7 @@ std::vector<int> Clearance::hair_path(int u, int v) const {
 // The hair becomes a path between two parts of the cut tree with neither end a leaf. The two
 // swaps are checked for overlap together (apply_compound): either alone may overlap. Makes the
 // first one that lowers the number of blocked edges; returns whether it did.
-bool Clearance::try_compound(int f, int k) {
+bool Clearance::try_compound(int f, int k, Sideways* sideways) {
   const int u = mesh_.faces[f][k], v = mesh_.faces[f][(k + 1) % 3];
   const std::vector<int> path = hair_path(u, v);
   if (path.size() < 2) return false;
@@ -313,6 +313,14 @@ bool Clearance::try_compound(int f, int k) {
         ++compound_moves_;
         return true;
       }
+      if (sideways && change.blocked <= sideways->max_blocked &&
+          (sideways->swaps.empty() || change.blocked < sideways->change.blocked ||
+           (change.blocked == sideways->change.blocked &&
+            change.flat_leaves < sideways->change.flat_leaves))) {
+        sideways->change = change;
+        sideways->swaps = pending_;
+        sideways->root = second_root[i];
+      }
       undo();
     }
   }
@@ -411,7 +419,19 @@ void Clearance::run(Progress& progress) {
         undo();
         return false;
       });
-      if (!improved && compound_ && try_compound(f, k)) improved = true;
+      Sideways sideways;
+      sideways.max_blocked = std::min(max_worsening, pick.change.blocked);
+      if (!improved && compound_ && try_compound(f, k, &sideways)) improved = true;
+      if (!improved && !sideways.swaps.empty() &&
+          (pick.move[0] < 0 || sideways.change.blocked < pick.change.blocked ||
+           (sideways.change.blocked == pick.change.blocked &&
+            sideways.change.flat_leaves < pick.change.flat_leaves))) {
+        Change change;
+        if (!apply_compound(f, k, sideways.swaps, sideways.root, change)) continue;
+        commit();
+        ++compound_moves_;
+        improved = true;
+      }
       if (!improved) {
         Change change;
         if (pick.move[0] < 0 ||

@@ -83,7 +83,14 @@ class Clearance {
   /// The hair blocked edge (u, v) lies on, as vertices from its flat leaf to the first vertex
   /// that is not a two-cut interior vertex; empty when it lies on none.
   std::vector<int> hair_path(int u, int v) const;
-  bool try_compound(int f, int k);
+  /// The best compound move that does not lower the blocked count (try_compound).
+  struct Sideways {
+    long long max_blocked = 0;
+    Change change;
+    std::vector<std::array<int, 4>> swaps;
+    int root = 0;
+  };
+  bool try_compound(int f, int k, Sideways* sideways);
   void undo();
   void commit();
   template <class Consider>
