@@ -33,16 +33,16 @@ constexpr double kSharpDefect = 10 * std::numbers::pi / 180;
 // candidate moves evaluated per step in each stage.
 constexpr long long kMaxWorsening = 1;
 constexpr int kTenure = 40;
-// Compound moves (Clearance::try_compound): glues tried per second link.
-constexpr std::size_t kCompoundGlues = 16;
-// ... and faces tried as the root of its layout (spread over the net).
-constexpr std::size_t kRoots = 8;
 constexpr int kStallSweeps = 3;
 // Endgame of the search: restarts from the best net without a new best before it stops, and the
 // stage (kStepCaps) a restart begins with.
 constexpr int kRestarts = 4;
 constexpr std::size_t kRestartLevel = 1;
 constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
+// Compound moves (Clearance::try_compound): glues tried per second link.
+constexpr std::size_t kCompoundGlues = 16;
+// ... and faces tried as the root of its layout (spread over the net).
+constexpr std::size_t kRoots = 8;
 
 class Clearance {
  public:
@@ -83,7 +83,8 @@ class Clearance {
   /// The hair blocked edge (u, v) lies on, as vertices from its flat leaf to the first vertex
   /// that is not a two-cut interior vertex; empty when it lies on none.
   std::vector<int> hair_path(int u, int v) const;
-  /// The best compound move that does not lower the blocked count (try_compound).
+  /// The best compound move try_compound found that does not lower the blocked count and closes
+  /// at most max_blocked edges: the search's sideways move when it beats the best single swap.
   struct Sideways {
     long long max_blocked = 0;
     Change change;
