@@ -59,6 +59,7 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   const double mean = total / (3.0 * std::max(1, nf_));
   grid_.reset(mean > 0 && std::isfinite(mean) ? mean : 1.0);
   keep_bounds_ = options.keep_bounds;
+  compound_ = options.compound_moves && !options.keep_bounds;
   for (int f = 0; f < nf_; ++f) {
     box_[f] = triangle_box(pos_[f]);
     grid_.insert(f, box_[f]);
@@ -79,6 +80,7 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   size_.assign(nf_, 1);
   is_moving_.assign(nf_, 0);
   from_.assign(nf_, -1);
+  slot_.assign(nf_, 0);
   stamp_.assign(3 * static_cast<std::size_t>(nf_), 0);
   defect_ = angle_defects(mesh);
   cut_degree_.assign(mesh.vertices.size(), 0);
@@ -220,11 +222,119 @@ bool Clearance::apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Chang
   }
   set_link(lf, lk, false);
   set_link(cf, ck, true);
-  pending_ = {lf, lk, cf, ck};
+  pending_.assign(1, {lf, lk, cf, ck});
   if (blocked(tf, tk)) {
     undo();
     return false;
   }
+  recount(out);
+  return true;
+}
+
+// Makes the swaps together (each cuts link lk of face lf and glues cut edge ck of face cf) and
+// leaves them applied, like apply_move, when they leave a spanning tree whose net has no
+// overlap and gives blocked edge tk of face tf room; only the end result is checked, so a
+// swap that would overlap alone may be made with one that moves the clashing faces away.
+// Faces whose way to face `root` crosses a new link are laid out again; the others stay
+// exactly (so `root` is best a face on the larger side of both swaps).
+bool Clearance::apply_compound(int tf, int tk, const std::vector<std::array<int, 4>>& swaps,
+                               int root, Change& out) {
+  ++evaluations_;
+  pending_ = swaps;
+  for (const auto& [lf, lk, cf, ck] : swaps) {
+    set_link(lf, lk, false);
+    set_link(cf, ck, true);
+  }
+  const auto revert = [&] {
+    for (auto it = swaps.rbegin(); it != swaps.rend(); ++it) {
+      set_link((*it)[2], (*it)[3], false);
+      set_link((*it)[0], (*it)[1], true);
+    }
+    return false;
+  };
+  const auto glued = [&](int x, int j) {
+    for (const auto& sw : swaps)
+      if ((sw[2] == x && sw[3] == j) || (adj_[sw[2]][sw[3]] == x && adj_edge_[sw[2]][sw[3]] == j))
+        return true;
+    return false;
+  };
+  // The new tree from the root, breadth first; a face that is reached twice or not at all means
+  // the links are no spanning tree.
+  std::fill(from_.begin(), from_.end(), -2);
+  moving_.clear();
+  new_pos_.clear();
+  order2_.assign(1, root);
+  from_[root] = -1;
+  std::size_t reached = 1;
+  for (std::size_t i = 0; i < order2_.size(); ++i) {
+    const int x = order2_[i];
+    for (int k = 0; k < 3; ++k) {
+      if (!linked(x, k)) continue;
+      const int y = adj_[x][k];
+      if (from_[x] >= 0 && y == adj_[x][from_[x]]) continue;  // its parent
+      if (from_[y] != -2) return revert();                    // a cycle
+      from_[y] = adj_edge_[x][k];
+      order2_.push_back(y);
+      ++reached;
+      if (is_moving_[x] || glued(x, k)) {
+        is_moving_[y] = 1;
+        moving_.push_back(y);
+      }
+    }
+  }
+  const auto give_up = [&] {
+    for (int x : moving_) is_moving_[x] = 0;
+    return revert();
+  };
+  if (reached != static_cast<std::size_t>(nf_) || moving_.empty()) return give_up();
+  // Lay out the moved faces (parents first), each checked at once against the faces that stay
+  // (most candidates fail here, early); then, when the swaps moved parts differently, each
+  // against the moved ones placed before it.
+  for (int y : moving_) {
+    const int p = adj_[y][from_[y]], kp = adj_edge_[y][from_[y]];
+    slot_[y] = static_cast<int>(new_pos_.size());
+    new_pos_.push_back(
+        place_across(is_moving_[p] ? new_pos_[slot_[p]] : pos_[p], kp, from_[y], shape_[y]));
+    const Triangle2& t = new_pos_.back();
+    bool hit = false;
+    grid_.query(triangle_box(t), [&](int c) {
+      if (!hit && !is_moving_[c]) hit = triangles_overlap(t, pos_[c], tol_);
+    });
+    if (hit) return give_up();
+  }
+  for (int x : moving_) grid_.remove(x);
+  std::size_t placed = 0;
+  bool hit = false;
+  for (; placed < moving_.size(); ++placed) {
+    const Triangle2& t = new_pos_[placed];
+    grid_.query(triangle_box(t), [&](int c) {
+      if (!hit && is_moving_[c]) hit = triangles_overlap(t, new_pos_[slot_[c]], tol_);
+    });
+    if (hit) break;
+    grid_.insert(moving_[placed], triangle_box(t));
+  }
+  old_pos_.resize(moving_.size());
+  for (std::size_t i = 0; i < moving_.size(); ++i) old_pos_[i] = pos_[moving_[i]];
+  if (hit) {
+    for (std::size_t i = 0; i < placed; ++i) grid_.remove(moving_[i]);
+    for (int x : moving_) grid_.insert(x, box_[x]);
+    return give_up();
+  }
+  for (std::size_t i = 0; i < moving_.size(); ++i) {  // the grid has them there already
+    pos_[moving_[i]] = new_pos_[i];
+    box_[moving_[i]] = triangle_box(new_pos_[i]);
+  }
+  if (blocked(tf, tk)) {
+    undo();
+    return false;
+  }
+  recount(out);
+  return true;
+}
+
+// The change a move applied (pending_, moving_, old_pos_) makes to the blocked edges and the
+// flat leaves; leaves affected_ and mark_ for commit().
+void Clearance::recount(Change& out) {
   // Edges whose room may change: cut edges of faces near the border between the two sides,
   // before and after the move (a tab is at most height_ away from its edge).
   if (++epoch_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), epoch_ = 1;
@@ -251,8 +361,7 @@ bool Clearance::apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Chang
     near(triangle_box(old_pos_[i]), moving_[i]);
     near(box_[moving_[i]], moving_[i]);
   }
-  mark(lf);
-  mark(cf);
+  for (const auto& [lf, lk, cf, ck] : pending_) mark(lf), mark(cf);
   long long before = 0, after = 0;
   mark_.clear();
   for (int h : affected_) {
@@ -262,34 +371,37 @@ bool Clearance::apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Chang
     after += b;
   }
   out.blocked = after - before;
-  // Flat leaves: the cut link's ends gain a cut edge, the glued edge's ends lose one.
-  const int ends[4] = {mesh_.faces[lf][lk], mesh_.faces[lf][(lk + 1) % 3], mesh_.faces[cf][ck],
-                       mesh_.faces[cf][(ck + 1) % 3]};
+  // Flat leaves: the cut links' ends gain a cut edge, the glued edges' ends lose one.
+  ends_.clear();
+  for (const auto& [lf, lk, cf, ck] : pending_) {
+    for (int v : {mesh_.faces[lf][lk], mesh_.faces[lf][(lk + 1) % 3]}) ends_.push_back({v, 1});
+    for (int v : {mesh_.faces[cf][ck], mesh_.faces[cf][(ck + 1) % 3]}) ends_.push_back({v, -1});
+  }
   const auto flat_leaf = [&](int v, int degree) { return degree == 1 && !harmless(v); };
   out.flat_leaves = 0;
-  for (int i = 0; i < 4; ++i) {
+  for (std::size_t i = 0; i < ends_.size(); ++i) {
     bool seen = false;
-    for (int j = 0; j < i; ++j) seen = seen || ends[j] == ends[i];
+    for (std::size_t j = 0; j < i; ++j) seen = seen || ends_[j].first == ends_[i].first;
     if (seen) continue;
-    int degree = cut_degree_[ends[i]];
-    for (int j = 0; j < 4; ++j)
-      if (ends[j] == ends[i]) degree += j < 2 ? 1 : -1;
-    out.flat_leaves +=
-        (flat_leaf(ends[i], degree) ? 1 : 0) - (flat_leaf(ends[i], cut_degree_[ends[i]]) ? 1 : 0);
+    const int v = ends_[i].first;
+    int degree = cut_degree_[v];
+    for (const auto& [w, d] : ends_)
+      if (w == v) degree += d;
+    out.flat_leaves += (flat_leaf(v, degree) ? 1 : 0) - (flat_leaf(v, cut_degree_[v]) ? 1 : 0);
   }
-  return true;
 }
 
 void Clearance::undo() {
-  const auto [lf, lk, cf, ck] = pending_;
-  set_link(cf, ck, false);
-  set_link(lf, lk, true);
+  for (auto it = pending_.rbegin(); it != pending_.rend(); ++it) {
+    const auto [lf, lk, cf, ck] = *it;
+    set_link(cf, ck, false);
+    set_link(lf, lk, true);
+  }
   for (std::size_t i = 0; i < moving_.size(); ++i) place(moving_[i], old_pos_[i]);
   for (int x : moving_) is_moving_[x] = 0;
 }
 
 void Clearance::commit() {
-  const auto [lf, lk, cf, ck] = pending_;
   for (int x : moving_) is_moving_[x] = 0;
   long long delta = 0;
   for (std::size_t i = 0; i < affected_.size(); ++i) {
@@ -297,10 +409,12 @@ void Clearance::commit() {
     blocked_[affected_[i]] = static_cast<char>(mark_[i]);
   }
   blocked_count_ = static_cast<std::size_t>(static_cast<long long>(blocked_count_) + delta);
-  ++cut_degree_[mesh_.faces[lf][lk]], ++cut_degree_[mesh_.faces[lf][(lk + 1) % 3]];
-  --cut_degree_[mesh_.faces[cf][ck]], --cut_degree_[mesh_.faces[cf][(ck + 1) % 3]];
+  for (const auto& [lf, lk, cf, ck] : pending_) {
+    ++cut_degree_[mesh_.faces[lf][lk]], ++cut_degree_[mesh_.faces[lf][(lk + 1) % 3]];
+    --cut_degree_[mesh_.faces[cf][ck]], --cut_degree_[mesh_.faces[cf][(ck + 1) % 3]];
+    ++moves_;
+  }
   root_tree();
-  ++moves_;
 }
 }  // namespace tab_clearance_detail
 
@@ -323,6 +437,7 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
   result.blocked_after = state.blocked_count();
   result.moves = state.moves_;
   result.evaluations = state.evaluations_;
+  result.compound_moves = state.compound_moves_;
   if (result.moves > 0) result.net = state.net();
   return result;
 }

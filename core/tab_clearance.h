@@ -47,6 +47,9 @@ struct TabClearanceOptions {
   /// quarter more edges without room and does not bound the page count anyway (pages follow
   /// the net's minimum-area rotated box; docs/tabs.md).
   bool keep_bounds = false;
+  /// Also try compound moves (two edge swaps checked together, see clear_tab_room) where no
+  /// single swap helps. On by default; off gives the search of single swaps only.
+  bool compound_moves = true;
 };
 
 /// Interior cut edges of `net` where no tab of `options.min_height` (of any of tab_shapes)
@@ -62,13 +65,16 @@ struct TabClearanceResult {
   std::size_t blocked_after = 0;   ///< ... and in `net`
   std::size_t moves = 0;           ///< moves from the input to `net`
   std::size_t evaluations = 0;     ///< candidate moves evaluated
+  std::size_t compound_moves = 0;  ///< compound moves among `moves` (each counts two there)
 };
 
 /// Makes room for tabs: changes which edges of an overlap-free `net` are cut so that fewer cut
 /// edges lack room for a tab (edges_without_tab_room). A move cuts a tree link at an end of
 /// such an edge (typically at a leaf of the cut tree, where the edge's two sides lie a few
 /// degrees apart around an almost flat vertex) and glues a cut edge on the cycle that link
-/// closes, rotating the smaller side of the tree rigidly; a move that overlaps is never made. A
+/// closes, rotating the smaller side of the tree rigidly; a move that overlaps is never made.
+/// Where no such swap helps, a compound move re-hangs the hair the edge lies on (the path of cut
+/// edges from a leaf at a flat vertex): two swaps checked for overlap together. A
 /// tabu search over these moves (it also makes moves that close other edges, to get out of
 /// local minima) returns the net with the fewest edges without room it has seen: an
 /// overlap-free net of the same mesh (glued edges copied exactly), never worse than the input,

@@ -166,6 +166,167 @@ bool Clearance::candidates(int f, int k, Consider&& consider) {
   return false;
 }
 
+std::vector<int> Clearance::hair_path(int u, int v) const {
+  // The leaf: an end of the edge, or the end of the hair the edge lies on.
+  int leaf = -1;
+  for (auto [from, at] : {std::pair{v, u}, std::pair{u, v}}) {
+    for (std::size_t steps = 0; steps < kHairSteps && leaf < 0; ++steps) {
+      if (vboundary_[at] || cut_degree_[at] > 2) break;
+      if (cut_degree_[at] == 1) {
+        leaf = at;
+        break;
+      }
+      const std::vector<int> next = cut_neighbours(at);
+      if (next.size() != 2) break;
+      const int to = next[0] == from ? next[1] : next[0];
+      from = at, at = to;
+    }
+    if (leaf >= 0) break;
+  }
+  if (leaf < 0 || harmless(leaf)) return {};
+  // From the leaf through two-cut interior vertices to the first other vertex.
+  std::vector<int> path{leaf};
+  int from = -1, at = leaf;
+  for (std::size_t steps = 0; steps < kHairSteps; ++steps) {
+    const std::vector<int> next = cut_neighbours(at);
+    const int to = next.size() == 1                ? next[0]
+                   : next.size() == 2 && from >= 0 ? (next[0] == from ? next[1] : next[0])
+                                                   : -1;
+    if (to < 0) return {};
+    path.push_back(to);
+    if (vboundary_[to] || cut_degree_[to] != 2) return path;
+    from = at, at = to;
+  }
+  return {};
+}
+
+// Compound moves for blocked edge k of face f on a hair from flat leaf L = x0, x1, ..., xm (xm
+// the first vertex that is not a two-cut interior vertex; m = 1 when the edge is L's own): cut
+// a link at L and glue the hair's last edge (xm-1, xm), so that the hair hangs from L instead,
+// then cut a link at xm-1 (the new leaf; L itself when m = 1) and glue one of the
+// kCompoundGlues cut edges nearest to it on the cycle that closes that leave no new flat leaf.
+// The hair becomes a path between two parts of the cut tree with neither end a leaf. The two
+// swaps are checked for overlap together (apply_compound): either alone may overlap. Makes the
+// first one that lowers the number of blocked edges; returns whether it did.
+bool Clearance::try_compound(int f, int k, Sideways* sideways) {
+  const int u = mesh_.faces[f][k], v = mesh_.faces[f][(k + 1) % 3];
+  const std::vector<int> path = hair_path(u, v);
+  if (path.size() < 2) return false;
+  const int leaf = path[0], tail = path[path.size() - 2], end = path.back();
+  const auto edge_of = [&](int a, int b, bool want_linked) {
+    for (int x : vertex_faces_[a])
+      for (int j = 0; j < 3; ++j) {
+        const int p = mesh_.faces[x][j], q = mesh_.faces[x][(j + 1) % 3];
+        if (((p == a && q == b) || (p == b && q == a)) && adj_[x][j] >= 0 &&
+            linked(x, j) == want_linked)
+          return std::pair{x, j};
+      }
+    return std::pair{-1, -1};
+  };
+  const auto links_at = [&](int a) {
+    std::vector<std::pair<int, int>> out;
+    for (int x : vertex_faces_[a])
+      for (int j = 0; j < 3; ++j)
+        if (linked(x, j) && x < adj_[x][j] &&
+            (mesh_.faces[x][j] == a || mesh_.faces[x][(j + 1) % 3] == a))
+          out.push_back({x, j});
+    return out;
+  };
+  const auto [gf, gk] = edge_of(tail, end, false);
+  if (gf < 0) return false;
+  const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step_; };
+  if (tabu(gf, gk)) return false;
+  const Vec3 at = mesh_.vertices[tail];
+  for (const auto& [af, ak] : links_at(leaf)) {
+    if (tabu(af, ak)) continue;
+    const int ap = adj_[af][ak], atop = parent_[af] == ap ? af : ap;
+    if (in_sub(atop, gf) == in_sub(atop, adj_[gf][gk])) continue;
+    // Faces that may be the root of the compound's layout: spread over the net, outside the
+    // smaller side of the first swap (the second is checked below).
+    const bool a_small = 2 * size_[atop] <= nf_;
+    std::array<int, kRoots> roots{};
+    std::size_t nroots = 0;
+    for (std::size_t i = 0; i < kRoots; ++i) {
+      const int r = static_cast<int>(i * static_cast<std::size_t>(nf_) / kRoots);
+      if (in_sub(atop, r) != a_small) roots[nroots++] = r;
+    }
+    // The tree after the first swap, for the second swap's cycle.
+    set_link(af, ak, false);
+    set_link(gf, gk, true);
+    root_tree();
+    const auto degree = [&](int x) {
+      int d = cut_degree_[x];
+      for (int w : {mesh_.faces[af][ak], mesh_.faces[af][(ak + 1) % 3]}) d += w == x ? 1 : 0;
+      for (int w : {tail, end}) d -= w == x ? 1 : 0;
+      return d;
+    };
+    std::vector<std::array<int, 4>> seconds;
+    std::vector<int> second_root;
+    for (const auto& [bf, bk] : links_at(tail)) {
+      if (tabu(bf, bk) || (bf == af && bk == ak)) continue;
+      const int b0 = mesh_.faces[bf][bk], b1 = mesh_.faces[bf][(bk + 1) % 3];
+      const int bp = adj_[bf][bk], btop = parent_[bf] == bp ? bf : bp;
+      const bool sub_small = 2 * size_[btop] <= nf_;
+      int root = 0;
+      for (std::size_t i = 0; i < nroots; ++i)
+        if (in_sub(btop, roots[i]) != sub_small) {
+          root = roots[i];
+          break;
+        }
+      std::vector<std::pair<double, std::pair<int, int>>> far;
+      const auto side = [&](int x) {
+        for (int j = 0; j < 3; ++j) {
+          const int y = adj_[x][j];
+          if (y < 0 || linked(x, j) || in_sub(btop, y) == sub_small || tabu(x, j)) continue;
+          const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
+          if ((x == af && j == ak) || (y == af && adj_edge_[x][j] == ak)) continue;
+          const int ga = a == b0 || a == b1 ? 1 : 0, gb = b == b0 || b == b1 ? 1 : 0;
+          if ((degree(a) + ga - 1 < 2 && !harmless(a)) || (degree(b) + gb - 1 < 2 && !harmless(b)))
+            continue;
+          const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
+          far.push_back({norm(m - at), {x, j}});
+        }
+      };
+      const int lo = tin_[btop], hi = tin_[btop] + size_[btop];
+      if (sub_small) {
+        for (int i = lo; i < hi; ++i) side(order_[i]);
+      } else {
+        for (int i = 0; i < lo; ++i) side(order_[i]);
+        for (int i = hi; i < nf_; ++i) side(order_[i]);
+      }
+      std::sort(far.begin(), far.end());
+      if (far.size() > kCompoundGlues) far.resize(kCompoundGlues);
+      for (const auto& [d, g] : far) {
+        seconds.push_back({bf, bk, g.first, g.second});
+        second_root.push_back(root);
+      }
+    }
+    set_link(gf, gk, false);
+    set_link(af, ak, true);
+    root_tree();
+    for (std::size_t i = 0; i < seconds.size(); ++i) {
+      if (evaluations_ >= std::min(budget_, step_limit_)) return false;
+      Change change;
+      if (!apply_compound(f, k, {{af, ak, gf, gk}, seconds[i]}, second_root[i], change)) continue;
+      if (change.blocked < 0) {
+        commit();
+        ++compound_moves_;
+        return true;
+      }
+      if (sideways && change.blocked <= sideways->max_blocked &&
+          (sideways->swaps.empty() || change.blocked < sideways->change.blocked ||
+           (change.blocked == sideways->change.blocked &&
+            change.flat_leaves < sideways->change.flat_leaves))) {
+        sideways->change = change;
+        sideways->swaps = pending_;
+        sideways->root = second_root[i];
+      }
+      undo();
+    }
+  }
+  return false;
+}
+
 // Tabu search over the moves of candidates(): for each blocked edge in turn, the first move
 // that lowers the number of blocked edges is made at once; when there is none, the best move
 // that opens the edge (fewest blocked edges, then fewest flat leaves) is made even when it closes
@@ -179,7 +340,7 @@ void Clearance::run(Progress& progress) {
   std::vector<Triangle2> best_pos = pos_;
   std::vector<char> best_blocked = blocked_;
   std::vector<int> best_degree = cut_degree_;
-  std::size_t best_count = blocked_count_, best_moves = moves_;
+  std::size_t best_count = blocked_count_, best_moves = moves_, best_compound = compound_moves_;
   tabu_until_.assign(3 * static_cast<std::size_t>(nf_), 0);
   std::uint32_t step = 0;
   std::size_t level = 0;
@@ -198,6 +359,7 @@ void Clearance::run(Progress& progress) {
     cut_degree_ = best_degree;
     blocked_count_ = best_count;
     moves_ = best_moves;
+    compound_moves_ = best_compound;
     root_tree();
   };
   long long max_worsening = kMaxWorsening;
@@ -231,6 +393,7 @@ void Clearance::run(Progress& progress) {
       if (progress.cancelled()) throw CancelledException();
       if (out_of_time()) break;
       ++step;
+      step_ = step;
       step_limit_ = evaluations_ + std::min(kStepCaps[level], budget_);
       const int f = h / 3, k = h % 3;
       struct Pick {
@@ -239,7 +402,7 @@ void Clearance::run(Progress& progress) {
       } pick;
       pick.change.blocked = max_worsening + 1;
       const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step; };
-      const bool improved = candidates(f, k, [&](int lf, int lk, int cf, int ck) {
+      bool improved = candidates(f, k, [&](int lf, int lk, int cf, int ck) {
         if (tabu(lf, lk) || tabu(cf, ck)) return false;
         Change change;
         if (!apply_move(f, k, lf, lk, cf, ck, change)) return false;
@@ -256,6 +419,19 @@ void Clearance::run(Progress& progress) {
         undo();
         return false;
       });
+      Sideways sideways;
+      sideways.max_blocked = std::min(max_worsening, pick.change.blocked);
+      if (!improved && compound_ && try_compound(f, k, &sideways)) improved = true;
+      if (!improved && !sideways.swaps.empty() &&
+          (pick.move[0] < 0 || sideways.change.blocked < pick.change.blocked ||
+           (sideways.change.blocked == pick.change.blocked &&
+            sideways.change.flat_leaves < pick.change.flat_leaves))) {
+        Change change;
+        if (!apply_compound(f, k, sideways.swaps, sideways.root, change)) continue;
+        commit();
+        ++compound_moves_;
+        improved = true;
+      }
       if (!improved) {
         Change change;
         if (pick.move[0] < 0 ||
@@ -265,8 +441,8 @@ void Clearance::run(Progress& progress) {
       }
       // Neither undo this move nor redo the one it replaced for a while.
       const std::uint32_t until = step + static_cast<std::uint32_t>(kTenure);
-      tabu_until_[canon(pending_[0], pending_[1])] = until;
-      tabu_until_[canon(pending_[2], pending_[3])] = until;
+      for (const auto& [lf, lk, cf, ck] : pending_)
+        tabu_until_[canon(lf, lk)] = tabu_until_[canon(cf, ck)] = until;
       if (blocked_count_ < best_count) {
         best_count = blocked_count_;
         best_links = links_;
@@ -274,6 +450,7 @@ void Clearance::run(Progress& progress) {
         best_blocked = blocked_;
         best_degree = cut_degree_;
         best_moves = moves_;
+        best_compound = compound_moves_;
         restarts = 0;
       }
     }

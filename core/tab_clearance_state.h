@@ -39,6 +39,10 @@ constexpr int kStallSweeps = 3;
 constexpr int kRestarts = 4;
 constexpr std::size_t kRestartLevel = 1;
 constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
+// Compound moves (Clearance::try_compound): glues tried per second link.
+constexpr std::size_t kCompoundGlues = 16;
+// ... and faces tried as the root of its layout (spread over the net).
+constexpr std::size_t kRoots = 8;
 
 class Clearance {
  public:
@@ -47,7 +51,8 @@ class Clearance {
   std::vector<EdgeSide> blocked_edges() const;
   void run(Progress& progress);
   Net net() const { return Net{parent_, pos_}; }
-  std::size_t moves_ = 0, evaluations_ = 0;
+  std::size_t moves_ = 0, evaluations_ = 0, compound_moves_ = 0;
+  bool compound_ = true;
 
  private:
   int canon(int f, int k) const {
@@ -72,6 +77,21 @@ class Clearance {
     long long blocked = 0, flat_leaves = 0;
   };
   bool apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Change& out);
+  bool apply_compound(int tf, int tk, const std::vector<std::array<int, 4>>& swaps, int root,
+                      Change& out);
+  void recount(Change& out);
+  /// The hair blocked edge (u, v) lies on, as vertices from its flat leaf to the first vertex
+  /// that is not a two-cut interior vertex; empty when it lies on none.
+  std::vector<int> hair_path(int u, int v) const;
+  /// The best compound move try_compound found that does not lower the blocked count and closes
+  /// at most max_blocked edges: the search's sideways move when it beats the best single swap.
+  struct Sideways {
+    long long max_blocked = 0;
+    Change change;
+    std::vector<std::array<int, 4>> swaps;
+    int root = 0;
+  };
+  bool try_compound(int f, int k, Sideways* sideways);
   void undo();
   void commit();
   template <class Consider>
@@ -106,17 +126,19 @@ class Clearance {
   std::vector<char> blocked_;  // by canonical half-edge 3 * f + k
   std::size_t blocked_count_ = 0;
   std::vector<int> parent_, tin_, size_, order_;
-  std::vector<double> defect_;             // angle defect by vertex (0 on the boundary)
-  std::vector<char> vboundary_;            // vertex on the mesh's boundary
-  std::vector<int> cut_degree_;            // cut edges (unlinked interior edges) at each vertex
-  std::array<int, 4> pending_{};           // the applied move: lf, lk, cf, ck
-  std::vector<std::uint32_t> tabu_until_;  // by canonical half-edge: step until which it stays
+  std::vector<double> defect_;               // angle defect by vertex (0 on the boundary)
+  std::vector<char> vboundary_;              // vertex on the mesh's boundary
+  std::vector<int> cut_degree_;              // cut edges (unlinked interior edges) at each vertex
+  std::vector<std::array<int, 4>> pending_;  // the applied move's swaps: lf, lk, cf, ck
+  std::uint32_t step_ = 0;                   // the search's current step (tabu_until_)
+  std::vector<std::uint32_t> tabu_until_;    // by canonical half-edge: step until which it stays
 
   // Scratch of apply_move.
-  std::vector<int> moving_, from_, mark_;
+  std::vector<int> moving_, from_, mark_, order2_, slot_;
   std::vector<char> is_moving_;
   std::vector<Triangle2> new_pos_, old_pos_;
   std::vector<int> affected_;
+  std::vector<std::pair<int, int>> ends_;  // vertex, change of its cut degree
   std::vector<std::uint32_t> stamp_;
   std::uint32_t epoch_ = 0;
 };

@@ -137,6 +137,29 @@ TEST(TabClearance, FlatLeavesAreNearSlitsAndThePassRemovesThem) {
   EXPECT_LT(3 * after.flat_leaves, before.flat_leaves);
 }
 
+// Compound moves (a hair re-hung: two swaps checked together) are made on a dense net, and the
+// net stays a valid, overlap-free single piece whose blocked edges are what the pass says.
+TEST(TabClearance, CompoundMovesKeepTheNetValid) {
+  const Case c = unfolded("sample.obj");
+  ASSERT_FALSE(c.mesh.faces.empty());
+  TabClearanceOptions options;
+  options.min_height = c.min_height;
+  options.max_evaluations = 50'000;
+  Progress quiet;
+  const TabClearanceResult r = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_GT(r.compound_moves, 0u);
+  EXPECT_LE(2 * r.compound_moves, r.moves);
+  EXPECT_LT(r.blocked_after, r.blocked_before);
+  EXPECT_EQ(edges_without_tab_room(c.mesh, r.net, options).size(), r.blocked_after);
+  const NetCheckReport check = check_net(c.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  // Without them: single swaps only.
+  options.compound_moves = false;
+  const TabClearanceResult single = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_EQ(single.compound_moves, 0u);
+  EXPECT_TRUE(check_net(c.mesh, single.net).ok());
+}
+
 // The showcase: the Stanford bunny (2000 faces) at 200 mm, progressive QQ.
 TEST(TabClearance, BunnyAt200mm) {
   const std::filesystem::path file =
