@@ -143,6 +143,8 @@ void apply(JobOptions& o, const std::string& name, const json& v) {
     o.margin_mm = number(name, v);
   } else if (name == "tabs") {
     o.tabs = tab_mode(name, v);
+  } else if (name == "tab_room_budget") {
+    o.tab_room_budget = whole(name, v);
   } else if (name == "flat_fold_degrees") {
     o.flat_fold_degrees = number(name, v);
   } else if (name == "keep_largest_component") {
@@ -151,7 +153,8 @@ void apply(JobOptions& o, const std::string& name, const json& v) {
     throw OptionsError("unknown_option", name,
                        "unknown option '" + name +
                            "' (known: strategy, seed, target_faces, time_limit, size_mm, scale, "
-                           "paper, margin_mm, tabs, flat_fold_degrees, keep_largest_component)");
+                           "paper, margin_mm, tabs, tab_room_budget, flat_fold_degrees, "
+                           "keep_largest_component)");
   }
 }
 
@@ -209,6 +212,8 @@ void validate_options(const JobOptions& o, const OptionsLimits& limits) {
                        "options 'size_mm' and 'scale' both set the print size; give one");
   range(std::isfinite(o.margin_mm) && o.margin_mm >= 0 && o.margin_mm <= 50, "margin_mm",
         "must be between 0 and 50 millimetres");
+  range(o.tab_room_budget <= kMaxTabRoomBudget, "tab_room_budget",
+        "must be at most " + std::to_string(kMaxTabRoomBudget) + " moves");
   range(std::isfinite(o.flat_fold_degrees) && o.flat_fold_degrees >= 0 && o.flat_fold_degrees < 90,
         "flat_fold_degrees", "must be at least 0 and less than 90 degrees");
 }
@@ -260,6 +265,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"paper", paper_name(o.paper)},
               {"margin_mm", o.margin_mm},
               {"tabs", tab_mode_name(o.tabs)},
+              {"tab_room_budget", o.tab_room_budget},
               {"flat_fold_degrees", o.flat_fold_degrees},
               {"keep_largest_component", o.keep_largest_component}};
 }

@@ -40,6 +40,8 @@ std::string PrintOptions::validate() const {
   if (!std::isfinite(min_tab_height_mm) || min_tab_height_mm < 0)
     return "minimum tab height must be >= 0";
   if (!positive(max_label_mm)) return "label size must be positive";
+  if (tab_room_budget > kMaxTabRoomBudget)
+    return "tab room budget must be at most " + std::to_string(kMaxTabRoomBudget) + " moves";
   return {};
 }
 
@@ -134,13 +136,15 @@ double print_scale(const Mesh& mesh, const PrintOptions& options) {
 TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
                                  Progress& progress) {
   if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
-  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || !options.tab_room)
+  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || !options.tab_room ||
+      options.tab_room_budget == 0)
     return {net, 0, 0, 0, 0};
   TabClearanceOptions clearance;
   const double mm = std::min(options.min_tab_height_mm, options.tab_height_mm);
   clearance.min_height = mm / print_scale(mesh, options);
   clearance.angle_deg = options.tab_angle_deg;
   clearance.time_limit_seconds = options.tab_room_seconds;
+  clearance.max_evaluations = options.tab_room_budget;
   return clear_tab_room(mesh, net, clearance, progress);
 }
 

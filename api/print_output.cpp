@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <fstream>
 
 #include "api/mesh_export.h"
@@ -65,6 +66,12 @@ bool apply_output_option(std::string_view name, std::string_view value, OutputOp
       throw InvalidInputException("--tab-room: expected on or off, got '" + std::string(value) +
                                   "'");
     options.print.tab_room = value == "on";
+  } else if (name == "--tab-room-budget") {
+    const double moves = number(0, static_cast<double>(kMaxTabRoomBudget));
+    if (moves != std::floor(moves))
+      throw InvalidInputException("--tab-room-budget: expected a whole number, got '" +
+                                  std::string(value) + "'");
+    options.print.tab_room_budget = static_cast<std::size_t>(moves);
   } else if (name == "--flat-angle") {
     options.print.flat_angle_deg = number(0, 180);
   } else if (name == "--labels") {
@@ -89,6 +96,8 @@ std::string output_options_help() {
          "  --min-tab-height LEN  lowest tab printed, or half a shorter edge (default 2mm)\n"
          "  --tab-room on|off  change the cuts so more edges have room for a tab (default on;\n"
          "                     with --tabs auto; the net JSON written with it is that net)\n"
+         "  --tab-room-budget N  moves that change of cuts may try (default 100000; 0: none;\n"
+         "                     dense meshes get more tabs with more, 10-20 us a move)\n"
          "  --flat-angle DEG   folds flatter than this are not drawn (default 1)\n"
          "  --labels on|off    edge labels (default on)\n";
 }

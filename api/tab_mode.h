@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -12,5 +13,9 @@ enum class TabMode { Auto, Strips, None };
 /// Parses "auto", "strips" or "none". \throw InvalidInputException for anything else.
 TabMode parse_tab_mode(std::string_view text);
 std::string tab_mode_name(TabMode mode);
+
+/// Most candidate moves a caller may give the pass that makes room for tabs (in Auto mode;
+/// PrintOptions::tab_room_budget): about half an hour of search.
+inline constexpr std::size_t kMaxTabRoomBudget = 100'000'000;
 
 }  // namespace papernet

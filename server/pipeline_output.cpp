@@ -16,6 +16,7 @@ PrintOptions print_options(const JobOptions& options) {
   if (options.scale) print.scale = *options.scale;
   print.flat_angle_deg = options.flat_fold_degrees;
   print.tabs = options.tabs;
+  print.tab_room_budget = options.tab_room_budget;
   return print;
 }
 

@@ -186,7 +186,7 @@ JobRunner make_pipeline_runner(PipelineLimits limits) {
     const Validated v = load_and_validate(input, options, limits, sink);
     JobProgress progress(sink, v.input, options);
     Unfolded u = unfold(v.mesh, v.input, options, progress);
-    if (options.tabs == TabMode::Auto) {
+    if (options.tabs == TabMode::Auto && options.tab_room_budget > 0) {
       ProgressInfo info;
       info.phase = "tabs";  // changing cuts so that glue tabs fit (docs/tabs.md, stage 0)
       info.faces = u.mesh.faces.size();

@@ -30,6 +30,7 @@ TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   EXPECT_FALSE(o.time_limit);
   EXPECT_EQ(o.paper, PaperSize::A4);
   EXPECT_EQ(o.tabs, TabMode::Auto);
+  EXPECT_EQ(o.tab_room_budget, 100'000u);
   EXPECT_FALSE(o.keep_largest_component);
 }
 
@@ -42,6 +43,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
                                             {"paper", "letter"},
                                             {"margin_mm", "5"},
                                             {"tabs", "false"},
+                                            {"tab_room_budget", "0"},
                                             {"keep_largest_component", "yes"}});
   EXPECT_EQ(o.strategy, Strategy::SEMP);
   EXPECT_EQ(o.seed, 42u);
@@ -51,6 +53,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_EQ(o.paper, PaperSize::Letter);
   EXPECT_DOUBLE_EQ(o.margin_mm, 5);
   EXPECT_EQ(o.tabs, TabMode::None);
+  EXPECT_EQ(o.tab_room_budget, 0u);
   EXPECT_TRUE(o.keep_largest_component);
 }
 
@@ -107,6 +110,12 @@ TEST(OptionsTest, BadValuesHaveStableCodes) {
   EXPECT_EQ(error_code([] { parse_options_query({{"seed", "12abc"}}); }), "invalid_option_value");
   EXPECT_EQ(error_code([] { parse_options_query({{"tabs", "maybe"}}); }), "invalid_option_value");
   EXPECT_EQ(error_code([] { parse_options_json(R"({"seed":1.5})"); }), "invalid_option_value");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"tab_room_budget":-1})"); }),
+            "invalid_option_value");
+  EXPECT_EQ(error_code([] {
+              parse_options_query({{"tab_room_budget", "2.5"}});
+            }),
+            "invalid_option_value");
   EXPECT_EQ(error_code([] { parse_options_json(R"({"strategy":3})"); }), "invalid_option_value");
   EXPECT_EQ(error_code([] {
               parse_options_query({{"seed", "1"}, {"seed", "2"}});
@@ -140,6 +149,10 @@ TEST(OptionsTest, RangesAndLimitsAreChecked) {
             "option_out_of_range");
   EXPECT_EQ(error_code([] { parse_options_query({{"size_mm", "nan"}}); }), "option_out_of_range");
   EXPECT_EQ(error_code([] { parse_options_query({{"margin_mm", "-1"}}); }), "option_out_of_range");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"tab_room_budget":100000001})"); }, &option),
+            "option_out_of_range");
+  EXPECT_EQ(option, "tab_room_budget");
+  EXPECT_EQ(parse_options_json(R"({"tab_room_budget":100000000})").tab_room_budget, 100'000'000u);
   EXPECT_EQ(error_code([&] { parse_options_query({{"time_limit", "30"}}, limits); }), "");
 }
 
@@ -182,9 +195,11 @@ TEST(OptionsTest, DeepOrHugeDocumentsAreRefusedWithAMessage) {
 }
 
 TEST(OptionsTest, CanonicalJsonRoundTrips) {
-  const JobOptions o = parse_options_query({{"strategy", "SEQ"}, {"seed", "9"}, {"scale", "3"}});
+  const JobOptions o = parse_options_query(
+      {{"strategy", "SEQ"}, {"seed", "9"}, {"scale", "3"}, {"tab_room_budget", "5000"}});
   const nlohmann::json doc = options_to_json(o);
   EXPECT_EQ(doc["strategy"], "SEQ");
+  EXPECT_EQ(doc["tab_room_budget"], 5000);
   EXPECT_TRUE(doc["size_mm"].is_null());
   const JobOptions back = parse_options_json(doc.dump());
   EXPECT_EQ(options_to_json(back), doc);

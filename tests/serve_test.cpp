@@ -107,6 +107,18 @@ TEST(ServeTest, TabsOptionTakesModesOrABoolean) {
   EXPECT_TRUE(papernet::check_net(doc.mesh, doc.net).ok());
   expect_problem(c.Post("/v1/jobs?tabs=glue", test_mesh("sample.obj"), "model/obj"), 400,
                  "invalid_option_value");
+
+  // tab_room_budget=0: the unfolder's net as it is, with more strips.
+  const std::string unchanged =
+      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tab_room_budget=0");
+  const json u = wait_final(s, unchanged);
+  ASSERT_EQ(u["status"], "succeeded") << u.dump();
+  EXPECT_EQ(u["options"]["tab_room_budget"], 0);
+  EXPECT_EQ(b["options"]["tab_room_budget"], 100000);
+  const std::string svg_u = c.Get("/v1/jobs/" + unchanged + "/net.svg")->body;
+  EXPECT_GT(std::stoi(svg_data(svg_u, "strips")), 2 * std::stoi(svg_data(svg_b, "strips")));
+  expect_problem(c.Post("/v1/jobs?tab_room_budget=-5", test_mesh("sample.obj"), "model/obj"), 400,
+                 "invalid_option_value");
 }
 
 // Progressive unfolding (the default, QQ): while the job runs, the result URLs serve the latest

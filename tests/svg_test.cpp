@@ -14,6 +14,7 @@
 
 #include "api/print_layout.h"
 #include "api/tabs.h"
+#include "core/errors.h"
 #include "core/net_check.h"
 #include "core/progressive.h"
 #include "core/unfolding.h"
@@ -433,7 +434,7 @@ TEST(Tabs, ModesAndMinimumHeight) {
   EXPECT_EQ(layout_net(mesh, net, options).omitted_tabs.size(),
             static_cast<std::size_t>(none.cut_edges));
 
-  // The pass runs in mode auto only, and only with tab_room on.
+  // The pass runs in mode auto only, only with tab_room on and a budget, and within the budget.
   Progress quiet;
   options = {};
   options.tabs = TabMode::Strips;
@@ -442,6 +443,15 @@ TEST(Tabs, ModesAndMinimumHeight) {
   options.tab_room = false;
   EXPECT_EQ(make_tab_room(mesh, net, options, quiet).moves, 0u);
   options.tab_room = true;
+  options.tab_room_budget = 0;
+  EXPECT_EQ(make_tab_room(mesh, net, options, quiet).evaluations, 0u);
+  options.tab_room_budget = 40;
+  const TabClearanceResult brief = make_tab_room(mesh, net, options, quiet);
+  EXPECT_GT(brief.evaluations, 0u);
+  EXPECT_LE(brief.evaluations, 40u);
+  options.tab_room_budget = kMaxTabRoomBudget + 1;
+  EXPECT_THROW(make_tab_room(mesh, net, options, quiet), InvalidInputException);
+  options.tab_room_budget = PrintOptions{}.tab_room_budget;
   options.min_tab_height_mm = 3;  // taller tabs: more edges without room than at 2 mm
   const TabClearanceResult taller = make_tab_room(mesh, net, options, quiet);
   EXPECT_GT(taller.blocked_before, all_print_nets()[index].blocked_after) << name;

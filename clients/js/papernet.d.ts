@@ -20,6 +20,8 @@ export interface Options {
   margin_mm?: number;
   /** Glue: "auto" (tabs where they fit, strips elsewhere), "strips", "none"; true = "auto", false = "none". */
   tabs?: "auto" | "strips" | "none" | boolean;
+  /** Moves the pass that makes room for tabs may try (default 100000; 0: no pass). */
+  tab_room_budget?: number;
   flat_fold_degrees?: number;
   keep_largest_component?: boolean;
 }
