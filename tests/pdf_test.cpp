@@ -270,6 +270,12 @@ TEST(Output, CommandLineOptionsFillTheOptionsOrNameTheBadValue) {
     EXPECT_NE(std::string(e.what()).find("--flat-angle"), std::string::npos);
   }
   EXPECT_THROW(apply_output_option("--labels", "maybe", o), std::invalid_argument);
+  EXPECT_TRUE(apply_output_option("--tab-room-budget", "250000", o));
+  EXPECT_EQ(o.print.tab_room_budget, 250'000u);
+  EXPECT_TRUE(apply_output_option("--tab-room-budget", "0", o));
+  EXPECT_EQ(o.print.tab_room_budget, 0u);
+  for (const char* bad : {"1.5", "-1", "1e9", "many"})
+    EXPECT_THROW(apply_output_option("--tab-room-budget", bad, o), std::invalid_argument) << bad;
 }
 
 }  // namespace
