@@ -250,7 +250,8 @@ class Unfolding {
   std::vector<std::vector<int>> part_queue_;
   std::vector<std::pair<int, int>> todo_;
   std::vector<int> group_;  // update_locally: what moved together (-2 outside a call)
-  std::size_t relaid_ = 0;  // faces re-laid out by update(), ever
+  std::vector<int> group_start_, group_order_;  // update_locally: moved faces by group
+  std::size_t relaid_ = 0;                      // faces re-laid out by update(), ever
 
   // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
   // is the pre-order range [cut_lo_, cut_hi_), the other its complement.

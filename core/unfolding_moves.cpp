@@ -120,10 +120,13 @@ long long Unfolding::evaluate_move(int g, int k, long long crossing, long long c
                             ? anchor_pos
                             : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};
     const std::uint32_t epoch = next_seen_epoch();
-    grid_.query(triangle_box(t), [&](int c) {
+    const Box2 box = triangle_box(t);
+    grid_.query(box, [&](int c) {
       if (seen_[c] == epoch || in_small(c)) return;
       seen_[c] = epoch;
-      if (triangles_overlap(t, pos_[c], tolerance_)) ++delta;
+      // Faces in the grid have their current box (triangles_overlap's own first test).
+      if (boxes_overlap(box, box_[c], tolerance_) && triangles_overlap(t, pos_[c], tolerance_))
+        ++delta;
     });
     return delta < cutoff;
   };
@@ -150,19 +153,21 @@ void Unfolding::apply_move(int g, int k) {
   Triangle2 anchor_pos;
   Rigid motion;
   const int anchor = move_anchor(g, k, anchor_pos, motion);
+  // The moving side leaves the grid while it is tested: the queries meet only the other side.
   const auto move = [&](int s) {
     grid_.remove(s);
     pos_[s] = s == anchor ? anchor_pos
                           : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};
     box_[s] = triangle_box(pos_[s]);
-    grid_.insert(s, box_[s]);
   };
   const auto retest = [&](int s) {
     const std::uint32_t epoch = next_seen_epoch();
     grid_.query(box_[s], [&](int c) {
-      if (seen_[c] == epoch || in_small(c)) return;
+      if (seen_[c] == epoch) return;
       seen_[c] = epoch;
-      if (triangles_overlap(pos_[s], pos_[c], tolerance_)) add_pair(s, c);
+      if (boxes_overlap(box_[s], box_[c], tolerance_) &&
+          triangles_overlap(pos_[s], pos_[c], tolerance_))
+        add_pair(s, c);
     });
   };
   const auto each_small = [&](const auto& visit) {
@@ -175,6 +180,7 @@ void Unfolding::apply_move(int g, int k) {
   };
   each_small(move);
   each_small(retest);
+  each_small([&](int s) { grid_.insert(s, box_[s]); });
 
   const int kp = edge_to(g, p);
   links_[g] &= static_cast<std::uint8_t>(~(1u << kp));

@@ -125,10 +125,15 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
                        : Triangle2{motion(pos_[t][0]), motion(pos_[t][1]), motion(pos_[t][2])};
             const std::uint32_t seen = next_seen_epoch();
             ++st.tests;
-            grid_.query(triangle_box(moved), [&](int c) {
+            const Box2 box = triangle_box(moved);
+            grid_.query(box, [&](int c) {
               if (seen_[c] == seen || side_mark_[c] == epoch) return;
               seen_[c] = seen;
-              if (triangles_overlap(moved, pos_[c], tolerance_)) ++delta;
+              // Faces in the grid have their current box: most candidates end here, without the
+              // call (whose first test is the same).
+              if (boxes_overlap(box, box_[c], tolerance_) &&
+                  triangles_overlap(moved, pos_[c], tolerance_))
+                ++delta;
             });
             // Only a move that lowers the count is applied: stop once this one cannot win.
             if (delta > rise || delta > best.delta ||
