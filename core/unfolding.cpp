@@ -155,7 +155,7 @@ void Unfolding::test_moved(const std::vector<int>& moved) {
       seen_[c] = seen_epoch_;
       // Faces in the grid have their current box: most candidates end here, without the call.
       if (boxes_overlap(box_[f], box_[c], tolerance_) &&
-          triangles_overlap(pos_[f], pos_[c], tolerance_))
+          triangles_overlap_in_boxes(pos_[f], pos_[c], tolerance_))
         add_pair(f, c);
     });
     grid_.insert(f, box_[f]);
@@ -596,7 +596,7 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
       if (seen_[c] == tested) return;
       seen_[c] = tested;
       if (boxes_overlap(box_[f], box_[c], tolerance_) &&
-          triangles_overlap(pos_[f], pos_[c], tolerance_))
+          triangles_overlap_in_boxes(pos_[f], pos_[c], tolerance_))
         add_pair(f, c);
     });
     if (group_[f] < 0 || i + 1 == order.size() || group_[order[i + 1]] != group_[f])

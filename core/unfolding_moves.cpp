@@ -125,7 +125,8 @@ long long Unfolding::evaluate_move(int g, int k, long long crossing, long long c
       if (seen_[c] == epoch || in_small(c)) return;
       seen_[c] = epoch;
       // Faces in the grid have their current box (triangles_overlap's own first test).
-      if (boxes_overlap(box, box_[c], tolerance_) && triangles_overlap(t, pos_[c], tolerance_))
+      if (boxes_overlap(box, box_[c], tolerance_) &&
+          triangles_overlap_in_boxes(t, pos_[c], tolerance_))
         ++delta;
     });
     return delta < cutoff;
@@ -166,7 +167,7 @@ void Unfolding::apply_move(int g, int k) {
       if (seen_[c] == epoch) return;
       seen_[c] = epoch;
       if (boxes_overlap(box_[s], box_[c], tolerance_) &&
-          triangles_overlap(pos_[s], pos_[c], tolerance_))
+          triangles_overlap_in_boxes(pos_[s], pos_[c], tolerance_))
         add_pair(s, c);
     });
   };

@@ -132,7 +132,7 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
               // Faces in the grid have their current box: most candidates end here, without the
               // call (whose first test is the same).
               if (boxes_overlap(box, box_[c], tolerance_) &&
-                  triangles_overlap(moved, pos_[c], tolerance_))
+                  triangles_overlap_in_boxes(moved, pos_[c], tolerance_))
                 ++delta;
             });
             // Only a move that lowers the count is applied: stop once this one cannot win.

@@ -201,6 +201,54 @@ TEST(Unfold, SmallEditsOfALargeNetMatchAFreshBuild) {
   }
 }
 
+// Overlapping faces and pair count by brute force over all pairs, with Unfolding's own test.
+std::pair<std::vector<int>, std::size_t> brute_force_overlaps(const Unfolding& u) {
+  const int nf = static_cast<int>(u.face_count());
+  std::vector<char> hit(nf, 0);
+  std::size_t pairs = 0;
+  for (int a = 0; a < nf; ++a)
+    for (int b = a + 1; b < nf; ++b)
+      if (triangles_overlap(u.points(a), u.points(b), u.tolerance())) {
+        hit[a] = hit[b] = 1;
+        ++pairs;
+      }
+  std::vector<int> faces;
+  for (int f = 0; f < nf; ++f)
+    if (hit[f]) faces.push_back(f);
+  return {faces, pairs};
+}
+
+// update()'s local path on a real 2,000-face net: edits of a few vertices at once cut the tree
+// into many parts that move rigidly; each part is tested as a whole against the rest (its own
+// faces out of the grid), the edited faces one by one. The overlapping pairs must be exactly
+// those of a brute-force test of all pairs, after every edit.
+TEST(Unfold, LocalUpdatesOfARealNetMatchBruteForce) {
+  const fs::path file = fs::path(PAPERNET_SHARED_DATA) / "bench" / "2000" / "draco__bun_zipper.obj";
+  if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
+  const Mesh mesh = load_mesh_file(file.string()).mesh;
+  Unfolding u = Unfolding::steepest_edge(mesh, 1);
+  const int nv = static_cast<int>(mesh.vertices.size());
+  std::size_t relaid = u.relaid_faces(), with_overlaps = 0;
+  for (int round = 0; round < 8; ++round) {
+    // Four vertices pulled outwards by 30 % of their distance from vertex 0.
+    for (int j = 0; j < 4; ++j) {
+      const int v = (round * 131 + j * 257) % nv;
+      const Vec3 o = u.mesh().vertices[0], p = u.mesh().vertices[v];
+      u.set_vertex_position(v, o + 1.3 * (p - o));
+    }
+    u.update();
+    const auto [faces, pairs] = brute_force_overlaps(u);
+    std::vector<int> have = u.overlapping_faces();
+    std::sort(have.begin(), have.end());
+    EXPECT_EQ(u.overlap_count(), pairs) << "round " << round;
+    EXPECT_EQ(have, faces) << "round " << round;
+    if (pairs > 0) ++with_overlaps;
+  }
+  // The local path ran (it moves far fewer than all faces per edit), and the edits made overlaps.
+  EXPECT_LT(u.relaid_faces() - relaid, 8 * u.face_count());
+  EXPECT_GT(with_overlaps, 0u);
+}
+
 void unfold_folder(const fs::path& dir, std::size_t max_faces) {
   std::size_t done = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
