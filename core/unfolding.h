@@ -173,6 +173,8 @@ class Unfolding {
   std::size_t relaid_faces() const { return relaid_; }
 
  private:
+  friend struct UnfoldingTestAccess;  // tests/unfold_test.cpp: the Tabu move primitives
+
   // unfolding.cpp: construction, editing, update.
   void set_adjacency(int f);
   int edge_to(int f, int other) const;
@@ -213,6 +215,10 @@ class Unfolding {
   void for_each_crossing(F&& f) const;
   long long evaluate_move(int g, int k, long long crossing, long long cutoff);
   void apply_move(int g, int k);
+  // After apply_move when the moved link was g - parent_[g]: g's subtree hangs from q now; updates
+  // the pre-order, sizes and parents to exactly what root_at(root_) gives, in time proportional to
+  // the faces between the old and new place of the subtree in the pre-order.
+  void move_subtree(int g, int q);
   void relayout_all();
   std::uint32_t next_seen_epoch();
 

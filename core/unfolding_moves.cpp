@@ -188,7 +188,36 @@ void Unfolding::apply_move(int g, int k) {
   links_[p] &= static_cast<std::uint8_t>(~(1u << adj_edge_[g][kp]));
   links_[g] |= static_cast<std::uint8_t>(1u << k);
   links_[q] |= static_cast<std::uint8_t>(1u << adj_edge_[g][k]);
-  root_at(root_);  // the pre-order of the changed tree
+  if (g_in_range_)
+    move_subtree(g, q);
+  else
+    root_at(root_);  // the pre-order of the changed tree
+}
+
+void Unfolding::move_subtree(int g, int q) {
+  // g's subtree, the pre-order range [lo, hi), now hangs from q (outside it). root_at visits a
+  // face's children by decreasing edge index, each with its whole subtree: the range keeps its
+  // own order and moves to just after q and q's children across higher edges.
+  const int lo = tin_[g], len = size_[g], hi = lo + len;
+  const int kq = adj_edge_[g][edge_to(g, q)];
+  int dest = tin_[q] - (tin_[q] > lo ? len : 0) + 1;  // positions without the range
+  for (int k = kq + 1; k < 3; ++k) {
+    const int n = adj_[q][k];
+    if (!(links_[q] >> k & 1) || n == parent_[q]) continue;
+    dest += size_[n] - (in_subtree_of(n, g) ? len : 0);
+  }
+  for (int x = parent_[g]; x != -1; x = parent_[x]) size_[x] -= len;
+  for (int x = q; x != -1; x = parent_[x]) size_[x] += len;
+  parent_[g] = q;
+  int from = lo, to = hi;
+  if (dest < lo) {
+    std::rotate(order_.begin() + dest, order_.begin() + lo, order_.begin() + hi);
+    from = dest;
+  } else {
+    std::rotate(order_.begin() + lo, order_.begin() + hi, order_.begin() + dest + len);
+    to = dest + len;
+  }
+  for (int i = from; i < to; ++i) tin_[order_[i]] = i;
 }
 
 void Unfolding::relayout_all() {

@@ -17,6 +17,19 @@
 #include "tests/test_meshes.h"
 
 namespace papernet {
+
+// The Tabu Unfolder's move primitives, for a test of the pre-order they keep.
+struct UnfoldingTestAccess {
+  static void root_at(Unfolding& u, int r) { u.root_at(r); }
+  static int root(const Unfolding& u) { return u.root_; }
+  static void cut(Unfolding& u, int g, int other) { u.cut(g, other); }
+  static bool in_subtree(const Unfolding& u, int x) { return u.in_subtree(x); }
+  static void apply_move(Unfolding& u, int g, int k) { u.apply_move(g, k); }
+  static bool same_preorder(const Unfolding& a, const Unfolding& b) {
+    return a.order_ == b.order_ && a.tin_ == b.tin_ && a.size_ == b.size_ && a.parent_ == b.parent_;
+  }
+};
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -247,6 +260,46 @@ TEST(Unfold, LocalUpdatesOfARealNetMatchBruteForce) {
   // The local path ran (it moves far fewer than all faces per edit), and the edits made overlaps.
   EXPECT_LT(u.relaid_faces() - relaid, 8 * u.face_count());
   EXPECT_GT(with_overlaps, 0u);
+}
+
+// After a move the Tabu Unfolder keeps the tree's pre-order, subtree sizes and parents up to
+// date (moving the pre-order range of the re-hung subtree, or recomputing them all when the
+// root's side moves): they must be exactly what a fresh root_at gives, after every move.
+TEST(Unfold, PreorderAfterMovesMatchesAFreshOne) {
+  const fs::path file = fs::path(PAPERNET_SHARED_DATA) / "bench" / "800" / "c3d__spot.obj";
+  if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
+  Unfolding u = Unfolding::steepest_edge(load_mesh_file(file.string()).mesh, 1);
+  using A = UnfoldingTestAccess;
+  const int nf = static_cast<int>(u.face_count());
+  int root = 0;
+  while (u.parent(root) != -1) root = u.parent(root);
+  A::root_at(u, root);
+  std::size_t moves[2] = {0, 0};  // [1]: g's own subtree re-hung, [0]: the side of the root
+  for (int step = 0; step < 4000 && moves[0] + moves[1] < 300; ++step) {
+    const int g = (step * 7919) % nf;
+    // The link to g's parent, or to one of its children.
+    int other = u.parent(g);
+    if (step % 2 == 0)
+      for (int k = 0; k < 3; ++k) {
+        const int n = u.neighbour(g, k);
+        if (n >= 0 && u.parent(n) == g) other = n;
+      }
+    if (other < 0) continue;
+    const bool own_subtree = other == u.parent(g);
+    A::cut(u, g, other);
+    for (int k = 0; k < 3; ++k) {
+      const int q = u.neighbour(g, k);
+      if (q < 0 || u.linked(g, q) || A::in_subtree(u, q)) continue;
+      A::apply_move(u, g, k);
+      ++moves[own_subtree ? 1 : 0];
+      Unfolding fresh = u;
+      A::root_at(fresh, A::root(u));
+      ASSERT_TRUE(A::same_preorder(u, fresh)) << "after move " << moves[0] + moves[1];
+      break;
+    }
+  }
+  EXPECT_GT(moves[1], 50u);
+  EXPECT_GT(moves[0], 5u);
 }
 
 void unfold_folder(const fs::path& dir, std::size_t max_faces) {
