@@ -41,7 +41,7 @@ bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance)
 
 /// triangles_overlap without its first test: the same answer for triangles whose boxes overlap
 /// (boxes_overlap of their triangle_box is true), for callers that keep face boxes and test them
-/// first. Undefined answer otherwise.
+/// first (for other triangles its answer may be wrong).
 bool triangles_overlap_in_boxes(const Triangle2& a, const Triangle2& b, double tolerance);
 
 /// Spatial index of a net, updated incrementally: a hierarchical hash grid over face boxes for
