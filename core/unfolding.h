@@ -75,6 +75,10 @@ struct LocalRepairOptions {
   /// move lowers it; the links they cut or make are tabu for the next few moves.
   std::size_t max_sideways = 32;
   std::size_t max_rise = 1;
+  /// A cut met again in the same round (the pairs' tree paths share links) is not evaluated
+  /// again, only its tests are counted; false evaluates it again. The result and the stats are
+  /// the same either way (a test compares them).
+  bool reuse_cuts = true;
 };
 
 /// What Unfolding::repair_locally did.
