@@ -28,7 +28,11 @@ double half_perimeter(const Box2& b) { return (b.hi.x - b.lo.x) + (b.hi.y - b.lo
 }  // namespace
 
 bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance) {
-  if (!boxes_overlap(triangle_box(a), triangle_box(b), tolerance)) return false;
+  return boxes_overlap(triangle_box(a), triangle_box(b), tolerance) &&
+         triangles_overlap_in_boxes(a, b, tolerance);
+}
+
+bool triangles_overlap_in_boxes(const Triangle2& a, const Triangle2& b, double tolerance) {
   for (int k = 0; k < 3; ++k) {
     if (separates(a[k], a[(k + 1) % 3], b, tolerance)) return false;
     if (separates(b[k], b[(k + 1) % 3], a, tolerance)) return false;

@@ -39,6 +39,11 @@ inline bool boxes_overlap(const Box2& a, const Box2& b, double tolerance) {
 /// exact for convex polygons in the plane.
 bool triangles_overlap(const Triangle2& a, const Triangle2& b, double tolerance);
 
+/// triangles_overlap without its first test: the same answer for triangles whose boxes overlap
+/// (boxes_overlap of their triangle_box is true), for callers that keep face boxes and test them
+/// first (for other triangles its answer may be wrong).
+bool triangles_overlap_in_boxes(const Triangle2& a, const Triangle2& b, double tolerance);
+
 /// Spatial index of a net, updated incrementally: a hierarchical hash grid over face boxes for
 /// compact faces, and a dynamic bounding-box tree for faces far longer than the finest cell.
 /// Grid level L has cells `cell_size * 4^L` wide; a face goes to the finest level where its box

@@ -155,7 +155,7 @@ void Unfolding::test_moved(const std::vector<int>& moved) {
       seen_[c] = seen_epoch_;
       // Faces in the grid have their current box: most candidates end here, without the call.
       if (boxes_overlap(box_[f], box_[c], tolerance_) &&
-          triangles_overlap(pos_[f], pos_[c], tolerance_))
+          triangles_overlap_in_boxes(pos_[f], pos_[c], tolerance_))
         add_pair(f, c);
     });
     grid_.insert(f, box_[f]);
@@ -576,17 +576,31 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
     for (std::size_t i = overlaps_[f].size(); i-- > 0;)
       if (g < 0 || group_[overlaps_[f][i]] != g) remove_pair(f, overlaps_[f][i]);
   }
-  for (int f : moved) {
-    const int g = group_[f];
+  // The edited faces one by one, then each part as a whole: a face is queried while the grid
+  // holds the kept faces and what was tested before it, but not its own part, so each pair of
+  // faces that may have moved apart is tested once and the queries do not meet the own part.
+  std::vector<int>& start = group_start_;
+  start.assign(sources + 2, 0);
+  for (int f : moved) ++start[static_cast<std::size_t>(group_[f] + 2)];
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  std::vector<int>& order = group_order_;
+  order.resize(moved.size());
+  for (int f : moved) order[static_cast<std::size_t>(start[group_[f] + 1]++)] = f;
+  // start[g + 1] is now the end of group g (g = -1: the edited faces).
+  std::size_t inserted = 0;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const int f = order[i];
     box_[f] = triangle_box(pos_[f]);
     const std::uint32_t tested = next_seen_epoch();
     grid_.query(box_[f], [&](int c) {
       if (seen_[c] == tested) return;
       seen_[c] = tested;
-      if (!boxes_overlap(box_[f], box_[c], tolerance_) || (g >= 0 && group_[c] == g)) return;
-      if (triangles_overlap(pos_[f], pos_[c], tolerance_)) add_pair(f, c);
+      if (boxes_overlap(box_[f], box_[c], tolerance_) &&
+          triangles_overlap_in_boxes(pos_[f], pos_[c], tolerance_))
+        add_pair(f, c);
     });
-    grid_.insert(f, box_[f]);
+    if (group_[f] < 0 || i + 1 == order.size() || group_[order[i + 1]] != group_[f])
+      for (; inserted <= i; ++inserted) grid_.insert(order[inserted], box_[order[inserted]]);
   }
   for (int f : moved) group_[f] = -2;
   return true;

@@ -75,6 +75,10 @@ struct LocalRepairOptions {
   /// move lowers it; the links they cut or make are tabu for the next few moves.
   std::size_t max_sideways = 32;
   std::size_t max_rise = 1;
+  /// A cut met again in the same round (the pairs' tree paths share links) is not evaluated
+  /// again, only its tests are counted; false evaluates it again. The result and the stats are
+  /// the same either way (a test compares them).
+  bool reuse_cuts = true;
 };
 
 /// What Unfolding::repair_locally did.
@@ -173,6 +177,8 @@ class Unfolding {
   std::size_t relaid_faces() const { return relaid_; }
 
  private:
+  friend struct UnfoldingTestAccess;  // tests/unfold_test.cpp: the Tabu move primitives
+
   // unfolding.cpp: construction, editing, update.
   void set_adjacency(int f);
   int edge_to(int f, int other) const;
@@ -213,6 +219,10 @@ class Unfolding {
   void for_each_crossing(F&& f) const;
   long long evaluate_move(int g, int k, long long crossing, long long cutoff);
   void apply_move(int g, int k);
+  // After apply_move when the moved link was g - parent_[g]: g's subtree hangs from q now; updates
+  // the pre-order, sizes and parents to exactly what root_at(root_) gives, in time proportional to
+  // the faces between the old and new place of the subtree in the pre-order.
+  void move_subtree(int g, int q);
   void relayout_all();
   std::uint32_t next_seen_epoch();
 
@@ -250,7 +260,8 @@ class Unfolding {
   std::vector<std::vector<int>> part_queue_;
   std::vector<std::pair<int, int>> todo_;
   std::vector<int> group_;  // update_locally: what moved together (-2 outside a call)
-  std::size_t relaid_ = 0;  // faces re-laid out by update(), ever
+  std::vector<int> group_start_, group_order_;  // update_locally: moved faces by group
+  std::size_t relaid_ = 0;                      // faces re-laid out by update(), ever
 
   // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
   // is the pre-order range [cut_lo_, cut_hi_), the other its complement.

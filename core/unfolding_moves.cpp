@@ -120,10 +120,14 @@ long long Unfolding::evaluate_move(int g, int k, long long crossing, long long c
                             ? anchor_pos
                             : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};
     const std::uint32_t epoch = next_seen_epoch();
-    grid_.query(triangle_box(t), [&](int c) {
+    const Box2 box = triangle_box(t);
+    grid_.query(box, [&](int c) {
       if (seen_[c] == epoch || in_small(c)) return;
       seen_[c] = epoch;
-      if (triangles_overlap(t, pos_[c], tolerance_)) ++delta;
+      // Faces in the grid have their current box (triangles_overlap's own first test).
+      if (boxes_overlap(box, box_[c], tolerance_) &&
+          triangles_overlap_in_boxes(t, pos_[c], tolerance_))
+        ++delta;
     });
     return delta < cutoff;
   };
@@ -150,19 +154,21 @@ void Unfolding::apply_move(int g, int k) {
   Triangle2 anchor_pos;
   Rigid motion;
   const int anchor = move_anchor(g, k, anchor_pos, motion);
+  // The moving side leaves the grid while it is tested: the queries meet only the other side.
   const auto move = [&](int s) {
     grid_.remove(s);
     pos_[s] = s == anchor ? anchor_pos
                           : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};
     box_[s] = triangle_box(pos_[s]);
-    grid_.insert(s, box_[s]);
   };
   const auto retest = [&](int s) {
     const std::uint32_t epoch = next_seen_epoch();
     grid_.query(box_[s], [&](int c) {
-      if (seen_[c] == epoch || in_small(c)) return;
+      if (seen_[c] == epoch) return;
       seen_[c] = epoch;
-      if (triangles_overlap(pos_[s], pos_[c], tolerance_)) add_pair(s, c);
+      if (boxes_overlap(box_[s], box_[c], tolerance_) &&
+          triangles_overlap_in_boxes(pos_[s], pos_[c], tolerance_))
+        add_pair(s, c);
     });
   };
   const auto each_small = [&](const auto& visit) {
@@ -175,13 +181,43 @@ void Unfolding::apply_move(int g, int k) {
   };
   each_small(move);
   each_small(retest);
+  each_small([&](int s) { grid_.insert(s, box_[s]); });
 
   const int kp = edge_to(g, p);
   links_[g] &= static_cast<std::uint8_t>(~(1u << kp));
   links_[p] &= static_cast<std::uint8_t>(~(1u << adj_edge_[g][kp]));
   links_[g] |= static_cast<std::uint8_t>(1u << k);
   links_[q] |= static_cast<std::uint8_t>(1u << adj_edge_[g][k]);
-  root_at(root_);  // the pre-order of the changed tree
+  if (g_in_range_)
+    move_subtree(g, q);
+  else
+    root_at(root_);  // the pre-order of the changed tree
+}
+
+void Unfolding::move_subtree(int g, int q) {
+  // g's subtree, the pre-order range [lo, hi), now hangs from q (outside it). root_at visits a
+  // face's children by decreasing edge index, each with its whole subtree: the range keeps its
+  // own order and moves to just after q and q's children across higher edges.
+  const int lo = tin_[g], len = size_[g], hi = lo + len;
+  const int kq = adj_edge_[g][edge_to(g, q)];
+  int dest = tin_[q] - (tin_[q] > lo ? len : 0) + 1;  // positions without the range
+  for (int k = kq + 1; k < 3; ++k) {
+    const int n = adj_[q][k];
+    if (!(links_[q] >> k & 1) || n == parent_[q]) continue;
+    dest += size_[n] - (in_subtree_of(n, g) ? len : 0);
+  }
+  for (int x = parent_[g]; x != -1; x = parent_[x]) size_[x] -= len;
+  for (int x = q; x != -1; x = parent_[x]) size_[x] += len;
+  parent_[g] = q;
+  int from = lo, to = hi;
+  if (dest < lo) {
+    std::rotate(order_.begin() + dest, order_.begin() + lo, order_.begin() + hi);
+    from = dest;
+  } else {
+    std::rotate(order_.begin() + lo, order_.begin() + hi, order_.begin() + dest + len);
+    to = dest + len;
+  }
+  for (int i = from; i < to; ++i) tin_[order_[i]] = i;
 }
 
 void Unfolding::relayout_all() {

@@ -100,8 +100,25 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
     return std::find(tabu.begin(), tabu.end(), ordered(a, b)) != tabu.end();
   };
   const long long rise = static_cast<long long>(options.max_rise);
+  // The cuts evaluated in the current round and, for each way of gluing their side back, the count
+  // change after each face tested. The pairs' tree paths share links, so a round meets many cuts
+  // again; the state has not changed, so such a cut cannot give a better move (that needs a lower
+  // count, or the same with a smaller side), and it is not evaluated again: only its tests are
+  // counted, as many as the evaluation would have made (it stops where the recorded counts meet
+  // the current best), so that the test budget runs out exactly as before.
+  struct Cut {
+    int x = -1, y = -1;
+    bool small = false;  // the side has at most `limit` faces (else: the end of that path side)
+    std::size_t side = 0, begin = 0, end = 0;  // side size; its gluings [begin, end)
+  };
+  std::vector<Cut> cuts;
+  std::vector<std::pair<std::size_t, std::size_t>> gluings;  // counts [first, second)
+  std::vector<long long> counts;
   while (pair_count_ > 0 && st.tests < options.max_tests) {
     Move best;
+    cuts.clear();
+    gluings.clear();
+    counts.clear();
     // Evaluates every way of gluing the side x..(not y) in side_ (marked with `epoch`) back on.
     const auto evaluate_side = [&](int x, int y, std::uint32_t epoch) {
       long long crossing = 0;
@@ -119,25 +136,62 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
           const Rigid motion = rigid_between(pos_[s], placed);
           long long delta = -crossing;
           ++st.evaluations;
+          const std::size_t first = counts.size();
           for (int t : side_) {
             const Triangle2 moved =
                 t == s ? placed
                        : Triangle2{motion(pos_[t][0]), motion(pos_[t][1]), motion(pos_[t][2])};
             const std::uint32_t seen = next_seen_epoch();
             ++st.tests;
-            grid_.query(triangle_box(moved), [&](int c) {
+            const Box2 box = triangle_box(moved);
+            grid_.query(box, [&](int c) {
               if (seen_[c] == seen || side_mark_[c] == epoch) return;
               seen_[c] = seen;
-              if (triangles_overlap(moved, pos_[c], tolerance_)) ++delta;
+              // Faces in the grid have their current box: most candidates end here, without the
+              // call (whose first test is the same).
+              if (boxes_overlap(box, box_[c], tolerance_) &&
+                  triangles_overlap_in_boxes(moved, pos_[c], tolerance_))
+                ++delta;
             });
+            counts.push_back(delta);
             // Only a move that lowers the count is applied: stop once this one cannot win.
             if (delta > rise || delta > best.delta ||
                 (delta == best.delta && side_.size() >= best.side))
               break;
           }
+          gluings.push_back({first, counts.size()});
           if (delta < best.delta || (delta == best.delta && side_.size() < best.side))
             best = {delta, side_.size(), x, y, s, k};
         }
+    };
+
+    // Evaluates the cut of link x - y (the side holding x moves) unless this round did; false when
+    // that side has more than `limit` faces.
+    const auto visit_cut = [&](int x, int y) {
+      for (const Cut& c : cuts) {
+        if (c.x != x || c.y != y || !options.reuse_cuts) continue;
+        for (std::size_t i = c.begin; i < c.end && c.small; ++i) {
+          ++st.evaluations;
+          for (std::size_t j = gluings[i].first; j < gluings[i].second; ++j) {
+            ++st.tests;
+            const long long d = counts[j];
+            if (d > rise || d > best.delta || (d == best.delta && c.side >= best.side)) break;
+          }
+        }
+        return c.small;
+      }
+      Cut c;
+      c.x = x;
+      c.y = y;
+      c.small = collect_side(x, y, limit);
+      c.begin = gluings.size();
+      if (c.small) {
+        c.side = side_.size();
+        evaluate_side(x, y, side_epoch_);
+      }
+      c.end = gluings.size();
+      cuts.push_back(c);
+      return c.small;
     };
 
     pairs.clear();
@@ -156,13 +210,11 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
       // Sides holding a grow along the path, sides holding b shrink: try both ends while small.
       for (std::size_t i = 0; i + 1 < m; ++i) {
         if (is_tabu(path[i], path[i + 1])) continue;
-        if (!collect_side(path[i], path[i + 1], limit)) break;
-        evaluate_side(path[i], path[i + 1], side_epoch_);
+        if (!visit_cut(path[i], path[i + 1])) break;
       }
       for (std::size_t i = m - 1; i > 0; --i) {
         if (is_tabu(path[i], path[i - 1])) continue;
-        if (!collect_side(path[i], path[i - 1], limit)) break;
-        evaluate_side(path[i], path[i - 1], side_epoch_);
+        if (!visit_cut(path[i], path[i - 1])) break;
       }
     }
     if (best.delta >= 0 || best.delta == LLONG_MAX) {

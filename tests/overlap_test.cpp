@@ -254,5 +254,32 @@ TEST(OverlapGrid, RealNetsMatchBruteForce) {
   }
 }
 
+// triangles_overlap_in_boxes (the test without its box check, for callers that checked the
+// boxes) gives triangles_overlap's answer for every pair of faces whose boxes overlap in real
+// steepest-edge nets (overlapping layouts, glued neighbours, CAD slivers), also with tolerance 0.
+TEST(TrianglesOverlap, InBoxesAgreesOnRealNets) {
+  for (const char* name : {"c3d__spot", "thingi10k__79741"}) {
+    SCOPED_TRACE(name);
+    const std::filesystem::path file = std::filesystem::path(PAPERNET_SHARED_DATA) / "bench" /
+                                       "800" / (std::string(name) + ".obj");
+    if (!std::filesystem::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
+    const Unfolding u = Unfolding::steepest_edge(load_mesh_file(file.string()).mesh, 1);
+    const int nf = static_cast<int>(u.face_count());
+    std::size_t compared = 0, overlapping = 0;
+    for (double tol : {u.tolerance(), 0.0})
+      for (int a = 0; a < nf; ++a)
+        for (int b = 0; b < nf; ++b) {
+          if (!boxes_overlap(triangle_box(u.points(a)), triangle_box(u.points(b)), tol)) continue;
+          const bool expected = triangles_overlap(u.points(a), u.points(b), tol);
+          ASSERT_EQ(triangles_overlap_in_boxes(u.points(a), u.points(b), tol), expected)
+              << "faces " << a << ", " << b;
+          ++compared;
+          overlapping += expected ? 1 : 0;
+        }
+    EXPECT_GT(compared, static_cast<std::size_t>(4 * nf));  // neighbours' boxes overlap
+    EXPECT_GT(overlapping, 0u);  // steepest-edge nets of these meshes overlap
+  }
+}
+
 }  // namespace
 }  // namespace papernet

@@ -17,6 +17,19 @@
 #include "tests/test_meshes.h"
 
 namespace papernet {
+
+// The Tabu Unfolder's move primitives, for a test of the pre-order they keep.
+struct UnfoldingTestAccess {
+  static void root_at(Unfolding& u, int r) { u.root_at(r); }
+  static int root(const Unfolding& u) { return u.root_; }
+  static void cut(Unfolding& u, int g, int other) { u.cut(g, other); }
+  static bool in_subtree(const Unfolding& u, int x) { return u.in_subtree(x); }
+  static void apply_move(Unfolding& u, int g, int k) { u.apply_move(g, k); }
+  static bool same_preorder(const Unfolding& a, const Unfolding& b) {
+    return a.order_ == b.order_ && a.tin_ == b.tin_ && a.size_ == b.size_ && a.parent_ == b.parent_;
+  }
+};
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -199,6 +212,94 @@ TEST(Unfold, SmallEditsOfALargeNetMatchAFreshBuild) {
     EXPECT_THROW(u.update(), TopologyException);
     break;
   }
+}
+
+// Overlapping faces and pair count by brute force over all pairs, with Unfolding's own test.
+std::pair<std::vector<int>, std::size_t> brute_force_overlaps(const Unfolding& u) {
+  const int nf = static_cast<int>(u.face_count());
+  std::vector<char> hit(nf, 0);
+  std::size_t pairs = 0;
+  for (int a = 0; a < nf; ++a)
+    for (int b = a + 1; b < nf; ++b)
+      if (triangles_overlap(u.points(a), u.points(b), u.tolerance())) {
+        hit[a] = hit[b] = 1;
+        ++pairs;
+      }
+  std::vector<int> faces;
+  for (int f = 0; f < nf; ++f)
+    if (hit[f]) faces.push_back(f);
+  return {faces, pairs};
+}
+
+// update()'s local path on a real 2,000-face net: edits of a few vertices at once cut the tree
+// into many parts that move rigidly; each part is tested as a whole against the rest (its own
+// faces out of the grid), the edited faces one by one. The overlapping pairs must be exactly
+// those of a brute-force test of all pairs, after every edit.
+TEST(Unfold, LocalUpdatesOfARealNetMatchBruteForce) {
+  const fs::path file = fs::path(PAPERNET_SHARED_DATA) / "bench" / "2000" / "draco__bun_zipper.obj";
+  if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
+  const Mesh mesh = load_mesh_file(file.string()).mesh;
+  Unfolding u = Unfolding::steepest_edge(mesh, 1);
+  const int nv = static_cast<int>(mesh.vertices.size());
+  std::size_t relaid = u.relaid_faces(), with_overlaps = 0;
+  for (int round = 0; round < 8; ++round) {
+    // Four vertices pulled outwards by 30 % of their distance from vertex 0.
+    for (int j = 0; j < 4; ++j) {
+      const int v = (round * 131 + j * 257) % nv;
+      const Vec3 o = u.mesh().vertices[0], p = u.mesh().vertices[v];
+      u.set_vertex_position(v, o + 1.3 * (p - o));
+    }
+    u.update();
+    const auto [faces, pairs] = brute_force_overlaps(u);
+    std::vector<int> have = u.overlapping_faces();
+    std::sort(have.begin(), have.end());
+    EXPECT_EQ(u.overlap_count(), pairs) << "round " << round;
+    EXPECT_EQ(have, faces) << "round " << round;
+    if (pairs > 0) ++with_overlaps;
+  }
+  // The local path ran (it moves far fewer than all faces per edit), and the edits made overlaps.
+  EXPECT_LT(u.relaid_faces() - relaid, 8 * u.face_count());
+  EXPECT_GT(with_overlaps, 0u);
+}
+
+// After a move the Tabu Unfolder keeps the tree's pre-order, subtree sizes and parents up to
+// date (moving the pre-order range of the re-hung subtree, or recomputing them all when the
+// root's side moves): they must be exactly what a fresh root_at gives, after every move.
+TEST(Unfold, PreorderAfterMovesMatchesAFreshOne) {
+  const fs::path file = fs::path(PAPERNET_SHARED_DATA) / "bench" / "800" / "c3d__spot.obj";
+  if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
+  Unfolding u = Unfolding::steepest_edge(load_mesh_file(file.string()).mesh, 1);
+  using A = UnfoldingTestAccess;
+  const int nf = static_cast<int>(u.face_count());
+  int root = 0;
+  while (u.parent(root) != -1) root = u.parent(root);
+  A::root_at(u, root);
+  std::size_t moves[2] = {0, 0};  // [1]: g's own subtree re-hung, [0]: the side of the root
+  for (int step = 0; step < 4000 && moves[0] + moves[1] < 300; ++step) {
+    const int g = (step * 7919) % nf;
+    // The link to g's parent, or to one of its children.
+    int other = u.parent(g);
+    if (step % 2 == 0)
+      for (int k = 0; k < 3; ++k) {
+        const int n = u.neighbour(g, k);
+        if (n >= 0 && u.parent(n) == g) other = n;
+      }
+    if (other < 0) continue;
+    const bool own_subtree = other == u.parent(g);
+    A::cut(u, g, other);
+    for (int k = 0; k < 3; ++k) {
+      const int q = u.neighbour(g, k);
+      if (q < 0 || u.linked(g, q) || A::in_subtree(u, q)) continue;
+      A::apply_move(u, g, k);
+      ++moves[own_subtree ? 1 : 0];
+      Unfolding fresh = u;
+      A::root_at(fresh, A::root(u));
+      ASSERT_TRUE(A::same_preorder(u, fresh)) << "after move " << moves[0] + moves[1];
+      break;
+    }
+  }
+  EXPECT_GT(moves[1], 50u);
+  EXPECT_GT(moves[0], 5u);
 }
 
 void unfold_folder(const fs::path& dir, std::size_t max_faces) {

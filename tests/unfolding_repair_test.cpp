@@ -1,6 +1,7 @@
 // Unfolding::repair_locally: local moves of small sides of the unfold tree after overlaps appear.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,38 @@ TEST(LocalRepair, TinyBudgetStopsEarly) {
   u.repair_locally(options, &stats);
   EXPECT_LE(stats.moves, 1u);
   expect_consistent(u);
+}
+
+// A cut met again in the same round is not evaluated again, only its tests are counted: the
+// nets and every count must be those of evaluating it again, also when the test budget ends the
+// repair (the budget must run out after the same round).
+TEST(LocalRepair, RepeatedCutsGiveTheSameNetAndCounts) {
+  const std::string bunny = std::string(PAPERNET_SHARED_DATA) + "/bench/2000/draco__bun_zipper.obj";
+  std::vector<Unfolding> starts{Unfolding::steepest_edge(load_test_mesh("thingi10k_65004.stl"), 1),
+                                Unfolding::steepest_edge(load_test_mesh("thingi10k_65004.stl"), 4)};
+  if (std::filesystem::exists(bunny))
+    starts.push_back(Unfolding::steepest_edge(load_mesh_file(bunny).mesh, 1));
+  std::size_t budget_ended = 0;
+  for (const Unfolding& start : starts) {
+    ASSERT_GT(start.overlap_count(), 0u);
+    for (std::size_t budget : {300, 1000, 3000, 100000}) {
+      SCOPED_TRACE("budget " + std::to_string(budget));
+      Unfolding a = start, b = start;
+      LocalRepairOptions options;
+      options.max_tests = budget;
+      LocalRepairStats sa, sb;
+      a.repair_locally(options, &sa);
+      options.reuse_cuts = false;
+      b.repair_locally(options, &sb);
+      EXPECT_EQ(sa.tests, sb.tests);
+      EXPECT_EQ(sa.evaluations, sb.evaluations);
+      EXPECT_EQ(sa.moves, sb.moves);
+      EXPECT_EQ(sa.overlaps, sb.overlaps);
+      EXPECT_EQ(a.net().parent, b.net().parent);
+      if (sa.tests >= budget) ++budget_ended;
+    }
+  }
+  EXPECT_GT(budget_ended, 0u);
 }
 
 // Progressive unfolding (which repairs locally after every split) is reproducible.
