@@ -11,6 +11,40 @@
 
 namespace papernet::tab_clearance_detail {
 
+template <class Degree, class Skip>
+std::vector<std::pair<int, int>> Clearance::crossing_glues(int top, std::array<int, 2> link_ends,
+                                                           Vec3 at, std::size_t most,
+                                                           Degree&& degree, Skip&& skip) const {
+  const bool sub_small = 2 * size_[top] <= nf_;
+  std::vector<std::pair<double, std::pair<int, int>>> near;
+  const auto side = [&](int x) {  // the cut edges from face x of the smaller side
+    for (int j = 0; j < 3; ++j) {
+      const int y = adj_[x][j];
+      if (y < 0 || linked(x, j) || in_sub(top, y) == sub_small || skip(x, j)) continue;
+      const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
+      const int gain_a = a == link_ends[0] || a == link_ends[1] ? 1 : 0;
+      const int gain_b = b == link_ends[0] || b == link_ends[1] ? 1 : 0;
+      if ((degree(a) + gain_a - 1 < 2 && !harmless(a)) ||
+          (degree(b) + gain_b - 1 < 2 && !harmless(b)))
+        continue;
+      const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
+      near.push_back({norm(m - at), {x, j}});
+    }
+  };
+  const int lo = tin_[top], hi = tin_[top] + size_[top];
+  if (sub_small) {
+    for (int i = lo; i < hi; ++i) side(order_[i]);
+  } else {
+    for (int i = 0; i < lo; ++i) side(order_[i]);
+    for (int i = hi; i < nf_; ++i) side(order_[i]);
+  }
+  std::sort(near.begin(), near.end());
+  if (near.size() > most) near.resize(most);
+  std::vector<std::pair<int, int>> out;
+  for (const auto& [d, g] : near) out.push_back(g);
+  return out;
+}
+
 std::vector<int> Clearance::cut_neighbours(int x) const {
   std::vector<int> out;
   for (int f : vertex_faces_[x])
@@ -122,7 +156,6 @@ bool Clearance::candidates(int f, int k, Consider&& consider) {
   // hair's vertices from its leaf on: cutting one there and gluing a cut edge beyond the hair
   // makes the hair a path between two parts of the net, whose sides can part.
   const Vec3 mid = 0.5 * (mesh_.vertices[u] + mesh_.vertices[v]);
-  const std::vector<int>& degree = cut_degree_;
   std::vector<std::pair<int, int>> all_cuts = narrow_cuts;
   all_cuts.insert(all_cuts.end(), wide_cuts.begin(), wide_cuts.end());
   if (endgame_)
@@ -132,35 +165,10 @@ bool Clearance::candidates(int f, int k, Consider&& consider) {
   for (const std::pair<int, int>& cut : all_cuts) {
     // Not a structured binding: the lambda below uses them, which clang 14 refuses.
     const int lf = cut.first, lk = cut.second;
-    const int l0 = mesh_.faces[lf][lk], l1 = mesh_.faces[lf][(lk + 1) % 3];
     const int lp = adj_[lf][lk], top = parent_[lf] == lp ? lf : lp;
-    const bool sub_small = 2 * size_[top] <= nf_;
-    std::vector<std::pair<double, std::pair<int, int>>> far;
-    const auto side = [&](int x) {  // the cut edges from face x of the smaller side
-      for (int j = 0; j < 3; ++j) {
-        const int y = adj_[x][j];
-        if (y < 0 || linked(x, j) || in_sub(top, y) == sub_small) continue;
-        const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
-        const int gain_a = a == l0 || a == l1 ? 1 : 0;
-        const int gain_b = b == l0 || b == l1 ? 1 : 0;
-        if ((degree[a] + gain_a - 1 < 2 && !harmless(a)) ||
-            (degree[b] + gain_b - 1 < 2 && !harmless(b)))
-          continue;
-        const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
-        far.push_back({norm(m - mid), {x, j}});
-      }
-    };
-    const int lo = tin_[top], hi = tin_[top] + size_[top];
-    if (sub_small) {
-      for (int i = lo; i < hi; ++i) side(order_[i]);
-    } else {
-      for (int i = 0; i < lo; ++i) side(order_[i]);
-      for (int i = hi; i < nf_; ++i) side(order_[i]);
-    }
-    std::sort(far.begin(), far.end());
-    if (far.size() > far_glues_) far.resize(far_glues_);
-    std::vector<std::pair<int, int>> glues;
-    for (const auto& [d, g] : far) glues.push_back(g);
+    const std::vector<std::pair<int, int>> glues = crossing_glues(
+        top, {mesh_.faces[lf][lk], mesh_.faces[lf][(lk + 1) % 3]}, mid, far_glues_,
+        [&](int x) { return cut_degree_[x]; }, [](int, int) { return false; });
     if (try_all({{lf, lk}}, glues)) return true;
   }
   return false;
@@ -273,30 +281,10 @@ bool Clearance::try_compound(int f, int k, Sideways* sideways) {
           root = roots[i];
           break;
         }
-      std::vector<std::pair<double, std::pair<int, int>>> far;
-      const auto side = [&](int x) {
-        for (int j = 0; j < 3; ++j) {
-          const int y = adj_[x][j];
-          if (y < 0 || linked(x, j) || in_sub(btop, y) == sub_small || tabu(x, j)) continue;
-          const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
-          if ((x == af && j == ak) || (y == af && adj_edge_[x][j] == ak)) continue;
-          const int ga = a == b0 || a == b1 ? 1 : 0, gb = b == b0 || b == b1 ? 1 : 0;
-          if ((degree(a) + ga - 1 < 2 && !harmless(a)) || (degree(b) + gb - 1 < 2 && !harmless(b)))
-            continue;
-          const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
-          far.push_back({norm(m - at), {x, j}});
-        }
+      const auto skip = [&](int x, int j) {
+        return tabu(x, j) || (x == af && j == ak) || (adj_[x][j] == af && adj_edge_[x][j] == ak);
       };
-      const int lo = tin_[btop], hi = tin_[btop] + size_[btop];
-      if (sub_small) {
-        for (int i = lo; i < hi; ++i) side(order_[i]);
-      } else {
-        for (int i = 0; i < lo; ++i) side(order_[i]);
-        for (int i = hi; i < nf_; ++i) side(order_[i]);
-      }
-      std::sort(far.begin(), far.end());
-      if (far.size() > kCompoundGlues) far.resize(kCompoundGlues);
-      for (const auto& [d, g] : far) {
+      for (const auto& g : crossing_glues(btop, {b0, b1}, at, kCompoundGlues, degree, skip)) {
         seconds.push_back({bf, bk, g.first, g.second});
         second_root.push_back(root);
       }

@@ -96,6 +96,14 @@ class Clearance {
   void commit();
   template <class Consider>
   bool candidates(int f, int k, Consider&& consider);
+  /// The cut edges (face, edge) between the two sides of tree link `top` that gluing could
+  /// replace it by without a new flat leaf of the cut tree, given that cutting the link adds a
+  /// cut edge at `link_ends` and that `degree(x)` is the cut degree of vertex x: nearest to
+  /// `at` first, at most `most`; `skip(face, edge)` leaves out more.
+  template <class Degree, class Skip>
+  std::vector<std::pair<int, int>> crossing_glues(int top, std::array<int, 2> link_ends, Vec3 at,
+                                                  std::size_t most, Degree&& degree,
+                                                  Skip&& skip) const;
   /// The other ends of the cut edges at vertex x.
   std::vector<int> cut_neighbours(int x) const;
   /// When edge (u, v) lies on a hair (a path of two-cut interior vertices ending at a leaf),
