@@ -258,6 +258,10 @@ bool Clearance::apply_compound(int tf, int tk, const std::vector<std::array<int,
         return true;
     return false;
   };
+  const auto give_up = [&] {
+    for (int x : moving_) is_moving_[x] = 0;
+    return revert();
+  };
   // The new tree from the root, breadth first; a face that is reached twice or not at all means
   // the links are no spanning tree.
   std::fill(from_.begin(), from_.end(), -2);
@@ -272,7 +276,7 @@ bool Clearance::apply_compound(int tf, int tk, const std::vector<std::array<int,
       if (!linked(x, k)) continue;
       const int y = adj_[x][k];
       if (from_[x] >= 0 && y == adj_[x][from_[x]]) continue;  // its parent
-      if (from_[y] != -2) return revert();                    // a cycle
+      if (from_[y] != -2) return give_up();                   // a cycle
       from_[y] = adj_edge_[x][k];
       order2_.push_back(y);
       ++reached;
@@ -282,10 +286,6 @@ bool Clearance::apply_compound(int tf, int tk, const std::vector<std::array<int,
       }
     }
   }
-  const auto give_up = [&] {
-    for (int x : moving_) is_moving_[x] = 0;
-    return revert();
-  };
   if (reached != static_cast<std::size_t>(nf_) || moving_.empty()) return give_up();
   // Lay out the moved faces (parents first), each checked at once against the faces that stay
   // (most candidates fail here, early); then, when the swaps moved parts differently, each
