@@ -245,7 +245,8 @@ bool Clearance::try_compound(int f, int k, Sideways* sideways) {
   const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step_; };
   if (tabu(gf, gk)) return false;
   const Vec3 at = mesh_.vertices[tail];
-  for (const auto& [af, ak] : links_at(leaf)) {
+  for (const std::pair<int, int>& first : links_at(leaf)) {
+    const int af = first.first, ak = first.second;  // not a structured binding: lambdas use them
     if (tabu(af, ak)) continue;
     const int ap = adj_[af][ak], atop = parent_[af] == ap ? af : ap;
     if (in_sub(atop, gf) == in_sub(atop, adj_[gf][gk])) continue;
