@@ -121,18 +121,16 @@ class Decimator {
       heap_.pop();
       if (top.stamp != stamp_[top.vertex] || !pm_.vertex_alive(top.vertex)) continue;
       const Candidate& c = best_[top.vertex];
-      if (!pm_.can_collapse(top.vertex, c.kept, c.position)) {
+      if (!pm_.try_collapse(top.vertex, c.kept, c.position)) {
         push(top.vertex);  // its 2-ring changed since it was queued
         continue;
       }
       const int r = top.vertex, k = c.kept;
-      pm_.collapse(r, k, c.position);
       if (!quadric_.empty()) quadric_[k] += quadric_[r];
       ++stamp_[r];
       push(k);
-      ring(k, ring_);
-      const std::vector<int> around = ring_;
-      for (int w : around) push(w);
+      ring(k, around_);
+      for (int w : around_) push(w);
     }
     last_report = std::chrono::steady_clock::now();
     report();
@@ -244,7 +242,7 @@ class Decimator {
   std::vector<unsigned> stamp_;
   std::vector<Candidate> best_;
   std::priority_queue<HeapEntry> heap_;
-  std::vector<int> ring_;
+  std::vector<int> ring_, around_;
   std::vector<Candidate> candidates_;
 };
 
