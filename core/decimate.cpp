@@ -72,6 +72,17 @@ struct Candidate {
   double cost = 0, length2 = 0;
 };
 
+// A vertex's evaluations from its last push, in increasing order of `kept`, with the versions of
+// both ends (Decimator::version_) they were computed with.
+struct CachedCandidate {
+  Candidate candidate;
+  unsigned kept_version = 0;
+};
+struct Cached {
+  unsigned version = 0;
+  std::vector<CachedCandidate> entries;
+};
+
 struct HeapEntry {
   double cost, length2;
   int vertex;
@@ -85,11 +96,14 @@ struct HeapEntry {
 
 class Decimator {
  public:
-  Decimator(ProgressiveMesh& pm, CollapseStrategy strategy)
+  Decimator(ProgressiveMesh& pm, CollapseStrategy strategy, bool reuse = true)
       : pm_(pm),
         strategy_(strategy),
+        reuse_(reuse),
         stamp_(pm.mesh().vertices.size(), 0),
-        best_(pm.mesh().vertices.size()) {
+        best_(pm.mesh().vertices.size()),
+        version_(pm.mesh().vertices.size(), 0),
+        cached_(pm.mesh().vertices.size()) {
     if (strategy_ != CollapseStrategy::SEMP) init_quadrics();
   }
 
@@ -128,6 +142,7 @@ class Decimator {
       const int r = top.vertex, k = c.kept;
       if (!quadric_.empty()) quadric_[k] += quadric_[r];
       ++stamp_[r];
+      ++version_[k];  // k's quadric and position changed: its cached evaluations are stale
       push(k);
       ring(k, around_);
       for (int w : around_) push(w);
@@ -218,8 +233,30 @@ class Decimator {
     ++stamp_[v];
     if (!pm_.vertex_alive(v)) return;
     ring(v, ring_);
+    // evaluate(v, k) depends only on v's and k's quadrics and positions, which change only when
+    // they are kept by a collapse (version_): reuse v's earlier evaluations of unchanged pairs.
+    // Both lists are in increasing order of k.
+    Cached& cache = cached_[v];
     candidates_.clear();
-    for (int k : ring_) candidates_.push_back(evaluate(v, k));
+    std::size_t j = 0;
+    const bool own_valid = cache.version == version_[v] && !cache.entries.empty();
+    for (int k : ring_) {
+      if (own_valid) {
+        while (j < cache.entries.size() && cache.entries[j].candidate.kept < k) ++j;
+        if (j < cache.entries.size() && cache.entries[j].candidate.kept == k &&
+            cache.entries[j].kept_version == version_[k]) {
+          candidates_.push_back(cache.entries[j].candidate);
+          continue;
+        }
+      }
+      candidates_.push_back(evaluate(v, k));
+    }
+    if (reuse_) {
+      cache.version = version_[v];
+      cache.entries.resize(candidates_.size());
+      for (std::size_t i = 0; i < candidates_.size(); ++i)
+        cache.entries[i] = {candidates_[i], version_[candidates_[i].kept]};
+    }
     std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
       if (a.cost != b.cost) return a.cost < b.cost;
       if (a.length2 != b.length2) return a.length2 < b.length2;
@@ -238,11 +275,15 @@ class Decimator {
 
   ProgressiveMesh& pm_;
   CollapseStrategy strategy_;
+  bool reuse_;
   std::vector<Quadric> quadric_;
   std::vector<unsigned> stamp_;
   std::vector<Candidate> best_;
+  std::vector<unsigned> version_;
+  std::vector<Cached> cached_;
+  std::vector<int> around_;
   std::priority_queue<HeapEntry> heap_;
-  std::vector<int> ring_, around_;
+  std::vector<int> ring_;
   std::vector<Candidate> candidates_;
 };
 
@@ -291,7 +332,7 @@ ProgressiveMesh decimate(const Mesh& mesh, const DecimateOptions& options, Progr
   const std::size_t target = options.target_faces > 0
                                  ? options.target_faces
                                  : collapse_target(pm.input_face_count(), pm.genus());
-  Decimator(pm, options.strategy).run(target, progress);
+  Decimator(pm, options.strategy, options.reuse_evaluations).run(target, progress);
   return pm;
 }
 

@@ -272,6 +272,33 @@ TEST(Decimate, TryCollapseAppliesOnlyLegalCollapses) {
   EXPECT_FALSE(pm.vertex_alive(4));
 }
 
+TEST(Decimate, ReusedEvaluationsGiveTheSameCollapses) {
+  // Closed, open (5 boundary loops), genus 2 and CAD-like flat sides, every strategy.
+  const char* files[] = {"trimesh__ballA.obj", "draco__bun_zipper.obj", "thingi10k__472042.obj",
+                         "trimesh__ADIS16480.obj"};
+  const std::filesystem::path dir = std::filesystem::path(PAPERNET_SHARED_DATA) / "bench/2000";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "needs ../shared/data: " << dir;
+  for (const char* file : files)
+    for (CollapseStrategy s :
+         {CollapseStrategy::QQ, CollapseStrategy::SEMP, CollapseStrategy::SEQ}) {
+      SCOPED_TRACE(std::string(file) + " " + strategy_name(s));
+      const Mesh input = load_mesh_file((dir / file).string()).mesh;
+      Progress progress;
+      ProgressiveMesh reused = decimate(input, {s, 0, true}, progress);
+      ProgressiveMesh fresh = decimate(input, {s, 0, false}, progress);
+      ASSERT_EQ(reused.splits_left(), fresh.splits_left());
+      EXPECT_GT(reused.splits_left(), 100u);  // a real run, not an empty one
+      EXPECT_TRUE(bitwise_equal(reused.mesh(), fresh.mesh()));
+      while (reused.splits_left() > 0) {
+        const VertexSplit a = reused.split(), b = fresh.split();
+        ASSERT_EQ(a.vertex, b.vertex);
+        ASSERT_EQ(a.moved, b.moved);
+        ASSERT_TRUE(std::memcmp(&a.moved_from, &b.moved_from, sizeof(Vec3)) == 0);
+        ASSERT_EQ(a.new_faces.size(), b.new_faces.size());
+      }
+    }
+}
+
 TEST(Decimate, BenchMeshesRoundTrip) {
   // Higher genus, several boundary loops, CAD-like flat sides.
   const Case cases[] = {{"thingi10k__472042.obj", 2, 0},
