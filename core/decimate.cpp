@@ -190,13 +190,29 @@ class Decimator {
     return count == 1;
   }
 
+  // v's neighbours in increasing order. v's faces form one consistently oriented fan: each
+  // neighbour follows v in exactly one face, except, in an open fan, the one at its end, which
+  // only precedes v. The corners around v then XOR to that end and the fan's start (distinct).
   void ring(int v, std::vector<int>& out) const {
     out.clear();
-    for (int f : pm_.vertex_faces(v))
-      for (int c : pm_.mesh().faces[f])
-        if (c != v) out.push_back(c);
+    int ends = 0;
+    const std::vector<int>& around = pm_.vertex_faces(v);
+    for (int f : around) {
+      const auto& face = pm_.mesh().faces[f];
+      out.push_back(face[0] == v ? face[1] : face[1] == v ? face[2] : face[0]);
+      ends ^= face[0] ^ face[1] ^ face[2] ^ v;
+    }
+    if (ends != 0) {  // open fan: add the corner before v that follows v nowhere
+      for (int f : around) {
+        const auto& face = pm_.mesh().faces[f];
+        const int before = face[0] == v ? face[2] : face[1] == v ? face[0] : face[1];
+        if (std::find(out.begin(), out.end(), before) == out.end()) {
+          out.push_back(before);
+          break;
+        }
+      }
+    }
     std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
   Candidate evaluate(int r, int k) const {
