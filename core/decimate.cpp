@@ -273,14 +273,19 @@ class Decimator {
       for (std::size_t i = 0; i < candidates_.size(); ++i)
         cache.entries[i] = {candidates_[i], version_[candidates_[i].kept]};
     }
-    std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+    // The cheapest few only, cheapest first: around a vertex of high valence, checking every
+    // edge is slow. Selected one at a time, not sorted: the first is nearly always legal.
+    const auto cheaper = [](const Candidate& a, const Candidate& b) {
       if (a.cost != b.cost) return a.cost < b.cost;
       if (a.length2 != b.length2) return a.length2 < b.length2;
       return a.kept < b.kept;
-    });
-    // The cheapest few only: around a vertex of high valence, checking every edge is slow.
+    };
     const std::size_t tries = std::min<std::size_t>(candidates_.size(), 12);
     for (std::size_t i = 0; i < tries; ++i) {
+      std::size_t min = i;
+      for (std::size_t j = i + 1; j < candidates_.size(); ++j)
+        if (cheaper(candidates_[j], candidates_[min])) min = j;
+      std::swap(candidates_[i], candidates_[min]);
       const Candidate& c = candidates_[i];
       if (!pm_.can_collapse(v, c.kept, c.position)) continue;
       best_[v] = c;
