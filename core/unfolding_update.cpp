@@ -1,7 +1,7 @@
 // Unfolding::update_locally: the incremental update's local path (after edits of a few faces,
 // only the parts of the tree that move are laid out again and tested). update() in unfolding.cpp
 // calls it and falls back to laying out everything.
-#include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -15,6 +15,11 @@ namespace papernet {
 namespace {
 
 std::string face_name(int f) { return "face " + std::to_string(f); }
+
+// Links of a face: its three low bits. (std::popcount is a library call without -mpopcnt.)
+std::size_t link_count(std::uint8_t bits) {
+  return static_cast<std::size_t>((bits & 1) + (bits >> 1 & 1) + (bits >> 2 & 1));
+}
 
 }  // namespace
 
@@ -34,8 +39,8 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
       const int n = adj_[f][k];
       if (n >= 0 && (p == n || parent_[n] == f)) bits |= static_cast<std::uint8_t>(1u << k);
     }
-    link_bits_ += static_cast<std::size_t>(std::popcount(bits));
-    link_bits_ -= static_cast<std::size_t>(std::popcount(links_[f]));
+    link_bits_ += link_count(bits);
+    link_bits_ -= link_count(links_[f]);
     links_[f] = bits;
   }
   if (link_bits_ != 2 * static_cast<std::size_t>(nf - 1)) {
