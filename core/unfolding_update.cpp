@@ -54,8 +54,12 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
   const std::uint32_t epoch = next_side_epoch();
   if (part_.size() < static_cast<std::size_t>(nf)) part_.resize(nf);
   std::vector<std::vector<int>>& queue = part_queue_;
-  std::vector<int> up, size;
-  std::vector<std::size_t> head;
+  std::vector<int>& up = part_up_;
+  std::vector<int>& size = part_size_;
+  std::vector<std::size_t>& head = part_head_;
+  up.clear();
+  size.clear();
+  head.clear();
   const auto find = [&up](int i) {
     while (up[i] != i) i = up[i] = up[up[i]];
     return i;
@@ -82,7 +86,8 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
   // Always grow the smallest part that is still growing: then at most about twice what moves is
   // explored.
   int kept = -1;
-  std::vector<char> open(sources);
+  std::vector<char>& open = part_open_;
+  open.assign(sources, 0);
   for (;;) {
     int smallest = -1, growing = 0, largest = -1;
     std::fill(open.begin(), open.end(), 0);
