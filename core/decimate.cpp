@@ -72,6 +72,17 @@ struct Candidate {
   double cost = 0, length2 = 0;
 };
 
+// A vertex's evaluations from its last push, in increasing order of `kept`, with the versions of
+// both ends (Decimator::version_) they were computed with.
+struct CachedCandidate {
+  Candidate candidate;
+  unsigned kept_version = 0;
+};
+struct Cached {
+  unsigned version = 0;
+  std::vector<CachedCandidate> entries;
+};
+
 struct HeapEntry {
   double cost, length2;
   int vertex;
@@ -85,11 +96,14 @@ struct HeapEntry {
 
 class Decimator {
  public:
-  Decimator(ProgressiveMesh& pm, CollapseStrategy strategy)
+  Decimator(ProgressiveMesh& pm, CollapseStrategy strategy, bool reuse = true)
       : pm_(pm),
         strategy_(strategy),
+        reuse_(reuse),
         stamp_(pm.mesh().vertices.size(), 0),
-        best_(pm.mesh().vertices.size()) {
+        best_(pm.mesh().vertices.size()),
+        version_(pm.mesh().vertices.size(), 0),
+        cached_(pm.mesh().vertices.size()) {
     if (strategy_ != CollapseStrategy::SEMP) init_quadrics();
   }
 
@@ -121,18 +135,17 @@ class Decimator {
       heap_.pop();
       if (top.stamp != stamp_[top.vertex] || !pm_.vertex_alive(top.vertex)) continue;
       const Candidate& c = best_[top.vertex];
-      if (!pm_.can_collapse(top.vertex, c.kept, c.position)) {
+      if (!pm_.try_collapse(top.vertex, c.kept, c.position)) {
         push(top.vertex);  // its 2-ring changed since it was queued
         continue;
       }
       const int r = top.vertex, k = c.kept;
-      pm_.collapse(r, k, c.position);
       if (!quadric_.empty()) quadric_[k] += quadric_[r];
       ++stamp_[r];
+      ++version_[k];  // k's quadric and position changed: its cached evaluations are stale
       push(k);
-      ring(k, ring_);
-      const std::vector<int> around = ring_;
-      for (int w : around) push(w);
+      ring(k, around_);
+      for (int w : around_) push(w);
     }
     last_report = std::chrono::steady_clock::now();
     report();
@@ -177,13 +190,29 @@ class Decimator {
     return count == 1;
   }
 
+  // v's neighbours in increasing order. v's faces form one consistently oriented fan: each
+  // neighbour follows v in exactly one face, except, in an open fan, the one at its end, which
+  // only precedes v. The corners around v then XOR to that end and the fan's start (distinct).
   void ring(int v, std::vector<int>& out) const {
     out.clear();
-    for (int f : pm_.vertex_faces(v))
-      for (int c : pm_.mesh().faces[f])
-        if (c != v) out.push_back(c);
+    int ends = 0;
+    const std::vector<int>& around = pm_.vertex_faces(v);
+    for (int f : around) {
+      const auto& face = pm_.mesh().faces[f];
+      out.push_back(face[0] == v ? face[1] : face[1] == v ? face[2] : face[0]);
+      ends ^= face[0] ^ face[1] ^ face[2] ^ v;
+    }
+    if (ends != 0) {  // open fan: add the corner before v that follows v nowhere
+      for (int f : around) {
+        const auto& face = pm_.mesh().faces[f];
+        const int before = face[0] == v ? face[2] : face[1] == v ? face[0] : face[1];
+        if (std::find(out.begin(), out.end(), before) == out.end()) {
+          out.push_back(before);
+          break;
+        }
+      }
+    }
     std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
   Candidate evaluate(int r, int k) const {
@@ -220,16 +249,43 @@ class Decimator {
     ++stamp_[v];
     if (!pm_.vertex_alive(v)) return;
     ring(v, ring_);
+    // evaluate(v, k) depends only on v's and k's quadrics and positions, which change only when
+    // they are kept by a collapse (version_): reuse v's earlier evaluations of unchanged pairs.
+    // Both lists are in increasing order of k.
+    Cached& cache = cached_[v];
     candidates_.clear();
-    for (int k : ring_) candidates_.push_back(evaluate(v, k));
-    std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+    std::size_t j = 0;
+    const bool own_valid = cache.version == version_[v] && !cache.entries.empty();
+    for (int k : ring_) {
+      if (own_valid) {
+        while (j < cache.entries.size() && cache.entries[j].candidate.kept < k) ++j;
+        if (j < cache.entries.size() && cache.entries[j].candidate.kept == k &&
+            cache.entries[j].kept_version == version_[k]) {
+          candidates_.push_back(cache.entries[j].candidate);
+          continue;
+        }
+      }
+      candidates_.push_back(evaluate(v, k));
+    }
+    if (reuse_) {
+      cache.version = version_[v];
+      cache.entries.resize(candidates_.size());
+      for (std::size_t i = 0; i < candidates_.size(); ++i)
+        cache.entries[i] = {candidates_[i], version_[candidates_[i].kept]};
+    }
+    // The cheapest few only, cheapest first: around a vertex of high valence, checking every
+    // edge is slow. Selected one at a time, not sorted: the first is nearly always legal.
+    const auto cheaper = [](const Candidate& a, const Candidate& b) {
       if (a.cost != b.cost) return a.cost < b.cost;
       if (a.length2 != b.length2) return a.length2 < b.length2;
       return a.kept < b.kept;
-    });
-    // The cheapest few only: around a vertex of high valence, checking every edge is slow.
+    };
     const std::size_t tries = std::min<std::size_t>(candidates_.size(), 12);
     for (std::size_t i = 0; i < tries; ++i) {
+      std::size_t min = i;
+      for (std::size_t j = i + 1; j < candidates_.size(); ++j)
+        if (cheaper(candidates_[j], candidates_[min])) min = j;
+      std::swap(candidates_[i], candidates_[min]);
       const Candidate& c = candidates_[i];
       if (!pm_.can_collapse(v, c.kept, c.position)) continue;
       best_[v] = c;
@@ -240,9 +296,13 @@ class Decimator {
 
   ProgressiveMesh& pm_;
   CollapseStrategy strategy_;
+  bool reuse_;
   std::vector<Quadric> quadric_;
   std::vector<unsigned> stamp_;
   std::vector<Candidate> best_;
+  std::vector<unsigned> version_;
+  std::vector<Cached> cached_;
+  std::vector<int> around_;
   std::priority_queue<HeapEntry> heap_;
   std::vector<int> ring_;
   std::vector<Candidate> candidates_;
@@ -293,7 +353,7 @@ ProgressiveMesh decimate(const Mesh& mesh, const DecimateOptions& options, Progr
   const std::size_t target = options.target_faces > 0
                                  ? options.target_faces
                                  : collapse_target(pm.input_face_count(), pm.genus());
-  Decimator(pm, options.strategy).run(target, progress);
+  Decimator(pm, options.strategy, options.reuse_evaluations).run(target, progress);
   return pm;
 }
 

@@ -30,6 +30,9 @@ struct DecimateOptions {
   CollapseStrategy strategy = CollapseStrategy::QQ;
   /// Face count to collapse to; 0 means collapse_target(faces, genus).
   std::size_t target_faces = 0;
+  /// Reuse a vertex's candidate evaluations whose two ends have not changed since it was last
+  /// queued (the same collapses either way; false evaluates everything again, for tests).
+  bool reuse_evaluations = true;
 };
 
 /// Collapses `mesh` with legal collapses only (see ProgressiveMesh::can_collapse) until it has at

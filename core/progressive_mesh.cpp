@@ -152,25 +152,22 @@ bool ProgressiveMesh::is_boundary_edge(int a, int b) const {
 }
 
 bool ProgressiveMesh::is_boundary_vertex(int v) const {
-  // In a manifold fan, a vertex is interior exactly when it has as many faces as neighbours.
-  thread_local std::vector<int> around;
-  ring(v, around);
-  return around.size() != vertex_faces_[v].size();
+  // v's faces form one fan (a manifold, consistently oriented mesh). Each face contributes its
+  // two other corners: in a closed fan every neighbour is the corner after v in one face and the
+  // corner before v in another, so the XOR of all of them is 0; an open fan has two neighbours
+  // (the fan's two ends, distinct) that appear once, so the XOR is theirs, never 0.
+  int x = 0;
+  for (int f : vertex_faces_[v]) {
+    const auto& face = mesh_.faces[f];
+    x ^= face[0] ^ face[1] ^ face[2] ^ v;
+  }
+  return x != 0;
 }
 
 int ProgressiveMesh::face_across(int f, int a, int b) const {
   for (int g : vertex_faces_[a])
     if (g != f && contains(mesh_.faces[g], b)) return g;
   return -1;
-}
-
-void ProgressiveMesh::ring(int v, std::vector<int>& out) const {
-  out.clear();
-  for (int f : vertex_faces_[v])
-    for (int c : mesh_.faces[f])
-      if (c != v) out.push_back(c);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 bool ProgressiveMesh::can_collapse(int vertex, int kept, Vec3 position) const {
@@ -246,9 +243,13 @@ bool ProgressiveMesh::can_collapse(int vertex, int kept, Vec3 position) const {
 }
 
 void ProgressiveMesh::collapse(int vertex, int kept, Vec3 position) {
-  if (!can_collapse(vertex, kept, position))
+  if (!try_collapse(vertex, kept, position))
     throw TopologyException("illegal collapse of vertex " + std::to_string(vertex) + " into " +
                             std::to_string(kept));
+}
+
+bool ProgressiveMesh::try_collapse(int vertex, int kept, Vec3 position) {
+  if (!can_collapse(vertex, kept, position)) return false;
   const int r = vertex, k = kept;
   VertexSplit s;
   s.vertex = r;
@@ -282,6 +283,7 @@ void ProgressiveMesh::collapse(int vertex, int kept, Vec3 position) {
   face_count_ -= s.new_faces.size();
   --vertex_count_;
   splits_.push_back(std::move(s));
+  return true;
 }
 
 VertexSplit ProgressiveMesh::split() {

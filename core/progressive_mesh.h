@@ -67,6 +67,9 @@ class ProgressiveMesh {
   bool can_collapse(int vertex, int kept, Vec3 position) const;
   /// Applies that collapse and records it. \throw TopologyException when !can_collapse.
   void collapse(int vertex, int kept, Vec3 position);
+  /// Applies that collapse and records it when can_collapse, and returns true; otherwise changes
+  /// nothing and returns false (one legality check instead of two).
+  bool try_collapse(int vertex, int kept, Vec3 position);
 
   /// Number of recorded collapses not yet undone.
   std::size_t splits_left() const { return splits_.size(); }
@@ -84,7 +87,6 @@ class ProgressiveMesh {
   bool is_boundary_edge(int a, int b) const;
   bool is_boundary_vertex(int v) const;
   int face_across(int f, int a, int b) const;
-  void ring(int v, std::vector<int>& out) const;
 
   Mesh mesh_;
   std::vector<std::vector<int>> vertex_faces_;

@@ -258,6 +258,10 @@ class Unfolding {
   std::size_t link_bits_ = 0;  // set bits of links_ (2 (|F| - 1) for a tree; 0: recount)
   std::vector<int> part_;      // update_locally: part of each explored face
   std::vector<std::vector<int>> part_queue_;
+  // update_locally, per part: union-find parent, size, next face to expand, still growing.
+  std::vector<int> part_up_, part_size_;
+  std::vector<std::size_t> part_head_;
+  std::vector<char> part_open_;
   std::vector<std::pair<int, int>> todo_;
   std::vector<int> group_;  // update_locally: what moved together (-2 outside a call)
   std::vector<int> group_start_, group_order_;  // update_locally: moved faces by group

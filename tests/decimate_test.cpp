@@ -235,6 +235,70 @@ TEST(Decimate, QuadricsApproximateBetterThanMidpoints) {
   EXPECT_LT(qq, semp);
 }
 
+// A flat 3 x 3 grid of vertices (i + 3j at (i, j, 0)), each quad split along its (i+1, j)-(i, j+1)
+// diagonal: vertex 4 is the only interior vertex.
+Mesh flat_grid() {
+  Mesh m;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) m.vertices.push_back({double(i), double(j), 0});
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = i + 3 * j, b = a + 1, c = a + 4, d = a + 3;
+      m.faces.push_back({a, b, d});
+      m.faces.push_back({b, c, d});
+    }
+  return m;
+}
+
+TEST(Decimate, InteriorEdgeBetweenBoundaryVerticesIsRefused) {
+  ProgressiveMesh pm(flat_grid());
+  // (1, 3) is an interior edge whose ends are both on the border: collapsing it would pinch the
+  // sheet (the link condition alone allows it, common neighbours 0 and 4).
+  EXPECT_FALSE(pm.can_collapse(1, 3, pm.mesh().vertices[3]));
+  // The interior vertex 4 may go into the border vertex 1.
+  EXPECT_TRUE(pm.can_collapse(4, 1, pm.mesh().vertices[1]));
+}
+
+TEST(Decimate, TryCollapseAppliesOnlyLegalCollapses) {
+  ProgressiveMesh pm(octahedron());
+  EXPECT_FALSE(pm.try_collapse(4, 5, {0, 0, 0}));   // not neighbours
+  EXPECT_FALSE(pm.try_collapse(4, 0, {-3, 0, 0}));  // flips faces
+  EXPECT_EQ(pm.splits_left(), 0u);
+  EXPECT_EQ(pm.face_count(), 8u);
+  EXPECT_TRUE(bitwise_equal(pm.mesh(), octahedron()));
+  EXPECT_TRUE(pm.try_collapse(4, 0, {0.5, 0, 0.5}));
+  EXPECT_EQ(pm.splits_left(), 1u);
+  EXPECT_EQ(pm.face_count(), 6u);
+  EXPECT_FALSE(pm.vertex_alive(4));
+}
+
+TEST(Decimate, ReusedEvaluationsGiveTheSameCollapses) {
+  // Closed, open (5 boundary loops), genus 2 and CAD-like flat sides, every strategy.
+  const char* files[] = {"trimesh__ballA.obj", "draco__bun_zipper.obj", "thingi10k__472042.obj",
+                         "trimesh__ADIS16480.obj"};
+  const std::filesystem::path dir = std::filesystem::path(PAPERNET_SHARED_DATA) / "bench/2000";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "needs ../shared/data: " << dir;
+  for (const char* file : files)
+    for (CollapseStrategy s :
+         {CollapseStrategy::QQ, CollapseStrategy::SEMP, CollapseStrategy::SEQ}) {
+      SCOPED_TRACE(std::string(file) + " " + strategy_name(s));
+      const Mesh input = load_mesh_file((dir / file).string()).mesh;
+      Progress progress;
+      ProgressiveMesh reused = decimate(input, {s, 0, true}, progress);
+      ProgressiveMesh fresh = decimate(input, {s, 0, false}, progress);
+      ASSERT_EQ(reused.splits_left(), fresh.splits_left());
+      EXPECT_GT(reused.splits_left(), 100u);  // a real run, not an empty one
+      EXPECT_TRUE(bitwise_equal(reused.mesh(), fresh.mesh()));
+      while (reused.splits_left() > 0) {
+        const VertexSplit a = reused.split(), b = fresh.split();
+        ASSERT_EQ(a.vertex, b.vertex);
+        ASSERT_EQ(a.moved, b.moved);
+        ASSERT_TRUE(std::memcmp(&a.moved_from, &b.moved_from, sizeof(Vec3)) == 0);
+        ASSERT_EQ(a.new_faces.size(), b.new_faces.size());
+      }
+    }
+}
+
 TEST(Decimate, BenchMeshesRoundTrip) {
   // Higher genus, several boundary loops, CAD-like flat sides.
   const Case cases[] = {{"thingi10k__472042.obj", 2, 0},
