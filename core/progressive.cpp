@@ -241,8 +241,9 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     // try again: a coarser net that uncollapses part of the way is still an approximate result.
     // The coarsest attempt gets the whole remaining budget.
     // Out of time before any coarse net: one last attempt on the coarsest mesh the collapses
-    // reach, bounded by iterations instead of the clock (a few milliseconds at that size), so
-    // that a time limit too short for the coarse mesh still gives an approximate net, not none.
+    // reach, bounded by iterations (a few milliseconds at that size) and by kCoarseSecondsMin
+    // beyond the limit (for meshes whose collapses end early, such as CAD parts of high genus),
+    // so that a time limit too short for the coarse mesh still gives an approximate net.
     const bool out_of_time = limit > 0 && remaining() <= 0;
     if (out_of_time && can_go_coarser && pm.face_count() > kMinCoarseFaces) {
       const std::size_t before = pm.face_count();
@@ -278,7 +279,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     if (last && limit > 0 && faces < input_faces)
       tabu.time_limit_seconds = std::max(1e-3, remaining() / 2);
     if (out_of_time) {
-      tabu.time_limit_seconds = 0;
+      tabu.time_limit_seconds = kCoarseSecondsMin;
       tabu.max_iterations =
           at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
     }
