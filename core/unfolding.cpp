@@ -142,6 +142,18 @@ void Unfolding::sort_overlapping() {
   overlapping_sorted_ = true;
 }
 
+void Unfolding::add_pairs_in_grid(int f) {
+  const std::uint32_t epoch = next_seen_epoch();
+  grid_.query(box_[f], [&](int c) {
+    if (seen_[c] == epoch) return;
+    seen_[c] = epoch;
+    // Faces in the grid have their current box: most candidates end here, without the call.
+    if (boxes_overlap(box_[f], box_[c], tolerance_) &&
+        triangles_overlap_in_boxes(pos_[f], pos_[c], tolerance_))
+      add_pair(f, c);
+  });
+}
+
 void Unfolding::test_moved(const std::vector<int>& moved) {
   for (int f : moved) {
     if (grid_.contains(f)) grid_.remove(f);
@@ -149,15 +161,7 @@ void Unfolding::test_moved(const std::vector<int>& moved) {
   }
   for (int f : moved) {
     box_[f] = triangle_box(pos_[f]);
-    next_seen_epoch();
-    grid_.query(box_[f], [&](int c) {
-      if (seen_[c] == seen_epoch_) return;
-      seen_[c] = seen_epoch_;
-      // Faces in the grid have their current box: most candidates end here, without the call.
-      if (boxes_overlap(box_[f], box_[c], tolerance_) &&
-          triangles_overlap_in_boxes(pos_[f], pos_[c], tolerance_))
-        add_pair(f, c);
-    });
+    add_pairs_in_grid(f);
     grid_.insert(f, box_[f]);
   }
 }

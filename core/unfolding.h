@@ -189,6 +189,8 @@ class Unfolding {
   // and the local repair read it in this order, so that they do not depend on the order in which
   // pairs were found.
   void sort_overlapping();
+  // Adds a pair for every face in the grid that overlaps face f (at pos_[f], box_[f]).
+  void add_pairs_in_grid(int f);
   void test_moved(const std::vector<int>& moved);
   // update() when few faces were edited: keeps the largest unedited part of the tree in place,
   // lays out the rest (into `moved`) and tests it for overlaps, in time proportional to it. False

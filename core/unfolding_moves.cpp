@@ -161,16 +161,7 @@ void Unfolding::apply_move(int g, int k) {
                           : Triangle2{motion(pos_[s][0]), motion(pos_[s][1]), motion(pos_[s][2])};
     box_[s] = triangle_box(pos_[s]);
   };
-  const auto retest = [&](int s) {
-    const std::uint32_t epoch = next_seen_epoch();
-    grid_.query(box_[s], [&](int c) {
-      if (seen_[c] == epoch) return;
-      seen_[c] = epoch;
-      if (boxes_overlap(box_[s], box_[c], tolerance_) &&
-          triangles_overlap_in_boxes(pos_[s], pos_[c], tolerance_))
-        add_pair(s, c);
-    });
-  };
+  const auto retest = [&](int s) { add_pairs_in_grid(s); };
   const auto each_small = [&](const auto& visit) {
     if (small_is_range_) {
       for (int i = cut_lo_; i < cut_hi_; ++i) visit(order_[i]);

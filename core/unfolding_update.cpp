@@ -231,14 +231,7 @@ bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>&
   for (std::size_t i = 0; i < order.size(); ++i) {
     const int f = order[i];
     box_[f] = triangle_box(pos_[f]);
-    const std::uint32_t tested = next_seen_epoch();
-    grid_.query(box_[f], [&](int c) {
-      if (seen_[c] == tested) return;
-      seen_[c] = tested;
-      if (boxes_overlap(box_[f], box_[c], tolerance_) &&
-          triangles_overlap_in_boxes(pos_[f], pos_[c], tolerance_))
-        add_pair(f, c);
-    });
+    add_pairs_in_grid(f);
     if (group_[f] < 0 || i + 1 == order.size() || group_[order[i + 1]] != group_[f])
       for (; inserted <= i; ++inserted) grid_.insert(order[inserted], box_[order[inserted]]);
   }
