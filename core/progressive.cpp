@@ -73,18 +73,26 @@ constexpr std::size_t kSplitsPerUpdate = 4;
 constexpr std::size_t kBatchFaces = 4000;
 
 // Tabu budget of a coarse attempt that may still be retried on a coarser mesh: iterations
-// growing with the face count, and an end when the fewest overlaps seen stall.
+// growing with the face count, an end when the fewest overlaps seen stall, and work (moved-face
+// tests, TabuStats::tests) of kCoarseTestsPerFace per face, at least kCoarseTestsMin. Work, not
+// time, so that the same seed gives the same net whatever the machine's load. It replaced a cap
+// of 5e-4 s per face (at least 0.25 s) at 1.4 million tests a second, the middle of what the
+// CAD attempts of bench/2000 that this cap ends do on an idle machine: 0.5-0.6 million on
+// trimesh__1002_tray_bottom's first attempt, whose tests meet many large faces in the grid,
+// 1.1-2.4 million on the others (up to 4 million on attempts that succeed).
 constexpr std::size_t kCoarseIterationsBase = 2000;
 constexpr std::size_t kCoarseIterationsPerFace = 20;
 constexpr std::size_t kCoarseStallBase = 2000;
-constexpr double kCoarseSecondsMin = 0.25;
-constexpr double kCoarseSecondsPerFace = 5e-4;
+constexpr std::size_t kCoarseTestsMin = 350'000;
+constexpr std::size_t kCoarseTestsPerFace = 700;
+// The last attempt after the time limit is spent: at most this long beyond it.
+constexpr double kOutOfTimeSeconds = 0.25;
 // A retry halves the face count; it does not go below this.
 constexpr std::size_t kMinCoarseFaces = 8;
 // A coarse start with more overlapping pairs per face than this is collapsed further at once
 // (when it may be), without a Tabu run: on CAD parts of slivers such starts (ADIS16480 at 1,318
-// faces: 15,654 pairs, the Twin plate at 650: 8,169) still had thousands of pairs when their time
-// cap ended the run; the organic meshes of bench/2000 start below 4.2 per face, and
+// faces: 15,654 pairs, the Twin plate at 650: 8,169) still had thousands of pairs when their
+// budget ended the run; the organic meshes of bench/2000 start below 4.2 per face, and
 // thingi10k__73416 (7.5), whose start is sometimes unfolded, keeps its run.
 constexpr std::size_t kHopelessPairsPerFace = 10;
 // Iterations a split's Tabu run may take at least (base + per face of the current mesh);
@@ -96,7 +104,7 @@ constexpr std::size_t kSplitIterationsPerFace = 5;
 // need more of them per face).
 constexpr std::size_t kSplitTestsMinFaces = 2000;
 
-// The smaller of an iteration limit (0: none) and n.
+// The smaller of an iteration or test limit (0: none) and n.
 std::size_t at_most(std::size_t limit, std::size_t n) {
   return limit == 0 ? n : std::min(limit, n);
 }
@@ -241,9 +249,11 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     // try again: a coarser net that uncollapses part of the way is still an approximate result.
     // The coarsest attempt gets the whole remaining budget.
     // Out of time before any coarse net: one last attempt on the coarsest mesh the collapses
-    // reach, bounded by iterations (a few milliseconds at that size) and by kCoarseSecondsMin
+    // reach, bounded by iterations (a few milliseconds at that size) and by kOutOfTimeSeconds
     // beyond the limit (for meshes whose collapses end early, such as CAD parts of high genus),
-    // so that a time limit too short for the coarse mesh still gives an approximate net.
+    // so that a time limit too short for the coarse mesh still gives an approximate net. Time,
+    // not work, bounds it: the user's limit decides the result here anyway, and a test costs up
+    // to 11 us there (the Twin plate by SEMP: 2,126 faces, 100,000 overlapping pairs).
     const bool out_of_time = limit > 0 && remaining() <= 0;
     if (out_of_time && can_go_coarser && pm.face_count() > kMinCoarseFaces) {
       const std::size_t before = pm.face_count();
@@ -279,7 +289,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     if (last && limit > 0 && faces < input_faces)
       tabu.time_limit_seconds = std::max(1e-3, remaining() / 2);
     if (out_of_time) {
-      tabu.time_limit_seconds = kCoarseSecondsMin;
+      tabu.time_limit_seconds = kOutOfTimeSeconds;
       tabu.max_iterations =
           at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
     }
@@ -290,10 +300,12 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         tabu.max_iterations =
             at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
         tabu.stall_iterations = std::max<std::size_t>(kCoarseStallBase, 5 * faces);
-        // A share of the time limit, and at most a little time per face: a coarse mesh that
-        // needs more is usually better retried coarser (CAD parts of genus 20+).
-        const double cap = std::max(kCoarseSecondsMin, kCoarseSecondsPerFace * faces);
-        if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, std::min(remaining() / 4, cap));
+        // A little work per face: a coarse mesh that needs more is usually better retried
+        // coarser (CAD parts of genus 20+). And a share of the time limit, which only binds
+        // when that limit is short.
+        tabu.max_tests =
+            at_most(tabu.max_tests, std::max(kCoarseTestsMin, kCoarseTestsPerFace * faces));
+        if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining() / 4);
       }
     }
     const bool hopeless = !last && u.overlap_count() > kHopelessPairsPerFace * faces;
