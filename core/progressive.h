@@ -37,7 +37,8 @@ struct ProgressiveOptions {
   /// splits per update moved 24 % fewer faces than one).
   std::size_t splits_per_update = 0;
   /// Iteration limit of the Tabu Unfolder on a coarse mesh that may still be collapsed further
-  /// when it fails; 0 means automatic (growing with its face count, ended early by a stall).
+  /// when it fails; 0 means automatic (iterations and moved-face tests growing with its face
+  /// count, ended early by a stall: work, not time, so that load does not change the net).
   std::size_t coarse_iterations = 0;
 };
 
