@@ -242,7 +242,6 @@ bool Clearance::try_compound(int f, int k, Sideways* sideways) {
   };
   const auto [gf, gk] = edge_of(tail, end, false);
   if (gf < 0) return false;
-  const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step_; };
   if (tabu(gf, gk)) return false;
   const Vec3 at = mesh_.vertices[tail];
   for (const std::pair<int, int>& first : links_at(leaf)) {
@@ -331,7 +330,7 @@ void Clearance::run(Progress& progress) {
   std::vector<int> best_degree = cut_degree_;
   std::size_t best_count = blocked_count_, best_moves = moves_, best_compound = compound_moves_;
   tabu_until_.assign(3 * static_cast<std::size_t>(nf_), 0);
-  std::uint32_t step = 0;
+  step_ = 0;
   std::size_t level = 0;
   const auto start = std::chrono::steady_clock::now();
   const auto out_of_time = [&] {
@@ -366,7 +365,7 @@ void Clearance::run(Progress& progress) {
         ++restarts;
         if (moves_ != best_moves) back_to_best();
         std::fill(tabu_until_.begin(), tabu_until_.end(), 0);
-        step = 0;
+        step_ = 0;
         level = kRestartLevel;
         far_glues_ = kFarGlues << std::min(restarts, 4);
         endgame_ = true;
@@ -381,8 +380,7 @@ void Clearance::run(Progress& progress) {
       if (!blocked_[h]) continue;
       if (progress.cancelled()) throw CancelledException();
       if (out_of_time()) break;
-      ++step;
-      step_ = step;
+      ++step_;
       step_limit_ = evaluations_ + std::min(kStepCaps[level], budget_);
       const int f = h / 3, k = h % 3;
       struct Pick {
@@ -390,7 +388,6 @@ void Clearance::run(Progress& progress) {
         std::array<int, 4> move{-1, -1, -1, -1};
       } pick;
       pick.change.blocked = max_worsening + 1;
-      const auto tabu = [&](int x, int j) { return tabu_until_[canon(x, j)] > step; };
       bool improved = candidates(f, k, [&](int lf, int lk, int cf, int ck) {
         if (tabu(lf, lk) || tabu(cf, ck)) return false;
         Change change;
@@ -429,7 +426,7 @@ void Clearance::run(Progress& progress) {
         commit();
       }
       // Neither undo this move nor redo the one it replaced for a while.
-      const std::uint32_t until = step + static_cast<std::uint32_t>(kTenure);
+      const std::uint32_t until = step_ + static_cast<std::uint32_t>(kTenure);
       for (const auto& [lf, lk, cf, ck] : pending_)
         tabu_until_[canon(lf, lk)] = tabu_until_[canon(cf, ck)] = until;
       if (blocked_count_ < best_count) {

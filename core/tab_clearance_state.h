@@ -60,6 +60,8 @@ class Clearance {
     return n < 0 || f < n ? 3 * f + k : 3 * n + adj_edge_[f][k];
   }
   bool linked(int f, int k) const { return links_[f] >> k & 1; }
+  /// Edge k of face f was changed by a recent move of run() (for kTenure steps).
+  bool tabu(int f, int k) const { return tabu_until_[canon(f, k)] > step_; }
   bool coincident(int f, int k) const;
   bool is_cut(int f, int k) const { return adj_[f][k] >= 0 && !linked(f, k) && !coincident(f, k); }
   bool side_has_room(int f, int k) const;
@@ -138,7 +140,7 @@ class Clearance {
   std::vector<char> vboundary_;              // vertex on the mesh's boundary
   std::vector<int> cut_degree_;              // cut edges (unlinked interior edges) at each vertex
   std::vector<std::array<int, 4>> pending_;  // the applied move's swaps: lf, lk, cf, ck
-  std::uint32_t step_ = 0;                   // the search's current step (tabu_until_)
+  std::uint32_t step_ = 0;                   // run()'s current step (tabu_until_)
   std::vector<std::uint32_t> tabu_until_;    // by canonical half-edge: step until which it stays
 
   // Scratch of apply_move.
