@@ -169,7 +169,7 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
     // that side has more than `limit` faces.
     const auto visit_cut = [&](int x, int y) {
       for (const Cut& c : cuts) {
-        if (c.x != x || c.y != y || !options.reuse_cuts) continue;
+        if (c.x != x || c.y != y) continue;
         for (std::size_t i = c.begin; i < c.end && c.small; ++i) {
           ++st.evaluations;
           for (std::size_t j = gluings[i].first; j < gluings[i].second; ++j) {
@@ -190,7 +190,7 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
         evaluate_side(x, y, side_epoch_);
       }
       c.end = gluings.size();
-      cuts.push_back(c);
+      if (options.reuse_cuts) cuts.push_back(c);
       return c.small;
     };
 
