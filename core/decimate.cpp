@@ -283,8 +283,8 @@ class Decimator {
     const std::size_t tries = std::min<std::size_t>(candidates_.size(), 12);
     for (std::size_t i = 0; i < tries; ++i) {
       std::size_t min = i;
-      for (std::size_t j = i + 1; j < candidates_.size(); ++j)
-        if (cheaper(candidates_[j], candidates_[min])) min = j;
+      for (std::size_t m = i + 1; m < candidates_.size(); ++m)
+        if (cheaper(candidates_[m], candidates_[min])) min = m;
       std::swap(candidates_[i], candidates_[min]);
       const Candidate& c = candidates_[i];
       if (!pm_.can_collapse(v, c.kept, c.position)) continue;
