@@ -42,7 +42,7 @@ struct JobOptions {
   /// Candidate moves the pass that makes room for tabs (tabs auto) evaluates at most; 0 skips
   /// it. More opens more edges on dense meshes; the job's time limit (at least a second for the
   /// pass) also ends it.
-  std::size_t tab_room_budget = 100'000;
+  std::size_t tab_room_budget = kDefaultTabRoomBudget;
   /// Folds flatter than this many degrees are not drawn.
   double flat_fold_degrees = 1;
   bool keep_largest_component = false;

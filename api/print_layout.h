@@ -34,7 +34,7 @@ struct PrintOptions {
   bool tab_room = true;
   /// Candidate moves that pass evaluates at most (TabClearanceOptions::max_evaluations; 0: no
   /// pass). More opens more edges on dense meshes, at some 10-20 microseconds a move.
-  std::size_t tab_room_budget = 100'000;
+  std::size_t tab_room_budget = kDefaultTabRoomBudget;
   /// Clock limit of that pass in seconds (TabClearanceOptions::time_limit_seconds); <= 0: only
   /// its deterministic budget. The service sets it from the job's time limit.
   double tab_room_seconds = 0;
