@@ -12,6 +12,7 @@
 #include "core/tab_clearance.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <utility>
 
@@ -419,6 +420,7 @@ void Clearance::commit() {
 }  // namespace tab_clearance_detail
 
 using tab_clearance_detail::Clearance;
+using tab_clearance_detail::kSearchOnBlocked;
 
 std::vector<EdgeSide> edges_without_tab_room(const Mesh& mesh, const Net& net,
                                              const TabClearanceOptions& options) {
@@ -431,14 +433,32 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
   TabClearanceResult result;
   result.net = net;
   if (!(options.min_height > 0) || mesh.faces.empty()) return result;
+  const auto start = std::chrono::steady_clock::now();
+  const auto seconds_left = [&] {
+    return options.time_limit_seconds -
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   Clearance state(mesh, net, options);
   result.blocked_before = state.blocked_count();
   state.run(progress);
+  // The second round: when the search spent its budget with many edges left it goes on (its
+  // sweeps open many edges at a time: the Duck, reference.obj); else kicks, one edge at a time
+  // (docs/tabs.md, "Second round").
+  const bool second = options.second_round && !options.keep_bounds && state.blocked_count() > 0;
+  const std::size_t budget = options.max_evaluations;
+  result.searched_on =
+      second && state.evaluations_ >= budget && state.blocked_count() > kSearchOnBlocked;
+  if (result.searched_on) {
+    state.extend(budget, seconds_left());
+    state.run(progress);
+  }
   result.blocked_after = state.blocked_count();
   result.moves = state.moves_;
   result.evaluations = state.evaluations_;
   result.compound_moves = state.compound_moves_;
   if (result.moves > 0) result.net = state.net();
+  if (second && !result.searched_on)
+    tab_clearance_detail::kick(mesh, options, seconds_left(), progress, result);
   return result;
 }
 

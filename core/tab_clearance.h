@@ -34,9 +34,10 @@ struct TabClearanceOptions {
   /// than twice this, half the edge. <= 0: every edge has room, nothing to do.
   double min_height = 0;
   double angle_deg = 45;  ///< slant of a tab's sides, as the print layout's
-  /// Candidate moves evaluated at most: a deterministic budget (no clock), so the same net
-  /// and options always give the same result. The search also stops earlier when it no longer
-  /// finds better nets.
+  /// Candidate moves evaluated at most by the tabu search, and as many again by its second
+  /// round (`second_round`): a deterministic budget (no clock), so the same net and options
+  /// always give the same result. Both rounds also stop earlier when they no longer find better
+  /// nets.
   std::size_t max_evaluations = 100'000;
   /// A clock limit in seconds besides the budget, for callers with a deadline (the service's
   /// job time limit); <= 0: none. When it stops the search, the best net so far is returned
@@ -50,6 +51,10 @@ struct TabClearanceOptions {
   /// Also try compound moves (two edge swaps checked together, see clear_tab_room) where no
   /// single swap helps. On by default; off gives the search of single swaps only.
   bool compound_moves = true;
+  /// A second round of `max_evaluations` after the tabu search (see clear_tab_room): more of
+  /// the search when it was still finding better nets, else kicks. On by default (not with
+  /// keep_bounds, which kicks do not keep); off gives the tabu search alone.
+  bool second_round = true;
 };
 
 /// Interior cut edges of `net` where no tab of `options.min_height` (of any of tab_shapes)
@@ -64,8 +69,10 @@ struct TabClearanceResult {
   std::size_t blocked_before = 0;  ///< cut edges without tab room in the input net
   std::size_t blocked_after = 0;   ///< ... and in `net`
   std::size_t moves = 0;           ///< moves from the input to `net`
-  std::size_t evaluations = 0;     ///< candidate moves evaluated
+  std::size_t evaluations = 0;     ///< candidate moves evaluated (kicks included)
   std::size_t compound_moves = 0;  ///< compound moves among `moves` (each counts two there)
+  std::size_t kicks = 0;           ///< kicks that made `net` better (see clear_tab_room)
+  bool searched_on = false;        ///< the second round was more of the tabu search
 };
 
 /// Makes room for tabs: changes which edges of an overlap-free `net` are cut so that fewer cut
@@ -78,7 +85,12 @@ struct TabClearanceResult {
 /// tabu search over these moves (it also makes moves that close other edges, to get out of
 /// local minima) returns the net with the fewest edges without room it has seen: an
 /// overlap-free net of the same mesh (glued edges copied exactly), never worse than the input,
-/// or the input itself when nothing helped. Deterministic.
+/// or the input itself when nothing helped. Then a second round, as long again: when the search
+/// found its last better net in the last quarter of its budget it goes on; else kicks get it
+/// out of where it stalled (every swap that opens an edge overlaps): such a swap is made
+/// anyway, the unfolder's local repair (Unfolding::repair_locally) removes the overlaps, and a
+/// short tabu search from the repaired net replaces the result when it ends with fewer edges
+/// without room. Deterministic (unless options.time_limit_seconds stops it).
 /// \pre `net` is an overlap-free net of `mesh` (check_net passes).
 /// \throw CancelledException when `progress` asks to stop.
 TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,

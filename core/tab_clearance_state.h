@@ -2,6 +2,7 @@
 // cuts change by edge swaps of its unfold tree. Not part of the public API.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -43,6 +44,18 @@ constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std:
 constexpr std::size_t kCompoundGlues = 16;
 // ... and faces tried as the root of its layout (spread over the net).
 constexpr std::size_t kRoots = 8;
+// Kicks (kick): glues tried per link, moved-face tests of the local repair of each, faces of the
+// net per candidate move a kick counts as in the budget, how many blocked edges more than the
+// best net's a repaired net may have for a short search from it, and that search's budget
+// (candidate moves).
+constexpr std::size_t kKickGlues = 8;
+constexpr std::size_t kKickFacesPerEvaluation = 10;
+constexpr std::size_t kKickRepairTests = 5'000;
+constexpr std::size_t kKickSlack = 3;
+constexpr std::size_t kKickSearch = 3'000;
+// The second round (clear_tab_room) is more of the tabu search when it spent its budget with
+// more blocked edges than this left, else kicks.
+constexpr std::size_t kSearchOnBlocked = 64;
 
 class Clearance {
  public:
@@ -53,6 +66,11 @@ class Clearance {
   Net net() const { return Net{parent_, pos_}; }
   std::size_t moves_ = 0, evaluations_ = 0, compound_moves_ = 0;
   bool compound_ = true;
+  /// Lets run() go on from the best net: `evaluations` more, within `seconds` (when limited).
+  void extend(std::size_t evaluations, double seconds) {
+    budget_ += evaluations;
+    if (time_limit_ > 0) time_limit_ = std::max(seconds, 1e-9);
+  }
 
  private:
   int canon(int f, int k) const {
@@ -152,5 +170,17 @@ class Clearance {
   std::vector<std::uint32_t> stamp_;
   std::uint32_t epoch_ = 0;
 };
+
+/// The pass's second round as kicks (core/tab_clearance_kick.cpp), after Clearance::run on
+/// `result.net`: for each blocked edge in turn, a swap that opens it (a link cut at one of its
+/// ends, one of the kKickGlues nearest cut edges across glued that leaves no new flat leaf) is
+/// made whether or not it overlaps; Unfolding::repair_locally removes the overlaps (the kick is
+/// dropped when it cannot); a repaired net with at most kKickSlack blocked edges more than
+/// `result`'s gets a tabu search of kKickSearch candidate moves, and replaces `result` when it
+/// ends with fewer. Sweeps until one makes no kick, `options.max_evaluations` more candidate
+/// moves are spent (a kick and the repair's moves count too), or `seconds_left` runs out (only
+/// when options.time_limit_seconds > 0). Deterministic otherwise.
+void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_left,
+          Progress& progress, TabClearanceResult& result);
 
 }  // namespace papernet::tab_clearance_detail

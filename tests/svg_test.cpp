@@ -250,13 +250,14 @@ void expect_clearance_pass_makes_room() {
                 name.c_str(), room.blocked_before, room.blocked_after, room.moves,
                 layout.tabs.size(), layout.strips.size());
   }
-  // With the test's budget about 57 % of the blocked edges remain (with the default budget 40 %).
-  EXPECT_LT(3 * after, 2 * before) << "the pass should open most near-slits";
+  // With the test's budgets 30 % of the blocked edges remain (37 % without the pass's second
+  // round, its kicks or more search: 3,937 -> 1,168 against 1,445 at de12866).
+  EXPECT_LT(3 * after, before) << "the pass should open most near-slits";
   // Meshes where the pass reaches exactly one tab per cut edge and no strip (figures in
   // docs/tabs.md). Which single net keeps a last blocked edge moves with every change to the
   // unfolders (their nets are chaotic in the search's order), so the crowded two are asserted
-  // per mesh: at most one strip left on any of their nets, none on two of the four (test budget
-  // for the progressive nets: a fifth of the default).
+  // per mesh: at most one strip left on any of their nets, none on three of the four (test
+  // budget for the progressive nets: a fifth of the default; all four since the kicks).
   // Box_Draco.glb and mirror.ply: none on every net.
   const auto& nets = all_nets();
   for (const std::string mesh :
@@ -273,9 +274,9 @@ void expect_clearance_pass_makes_room() {
     }
     EXPECT_EQ(nets_of_mesh, 4u) << mesh;  // TU, QQ, SEMP, SEQ
     const bool crowded = mesh == "testplate.glb" || mesh == "thingi10k_134617.stl";
-    EXPECT_GE(strip_free, crowded ? 2u : 4u) << mesh;
+    EXPECT_GE(strip_free, crowded ? 3u : 4u) << mesh;
   }
-  EXPECT_GE(nets_without_strips, 13u);
+  EXPECT_GE(nets_without_strips, 15u);  // 16 since the kicks
 }
 
 TEST(Tabs, EveryCutEdgeGetsOneTabOrStripAndNothingOverlaps) {
