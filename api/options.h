@@ -39,9 +39,9 @@ struct JobOptions {
   /// Glue: auto (tabs on the net where they fit, after making room for them; strips for the
   /// rest), strips (only strips) or none. JSON/query `true` means auto, `false` none.
   TabMode tabs = TabMode::Auto;
-  /// Candidate moves the pass that makes room for tabs (tabs auto) evaluates at most; 0 skips
-  /// it. More opens more edges on dense meshes; the job's time limit (at least a second for the
-  /// pass) also ends it.
+  /// Candidate moves the pass that makes room for tabs (tabs auto) evaluates at most in each of
+  /// its two rounds; 0 skips it. More opens more edges on dense meshes; the job's time limit (at
+  /// least a second for the pass) also ends it.
   std::size_t tab_room_budget = kDefaultTabRoomBudget;
   /// Folds flatter than this many degrees are not drawn.
   double flat_fold_degrees = 1;

@@ -32,8 +32,9 @@ struct PrintOptions {
   double min_tab_height_mm = 2;
   /// Change the net before printing so that more cut edges have room for a tab (make_tab_room).
   bool tab_room = true;
-  /// Candidate moves that pass evaluates at most (TabClearanceOptions::max_evaluations; 0: no
-  /// pass). More opens more edges on dense meshes, at some 10-20 microseconds a move.
+  /// Candidate moves that pass evaluates at most in each of its two rounds
+  /// (TabClearanceOptions::max_evaluations; 0: no pass). More opens more edges on dense meshes,
+  /// at some 10-40 microseconds a move.
   std::size_t tab_room_budget = kDefaultTabRoomBudget;
   /// Clock limit of that pass in seconds (TabClearanceOptions::time_limit_seconds); <= 0: only
   /// its deterministic budget. The service sets it from the job's time limit.

@@ -96,8 +96,9 @@ std::string output_options_help() {
          "  --min-tab-height LEN  lowest tab printed, or half a shorter edge (default 2mm)\n"
          "  --tab-room on|off  change the cuts so more edges have room for a tab (default on;\n"
          "                     with --tabs auto; the net JSON written with it is that net)\n"
-         "  --tab-room-budget N  candidate moves of that change (default 100000; 0: none;\n"
-         "                     dense meshes get more tabs with more, 10-20 us a move)\n"
+         "  --tab-room-budget N  candidate moves of that change, in each of its two rounds\n"
+         "                     (default 100000; 0: none; dense meshes get more tabs with more,\n"
+         "                     10-40 us a move)\n"
          "  --flat-angle DEG   folds flatter than this are not drawn (default 1)\n"
          "  --labels on|off    edge labels (default on)\n";
 }

@@ -14,11 +14,11 @@ enum class TabMode { Auto, Strips, None };
 TabMode parse_tab_mode(std::string_view text);
 std::string tab_mode_name(TabMode mode);
 
-/// Candidate moves that pass evaluates unless a caller says otherwise (JobOptions::
-/// tab_room_budget, PrintOptions::tab_room_budget).
+/// Candidate moves that pass evaluates in each of its two rounds unless a caller says otherwise
+/// (JobOptions::tab_room_budget, PrintOptions::tab_room_budget; TabClearanceOptions).
 inline constexpr std::size_t kDefaultTabRoomBudget = 100'000;
 /// Most candidate moves a caller may give the pass that makes room for tabs (in Auto mode;
-/// PrintOptions::tab_room_budget): about half an hour of search.
+/// PrintOptions::tab_room_budget): about half an hour of search a round.
 inline constexpr std::size_t kMaxTabRoomBudget = 100'000'000;
 
 }  // namespace papernet

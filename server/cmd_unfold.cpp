@@ -176,7 +176,8 @@ int unfold(int argc, char** argv) {
     }
     std::cerr << "papernet unfold: tab room: " << room.blocked_before << " -> "
               << room.blocked_after << " cut edges without room for a tab (" << room.moves
-              << " moves, " << room.evaluations << " evaluated, " << room_seconds << " s)\n";
+              << " moves, " << room.kicks << " kicks, " << room.evaluations << " evaluated, "
+              << room_seconds << " s)\n";
   }
   const NetCheckReport check = checked ? std::move(*checked) : check_net(doc.mesh, result.net);
   const NetBoxMetrics box = net_metrics(doc.mesh, result.net);
