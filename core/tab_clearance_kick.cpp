@@ -4,8 +4,10 @@
 // nothing of tabs), and a short tabu search starts from the repaired net. Where the search alone
 // stalls because every opening swap overlaps (80-97 % of them on dense meshes), this gets past.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include "core/dual_graph.h"
@@ -35,6 +37,34 @@ std::vector<int> swapped(std::vector<int> parent, int a, int b, int c, int d,
   return parent;
 }
 
+// Faces of net `after` that did not keep their place relative to the largest part of net
+// `before` (the nets of the same mesh, each anywhere in the plane): each face's rigid motion from
+// `before` to `after`, rounded, and every face whose motion is not the most common one.
+std::vector<char> moved_faces(const Net& before, const Net& after, double length) {
+  using Key = std::array<long long, 3>;
+  const std::size_t n = before.points.size();
+  std::vector<Key> keys(n);
+  std::map<Key, std::size_t> count;
+  for (std::size_t f = 0; f < n; ++f) {
+    const Triangle2& p = before.points[f];
+    const Triangle2& q = after.points[f];
+    const Vec2 d0 = p[1] - p[0], d1 = q[1] - q[0];
+    const double angle = std::atan2(cross(d0, d1), dot(d0, d1));
+    const double c = std::cos(angle), s = std::sin(angle);
+    const Vec2 t{q[0].x - (c * p[0].x - s * p[0].y), q[0].y - (s * p[0].x + c * p[0].y)};
+    const double step = 1e-6 * length;
+    keys[f] = {std::llround(angle * 1e6), std::llround(t.x / step), std::llround(t.y / step)};
+    ++count[keys[f]];
+  }
+  Key most{};
+  std::size_t best = 0;
+  for (const auto& [key, c] : count)
+    if (c > best) best = c, most = key;
+  std::vector<char> moved(n);
+  for (std::size_t f = 0; f < n; ++f) moved[f] = keys[f] != most;
+  return moved;
+}
+
 }  // namespace
 
 void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_left,
@@ -61,6 +91,11 @@ void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_l
   std::vector<std::vector<int>> children(nf);
   std::vector<char> side(nf);
   std::vector<int> stack;
+  std::vector<char> was_blocked(3 * static_cast<std::size_t>(nf));  // in the current net
+  double length = 0;  // mean edge length of the net, the scale of moved_faces' rounding
+  for (const Triangle2& t : result.net.points)
+    for (int k = 0; k < 3; ++k) length += norm(t[(k + 1) % 3] - t[k]);
+  length /= 3.0 * std::max(1, nf);
   // A kick for blocked edge e of the current net: true when one was made (the net changed).
   enum class Outcome { kNone, kKicked, kStop };
   const auto kick_edge = [&](const EdgeSide& e) {
@@ -126,11 +161,26 @@ void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_l
               if (unfolding.overlap_count() > 0) continue;
             }
             TabClearanceOptions search_options = options;
-            search_options.max_evaluations =
-                std::min(kKickSearch, budget - std::min(budget, spent));
+            search_options.max_evaluations = std::min(
+                std::max<std::size_t>(1, budget / kKickSearches), budget - std::min(budget, spent));
             if (timed) search_options.time_limit_seconds = std::max(1e-3, seconds_left - elapsed());
             Clearance search(mesh, unfolding.net(), search_options);
             if (search.blocked_count() > result.blocked_after + kKickSlack) continue;
+            // The search looks where the kick and the repair changed the net: edges at faces
+            // that moved or within two rings of them, and edges that had room before.
+            std::vector<char> near = moved_faces(result.net, search.net(), length);
+            for (int ring = 0; ring < 2; ++ring) {
+              const std::vector<char> inner = near;
+              for (int f = 0; f < nf; ++f)
+                if (inner[f])
+                  for (int z : mesh.faces[f])
+                    for (int g : vertex_faces[z]) near[g] = 1;
+            }
+            search.focus_.assign(3 * static_cast<std::size_t>(nf), 0);
+            for (int f = 0; f < nf; ++f)
+              for (int k = 0; k < 3; ++k)
+                search.focus_[3 * f + k] =
+                    !was_blocked[3 * f + k] || near[f] || (adj[f][k] >= 0 && near[adj[f][k]]);
             search.run(progress);
             spent += search.evaluations_;
             result.evaluations += search.evaluations_;
@@ -164,6 +214,8 @@ void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_l
     for (int f = 0; f < nf; ++f)
       if (parent[f] >= 0) children[parent[f]].push_back(f);
     std::vector<EdgeSide> blocked = edges_without_tab_room(mesh, result.net, options);
+    std::fill(was_blocked.begin(), was_blocked.end(), 0);
+    for (const EdgeSide& e : blocked) was_blocked[3 * e.face + e.k] = 1;
     std::rotate(blocked.begin(),
                 std::find_if(blocked.begin(), blocked.end(),
                              [&](const EdgeSide& e) { return 3 * e.face + e.k >= resume; }),

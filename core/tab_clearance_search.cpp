@@ -377,7 +377,7 @@ void Clearance::run(Progress& progress) {
     const std::size_t sweep_best = best_count;
     for (int i = 0; i < halves && evaluations_ < budget_; ++i) {
       const int h = static_cast<int>((static_cast<std::size_t>(i) + offset) % halves);
-      if (!blocked_[h]) continue;
+      if (!blocked_[h] || (!focus_.empty() && !focus_[h])) continue;
       if (progress.cancelled()) throw CancelledException();
       if (out_of_time()) break;
       ++step_;

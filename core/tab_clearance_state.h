@@ -46,13 +46,13 @@ constexpr std::size_t kCompoundGlues = 16;
 constexpr std::size_t kRoots = 8;
 // Kicks (kick): glues tried per link, moved-face tests of the local repair of each, faces of the
 // net per candidate move a kick counts as in the budget, how many blocked edges more than the
-// best net's a repaired net may have for a short search from it, and that search's budget
-// (candidate moves).
+// best net's a repaired net may have for a short search from it, and that search's budget as a
+// fraction of the round's (1 / kKickSearches: 10,000 candidate moves by default).
 constexpr std::size_t kKickGlues = 8;
 constexpr std::size_t kKickFacesPerEvaluation = 10;
 constexpr std::size_t kKickRepairTests = 5'000;
 constexpr std::size_t kKickSlack = 3;
-constexpr std::size_t kKickSearch = 3'000;
+constexpr std::size_t kKickSearches = 10;
 // The second round (clear_tab_room) is more of the tabu search when it spent its budget with
 // more blocked edges than this left, else kicks.
 constexpr std::size_t kSearchOnBlocked = 64;
@@ -66,6 +66,10 @@ class Clearance {
   Net net() const { return Net{parent_, pos_}; }
   std::size_t moves_ = 0, evaluations_ = 0, compound_moves_ = 0;
   bool compound_ = true;
+  /// When not empty, run() visits only the blocked edges marked here (by canonical half-edge
+  /// 3 * f + k, as blocked_edges() names them): a kick's search looks where the kick changed
+  /// the net.
+  std::vector<char> focus_;
   /// Lets run() go on from the best net: `evaluations` more, within `seconds` (when limited).
   void extend(std::size_t evaluations, double seconds) {
     budget_ += evaluations;
@@ -176,10 +180,11 @@ class Clearance {
 /// ends, one of the kKickGlues nearest cut edges across glued that leaves no new flat leaf) is
 /// made whether or not it overlaps; Unfolding::repair_locally removes the overlaps (the kick is
 /// dropped when it cannot); a repaired net with at most kKickSlack blocked edges more than
-/// `result`'s gets a tabu search of kKickSearch candidate moves, and replaces `result` when it
-/// ends with fewer. Sweeps until one makes no kick, `options.max_evaluations` more candidate
-/// moves are spent (a kick and the repair's moves count too), or `seconds_left` runs out (only
-/// when options.time_limit_seconds > 0). Deterministic otherwise.
+/// `result`'s gets a tabu search of a tenth of the budget (kKickSearches) that visits only the
+/// edges near what moved (focus_), and replaces `result` when it ends with fewer. Sweeps until one
+/// makes no kick, `options.max_evaluations` more candidate moves are spent (a kick counts as 1 +
+/// faces / kKickFacesPerEvaluation of them, its search as what it evaluates), or `seconds_left`
+/// runs out (only when options.time_limit_seconds > 0). Deterministic otherwise.
 void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_left,
           Progress& progress, TabClearanceResult& result);
 

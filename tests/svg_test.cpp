@@ -251,7 +251,7 @@ void expect_clearance_pass_makes_room() {
                 layout.tabs.size(), layout.strips.size());
   }
   // With the test's budgets 30 % of the blocked edges remain (37 % without the pass's second
-  // round, its kicks or more search: 3,937 -> 1,168 against 1,445 at de12866).
+  // round, its kicks or more search: 3,937 -> 1,179 against 1,445 at de12866).
   EXPECT_LT(3 * after, before) << "the pass should open most near-slits";
   // Meshes where the pass reaches exactly one tab per cut edge and no strip (figures in
   // docs/tabs.md). Which single net keeps a last blocked edge moves with every change to the
@@ -449,7 +449,7 @@ TEST(Tabs, ModesAndMinimumHeight) {
   options.tab_room_budget = 40;
   const TabClearanceResult brief = make_tab_room(mesh, net, options, quiet);
   EXPECT_GT(brief.evaluations, 0u);
-  EXPECT_LE(brief.evaluations, 40u);
+  EXPECT_LE(brief.evaluations, 80u);  // 40 in each of the pass's two rounds
   options.tab_room_budget = kMaxTabRoomBudget + 1;
   EXPECT_THROW(make_tab_room(mesh, net, options, quiet), InvalidInputException);
   options.tab_room_budget = PrintOptions{}.tab_room_budget;

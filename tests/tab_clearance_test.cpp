@@ -163,7 +163,7 @@ TEST(TabClearance, CompoundMovesKeepTheNetValid) {
 // Kicks: where the tabu search stops, a swap that opens an edge is made in spite of its
 // overlaps, the unfolder's local repair removes them, and a short search from there may beat
 // the search's best net (sample.obj's TU net at seed 1: 20 edges without room by the search
-// alone, 17 with kicks).
+// alone, 12 with kicks).
 TEST(TabClearance, KicksOpenEdgesTheSearchLeavesBlocked) {
   const Case c = unfolded("sample.obj");
   ASSERT_FALSE(c.mesh.faces.empty());
