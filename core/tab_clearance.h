@@ -52,7 +52,7 @@ struct TabClearanceOptions {
   /// single swap helps. On by default; off gives the search of single swaps only.
   bool compound_moves = true;
   /// A second round of `max_evaluations` after the tabu search (see clear_tab_room): more of
-  /// the search when it was still finding better nets, else kicks. On by default (not with
+  /// the search when it spent its budget with many edges left, else kicks. On by default (not with
   /// keep_bounds, which kicks do not keep); off gives the tabu search alone.
   bool second_round = true;
 };
@@ -86,8 +86,8 @@ struct TabClearanceResult {
 /// local minima) returns the net with the fewest edges without room it has seen: an
 /// overlap-free net of the same mesh (glued edges copied exactly), never worse than the input,
 /// or the input itself when nothing helped. Then a second round, as long again: when the search
-/// found its last better net in the last quarter of its budget it goes on; else kicks get it
-/// out of where it stalled (every swap that opens an edge overlaps): such a swap is made
+/// spent its budget with many edges (more than 64) still without room it goes on; else kicks get
+/// it out of where it stalled (every swap that opens an edge overlaps): such a swap is made
 /// anyway, the unfolder's local repair (Unfolding::repair_locally) removes the overlaps, and a
 /// short tabu search from the repaired net replaces the result when it ends with fewer edges
 /// without room. Deterministic (unless options.time_limit_seconds stops it).

@@ -189,6 +189,22 @@ TEST(TabClearance, KicksOpenEdgesTheSearchLeavesBlocked) {
   EXPECT_EQ(again.net.parent, kicked.net.parent);
   EXPECT_EQ(again.kicks, kicked.kicks);
   EXPECT_EQ(again.evaluations, kicked.evaluations);
+  EXPECT_FALSE(kicked.searched_on);
+  // A search that spends a small budget with many edges left goes on instead of kicking.
+  options.max_evaluations = 5'000;
+  options.second_round = false;
+  const TabClearanceResult short_search = clear_tab_room(c.mesh, c.net, options, quiet);
+  ASSERT_GT(short_search.blocked_after, 64u);
+  options.second_round = true;
+  const TabClearanceResult searched_on = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_TRUE(searched_on.searched_on);
+  EXPECT_EQ(searched_on.kicks, 0u);
+  EXPECT_GT(searched_on.evaluations, options.max_evaluations);
+  EXPECT_LE(searched_on.evaluations, 2 * options.max_evaluations);
+  EXPECT_LT(searched_on.blocked_after, short_search.blocked_after);
+  EXPECT_EQ(edges_without_tab_room(c.mesh, searched_on.net, options).size(),
+            searched_on.blocked_after);
+  EXPECT_TRUE(check_net(c.mesh, searched_on.net).ok());
 }
 
 // The showcase: the Stanford bunny (2000 faces) at 200 mm, progressive QQ.
