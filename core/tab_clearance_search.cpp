@@ -45,6 +45,38 @@ std::vector<std::pair<int, int>> Clearance::crossing_glues(int top, std::array<i
   return out;
 }
 
+std::vector<std::pair<int, int>> Clearance::links_at(int a) const {
+  std::vector<std::pair<int, int>> out;
+  for (int x : vertex_faces_[a])
+    for (int j = 0; j < 3; ++j)
+      if (linked(x, j) && x < adj_[x][j] &&
+          (mesh_.faces[x][j] == a || mesh_.faces[x][(j + 1) % 3] == a))
+        out.push_back({x, j});
+  return out;
+}
+
+std::vector<std::pair<int, int>> Clearance::kick_glues(int lf, int lk, int w) const {
+  const int lp = adj_[lf][lk], top = parent_[lf] == lp ? lf : lp;
+  return crossing_glues(
+      top, {mesh_.faces[lf][lk], mesh_.faces[lf][(lk + 1) % 3]}, mesh_.vertices[w], kKickGlues,
+      [&](int x) { return cut_degree_[x]; }, [](int, int) { return false; });
+}
+
+std::vector<int> Clearance::swapped_tree(int lf, int lk, int cf, int ck) const {
+  const int lp = adj_[lf][lk], top = parent_[lf] == lp ? lf : lp;
+  int c = cf, d = adj_[cf][ck];
+  if (!in_sub(top, c)) std::swap(c, d);
+  std::vector<int> parent = parent_;
+  parent[top] = -1;
+  for (int prev = d, at = c; at >= 0;) {
+    const int next = parent[at];
+    parent[at] = prev;
+    prev = at;
+    at = next;
+  }
+  return parent;
+}
+
 std::vector<int> Clearance::cut_neighbours(int x) const {
   std::vector<int> out;
   for (int f : vertex_faces_[x])
@@ -230,15 +262,6 @@ bool Clearance::try_compound(int f, int k, Sideways* sideways) {
           return std::pair{x, j};
       }
     return std::pair{-1, -1};
-  };
-  const auto links_at = [&](int a) {
-    std::vector<std::pair<int, int>> out;
-    for (int x : vertex_faces_[a])
-      for (int j = 0; j < 3; ++j)
-        if (linked(x, j) && x < adj_[x][j] &&
-            (mesh_.faces[x][j] == a || mesh_.faces[x][(j + 1) % 3] == a))
-          out.push_back({x, j});
-    return out;
   };
   const auto [gf, gk] = edge_of(tail, end, false);
   if (gf < 0) return false;

@@ -63,6 +63,17 @@ class Clearance {
   std::size_t blocked_count() const { return blocked_count_; }
   std::vector<EdgeSide> blocked_edges() const;
   void run(Progress& progress);
+  /// The tree links across edges at vertex a, each once, as (face, edge) on the face with the
+  /// smaller index.
+  std::vector<std::pair<int, int>> links_at(int a) const;
+  /// For kicks: the kKickGlues cut edges nearest to vertex w across tree link (lf, lk) whose
+  /// gluing (with the link cut) leaves no new flat leaf of the cut tree (crossing_glues).
+  std::vector<std::pair<int, int>> kick_glues(int lf, int lk, int w) const;
+  /// The unfold tree (parent by face) with tree link (lf, lk) cut and cut edge (cf, ck) glued:
+  /// the side cut off is re-rooted at the glued edge's face on that side.
+  std::vector<int> swapped_tree(int lf, int lk, int cf, int ck) const;
+  int neighbour(int f, int k) const { return adj_[f][k]; }
+  const std::vector<int>& faces_at(int v) const { return vertex_faces_[v]; }
   Net net() const { return Net{parent_, pos_}; }
   std::size_t moves_ = 0, evaluations_ = 0, compound_moves_ = 0;
   bool compound_ = true;
