@@ -7,6 +7,7 @@
 
 #include "core/dual_graph.h"
 #include "core/folds.h"
+#include "core/overlap.h"
 
 namespace papernet {
 
@@ -27,6 +28,68 @@ std::vector<double> angle_defects(const Mesh& mesh) {
   return out;
 }
 
+std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options) {
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<char> out(nv, 0);
+  const std::vector<double> defect = angle_defects(mesh);
+  // Around each vertex v, its faces as (a, b) for face (v, a, b), counter-clockwise.
+  std::vector<std::vector<std::pair<int, int>>> fan(nv);
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) fan[f[k]].push_back({f[(k + 1) % 3], f[(k + 2) % 3]});
+  const std::vector<TabShape> shapes = tab_shapes(options.angle_deg);
+  const double tol = 1e-9 * bounding_box_diagonal(mesh);
+  std::vector<Triangle2> flat;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!(defect[v] > 0)) continue;  // also the boundary (defect 0 there)
+    const Vec3 pv = mesh.vertices[v];
+    for (const auto& [w, unused] : fan[v]) {
+      // The fan opened at edge (v, w): faces (v, w, b1), (v, b1, b2), ..., (v, bn, w).
+      flat.clear();
+      double angle = 0;
+      int a = w;
+      Vec2 pa{norm(mesh.vertices[w] - pv), 0};
+      while (flat.size() < fan[v].size()) {
+        const auto next = std::find_if(fan[v].begin(), fan[v].end(),
+                                       [&](const std::pair<int, int>& e) { return e.first == a; });
+        if (next == fan[v].end()) break;
+        const int b = next->second;
+        const Vec3 da = mesh.vertices[a] - pv, db = mesh.vertices[b] - pv;
+        angle += std::atan2(norm(cross(da, db)), dot(da, db));
+        const double r = norm(db);
+        const Vec2 pb{r * std::cos(angle), r * std::sin(angle)};
+        flat.push_back({Vec2{0, 0}, pa, pb});
+        pa = pb, a = b;
+        if (a == w) break;
+      }
+      if (a != w || flat.empty()) continue;  // not a closed fan (not a manifold vertex)
+      const double len = flat.front()[1].x;
+      if (!(len > 0)) continue;
+      const double h = std::min(options.min_height, 0.5 * len);
+      if (!(h > 0)) {  // no minimum height: every edge has room
+        out[v] = 1;
+        break;
+      }
+      // The edge's two sides: (v, w) on the first face, (w, v) on the last.
+      for (const auto& [face, k] : {std::pair{flat.front(), 0}, std::pair{flat.back(), 2}}) {
+        for (const TabShape& shape : shapes) {
+          const auto t = tab_trapezoid(face, k, shape, h);
+          const Triangle2 t0{t[0], t[1], t[2]}, t1{t[0], t[2], t[3]};
+          const bool hit = std::any_of(flat.begin(), flat.end(), [&](const Triangle2& c) {
+            return triangles_overlap(t0, c, tol) || triangles_overlap(t1, c, tol);
+          });
+          if (!hit) {
+            out[v] = 1;
+            break;
+          }
+        }
+        if (out[v]) break;
+      }
+      if (out[v]) break;
+    }
+  }
+  return out;
+}
+
 TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
                                 const TabClearanceOptions& options, double flat_defect) {
   TabRoomReport r;
@@ -34,6 +97,8 @@ TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
   r.leaf_defects.assign(180, 0);
   const std::size_t nv = mesh.vertices.size();
   const std::vector<double> defect = angle_defects(mesh);
+  const std::vector<char> room = leaf_room(mesh, options);
+  r.leaf_room_vertices = static_cast<std::size_t>(std::count(room.begin(), room.end(), 1));
   const std::vector<NetEdge> edges = classify_edges(mesh, net);
   std::vector<int> degree(nv, 0);
   std::vector<char> boundary(nv, 0), used(nv, 0);
@@ -63,6 +128,7 @@ TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
       ++r.leaves;
       ++r.leaf_defects[bucket(defect[v])];
       if (std::abs(defect[v]) < flat_defect) ++r.flat_leaves;
+      if (!room[v]) ++r.leaves_without_room;
     }
   }
   // Cut edges by vertex, to walk hairs.
@@ -88,6 +154,8 @@ TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
     const int a = mesh.faces[s.face][s.k], b = mesh.faces[s.face][(s.k + 1) % 3];
     if (leaf(a) || leaf(b)) {
       ++r.blocked_leaf;
+      for (int v : {a, b})
+        if (leaf(v) && !room[v]) ++r.leaves_without_room_blocked;
       for (int v : {a, b})
         if (leaf(v)) ++r.blocked_leaf_defects[bucket(defect[v])];
     } else if (reaches_leaf(b, a) || reaches_leaf(a, b)) {

@@ -25,7 +25,10 @@ struct TabRoomReport {
   std::size_t flat_leaves = 0;        ///< ... whose defect is below `flat_defect`
   std::size_t sharp_vertices = 0;     ///< interior vertices with |defect| >= `flat_defect`
   std::size_t boundary_vertices = 0;  ///< vertices on the mesh's boundary (open meshes)
-  std::size_t branch_vertices = 0;    ///< vertices with three or more cut edges
+  std::size_t leaf_room_vertices = 0;  ///< interior vertices where a leaf can have room (leaf_room)
+  std::size_t leaves_without_room = 0;          ///< leaves at the other vertices
+  std::size_t leaves_without_room_blocked = 0;  ///< ... whose edge is blocked (all of them)
+  std::size_t branch_vertices = 0;              ///< vertices with three or more cut edges
   /// Leaves whose edge is blocked, and all leaves, by defect in whole degrees (0..179, the
   /// last bucket also takes larger and negative defects are counted by their size).
   std::vector<std::size_t> blocked_leaf_defects, leaf_defects;
@@ -35,6 +38,16 @@ struct TabRoomReport {
 /// flat when the size of its angle defect is below `flat_defect` (radians).
 TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
                                 const TabClearanceOptions& options, double flat_defect);
+
+/// Interior vertices where a leaf of the cut tree can have room for a tab: with the faces around
+/// v laid out flat as one fan, opened at one of v's edges (a leaf's only cut edge), a tab of
+/// `options.min_height` (half the edge on shorter edges; any of tab_shapes) fits on one of that
+/// edge's two sides without overlapping the fan. The fan's two copies of the edge meet at v at
+/// its angle defect, so this fails at nearly flat vertices: a leaf there always lacks room,
+/// whatever the rest of the net. Necessary, not sufficient (other faces may crowd the edge).
+/// Never at vertices with a defect <= 0 (their fan overlaps itself: no overlap-free net has a
+/// leaf there), on the boundary or in no face.
+std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options);
 
 /// Angle defect of every vertex: 2 pi minus the sum of its face angles; 0 for boundary vertices
 /// and vertices in no face.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <numbers>
 #include <numeric>
@@ -135,6 +136,58 @@ TEST(TabClearance, FlatLeavesAreNearSlitsAndThePassRemovesThem) {
   EXPECT_EQ(after.blocked, r.blocked_after);
   EXPECT_LT(3 * after.blocked, before.blocked);  // 215 -> 45 and 182 -> 49 in two nets of seed 1
   EXPECT_LT(3 * after.flat_leaves, before.flat_leaves);
+}
+
+// A leaf of the cut tree can have a tab only at a vertex whose fan, opened at the leaf's edge,
+// leaves a wide enough wedge: the octahedron's corners (defect 120 degrees) can, an almost flat
+// apex (defect 0.02 degrees) cannot at a 0.02 tab (2 mm when printed 200 mm long), but can at a
+// much smaller tab (the model printed far larger), and a saddle (negative defect) never can.
+TEST(TabClearance, LeafRoomNeedsAWideEnoughDefect) {
+  TabClearanceOptions options;
+  options.min_height = 0.02;
+  const std::vector<char> sharp = leaf_room(testing::octahedron(1), options);
+  EXPECT_EQ(sharp, std::vector<char>(6, 1));
+  const Mesh flat_mesh = testing::octahedron(0.01);
+  ASSERT_LT(angle_defects(flat_mesh)[4], 0.001);
+  const std::vector<char> flat = leaf_room(flat_mesh, options);
+  EXPECT_EQ(flat[4], 0);
+  for (int v : {0, 1, 2, 3, 5}) EXPECT_EQ(flat[v], 1) << v;
+  TabClearanceOptions tiny = options;
+  tiny.min_height = 1e-5;
+  EXPECT_EQ(leaf_room(flat_mesh, tiny)[4], 1);
+  Mesh saddle;  // vertex 0 amid six faces whose rim goes up and down: more than 360 degrees
+  saddle.vertices.push_back({0, 0, 0});
+  for (int i = 0; i < 6; ++i) {
+    const double a = i * std::numbers::pi / 3;
+    saddle.vertices.push_back({std::cos(a), std::sin(a), i % 2 ? 0.8 : -0.8});
+    saddle.faces.push_back({0, 1 + i, 1 + (i + 1) % 6});
+  }
+  ASSERT_LT(angle_defects(saddle)[0], 0);
+  EXPECT_EQ(leaf_room(saddle, tiny), std::vector<char>(7, 0));
+}
+
+// leaf_room is a necessary condition for room, whatever the rest of the net: on the nets of
+// two dense meshes, before and after the pass, every leaf of the cut tree at a vertex without
+// leaf room has a blocked edge (edges_without_tab_room's own count, against the whole net).
+TEST(TabClearance, LeavesWhereNoLeafCanHaveRoomAreBlocked) {
+  for (const char* file : {"sample.obj", "thingi10k_65004.stl"}) {
+    const Case c = unfolded(file);
+    ASSERT_FALSE(c.mesh.faces.empty()) << file;
+    TabClearanceOptions options;
+    options.min_height = c.min_height;
+    const double flat = 10 * std::numbers::pi / 180;
+    Progress quiet;
+    const TabClearanceResult r = clear_tab_room(c.mesh, c.net, options, quiet);
+    for (const Net* net : {&c.net, &r.net}) {
+      const TabRoomReport report = describe_tab_room(c.mesh, *net, options, flat);
+      EXPECT_GT(report.leaf_room_vertices, 0u) << file;
+      EXPECT_LT(report.leaf_room_vertices, c.mesh.vertices.size() / 2) << file;
+      EXPECT_LE(report.leaves_without_room, report.leaves) << file;
+      EXPECT_EQ(report.leaves_without_room_blocked, report.leaves_without_room) << file;
+    }
+    const TabRoomReport before = describe_tab_room(c.mesh, c.net, options, flat);
+    EXPECT_GT(before.leaves_without_room, 20u) << file;  // the check above has something to check
+  }
 }
 
 // Compound moves (a hair re-hung: two swaps checked together) are made on a dense net, and the
