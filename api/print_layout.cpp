@@ -139,13 +139,17 @@ TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOp
   if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || !options.tab_room ||
       options.tab_room_budget == 0)
     return {net, 0, 0, 0, 0};
+  return clear_tab_room(mesh, net, tab_clearance_options(mesh, options), progress);
+}
+
+TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& options) {
   TabClearanceOptions clearance;
   const double mm = std::min(options.min_tab_height_mm, options.tab_height_mm);
   clearance.min_height = mm / print_scale(mesh, options);
   clearance.angle_deg = options.tab_angle_deg;
   clearance.time_limit_seconds = options.tab_room_seconds;
   clearance.max_evaluations = options.tab_room_budget;
-  return clear_tab_room(mesh, net, clearance, progress);
+  return clearance;
 }
 
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options) {

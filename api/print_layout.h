@@ -89,6 +89,11 @@ struct PrintLayout {
 /// longest side of the mesh's bounding box (1 for a mesh without extent).
 double print_scale(const Mesh& mesh, const PrintOptions& options);
 
+/// The tab clearance options (core/tab_clearance.h) of a print: the lowest tab
+/// (`min_tab_height_mm`, at most `tab_height_mm`) in model units at the print scale, the tabs'
+/// slant, the budget and the clock limit of the pass.
+TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& options);
+
 /// Makes room for glue tabs before printing (core/tab_clearance.h): the net with fewer cut
 /// edges lacking room for a tab of `options.min_tab_height_mm` at the print scale. Only in
 /// TabMode::Auto with tabs and `tab_room` on; otherwise returns `net` unchanged (no moves). The

@@ -6,6 +6,7 @@
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "core/metrics.h"
 #include "core/net_check.h"
 #include "core/progressive.h"
+#include "core/tab_clearance_report.h"
 #include "core/unfolding.h"
 #include "core/validate.h"
 #include "server/commands.h"
@@ -24,6 +26,10 @@
 namespace papernet::cli {
 
 namespace {
+
+// Vertices flatter than this (angle defect) count as flat in the tab room report (unused here
+// but for its flat-leaf count).
+constexpr double kFlatDefect = 10 * std::numbers::pi / 180;
 
 constexpr const char* kUsage =
     "usage: papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o OUT\n"
@@ -178,6 +184,19 @@ int unfold(int argc, char** argv) {
               << room.blocked_after << " cut edges without room for a tab (" << room.moves
               << " moves, " << room.kicks << " kicks, " << room.evaluations << " evaluated, "
               << room_seconds << " s)\n";
+    if (room.blocked_after > 0) {
+      // Why edges stay without room: a leaf of the cut tree at a nearly flat vertex always
+      // lacks it (core/tab_clearance_report.h), and a dense mesh has few vertices where a leaf
+      // can have it.
+      const TabRoomReport why = describe_tab_room(
+          doc.mesh, result.net, tab_clearance_options(doc.mesh, print.print), kFlatDefect);
+      const std::size_t interior = doc.mesh.vertices.size() - why.boundary_vertices;
+      std::cerr << "papernet unfold: tab room: " << why.leaves_without_room_blocked << " of the "
+                << why.blocked << " end at a leaf of the cut tree where no leaf has room (only "
+                << why.leaf_room_vertices << " of " << interior
+                << " vertices are sharp enough at this size); print larger (--size) or use a "
+                   "mesh with fewer faces for fewer glue strips\n";
+    }
   }
   const NetCheckReport check = checked ? std::move(*checked) : check_net(doc.mesh, result.net);
   const NetBoxMetrics box = net_metrics(doc.mesh, result.net);

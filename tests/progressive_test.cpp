@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -478,6 +479,39 @@ TEST(UnfoldCli, QQIsTheDefaultAndWritesACompleteNet) {
   text.str("");
   text << std::ifstream(out).rdbuf();
   EXPECT_EQ(nlohmann::json::parse(text.str())["strategy"], "SEMP");
+  std::remove(out.c_str());
+}
+
+// When edges stay without room for a tab, the command says how many of them end at a leaf of
+// the cut tree where no leaf can have room, and what helps; a strip-free print says nothing.
+TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
+  const std::string out = testing::TempDir() + "papernet_strips_cli.svg";
+  std::string said;
+  ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/sample.obj --strategy TU " +
+                           "--tab-room-budget 2000 --paper none -o " + out,
+                       &said),
+            0)
+      << said;
+  std::smatch room, why;
+  ASSERT_TRUE(std::regex_search(said, room, std::regex(R"(-> (\d+) cut edges without room)")))
+      << said;
+  ASSERT_TRUE(std::regex_search(
+      said, why,
+      std::regex(R"(tab room: (\d+) of the (\d+) end at a leaf of the cut tree where no leaf )"
+                 R"(has room \(only (\d+) of 502 vertices)")))
+      << said;
+  EXPECT_EQ(why[2].str(), room[1].str());
+  EXPECT_GT(std::stoi(why[1].str()), 0);
+  EXPECT_LE(std::stoi(why[1].str()), std::stoi(why[2].str()));
+  EXPECT_LT(std::stoi(why[3].str()), 502);
+  EXPECT_NE(said.find("print larger (--size)"), std::string::npos) << said;
+  ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb --strategy TU " +
+                           "--paper none -o " + out,
+                       &said),
+            0)
+      << said;
+  EXPECT_NE(said.find("-> 0 cut edges without room"), std::string::npos) << said;
+  EXPECT_EQ(said.find("where no leaf has room"), std::string::npos) << said;
   std::remove(out.c_str());
 }
 
