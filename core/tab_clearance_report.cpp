@@ -119,10 +119,12 @@ TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
   const auto leaf = [&](int v) { return !boundary[v] && degree[v] == 1; };
   for (std::size_t v = 0; v < nv; ++v) {
     if (!used[v]) continue;
-    if (boundary[v])
+    if (boundary[v]) {
       ++r.boundary_vertices;
-    else if (std::abs(defect[v]) >= flat_defect)
-      ++r.sharp_vertices;
+    } else {
+      ++r.interior_vertices;
+      if (std::abs(defect[v]) >= flat_defect) ++r.sharp_vertices;
+    }
     if (degree[v] >= 3) ++r.branch_vertices;
     if (leaf(static_cast<int>(v))) {
       ++r.leaves;

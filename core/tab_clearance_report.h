@@ -25,6 +25,7 @@ struct TabRoomReport {
   std::size_t flat_leaves = 0;        ///< ... whose defect is below `flat_defect`
   std::size_t sharp_vertices = 0;     ///< interior vertices with |defect| >= `flat_defect`
   std::size_t boundary_vertices = 0;  ///< vertices on the mesh's boundary (open meshes)
+  std::size_t interior_vertices = 0;  ///< the others in a face
   std::size_t leaf_room_vertices = 0;  ///< interior vertices where a leaf can have room (leaf_room)
   std::size_t leaves_without_room = 0;          ///< leaves at the other vertices
   std::size_t leaves_without_room_blocked = 0;  ///< ... whose edge is blocked (all of them)

@@ -190,10 +190,9 @@ int unfold(int argc, char** argv) {
       // can have it.
       const TabRoomReport why = describe_tab_room(
           doc.mesh, result.net, tab_clearance_options(doc.mesh, print.print), kFlatDefect);
-      const std::size_t interior = doc.mesh.vertices.size() - why.boundary_vertices;
       std::cerr << "papernet unfold: tab room: " << why.leaves_without_room_blocked << " of the "
                 << why.blocked << " end at a leaf of the cut tree where no leaf has room (only "
-                << why.leaf_room_vertices << " of " << interior
+                << why.leaf_room_vertices << " of " << why.interior_vertices
                 << " vertices are sharp enough at this size); print larger (--size) or use a "
                    "mesh with fewer faces for fewer glue strips\n";
     }
