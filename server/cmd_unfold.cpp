@@ -27,8 +27,8 @@ namespace papernet::cli {
 
 namespace {
 
-// Vertices flatter than this (angle defect) count as flat in the tab room report (unused here
-// but for its flat-leaf count).
+// The tab room report's threshold for a flat vertex (angle defect); only its flat-leaf counts
+// depend on it, and those are not printed.
 constexpr double kFlatDefect = 10 * std::numbers::pi / 180;
 
 constexpr const char* kUsage =
