@@ -50,6 +50,9 @@ PrintFiles render_print_files(const Mesh& mesh, const Net& net, const JobOptions
   files.aspect_ratio = layout.metrics.aspect_ratio;
   const PageLayout pages = paginate(layout, out.page);
   files.pages = static_cast<int>(pages.pages.size());
+  files.cut_edges = static_cast<std::size_t>(layout.cut_edges);
+  files.tabs = layout.tabs.size();
+  files.strips = layout.strips.size();
   files.pdf = write_pdf(layout, pages);
   if (out.paper && pages.pages.size() == 1)
     files.svg = write_page_svgs(layout, pages).front();

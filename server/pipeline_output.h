@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "api/options.h"
@@ -16,6 +17,9 @@ struct PrintFiles {
   std::string pdf;  ///< tiled onto the job's paper (A4 when it asked for none)
   std::string glb;  ///< the mesh the net folds into
   int pages = 1;
+  std::size_t cut_edges = 0;  ///< interior cut edges (each gets one tab or one strip)
+  std::size_t tabs = 0;       ///< glue tabs on the net
+  std::size_t strips = 0;     ///< separate glue strips (cut edges without room for a tab)
   double coverage = 0;
   double aspect_ratio = 1;
 };

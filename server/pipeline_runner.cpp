@@ -107,6 +107,9 @@ JobOutput render(const Mesh& mesh, const Net& net, const NetInput& input, const 
   out.overlaps = 0;
   out.metrics = json["metrics"];
   out.metrics["pages"] = print.pages;
+  out.metrics["cut_edges"] = print.cut_edges;
+  out.metrics["glue_tabs"] = print.tabs;
+  out.metrics["glue_strips"] = print.strips;
   out.files["net.json"] = {"application/json", json.dump()};
   out.files["net.svg"] = {"image/svg+xml", print.svg};
   out.files["net.pdf"] = {"application/pdf", print.pdf};

@@ -34,16 +34,28 @@ JobInput sample_input() {
   return input;
 }
 
-std::vector<std::string> phases_of(TabMode tabs) {
+JobOutput run_sample(TabMode tabs, RecordingSink& sink) {
   JobOptions options;
   options.strategy = Strategy::TU;
   options.seed = 3;
   options.time_limit = 60;
   options.tabs = tabs;
-  RecordingSink sink;
-  const JobOutput out = make_pipeline_runner({})(sample_input(), options, sink);
+  JobOutput out = make_pipeline_runner({})(sample_input(), options, sink);
   EXPECT_EQ(out.files.count("net.pdf"), 1u);
+  return out;
+}
+
+std::vector<std::string> phases_of(TabMode tabs) {
+  RecordingSink sink;
+  run_sample(tabs, sink);
   return sink.phases;
+}
+
+// The number in attribute `name`="..." of the SVG's metadata, or -1.
+long svg_number(const std::string& svg, const std::string& name) {
+  const std::string key = "data-" + name + "=\"";
+  const std::size_t at = svg.find(key);
+  return at == std::string::npos ? -1 : std::stol(svg.substr(at + key.size()));
 }
 
 std::ptrdiff_t position(const std::vector<std::string>& phases, const std::string& phase) {
@@ -72,5 +84,29 @@ TEST(PipelineRunner, NoTabPassWithoutTabsOnTheNet) {
     const std::vector<std::string> phases = phases_of(mode);
     EXPECT_EQ(position(phases, "tabs"), -1);
     EXPECT_EQ(phases.back(), "write");
+  }
+}
+
+// The job's result metrics give the print's figures, the same as the SVG's metadata: a storefront
+// sees how many glue strips a kit has without parsing the drawing.
+TEST(PipelineRunner, ResultMetricsCountPagesTabsAndStrips) {
+  for (TabMode mode : {TabMode::Auto, TabMode::Strips}) {
+    RecordingSink sink;
+    const JobOutput out = run_sample(mode, sink);
+    const std::string& svg = out.files.at("net.svg").data;
+    const auto& m = out.metrics;
+    ASSERT_TRUE(m.contains("glue_tabs") && m.contains("glue_strips") && m.contains("cut_edges"))
+        << m.dump();
+    EXPECT_EQ(m["cut_edges"].get<long>(), svg_number(svg, "cut-edges"));
+    EXPECT_EQ(m["glue_tabs"].get<long>(), svg_number(svg, "tabs"));
+    EXPECT_EQ(m["glue_strips"].get<long>(), svg_number(svg, "strips"));
+    EXPECT_GT(m["cut_edges"].get<long>(), 400);  // sample.obj: 1,000 faces
+    EXPECT_EQ(m["glue_tabs"].get<long>() + m["glue_strips"].get<long>(),
+              m["cut_edges"].get<long>());
+    if (mode == TabMode::Strips)
+      EXPECT_EQ(m["glue_tabs"].get<long>(), 0);
+    else
+      EXPECT_GT(m["glue_tabs"].get<long>(), 10 * m["glue_strips"].get<long>());
+    EXPECT_GE(m["pages"].get<int>(), 1);
   }
 }
