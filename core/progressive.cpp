@@ -466,11 +466,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     for (std::size_t f = 0; f < input_faces; ++f)
       if (st.face[f] >= 0) result.face_ids[st.face[f]] = static_cast<int>(f);
     if (result.overlap_free) {
-      // A bounded amount of refinement: CAD meshes kept exactly by the quadrics would
-      // otherwise refine their flat sides towards the absolute accuracy for a long time.
-      HausdorffOptions accuracy;
-      accuracy.max_refinements = kHausdorffRefinements;
-      result.hausdorff = hausdorff_distance(mesh, result.mesh, accuracy).distance;
+      result.hausdorff = approximation_distance(mesh, result.mesh);
     }
   }
   relay.context.faces = result.mesh.faces.size();
@@ -479,6 +475,19 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   relay.report(last);
   result.seconds = seconds_since(start);
   return result;
+}
+
+Mesh simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
+                   Progress& progress) {
+  return decimate(mesh, {strategy, std::max<std::size_t>(faces, 1)}, progress).compact();
+}
+
+double approximation_distance(const Mesh& input, const Mesh& approximation) {
+  // A bounded amount of refinement: CAD meshes kept exactly by the quadrics would otherwise
+  // refine their flat sides towards the absolute accuracy for a long time.
+  HausdorffOptions accuracy;
+  accuracy.max_refinements = kHausdorffRefinements;
+  return hausdorff_distance(input, approximation, accuracy).distance;
 }
 
 }  // namespace papernet

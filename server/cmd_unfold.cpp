@@ -9,6 +9,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "api/net_json.h"
@@ -33,9 +34,14 @@ constexpr double kFlatDefect = 10 * std::numbers::pi / 180;
 
 constexpr const char* kUsage =
     "usage: papernet unfold FILE [--strategy QQ|SEMP|SEQ|TU] [--target-faces N] -o OUT\n"
-    "                            [-o OUT]... [--seed N] [--time-limit S] [print options]\n"
+    "                            [-o OUT]... [--seed N] [--time-limit S] [--simplify N]\n"
+    "                            [print options]\n"
     "QQ (default), SEMP, SEQ: progressive unfolding after collapsing to N faces (default\n"
     "F/10 + sqrt(F)(1+genus)); TU: Tabu Unfolding of the full mesh.\n"
+    "--simplify N unfolds and prints a low-poly version of the mesh instead: collapsed to N\n"
+    "faces first (by the strategy's collapses, QQ's for TU). Fewer, larger faces leave room\n"
+    "for more glue tabs (dense, smooth meshes keep glue strips); the net is then approximate,\n"
+    "with its Hausdorff distance to the input.\n"
     "OUT is chosen by extension: .json (papernet.net/1), .svg (one page, or OUT-1.svg ... per\n"
     "page), .pdf (one page per tile), .glb / .obj (the mesh the net folds into).\n"
     "exit codes: 0 net written (also an approximate one: a net of a coarser mesh, said on\n"
@@ -49,7 +55,7 @@ int unfold(int argc, char** argv) {
   std::vector<std::string> outputs;
   TabuOptions options;
   OutputOptions print;
-  std::size_t target_faces = 0;
+  std::size_t target_faces = 0, simplify = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto value = [&]() -> std::string {
@@ -72,6 +78,10 @@ int unfold(int argc, char** argv) {
         const long long n = std::stoll(value());
         if (n < 1) throw std::invalid_argument("--target-faces must be at least 1");
         target_faces = static_cast<std::size_t>(n);
+      } else if (arg == "--simplify") {
+        const long long n = std::stoll(value());
+        if (n < 4) throw std::invalid_argument("--simplify must be at least 4 faces");
+        simplify = static_cast<std::size_t>(n);
       } else if (arg == "--seed") {
         options.seed = std::stoull(value());
       } else if (arg == "--time-limit") {
@@ -114,6 +124,18 @@ int unfold(int argc, char** argv) {
     doc.input.genus = static_cast<int>(report.genus);
     doc.input.boundaries = report.boundary_loops;
     Progress quiet;
+    // A low-poly version to print instead of the input: the net is then approximate, its
+    // distance measured to the input.
+    std::optional<Mesh> input;
+    if (simplify > 0 && simplify < loaded.mesh.faces.size()) {
+      Mesh simple =
+          simplify_mesh(loaded.mesh, collapse.value_or(CollapseStrategy::QQ), simplify, quiet);
+      if (simple.faces.size() < loaded.mesh.faces.size())
+        input = std::exchange(loaded.mesh, std::move(simple));
+      if (input)
+        std::cerr << "papernet unfold: " << file << ": simplified from " << input->faces.size()
+                  << " to " << loaded.mesh.faces.size() << " faces\n";
+    }
     if (collapse) {
       ProgressiveOptions progressive;
       progressive.strategy = *collapse;
@@ -132,6 +154,10 @@ int unfold(int argc, char** argv) {
     } else {
       result = unfold_tabu(loaded.mesh, options, quiet);
       doc.mesh = std::move(loaded.mesh);
+    }
+    if (input && result.overlap_free) {
+      doc.result = "approximate";
+      doc.metrics.hausdorff = approximation_distance(*input, doc.mesh);
     }
   } catch (const IOException& e) {
     std::cerr << "papernet unfold: " << file << ": " << e.what() << "\n";
@@ -193,8 +219,8 @@ int unfold(int argc, char** argv) {
       std::cerr << "papernet unfold: tab room: " << why.leaves_without_room_blocked << " of the "
                 << why.blocked << " end at a leaf of the cut tree where no leaf has room (only "
                 << why.leaf_room_vertices << " of " << why.interior_vertices
-                << " vertices are sharp enough at this size); print larger (--size) or use a "
-                   "mesh with fewer faces for fewer glue strips\n";
+                << " vertices are sharp enough at this size); print larger (--size) or "
+                   "simplify (--simplify N faces) for fewer glue strips\n";
     }
   }
   const NetCheckReport check = checked ? std::move(*checked) : check_net(doc.mesh, result.net);

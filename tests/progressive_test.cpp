@@ -515,6 +515,54 @@ TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
   std::remove(out.c_str());
 }
 
+// --simplify prints a low-poly version: the Duck's 4,212 faces keep hundreds of glue strips at
+// 200 mm (docs/tabs.md), its 400-face version next to none. The net is approximate, of the
+// simplified mesh, and the JSON says how far that is from the input.
+TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
+  const std::string base = testing::TempDir() + "papernet_simplify_cli";
+  std::string said;
+  ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/Duck.glb --simplify 400 --paper none" +
+                           " -o " + base + ".json -o " + base + ".svg",
+                       &said),
+            0)
+      << said;
+  EXPECT_NE(said.find("simplified from 4212 to"), std::string::npos) << said;
+  std::stringstream text;
+  text << std::ifstream(base + ".json").rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["result"], "approximate");
+  EXPECT_EQ(j["input"]["faces"], 4212);
+  EXPECT_LE(j["mesh"]["faces"].size(), 400u);
+  EXPECT_GE(j["mesh"]["faces"].size(), 350u);
+  EXPECT_GT(j["metrics"]["hausdorff"].get<double>(), 0);
+  EXPECT_LT(j["metrics"]["hausdorff"].get<double>(), 0.05);
+  std::stringstream svg_text;
+  svg_text << std::ifstream(base + ".svg").rdbuf();
+  const std::string svg = svg_text.str();
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(svg, m, std::regex(R"re(data-strips="(\d+)")re"))) << said;
+  ASSERT_TRUE(
+      std::regex_search(said, std::regex(R"(, \d+ glue tabs, )" + m[1].str() + " glue strips")))
+      << said;
+  EXPECT_LE(std::stoi(m[1].str()), 5) << said;
+  // Not below the mesh's own face count: the mesh itself, complete.
+  ASSERT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb --simplify 12 -o " + base +
+                           ".json",
+                       &said),
+            0)
+      << said;
+  text.str("");
+  text << std::ifstream(base + ".json").rdbuf();
+  EXPECT_EQ(nlohmann::json::parse(text.str())["result"], "complete");
+  EXPECT_EQ(run_unfold(std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb --simplify 3 -o " + base +
+                           ".json",
+                       &said),
+            1);
+  EXPECT_NE(said.find("--simplify must be at least 4 faces"), std::string::npos) << said;
+  std::remove((base + ".json").c_str());
+  std::remove((base + ".svg").c_str());
+}
+
 TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
   const std::string mesh = std::string(PAPERNET_TEST_DATA) + "/sample.obj -o /dev/null";
   EXPECT_EQ(run_unfold(mesh + " --strategy QX"), 1);
