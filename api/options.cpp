@@ -121,6 +121,8 @@ void apply(JobOptions& o, const std::string& name, const json& v) {
     o.seed = whole(name, v);
   } else if (name == "target_faces") {
     o.target_faces = whole(name, v);
+  } else if (name == "simplify") {
+    o.simplify = whole(name, v);
   } else if (name == "time_limit") {
     o.time_limit = number(name, v);
   } else if (name == "size_mm") {
@@ -152,9 +154,9 @@ void apply(JobOptions& o, const std::string& name, const json& v) {
   } else {
     throw OptionsError("unknown_option", name,
                        "unknown option '" + name +
-                           "' (known: strategy, seed, target_faces, time_limit, size_mm, scale, "
-                           "paper, margin_mm, tabs, tab_room_budget, flat_fold_degrees, "
-                           "keep_largest_component)");
+                           "' (known: strategy, seed, target_faces, simplify, time_limit, "
+                           "size_mm, scale, paper, margin_mm, tabs, tab_room_budget, "
+                           "flat_fold_degrees, keep_largest_component)");
   }
 }
 
@@ -195,6 +197,9 @@ std::string paper_name(PaperSize paper) {
 void validate_options(const JobOptions& o, const OptionsLimits& limits) {
   if (o.target_faces)
     range(*o.target_faces >= 4 && *o.target_faces <= limits.max_target_faces, "target_faces",
+          "must be between 4 and " + std::to_string(limits.max_target_faces));
+  if (o.simplify)
+    range(*o.simplify >= 4 && *o.simplify <= limits.max_target_faces, "simplify",
           "must be between 4 and " + std::to_string(limits.max_target_faces));
   if (o.time_limit)
     range(
@@ -259,6 +264,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
   return json{{"strategy", strategy_name(o.strategy)},
               {"seed", o.seed},
               {"target_faces", opt(o.target_faces)},
+              {"simplify", opt(o.simplify)},
               {"time_limit", opt(o.time_limit)},
               {"size_mm", opt(o.size_mm)},
               {"scale", opt(o.scale)},

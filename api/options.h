@@ -28,6 +28,10 @@ struct JobOptions {
   std::uint64_t seed = 1;
   /// Overrides the collapse target t_f; unset means the paper's formula.
   std::optional<std::size_t> target_faces;
+  /// Unfold and print a low-poly version of the mesh, collapsed to this many faces first (the
+  /// strategy's collapses, QQ's for TU; fewer, larger faces leave room for more glue tabs); the
+  /// result is then approximate. Unset, or not below the mesh's face count: the mesh itself.
+  std::optional<std::size_t> simplify;
   /// Seconds the unfolder may spend; unset means the server's default.
   std::optional<double> time_limit;
   /// Longest side of the model's bounding box in millimetres (exclusive with `scale`).

@@ -155,8 +155,8 @@ struct Unfolded {
   double hausdorff = 0;
 };
 
-Unfolded unfold(const Mesh& mesh, const NetInput& input, const JobOptions& options,
-                Progress& progress) {
+Unfolded unfold_mesh(const Mesh& mesh, const NetInput& input, const JobOptions& options,
+                     Progress& progress) {
   TabuOptions tabu;
   tabu.seed = options.seed;
   tabu.time_limit_seconds = time_limit_of(options);
@@ -179,6 +179,23 @@ Unfolded unfold(const Mesh& mesh, const NetInput& input, const JobOptions& optio
   ProgressiveResult r = unfold_progressive(mesh, p, progress);
   if (!r.overlap_free) throw no_net(r.overlaps, r.stats.iterations);
   return {std::move(r.mesh), std::move(r.net), r.complete, r.hausdorff};
+}
+
+// The net of the job: of the mesh itself, or of its low-poly version when the job asks for one
+// (`simplify`), which makes the result approximate (its distance measured to the mesh).
+Unfolded unfold(const Mesh& mesh, const NetInput& input, const JobOptions& options,
+                Progress& progress) {
+  if (!options.simplify || *options.simplify >= mesh.faces.size())
+    return unfold_mesh(mesh, input, options, progress);
+  const CollapseStrategy collapse = options.strategy == Strategy::TU
+                                        ? CollapseStrategy::QQ
+                                        : *parse_collapse_strategy(strategy_name(options.strategy));
+  const Mesh simple = simplify_mesh(mesh, collapse, *options.simplify, progress);
+  if (simple.faces.size() >= mesh.faces.size()) return unfold_mesh(mesh, input, options, progress);
+  Unfolded u = unfold_mesh(simple, input, options, progress);
+  u.complete = false;
+  u.hausdorff = approximation_distance(mesh, u.mesh);
+  return u;
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   EXPECT_EQ(o.strategy, Strategy::QQ);
   EXPECT_EQ(o.seed, 1u);
   EXPECT_FALSE(o.target_faces);
+  EXPECT_FALSE(o.simplify);
   EXPECT_FALSE(o.time_limit);
   EXPECT_EQ(o.paper, PaperSize::A4);
   EXPECT_EQ(o.tabs, TabMode::Auto);
@@ -38,6 +39,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   const JobOptions o = parse_options_query({{"strategy", "semp"},
                                             {"seed", "42"},
                                             {"target_faces", "500"},
+                                            {"simplify", "800"},
                                             {"time_limit", "2.5"},
                                             {"size_mm", "120"},
                                             {"paper", "letter"},
@@ -48,6 +50,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_EQ(o.strategy, Strategy::SEMP);
   EXPECT_EQ(o.seed, 42u);
   EXPECT_EQ(o.target_faces, 500u);
+  EXPECT_EQ(o.simplify, 800u);
   EXPECT_DOUBLE_EQ(*o.time_limit, 2.5);
   EXPECT_DOUBLE_EQ(*o.size_mm, 120);
   EXPECT_EQ(o.paper, PaperSize::Letter);
@@ -147,6 +150,18 @@ TEST(OptionsTest, RangesAndLimitsAreChecked) {
               parse_options_query({{"target_faces", "3"}}, limits);
             }),
             "option_out_of_range");
+  EXPECT_EQ(error_code(
+                [&] {
+                  parse_options_query({{"simplify", "3"}}, limits);
+                },
+                &option),
+            "option_out_of_range");
+  EXPECT_EQ(option, "simplify");
+  EXPECT_EQ(error_code([&] {
+              parse_options_query({{"simplify", "1001"}}, limits);
+            }),
+            "option_out_of_range");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"simplify": 2.5})"); }), "invalid_option_value");
   EXPECT_EQ(error_code([] { parse_options_query({{"size_mm", "nan"}}); }), "option_out_of_range");
   EXPECT_EQ(error_code([] { parse_options_query({{"margin_mm", "-1"}}); }), "option_out_of_range");
   EXPECT_EQ(error_code([] { parse_options_json(R"({"tab_room_budget":100000001})"); }, &option),
@@ -195,10 +210,14 @@ TEST(OptionsTest, DeepOrHugeDocumentsAreRefusedWithAMessage) {
 }
 
 TEST(OptionsTest, CanonicalJsonRoundTrips) {
-  const JobOptions o = parse_options_query(
-      {{"strategy", "SEQ"}, {"seed", "9"}, {"scale", "3"}, {"tab_room_budget", "5000"}});
+  const JobOptions o = parse_options_query({{"strategy", "SEQ"},
+                                            {"seed", "9"},
+                                            {"scale", "3"},
+                                            {"tab_room_budget", "5000"},
+                                            {"simplify", "600"}});
   const nlohmann::json doc = options_to_json(o);
   EXPECT_EQ(doc["strategy"], "SEQ");
+  EXPECT_EQ(doc["simplify"], 600);
   EXPECT_EQ(doc["tab_room_budget"], 5000);
   EXPECT_TRUE(doc["size_mm"].is_null());
   const JobOptions back = parse_options_json(doc.dump());

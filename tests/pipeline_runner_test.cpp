@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <fstream>
 #include <sstream>
@@ -109,4 +111,29 @@ TEST(PipelineRunner, ResultMetricsCountPagesTabsAndStrips) {
       EXPECT_GT(m["glue_tabs"].get<long>(), 10 * m["glue_strips"].get<long>());
     EXPECT_GE(m["pages"].get<int>(), 1);
   }
+}
+
+// A job that asks for a low-poly version (simplify) unfolds and prints the collapsed mesh: an
+// approximate result whose net JSON keeps the input's face count and measures the distance.
+TEST(PipelineRunner, SimplifyMakesAnApproximateLowPolyResult) {
+  JobOptions options;
+  options.strategy = Strategy::TU;
+  options.seed = 3;
+  options.time_limit = 60;
+  options.simplify = 300;
+  RecordingSink sink;
+  const JobOutput out = make_pipeline_runner({})(sample_input(), options, sink);
+  EXPECT_TRUE(out.approximate);
+  EXPECT_EQ(out.input_faces, 1000u);
+  EXPECT_LE(out.faces, 300u);
+  EXPECT_GE(out.faces, 250u);
+  const auto net = nlohmann::json::parse(out.files.at("net.json").data);
+  EXPECT_EQ(net["result"], "approximate");
+  EXPECT_EQ(net["input"]["faces"], 1000);
+  EXPECT_EQ(net["mesh"]["faces"].size(), out.faces);
+  EXPECT_GT(out.metrics["hausdorff"].get<double>(), 0);
+  EXPECT_LT(out.metrics["hausdorff"].get<double>(), 0.05);
+  EXPECT_EQ(out.metrics["glue_tabs"].get<long>() + out.metrics["glue_strips"].get<long>(),
+            out.metrics["cut_edges"].get<long>());
+  EXPECT_NE(std::find(sink.phases.begin(), sink.phases.end(), "collapse"), sink.phases.end());
 }

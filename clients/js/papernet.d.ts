@@ -11,6 +11,8 @@ export interface Options {
   strategy?: Strategy;
   seed?: number;
   target_faces?: number;
+  /** Print a low-poly version: the mesh collapsed to this many faces first (result approximate). */
+  simplify?: number;
   time_limit?: number;
   /** Longest side of the model in millimetres (exclusive with scale). */
   size_mm?: number;
