@@ -8,7 +8,7 @@ const $ = (id) => document.getElementById(id);
 const client = new PapernetClient("");
 const ui = {
   drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
-  paper: $("paper"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
+  paper: $("paper"), simplify: $("simplify"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
   model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
   downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
 };
@@ -202,6 +202,7 @@ async function run() {
   const options = { strategy: ui.strategy.value, paper: ui.paper.value };
   if (Number(ui.size.value) > 0) options.size_mm = Number(ui.size.value);
   if (Number(ui.timeLimit.value) > 0) options.time_limit = Number(ui.timeLimit.value);
+  if (Number(ui.simplify.value) >= 4) options.simplify = Math.round(Number(ui.simplify.value));
   current?.abort.abort();
   const abort = new AbortController();
   shownFaces = -1;
@@ -232,7 +233,9 @@ async function run() {
     if (final.status === "succeeded" || final.status === "approximated") {
       await showResult(job.id, true);
       const r = final.result ?? {};
-      setStatus(`${final.status}: net of ${r.faces} faces (input ${r.input_faces}) · ${describe(final, false)}`);
+      const m = r.metrics ?? {};
+      const glue = m.glue_tabs === undefined ? "" : ` · ${m.glue_tabs} glue tabs, ${m.glue_strips} glue strips, ${m.pages} pages`;
+      setStatus(`${final.status}: net of ${r.faces} faces (input ${r.input_faces})${glue} · ${describe(final, false)}`);
       document.body.dataset.state = "done";
     } else {
       const e = final.error;

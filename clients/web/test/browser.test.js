@@ -90,6 +90,7 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   const status = await page.textContent("#status");
   assert.equal(state, "done", `page ended in ${state}: ${status}`);
   assert.match(status, /^(succeeded|approximated): net of \d+ faces/);
+  assert.match(status, / · \d+ glue tabs, \d+ glue strips, \d+ pages/, "the print's glue and pages are shown");
   const log = await page.evaluate(() => window.statusLog);
   const live = log.filter((line) => /^running · .*approximation: \d+ of \d+ faces/.test(line));
   assert.ok(live.length > 0, `the approximation level was shown while running: ${JSON.stringify(log.slice(0, 5))}`);
