@@ -96,8 +96,8 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
 /// collapses only, as decimate) to at most `faces` faces, or as far as legal collapses go, with
 /// ids of its own. Fewer, larger faces have sharper vertices and longer edges, so more cut edges
 /// have room for a glue tab (docs/tabs.md). Reports phase "collapse".
-/// 	hrow InvalidInputException when `mesh` is not a manifold, oriented triangle mesh.
-/// 	hrow CancelledException when `progress` asks to stop.
+/// \throw InvalidInputException when `mesh` is not a manifold, oriented triangle mesh.
+/// \throw CancelledException when `progress` asks to stop.
 Mesh simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
                    Progress& progress);
 
