@@ -108,24 +108,15 @@ bool Clearance::coincident(int f, int k) const {
 }
 
 bool Clearance::side_has_room(int f, int k) const {
-  const double len = norm(pos_[f][(k + 1) % 3] - pos_[f][k]);
-  if (!(len > 0)) return false;
-  const double h = std::min(height_, 0.5 * len);
-  for (const TabShape& shape : shapes_) {
-    const auto t = tab_trapezoid(pos_[f], k, shape, h);
-    const Triangle2 t0{t[0], t[1], t[2]}, t1{t[0], t[2], t[3]};
-    Box2 box = triangle_box(t0);
-    for (Vec2 p : {t[3]})
-      box = {{std::min(box.lo.x, p.x), std::min(box.lo.y, p.y)},
-             {std::max(box.hi.x, p.x), std::max(box.hi.y, p.y)}};
-    bool hit = false;
-    grid_.query(box, [&](int c) {
-      if (hit) return;
-      hit = triangles_overlap(t0, pos_[c], tol_) || triangles_overlap(t1, pos_[c], tol_);
-    });
-    if (!hit) return true;
-  }
-  return false;
+  return tab_fits(
+      pos_[f], k, shapes_, height_, [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
+        bool hit = false;
+        grid_.query(box, [&](int c) {
+          if (hit) return;
+          hit = triangles_overlap(t0, pos_[c], tol_) || triangles_overlap(t1, pos_[c], tol_);
+        });
+        return hit;
+      });
 }
 
 void Clearance::set_link(int f, int k, bool on) {

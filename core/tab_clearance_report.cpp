@@ -8,6 +8,7 @@
 #include "core/dual_graph.h"
 #include "core/folds.h"
 #include "core/overlap.h"
+#include "core/tab_clearance_state.h"
 
 namespace papernet {
 
@@ -28,10 +29,17 @@ std::vector<double> angle_defects(const Mesh& mesh) {
   return out;
 }
 
-std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options) {
+namespace {
+
+// leaf_room, given the mesh's angle defects.
+std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options,
+                            const std::vector<double>& defect) {
   const std::size_t nv = mesh.vertices.size();
   std::vector<char> out(nv, 0);
-  const std::vector<double> defect = angle_defects(mesh);
+  if (!(options.min_height > 0)) {  // no minimum height: every edge has room
+    for (std::size_t v = 0; v < nv; ++v) out[v] = defect[v] > 0;
+    return out;
+  }
   // Around each vertex v, its faces as (a, b) for face (v, a, b), counter-clockwise.
   std::vector<std::vector<std::pair<int, int>>> fan(nv);
   for (const auto& f : mesh.faces)
@@ -39,6 +47,11 @@ std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options
   const std::vector<TabShape> shapes = tab_shapes(options.angle_deg);
   const double tol = 1e-9 * bounding_box_diagonal(mesh);
   std::vector<Triangle2> flat;
+  const auto hits_fan = [&](const Triangle2& t0, const Triangle2& t1, const Box2&) {
+    return std::any_of(flat.begin(), flat.end(), [&](const Triangle2& c) {
+      return triangles_overlap(t0, c, tol) || triangles_overlap(t1, c, tol);
+    });
+  };
   for (std::size_t v = 0; v < nv; ++v) {
     if (!(defect[v] > 0)) continue;  // also the boundary (defect 0 there)
     const Vec3 pv = mesh.vertices[v];
@@ -62,32 +75,21 @@ std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options
         if (a == w) break;
       }
       if (a != w || flat.empty()) continue;  // not a closed fan (not a manifold vertex)
-      const double len = flat.front()[1].x;
-      if (!(len > 0)) continue;
-      const double h = std::min(options.min_height, 0.5 * len);
-      if (!(h > 0)) {  // no minimum height: every edge has room
+      // The edge's two sides: (v, w) on the first face, (w, v) on the last.
+      if (tab_clearance_detail::tab_fits(flat.front(), 0, shapes, options.min_height, hits_fan) ||
+          tab_clearance_detail::tab_fits(flat.back(), 2, shapes, options.min_height, hits_fan)) {
         out[v] = 1;
         break;
       }
-      // The edge's two sides: (v, w) on the first face, (w, v) on the last.
-      for (const auto& [face, k] : {std::pair{flat.front(), 0}, std::pair{flat.back(), 2}}) {
-        for (const TabShape& shape : shapes) {
-          const auto t = tab_trapezoid(face, k, shape, h);
-          const Triangle2 t0{t[0], t[1], t[2]}, t1{t[0], t[2], t[3]};
-          const bool hit = std::any_of(flat.begin(), flat.end(), [&](const Triangle2& c) {
-            return triangles_overlap(t0, c, tol) || triangles_overlap(t1, c, tol);
-          });
-          if (!hit) {
-            out[v] = 1;
-            break;
-          }
-        }
-        if (out[v]) break;
-      }
-      if (out[v]) break;
     }
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options) {
+  return leaf_room(mesh, options, angle_defects(mesh));
 }
 
 TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
@@ -97,7 +99,7 @@ TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
   r.leaf_defects.assign(180, 0);
   const std::size_t nv = mesh.vertices.size();
   const std::vector<double> defect = angle_defects(mesh);
-  const std::vector<char> room = leaf_room(mesh, options);
+  const std::vector<char> room = leaf_room(mesh, options, defect);
   r.leaf_room_vertices = static_cast<std::size_t>(std::count(room.begin(), room.end(), 1));
   const std::vector<NetEdge> edges = classify_edges(mesh, net);
   std::vector<int> degree(nv, 0);
@@ -157,9 +159,10 @@ TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
     if (leaf(a) || leaf(b)) {
       ++r.blocked_leaf;
       for (int v : {a, b})
-        if (leaf(v) && !room[v]) ++r.leaves_without_room_blocked;
-      for (int v : {a, b})
-        if (leaf(v)) ++r.blocked_leaf_defects[bucket(defect[v])];
+        if (leaf(v)) {
+          ++r.blocked_leaf_defects[bucket(defect[v])];
+          if (!room[v]) ++r.leaves_without_room_blocked;
+        }
     } else if (reaches_leaf(b, a) || reaches_leaf(a, b)) {
       ++r.blocked_hair;
     } else {
