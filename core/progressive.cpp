@@ -477,9 +477,12 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   return result;
 }
 
-Mesh simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
-                   Progress& progress) {
-  return decimate(mesh, {strategy, std::max<std::size_t>(faces, 1)}, progress).compact();
+std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
+                                  Progress& progress) {
+  if (faces == 0 || faces >= mesh.faces.size()) return std::nullopt;
+  Mesh simple = decimate(mesh, {strategy, faces}, progress).compact();
+  if (simple.faces.size() >= mesh.faces.size()) return std::nullopt;
+  return simple;
 }
 
 double approximation_distance(const Mesh& input, const Mesh& approximation) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "core/decimate.h"
@@ -94,12 +95,14 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
 
 /// A low-poly version of `mesh` to print instead of it: collapsed with `strategy` (legal
 /// collapses only, as decimate) to at most `faces` faces, or as far as legal collapses go, with
-/// ids of its own. Fewer, larger faces have sharper vertices and longer edges, so more cut edges
-/// have room for a glue tab (docs/tabs.md). Reports phase "collapse".
+/// ids of its own. None when that is not fewer faces than `mesh` (`faces` 0 or not below its
+/// count, or no legal collapse): then print `mesh` itself. Fewer, larger faces have sharper
+/// vertices and longer edges, so more cut edges have room for a glue tab (docs/tabs.md).
+/// Reports phase "collapse".
 /// \throw InvalidInputException when `mesh` is not a manifold, oriented triangle mesh.
 /// \throw CancelledException when `progress` asks to stop.
-Mesh simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
-                   Progress& progress);
+std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
+                                  Progress& progress);
 
 /// Two-sided Hausdorff distance of `approximation` to `input`, relative to the input's
 /// bounding-box diagonal, with the bounded refinement that approximate results use (a few tenths

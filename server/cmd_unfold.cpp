@@ -127,14 +127,11 @@ int unfold(int argc, char** argv) {
     // A low-poly version to print instead of the input: the net is then approximate, its
     // distance measured to the input.
     std::optional<Mesh> input;
-    if (simplify > 0 && simplify < loaded.mesh.faces.size()) {
-      Mesh simple =
-          simplify_mesh(loaded.mesh, collapse.value_or(CollapseStrategy::QQ), simplify, quiet);
-      if (simple.faces.size() < loaded.mesh.faces.size())
-        input = std::exchange(loaded.mesh, std::move(simple));
-      if (input)
-        std::cerr << "papernet unfold: " << file << ": simplified from " << input->faces.size()
-                  << " to " << loaded.mesh.faces.size() << " faces\n";
+    if (std::optional<Mesh> simple =
+            simplify_mesh(loaded.mesh, collapse.value_or(CollapseStrategy::QQ), simplify, quiet)) {
+      input = std::exchange(loaded.mesh, std::move(*simple));
+      std::cerr << "papernet unfold: " << file << ": simplified from " << input->faces.size()
+                << " to " << loaded.mesh.faces.size() << " faces\n";
     }
     if (collapse) {
       ProgressiveOptions progressive;

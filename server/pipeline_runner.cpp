@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "api/net_json.h"
 #include "core/errors.h"
@@ -155,6 +156,11 @@ struct Unfolded {
   double hausdorff = 0;
 };
 
+// The collapses of a progressive strategy; none for TU.
+std::optional<CollapseStrategy> collapse_strategy(Strategy strategy) {
+  return parse_collapse_strategy(strategy_name(strategy));
+}
+
 Unfolded unfold_mesh(const Mesh& mesh, const NetInput& input, const JobOptions& options,
                      Progress& progress) {
   TabuOptions tabu;
@@ -173,7 +179,7 @@ Unfolded unfold_mesh(const Mesh& mesh, const NetInput& input, const JobOptions& 
     return {mesh, std::move(r.net), true, 0};
   }
   ProgressiveOptions p;
-  p.strategy = *parse_collapse_strategy(strategy_name(options.strategy));
+  p.strategy = *collapse_strategy(options.strategy);
   p.target_faces = options.target_faces.value_or(0);
   p.tabu = tabu;
   ProgressiveResult r = unfold_progressive(mesh, p, progress);
@@ -185,14 +191,11 @@ Unfolded unfold_mesh(const Mesh& mesh, const NetInput& input, const JobOptions& 
 // (`simplify`), which makes the result approximate (its distance measured to the mesh).
 Unfolded unfold(const Mesh& mesh, const NetInput& input, const JobOptions& options,
                 Progress& progress) {
-  if (!options.simplify || *options.simplify >= mesh.faces.size())
-    return unfold_mesh(mesh, input, options, progress);
-  const CollapseStrategy collapse = options.strategy == Strategy::TU
-                                        ? CollapseStrategy::QQ
-                                        : *parse_collapse_strategy(strategy_name(options.strategy));
-  const Mesh simple = simplify_mesh(mesh, collapse, *options.simplify, progress);
-  if (simple.faces.size() >= mesh.faces.size()) return unfold_mesh(mesh, input, options, progress);
-  Unfolded u = unfold_mesh(simple, input, options, progress);
+  const std::optional<Mesh> simple =
+      simplify_mesh(mesh, collapse_strategy(options.strategy).value_or(CollapseStrategy::QQ),
+                    options.simplify.value_or(0), progress);
+  if (!simple) return unfold_mesh(mesh, input, options, progress);
+  Unfolded u = unfold_mesh(*simple, input, options, progress);
   u.complete = false;
   u.hausdorff = approximation_distance(mesh, u.mesh);
   return u;
