@@ -36,15 +36,25 @@ JobInput sample_input() {
   return input;
 }
 
-JobOutput run_sample(TabMode tabs, RecordingSink& sink) {
+// The job of these tests: sample.obj by TU, seed 3.
+JobOptions sample_options() {
   JobOptions options;
   options.strategy = Strategy::TU;
   options.seed = 3;
   options.time_limit = 60;
-  options.tabs = tabs;
+  return options;
+}
+
+JobOutput run_sample(const JobOptions& options, RecordingSink& sink) {
   JobOutput out = make_pipeline_runner({})(sample_input(), options, sink);
   EXPECT_EQ(out.files.count("net.pdf"), 1u);
   return out;
+}
+
+JobOutput run_sample(TabMode tabs, RecordingSink& sink) {
+  JobOptions options = sample_options();
+  options.tabs = tabs;
+  return run_sample(options, sink);
 }
 
 std::vector<std::string> phases_of(TabMode tabs) {
@@ -116,13 +126,10 @@ TEST(PipelineRunner, ResultMetricsCountPagesTabsAndStrips) {
 // A job that asks for a low-poly version (simplify) unfolds and prints the collapsed mesh: an
 // approximate result whose net JSON keeps the input's face count and measures the distance.
 TEST(PipelineRunner, SimplifyMakesAnApproximateLowPolyResult) {
-  JobOptions options;
-  options.strategy = Strategy::TU;
-  options.seed = 3;
-  options.time_limit = 60;
+  JobOptions options = sample_options();
   options.simplify = 300;
   RecordingSink sink;
-  const JobOutput out = make_pipeline_runner({})(sample_input(), options, sink);
+  const JobOutput out = run_sample(options, sink);
   EXPECT_TRUE(out.approximate);
   EXPECT_EQ(out.input_faces, 1000u);
   EXPECT_LE(out.faces, 300u);
