@@ -7,6 +7,10 @@ DEPS ?= all
 SAMPLE ?= tests/data/sample.obj
 # The web demo bundle that `make build` writes (clients/web); served at / by `make run`.
 WEB_ROOT ?= $(BUILD)/clients/web/dist
+# ccache (CMakeLists.txt) keys on paths relative to the checkout, so that every clone, and each
+# of the three build trees, reuses what another compiled.
+export CCACHE_BASEDIR ?= $(CURDIR)
+export CCACHE_NOHASHDIR ?= true
 # CI treats warnings as errors.
 ifeq ($(CI),true)
 CMAKE_FLAGS += -DPAPERNET_WERROR=ON
@@ -71,7 +75,7 @@ sanitize-address: build-asan
 
 sanitize-thread: deps
 	CXX=clang++ cmake -S . -B build-tsan $(SAN_FLAGS) -DPAPERNET_SANITIZE=thread
-	cmake --build build-tsan -j $(JOBS) --target papernet_tests
+	cmake --build build-tsan -j $(JOBS) --target papernet_server_tests
 	rm -rf build-tsan/sanitizer-logs && mkdir -p build-tsan/sanitizer-logs
 	TSAN_OPTIONS=$(TSAN_OPTIONS):log_path=$(CURDIR)/build-tsan/sanitizer-logs/tsan \
 	ctest --test-dir build-tsan --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)' \
@@ -90,7 +94,7 @@ run: build
 	@echo "papernet serve: open http://127.0.0.1:8080/ for the demo page, or"
 	@echo "                try  curl -s -i --data-binary @$(SAMPLE) -H 'Content-Type: model/obj' 'http://127.0.0.1:8080/v1/jobs'"
 	@echo "                (README.md, section 'HTTP service', has the whole session; Ctrl-C stops)"
-	PAPERNET_WEB_ROOT="$${PAPERNET_WEB_ROOT:-$(WEB_ROOT)}" $(BUILD)/server/papernet serve
+	PAPERNET_WEB_ROOT="$${PAPERNET_WEB_ROOT:-$(WEB_ROOT)}" $(BUILD)/bin/papernet serve
 
 # Regenerates docs/benchmarks.md, docs/benchmarks/*.svg and runs.csv from a full benchmark run
 # (1,080 runs, 60 s limit each; about 8 min on 2 idle cores). Needs ../shared/data.

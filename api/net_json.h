@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/mesh.h"
-#include "core/net.h"
+#include "core/mesh/mesh.h"
+#include "core/unfold/net.h"
 
 namespace papernet {
 

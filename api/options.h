@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "api/tab_mode.h"
+#include "print/tab_mode.h"
 
 namespace papernet {
 

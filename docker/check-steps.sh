@@ -17,7 +17,7 @@ step() { printf '\n== %s\n' "$*"; }
 fail() { echo "FAILED: $*" >&2; exit 1; }
 start=$(date +%s)
 
-bin=$work/build/server/papernet
+bin=$work/build/bin/papernet
 web=$work/build/clients/web/dist
 if [ "${REUSE_BUILD:-0}" = 1 ] && [ -x "$bin" ]; then
   step "reusing the build in $work/build (steps 1-2 skipped)"
@@ -56,7 +56,7 @@ echo "all $(ldd "$bin" | grep -c '=>') shared libraries are covered"
 step "runtime stage: serve as an unprivileged user with the image's environment"
 id papernet-check >/dev/null 2>&1 || useradd --system --no-create-home --shell /usr/sbin/nologin papernet-check
 mkdir -p "$work/var" && chown papernet-check "$work/var"
-chmod -R a+rX "$work/build/server" "$web" "$work"
+chmod -R a+rX "$work/build/bin" "$web" "$work"
 port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1])')
 setpriv --reuid=papernet-check --regid=papernet-check --init-groups env PAPERNET_HOST=0.0.0.0 PAPERNET_PORT="$port" PAPERNET_DATA="$work/var" \
   PAPERNET_WEB_ROOT="$web" PAPERNET_WORKERS=1 "$bin" serve >"$work/serve.log" 2>&1 &

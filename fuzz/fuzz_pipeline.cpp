@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "core/errors.h"
-#include "core/validate.h"
+#include "core/mesh/validate.h"
 #include "server/pipeline_runner.h"
 
 namespace papernet::fuzz {

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/load.h"
+#include "core/io/load.h"
 
 namespace papernet::fuzz {
 

@@ -28,8 +28,8 @@ STRATEGIES=${STRATEGIES:-QQ,SEMP,SEQ,TU}
 OUT=${OUT:-docs}
 
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$BUILD" -j "$JOBS" --target papernet
-papernet="$BUILD/server/papernet"
+cmake --build "$BUILD" -j "$JOBS" --target papernet-bench
+bench="$BUILD/bin/papernet-bench"
 
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 if ! git diff --quiet HEAD -- core api server 2>/dev/null; then commit="$commit + local changes"; fi
@@ -46,7 +46,7 @@ if [ -n "${FROM_CSV:-}" ]; then
   if [ "$(realpath "$FROM_CSV")" != "$(realpath -m "$OUT/benchmarks/runs.csv")" ]; then
     cp "$FROM_CSV" "$OUT/benchmarks/runs.csv"
   fi
-  exec "$papernet" bench --from-csv "$OUT/benchmarks/runs.csv" "${report[@]}"
+  exec "$bench" --from-csv "$OUT/benchmarks/runs.csv" "${report[@]}"
 fi
 
 if [ ! -d "$DATA" ]; then
@@ -56,6 +56,6 @@ fi
 sizes=()
 [ -z "${SIZES:-}" ] || sizes=(--sizes "$SIZES")
 start=$(date +%s)
-"$papernet" bench "$DATA" --strategies "$STRATEGIES" "${sizes[@]}" --seed 1 \
+"$bench" "$DATA" --strategies "$STRATEGIES" "${sizes[@]}" --seed 1 \
   --csv "$OUT/benchmarks/runs.csv" "${report[@]}"
 echo "scripts/benchmarks.sh: done in $(( ($(date +%s) - start) / 60 )) min; wrote $OUT/benchmarks.md" >&2

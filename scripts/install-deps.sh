@@ -5,9 +5,9 @@
 #   scripts/install-deps.sh runtime  only what the papernet binary needs to run
 set -euo pipefail
 
-runtime=(libopenmesh1 libdraco7 libsqlite3-0 libcairo2 libcpp-httplib0.11 ca-certificates)
-build=(build-essential cmake pkg-config git clang-format
-  libopenmesh-dev libdraco-dev libtinygltf-dev nlohmann-json3-dev libcpp-httplib-dev
+runtime=(libdraco7 libsqlite3-0 libcairo2 libcpp-httplib0.11 ca-certificates)
+build=(build-essential cmake pkg-config git clang-format ccache
+  libdraco-dev libtinygltf-dev nlohmann-json3-dev libcpp-httplib-dev
   libgtest-dev libsqlite3-dev libcairo2-dev zlib1g-dev)
 # Node.js and npm bundle the web demo and run the JS client tests. Any Node >= 18 with npm
 # will do (Debian 12 ships 18); one already on the PATH is kept.

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "api/options.h"
-#include "core/load.h"
+#include "core/io/load.h"
 #include "core/progress.h"
 
 namespace papernet::server {

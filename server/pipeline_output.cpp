@@ -1,10 +1,10 @@
 #include "server/pipeline_output.h"
 
-#include "api/mesh_export.h"
-#include "api/pdf.h"
-#include "api/print_output.h"
-#include "api/svg.h"
-#include "core/net_check.h"
+#include "core/io/write_mesh.h"
+#include "core/unfold/net_check.h"
+#include "print/pdf.h"
+#include "print/print_output.h"
+#include "print/svg.h"
 
 namespace papernet::server {
 

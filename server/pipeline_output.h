@@ -4,10 +4,10 @@
 #include <string>
 
 #include "api/options.h"
-#include "core/mesh.h"
-#include "core/net.h"
-#include "core/net_check.h"
+#include "core/mesh/mesh.h"
 #include "core/progress.h"
+#include "core/unfold/net.h"
+#include "core/unfold/net_check.h"
 
 namespace papernet::server {
 

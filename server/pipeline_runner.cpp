@@ -6,11 +6,11 @@
 
 #include "api/net_json.h"
 #include "core/errors.h"
-#include "core/load.h"
-#include "core/net_check.h"
-#include "core/progressive.h"
-#include "core/unfolding.h"
-#include "core/validate.h"
+#include "core/io/load.h"
+#include "core/mesh/validate.h"
+#include "core/unfold/net_check.h"
+#include "core/unfold/progressive.h"
+#include "core/unfold/unfolding.h"
 #include "server/pipeline_output.h"
 #include "server/problem.h"
 

@@ -3,7 +3,7 @@
 # Every request is printed before it runs, so the output reads as the README's curl session.
 #
 #   PAPERNET_URL=http://127.0.0.1:8080 clients/curl/session.sh [MESH]
-#   PAPERNET_BIN=build/server/papernet clients/curl/session.sh   # starts its own server
+#   PAPERNET_BIN=build/bin/papernet clients/curl/session.sh   # starts its own server
 #
 # Exits non-zero (naming the step) when any answer is not what the API promises; the test suite
 # runs it against a live server.

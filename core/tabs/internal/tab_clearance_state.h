@@ -1,0 +1,223 @@
+// Internal to the tab clearance pass (core/tab_clearance*.cpp): the search state, a net whose
+// cuts change by edge swaps of its unfold tree. Not part of the public API.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/progress.h"
+#include "core/tabs/tab_clearance.h"
+#include "core/unfold/folds.h"
+#include "core/unfold/net.h"
+#include "core/unfold/overlap.h"
+#include "core/unfold/unfold_tree.h"
+
+namespace papernet::tab_clearance_detail {
+
+// Overlap tolerance relative to the mesh's bounding-box diagonal (as the unfolder's).
+constexpr double kRelativeTolerance = 1e-9;
+// Cut edges farther along the cut tree tried per link (see Clearance::candidates).
+constexpr std::size_t kFarGlues = 32;
+// Vertices walked at most along a hair (see Clearance::hair_links).
+constexpr std::size_t kHairSteps = 64;
+// A vertex this far from flat (angle defect, radians: 10 degrees) hosts a leaf of the cut tree
+// without harm: its slit opens by that angle.
+constexpr double kSharpDefect = 10 * std::numbers::pi / 180;
+// Tabu search (Clearance::run): how many blocked edges a move may close net, for how many
+// steps a move's edges stay tabu, how many sweeps without a new best end a stage, and the
+// candidate moves evaluated per step in each stage.
+constexpr long long kMaxWorsening = 1;
+constexpr int kTenure = 40;
+constexpr int kStallSweeps = 3;
+// Endgame of the search: restarts from the best net without a new best before it stops, and the
+// stage (kStepCaps) a restart begins with.
+constexpr int kRestarts = 4;
+constexpr std::size_t kRestartLevel = 1;
+constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
+// Compound moves (Clearance::try_compound): glues tried per second link.
+constexpr std::size_t kCompoundGlues = 16;
+// ... and faces tried as the root of its layout (spread over the net).
+constexpr std::size_t kRoots = 8;
+// Kicks (kick): glues tried per link, moved-face tests of the local repair of each, faces of the
+// net per candidate move a kick counts as in the budget, how many blocked edges more than the
+// best net's a repaired net may have for a short search from it, and that search's budget as a
+// fraction of the round's (1 / kKickSearches: 10,000 candidate moves by default).
+constexpr std::size_t kKickGlues = 8;
+constexpr std::size_t kKickFacesPerEvaluation = 10;
+constexpr std::size_t kKickRepairTests = 5'000;
+constexpr std::size_t kKickSlack = 3;
+constexpr std::size_t kKickSearches = 10;
+// The second round (clear_tab_room) is more of the tabu search when it spent its budget with
+// more blocked edges than this left, else kicks.
+constexpr std::size_t kSearchOnBlocked = 64;
+
+// Whether a tab of one of `shapes`, `min_height` tall (half the edge on shorter edges), fits on
+// the outside of edge k of `face`: `hits(t0, t1, box)` says whether the tab's two triangles
+// (their bounding box `box`) overlap an obstacle. False on an edge of length 0. The one room test
+// of the pass (Clearance::side_has_room, against the net) and of leaf_room (against a fan).
+template <class Hits>
+bool tab_fits(const Triangle2& face, int k, const std::vector<TabShape>& shapes, double min_height,
+              Hits&& hits) {
+  const double len = norm(face[(k + 1) % 3] - face[k]);
+  if (!(len > 0)) return false;
+  const double h = std::min(min_height, 0.5 * len);
+  for (const TabShape& shape : shapes) {
+    const auto t = tab_trapezoid(face, k, shape, h);
+    const Triangle2 t0{t[0], t[1], t[2]}, t1{t[0], t[2], t[3]};
+    Box2 box = triangle_box(t0);
+    box = {{std::min(box.lo.x, t[3].x), std::min(box.lo.y, t[3].y)},
+           {std::max(box.hi.x, t[3].x), std::max(box.hi.y, t[3].y)}};
+    if (!hits(t0, t1, box)) return true;
+  }
+  return false;
+}
+
+class Clearance {
+ public:
+  Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions& options);
+  std::size_t blocked_count() const { return blocked_count_; }
+  std::vector<EdgeSide> blocked_edges() const;
+  void run(Progress& progress);
+  /// The tree links across edges at vertex a, each once, as (face, edge) on the face with the
+  /// smaller index.
+  std::vector<std::pair<int, int>> links_at(int a) const;
+  /// For kicks: the kKickGlues cut edges nearest to vertex w across tree link (lf, lk) whose
+  /// gluing (with the link cut) leaves no new flat leaf of the cut tree (crossing_glues).
+  std::vector<std::pair<int, int>> kick_glues(int lf, int lk, int w) const;
+  /// The unfold tree (parent by face) with tree link (lf, lk) cut and cut edge (cf, ck) glued:
+  /// the side cut off is re-rooted at the glued edge's face on that side.
+  std::vector<int> swapped_tree(int lf, int lk, int cf, int ck) const;
+  int neighbour(int f, int k) const { return adj_[f][k]; }
+  const std::vector<int>& faces_at(int v) const { return vertex_faces_[v]; }
+  Net net() const { return Net{parent_, pos_}; }
+  std::size_t moves_ = 0, evaluations_ = 0, compound_moves_ = 0;
+  bool compound_ = true;
+  /// When not empty, run() visits only the blocked edges marked here (by canonical half-edge
+  /// 3 * f + k, as blocked_edges() names them): a kick's search looks where the kick changed
+  /// the net.
+  std::vector<char> focus_;
+  /// Lets run() go on from the best net: `evaluations` more, within `seconds` (when limited).
+  void extend(std::size_t evaluations, double seconds) {
+    budget_ += evaluations;
+    if (time_limit_ > 0) time_limit_ = std::max(seconds, 1e-9);
+  }
+
+ private:
+  int canon(int f, int k) const {
+    const int n = adj_[f][k];
+    return n < 0 || f < n ? 3 * f + k : 3 * n + adj_edge_[f][k];
+  }
+  bool linked(int f, int k) const { return links_[f] >> k & 1; }
+  /// Edge k of face f was changed by a recent move of run() (for kTenure steps).
+  bool tabu(int f, int k) const { return tabu_until_[canon(f, k)] > step_; }
+  bool coincident(int f, int k) const;
+  bool is_cut(int f, int k) const { return adj_[f][k] >= 0 && !linked(f, k) && !coincident(f, k); }
+  bool side_has_room(int f, int k) const;
+  bool blocked(int f, int k) const {
+    return is_cut(f, k) && !side_has_room(f, k) && !side_has_room(adj_[f][k], adj_edge_[f][k]);
+  }
+  void root_tree();
+  bool in_sub(int top, int x) const {
+    return static_cast<unsigned>(tin_[x] - tin_[top]) < static_cast<unsigned>(size_[top]);
+  }
+  void set_link(int f, int k, bool on);
+  void place(int f, const Triangle2& p);
+  /// What a move changes: blocked edges and flat leaves of the cut tree (after - before).
+  struct Change {
+    long long blocked = 0, flat_leaves = 0;
+  };
+  bool apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Change& out);
+  bool apply_compound(int tf, int tk, const std::vector<std::array<int, 4>>& swaps, int root,
+                      Change& out);
+  void recount(Change& out);
+  /// The hair blocked edge (u, v) lies on, as vertices from its flat leaf to the first vertex
+  /// that is not a two-cut interior vertex; empty when it lies on none.
+  std::vector<int> hair_path(int u, int v) const;
+  /// The best compound move try_compound found that does not lower the blocked count and closes
+  /// at most max_blocked edges: the search's sideways move when it beats the best single swap.
+  struct Sideways {
+    long long max_blocked = 0;
+    Change change;
+    std::vector<std::array<int, 4>> swaps;
+    int root = 0;
+  };
+  bool try_compound(int f, int k, Sideways* sideways);
+  void undo();
+  void commit();
+  template <class Consider>
+  bool candidates(int f, int k, Consider&& consider);
+  /// The cut edges (face, edge) between the two sides of tree link `top` that gluing could
+  /// replace it by without a new flat leaf of the cut tree, given that cutting the link adds a
+  /// cut edge at `link_ends` and that `degree(x)` is the cut degree of vertex x: nearest to
+  /// `at` first, at most `most`; `skip(face, edge)` leaves out more.
+  template <class Degree, class Skip>
+  std::vector<std::pair<int, int>> crossing_glues(int top, std::array<int, 2> link_ends, Vec3 at,
+                                                  std::size_t most, Degree&& degree,
+                                                  Skip&& skip) const;
+  /// The other ends of the cut edges at vertex x.
+  std::vector<int> cut_neighbours(int x) const;
+  /// When edge (u, v) lies on a hair (a path of two-cut interior vertices ending at a leaf),
+  /// the tree links across edges at the hair's vertices, from the leaf on; else none.
+  std::vector<std::pair<int, int>> hair_links(int u, int v) const;
+  /// A leaf of the cut tree at v does no harm: v is on the boundary or far from flat.
+  bool harmless(int v) const { return vboundary_[v] || std::abs(defect_[v]) >= kSharpDefect; }
+
+  const Mesh& mesh_;
+  int nf_ = 0;
+  std::vector<std::array<int, 3>> adj_;
+  std::vector<std::array<std::int8_t, 3>> adj_edge_;
+  std::vector<FaceShape> shape_;
+  std::vector<std::vector<int>> vertex_faces_;
+  std::vector<Triangle2> pos_;
+  std::vector<Box2> box_;
+  std::vector<std::uint8_t> links_;
+  OverlapGrid grid_;
+  double tol_ = 0, height_ = 0;
+  std::size_t budget_ = 0;
+  double time_limit_ = 0;              // seconds; <= 0: none
+  std::size_t step_limit_ = 0;         // evaluations_ allowed up to in the current step of run()
+  std::size_t far_glues_ = kFarGlues;  // cut edges farther along the cut tree tried per link
+  bool endgame_ = false;               // after the first restart (see run): hair links too
+  bool keep_bounds_ = true;
+  Box2 bounds_;  // of the input net
+  std::vector<TabShape> shapes_;
+  std::vector<char> blocked_;  // by canonical half-edge 3 * f + k
+  std::size_t blocked_count_ = 0;
+  std::vector<int> parent_, tin_, size_, order_;
+  std::vector<double> defect_;               // angle defect by vertex (0 on the boundary)
+  std::vector<char> vboundary_;              // vertex on the mesh's boundary
+  std::vector<int> cut_degree_;              // cut edges (unlinked interior edges) at each vertex
+  std::vector<std::array<int, 4>> pending_;  // the applied move's swaps: lf, lk, cf, ck
+  std::uint32_t step_ = 0;                   // run()'s current step (tabu_until_)
+  std::vector<std::uint32_t> tabu_until_;    // by canonical half-edge: step until which it stays
+
+  // Scratch of apply_move.
+  std::vector<int> moving_, from_, mark_, order2_, slot_;
+  std::vector<char> is_moving_;
+  std::vector<Triangle2> new_pos_, old_pos_;
+  std::vector<int> affected_;
+  std::vector<std::pair<int, int>> ends_;  // vertex, change of its cut degree
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t epoch_ = 0;
+};
+
+/// The pass's second round as kicks (core/tab_clearance_kick.cpp), after Clearance::run on
+/// `result.net`: for each blocked edge in turn, a swap that opens it (a link cut at one of its
+/// ends, one of the kKickGlues nearest cut edges across glued that leaves no new flat leaf) is
+/// made whether or not it overlaps; Unfolding::repair_locally removes the overlaps (the kick is
+/// dropped when it cannot); a repaired net with at most kKickSlack blocked edges more than
+/// `result`'s gets a tabu search of a tenth of the budget (kKickSearches) that visits only the
+/// edges near what moved (focus_), and replaces `result` when it ends with fewer. Sweeps until one
+/// makes no kick, `options.max_evaluations` more candidate moves are spent (a kick counts as 1 +
+/// faces / kKickFacesPerEvaluation of them, its search as what it evaluates), or `seconds_left`
+/// runs out (only when options.time_limit_seconds > 0). Deterministic otherwise.
+void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_left,
+          Progress& progress, TabClearanceResult& result);
+
+}  // namespace papernet::tab_clearance_detail

@@ -1,0 +1,99 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/progress.h"
+#include "core/unfold/folds.h"
+#include "core/unfold/net.h"
+#include "core/vec.h"
+
+namespace papernet {
+
+/// A glue tab's shape relative to its edge: the stretch [from, to] of the edge (fractions from
+/// the side's first point) its base covers and the slant of each end (radians).
+struct TabShape {
+  double from = 0, to = 1;
+  double angle0 = 0.785398163397448, angle1 = 0.785398163397448;
+};
+
+/// The tab shapes a printed net may use, best first: bases over the whole edge and over
+/// stretches of it (at least 40 %), ends slanted by `angle_deg` or 40 % of it.
+std::vector<TabShape> tab_shapes(double angle_deg);
+
+/// The trapezoid of `shape` on the outside of edge k of the counter-clockwise triangle `face`,
+/// `height` tall, counter-clockwise: the base's two ends (the one nearer corner k second), then
+/// the two top corners. The ends' insets shrink together so the top keeps a tenth of the base.
+std::array<Vec2, 4> tab_trapezoid(const std::array<Vec2, 3>& face, int k, const TabShape& shape,
+                                  double height);
+
+struct TabClearanceOptions {
+  /// Lowest tab worth printing, in model units (print: millimetres / scale); on an edge shorter
+  /// than twice this, half the edge. <= 0: every edge has room, nothing to do.
+  double min_height = 0;
+  double angle_deg = 45;  ///< slant of a tab's sides, as the print layout's
+  /// Candidate moves evaluated at most by the tabu search, and as many again by its second
+  /// round (`second_round`): a deterministic budget (no clock), so the same net and options
+  /// always give the same result. Both rounds also stop earlier when they no longer find better
+  /// nets.
+  std::size_t max_evaluations = 100'000;
+  /// A clock limit in seconds besides the budget, for callers with a deadline (the service's
+  /// job time limit); <= 0: none. When it stops the search, the best net so far is returned
+  /// (overlap-free as always), and the result then depends on the machine's speed.
+  double time_limit_seconds = 0;
+  /// Refuse moves that take faces outside the input net's axis-aligned bounding box, so that
+  /// the net does not grow while it makes room for tabs. Off by default: it leaves about a
+  /// quarter more edges without room and does not bound the page count anyway (pages follow
+  /// the net's minimum-area rotated box; docs/tabs.md).
+  bool keep_bounds = false;
+  /// Also try compound moves (two edge swaps checked together, see clear_tab_room) where no
+  /// single swap helps. On by default; off gives the search of single swaps only.
+  bool compound_moves = true;
+  /// A second round of `max_evaluations` after the tabu search (see clear_tab_room): more of
+  /// the search when it spent its budget with many edges left, else kicks. On by default (not with
+  /// keep_bounds, which kicks do not keep); off gives the tabu search alone.
+  bool second_round = true;
+};
+
+/// Interior cut edges of `net` where no tab of `options.min_height` (of any of tab_shapes)
+/// fits on either side without overlapping a face; each edge once, as its side on the face with
+/// the smaller index. Edges whose two sides lie on each other (glued without a tree link) are
+/// not cut. Tabs are not obstacles here: this is room, not a placement.
+std::vector<EdgeSide> edges_without_tab_room(const Mesh& mesh, const Net& net,
+                                             const TabClearanceOptions& options);
+
+struct TabClearanceResult {
+  Net net;
+  std::size_t blocked_before = 0;  ///< cut edges without tab room in the input net
+  std::size_t blocked_after = 0;   ///< ... and in `net`
+  std::size_t moves = 0;           ///< moves from the input to `net`
+  std::size_t evaluations = 0;     ///< candidate moves evaluated (kicks included)
+  std::size_t compound_moves = 0;  ///< compound moves among `moves` (each counts two there)
+  std::size_t kicks = 0;           ///< kicks that made `net` better (see clear_tab_room)
+  bool searched_on = false;        ///< the second round was more of the tabu search
+};
+
+/// Makes room for tabs: changes which edges of an overlap-free `net` are cut so that fewer cut
+/// edges lack room for a tab (edges_without_tab_room). A move cuts a tree link at an end of
+/// such an edge (typically at a leaf of the cut tree, where the edge's two sides lie a few
+/// degrees apart around an almost flat vertex) and glues a cut edge on the cycle that link
+/// closes, rotating the smaller side of the tree rigidly; a move that overlaps is never made.
+/// Where no such swap helps, a compound move re-hangs the hair the edge lies on (the path of cut
+/// edges from a leaf at a flat vertex): two swaps checked for overlap together. A
+/// tabu search over these moves (it also makes moves that close other edges, to get out of
+/// local minima) returns the net with the fewest edges without room it has seen: an
+/// overlap-free net of the same mesh (glued edges copied exactly), never worse than the input,
+/// or the input itself when nothing helped. Then a second round, as long again: when the search
+/// spent its budget with many edges (more than 64) still without room it goes on; else kicks get
+/// it out of where it stalled (every swap that opens an edge overlaps): such a swap is made
+/// anyway, the unfolder's local repair (Unfolding::repair_locally) removes the overlaps, and a
+/// short tabu search from the repaired net replaces the result when it ends with fewer edges
+/// without room. Deterministic (unless options.time_limit_seconds stops it).
+/// \pre `net` is an overlap-free net of `mesh` (check_net passes).
+/// \throw CancelledException when `progress` asks to stop.
+TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
+                                  const TabClearanceOptions& options, Progress& progress);
+
+}  // namespace papernet

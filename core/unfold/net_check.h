@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/unfold/net.h"
+
+namespace papernet {
+
+/// Tolerances of the net checker, relative to the mesh's bounding-box diagonal.
+struct NetCheckOptions {
+  double length_tolerance = 1e-6;   ///< edge lengths and glued corners
+  double overlap_tolerance = 1e-7;  ///< overlaps thinner than this are ignored
+  std::size_t max_messages = 20;    ///< failures listed in full; the rest are counted
+};
+
+/// What the checker found. `ok()` when nothing failed.
+struct NetCheckReport {
+  std::vector<std::string> failures;  ///< the first `max_messages` failures, one sentence each
+  std::size_t failure_count = 0;      ///< all failures
+  std::size_t overlapping_pairs = 0;
+  bool ok() const { return failure_count == 0; }
+  /// All messages in one string, separated by "; ".
+  std::string summary() const;
+};
+
+/// Checks that `net` is a valid edge unfolding of `mesh`: every 2D face is congruent to its 3D
+/// face with the same (counter-clockwise) orientation; exactly one root and parent links that
+/// form one spanning tree; each face shares a mesh edge with its parent, placed at the same 2D
+/// position in both (glued); and no two faces' interiors intersect. Independent of the
+/// unfolder's incremental structures: brute force over a simple grid.
+NetCheckReport check_net(const Mesh& mesh, const Net& net, const NetCheckOptions& options = {});
+
+}  // namespace papernet

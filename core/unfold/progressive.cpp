@@ -1,0 +1,496 @@
+#include "core/unfold/progressive.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <utility>
+
+#include "core/errors.h"
+#include "core/mesh/dual_graph.h"
+#include "core/mesh/hausdorff.h"
+#include "core/mesh/progressive_mesh.h"
+#include "core/random.h"
+
+namespace papernet {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Passes the Tabu Unfolder's reports on with the run's phase, face counts and elapsed time.
+class Relay : public Progress {
+ public:
+  Relay(Progress& outer, Clock::time_point start) : outer_(outer), start_(start) {}
+  ProgressInfo context;
+  bool quiet = false;
+  void report(const ProgressInfo& in) override {
+    if (quiet) return;
+    ProgressInfo out = context;
+    out.overlaps = in.overlaps;
+    out.iterations = in.iterations;
+    out.elapsed_seconds = seconds_since(start_);
+    outer_.report(out);
+  }
+  void intermediate(const Mesh& mesh, const Net& net) override { outer_.intermediate(mesh, net); }
+  bool cancelled() override { return outer_.cancelled(); }
+
+ private:
+  Progress& outer_;
+  Clock::time_point start_;
+};
+
+// The unfolding being refined and the id maps from the input to it.
+struct State {
+  Unfolding unfolding;
+  std::vector<int> face;    // input face -> Unfolding face, -1 while collapsed
+  std::vector<int> vertex;  // input vertex -> Unfolding vertex, -1 while collapsed
+  std::size_t splits = 0;   // splits applied
+};
+
+// A split that was applied, with what its Tabu run needed (to replay it exactly).
+struct Applied {
+  std::vector<VertexSplit> splits;  // one, or a batch on large meshes
+  std::uint64_t seed = 0;
+  std::size_t iterations = 0;  // 0: no overlaps appeared
+};
+
+// Hausdorff refinement budget per direction for approximate results (a few tenths of a second).
+constexpr std::size_t kHausdorffRefinements = 20000;
+
+// Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests.
+constexpr std::size_t kRepairTestsBase = 4000;
+constexpr std::size_t kRepairTestsPerFace = 4;
+// Splits per update(): kSplitsPerUpdate, or one per kBatchFaces faces of the current mesh when
+// that is more. Consecutive splits often move the same parts of the tree (the branches that meet
+// their rings); together these are re-laid out and tested once. With eight per update the Tabu
+// runs after splits grew (more new overlaps at once) and ate the gain (2,000 faces, seeds 1-3).
+constexpr std::size_t kSplitsPerUpdate = 4;
+constexpr std::size_t kBatchFaces = 4000;
+
+// Tabu budget of a coarse attempt that may still be retried on a coarser mesh: iterations
+// growing with the face count, an end when the fewest overlaps seen stall, and work (moved-face
+// tests, TabuStats::tests) of kCoarseTestsPerFace per face, at least kCoarseTestsMin. Work, not
+// time, so that the same seed gives the same net whatever the machine's load. It replaced a cap
+// of 5e-4 s per face (at least 0.25 s) at 1.4 million tests a second, the middle of what the
+// CAD attempts of bench/2000 that this cap ends do on an idle machine: 0.5-0.6 million on
+// trimesh__1002_tray_bottom's first attempt, whose tests meet many large faces in the grid,
+// 1.1-2.4 million on the others (up to 4 million on attempts that succeed).
+constexpr std::size_t kCoarseIterationsBase = 2000;
+constexpr std::size_t kCoarseIterationsPerFace = 20;
+constexpr std::size_t kCoarseStallBase = 2000;
+constexpr std::size_t kCoarseTestsMin = 350'000;
+constexpr std::size_t kCoarseTestsPerFace = 700;
+// The last attempt after the time limit is spent: at most this long beyond it.
+constexpr double kOutOfTimeSeconds = 0.25;
+// A retry halves the face count; it does not go below this.
+constexpr std::size_t kMinCoarseFaces = 8;
+// A coarse start with more overlapping pairs per face than this is collapsed further at once
+// (when it may be), without a Tabu run: on CAD parts of slivers such starts (ADIS16480 at 1,318
+// faces: 15,654 pairs, the Twin plate at 650: 8,169) still had thousands of pairs when their
+// budget ended the run; the organic meshes of bench/2000 start below 4.2 per face, and
+// thingi10k__73416 (7.5), whose start is sometimes unfolded, keeps its run.
+constexpr std::size_t kHopelessPairsPerFace = 10;
+// Iterations a split's Tabu run may take at least (base + per face of the current mesh);
+// beyond, at most as many as all the work done before it (a split that needs more is stuck:
+// the result becomes approximate).
+constexpr std::size_t kSplitIterationsBase = 2000;
+constexpr std::size_t kSplitIterationsPerFace = 5;
+// Small meshes get the split work budget of this many faces (their moves are cheap, but they may
+// need more of them per face).
+constexpr std::size_t kSplitTestsMinFaces = 2000;
+
+// The smaller of an iteration or test limit (0: none) and n.
+std::size_t at_most(std::size_t limit, std::size_t n) {
+  return limit == 0 ? n : std::min(limit, n);
+}
+
+std::uint64_t split_seed(std::uint64_t seed, std::size_t index) {
+  return seed ^ (0x9e3779b97f4a7c15ULL * (index + 1));
+}
+
+// Applies a vertex split to the unfolding's mesh and tree (update() not yet called).
+void apply_split(State& st, const VertexSplit& s, std::uint64_t seed) {
+  Unfolding& u = st.unfolding;
+  ++st.splits;
+  const int r = u.add_vertex(s.vertex_position);
+  st.vertex[s.vertex] = r;
+  u.set_vertex_position(st.vertex[s.moved], s.moved_to);
+  for (const auto& [f, c] : s.relabelled) {
+    std::array<int, 3> corners = u.mesh().faces[st.face[f]];
+    corners[c] = r;
+    u.set_face_corners(st.face[f], corners);
+  }
+  for (const SplitFace& nf : s.new_faces) {
+    std::array<int, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = st.vertex[nf.corners[k]];
+    st.face[nf.face] = u.add_face(corners);
+  }
+  Random rng(seed);
+  for (const SplitFace& nf : s.new_faces) {
+    const int f = st.face[nf.face];
+    const int a = nf.wing[0] >= 0 ? st.face[nf.wing[0]] : -1;
+    const int b = nf.wing[1] >= 0 ? st.face[nf.wing[1]] : -1;
+    if (a >= 0 && b >= 0 && u.parent(b) == a) {
+      u.insert_between(f, a, b);
+    } else if (a >= 0 && b >= 0 && u.parent(a) == b) {
+      u.insert_between(f, b, a);
+    } else {
+      // A leaf of a random neighbour already in the tree: a wing face or the other new face.
+      int options[3], n = 0;
+      for (int x : {a, b})
+        if (x >= 0) options[n++] = x;
+      for (const SplitFace& other : s.new_faces) {
+        const int g = st.face[other.face];
+        if (g != f && u.parent(g) != -2) options[n++] = g;
+      }
+      if (n == 0) throw TopologyException("a split face has no neighbour in the unfold tree");
+      u.attach(f, options[rng.below(static_cast<std::uint64_t>(n))]);
+    }
+  }
+}
+
+// Applies splits and lays them out. When faces overlap, local moves of small parts of the tree
+// are tried first (Unfolding::repair_locally, O(moved side) each) before the caller falls back on
+// the Tabu Unfolder: most new overlaps are local. Returns the overlap count.
+std::size_t place_splits(State& st, const std::vector<VertexSplit>& splits, std::uint64_t seed) {
+  for (std::size_t i = 0; i < splits.size(); ++i) apply_split(st, splits[i], seed + i);
+  Unfolding& u = st.unfolding;
+  if (u.update() == 0) return 0;
+  LocalRepairOptions repair;
+  repair.max_tests = kRepairTestsBase + kRepairTestsPerFace * u.face_count();
+  return u.repair_locally(repair);
+}
+
+// The unfolding of pm's current mesh from the steepest-edge tree of `seed`, with id maps. A
+// retry (`retry`) starts from the minimum-perimeter tree instead when it has fewer overlapping
+// pairs: on CAD meshes of slivers it often has none where steepest edges have thousands (the
+// Twin plate at 486 faces: 0 against 5,931).
+State make_state(const ProgressiveMesh& pm, const Mesh& input, std::uint64_t seed, bool retry) {
+  std::vector<int> face_ids, vertex_ids;
+  Mesh coarse = pm.compact(&face_ids, &vertex_ids);
+  Unfolding start = Unfolding::steepest_edge(coarse, seed);
+  if (retry && start.overlap_count() > 0) {
+    Unfolding other(coarse, min_perimeter_tree(coarse, build_dual_graph(coarse), seed));
+    if (other.overlap_count() < start.overlap_count()) start = std::move(other);
+  }
+  State st{std::move(start), std::vector<int>(pm.input_face_count(), -1),
+           std::vector<int>(input.vertices.size(), -1)};
+  for (std::size_t i = 0; i < face_ids.size(); ++i) st.face[face_ids[i]] = static_cast<int>(i);
+  for (std::size_t i = 0; i < vertex_ids.size(); ++i)
+    st.vertex[vertex_ids[i]] = static_cast<int>(i);
+  return st;
+}
+
+// The net of `mesh`'s steepest-edge tree, else of its minimum-perimeter tree, when one of them
+// has no overlapping pair. One state of the input at a time: on a 100,000-face input each takes
+// about 50 MB (both at once made nefertiti's peak 173 MB instead of 72 MB).
+std::optional<Net> start_tree_net(const Mesh& mesh, std::uint64_t seed) {
+  {
+    const Unfolding steepest = Unfolding::steepest_edge(mesh, seed);
+    if (steepest.overlap_count() == 0) return steepest.net();
+  }
+  std::vector<int> parent = min_perimeter_tree(mesh, build_dual_graph(mesh), seed);
+  const Unfolding other(mesh, parent);
+  if (other.overlap_count() == 0) return other.net();
+  return std::nullopt;
+}
+
+Net net_in_input_ids(const State& st, std::size_t faces) {
+  Net net;
+  net.parent.assign(faces, -1);
+  net.points.resize(faces);
+  std::vector<int> input_face(st.unfolding.face_count(), -1);
+  for (std::size_t f = 0; f < faces; ++f) input_face[st.face[f]] = static_cast<int>(f);
+  for (std::size_t f = 0; f < faces; ++f) {
+    const int uf = st.face[f];
+    const int p = st.unfolding.parent(uf);
+    net.parent[f] = p >= 0 ? input_face[p] : -1;
+    net.points[f] = st.unfolding.points(uf);
+  }
+  return net;
+}
+
+}  // namespace
+
+ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions& options,
+                                     Progress& progress) {
+  const Clock::time_point start = Clock::now();
+  const double limit = options.tabu.time_limit_seconds;
+  const auto remaining = [&] { return limit > 0 ? limit - seconds_since(start) : 0.0; };
+  ProgressiveResult result;
+  const auto complete_with = [&](Net net, Relay& relay) {
+    result.complete = result.overlap_free = true;
+    result.mesh = mesh;
+    result.net = std::move(net);
+    result.face_ids.resize(mesh.faces.size());
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) result.face_ids[f] = static_cast<int>(f);
+    result.splits = result.splits_total;
+    ProgressInfo done;
+    relay.report(done);
+    result.seconds = seconds_since(start);
+    return result;
+  };
+  ProgressiveMesh pm = decimate(mesh, {options.strategy, options.target_faces}, progress);
+  const std::size_t input_faces = pm.input_face_count();
+
+  Relay relay(progress, start);
+  relay.context.input_faces = input_faces;
+  relay.context.phase = "unfold";
+  std::optional<State> coarse;
+  TabuStats stats;
+  bool coarse_ok = false, can_go_coarser = true;
+  for (std::size_t attempt = 0;; ++attempt) {
+    // When the coarse mesh cannot be unfolded within a modest budget, collapse it further and
+    // try again: a coarser net that uncollapses part of the way is still an approximate result.
+    // The coarsest attempt gets the whole remaining budget.
+    // Out of time before any coarse net: one last attempt on the coarsest mesh the collapses
+    // reach, bounded by iterations (a few milliseconds at that size) and by kOutOfTimeSeconds
+    // beyond the limit (for meshes whose collapses end early, such as CAD parts of high genus),
+    // so that a time limit too short for the coarse mesh still gives an approximate net. Time,
+    // not work, bounds it: the user's limit decides the result here anyway, and a test costs up
+    // to 11 us there (the Twin plate by SEMP: 2,126 faces, 100,000 overlapping pairs).
+    const bool out_of_time = limit > 0 && remaining() <= 0;
+    if (out_of_time && can_go_coarser && pm.face_count() > kMinCoarseFaces) {
+      const std::size_t before = pm.face_count();
+      collapse_further(pm, options.strategy, kMinCoarseFaces, progress);
+      if (pm.face_count() < before) ++result.coarse_retries;
+      can_go_coarser = false;
+    }
+    const std::size_t faces = pm.face_count();
+    if (attempt == 1 && !out_of_time) {
+      // The coarse mesh resisted: before collapsing further, see whether the input needs no
+      // search at all, the unfolding of its steepest-edge or minimum-perimeter tree being
+      // overlap-free already. On CAD plates of slivers (the Twin plate) the input's
+      // minimum-perimeter tree is a net while every collapsed version overlaps and the splits
+      // back stall. It costs two layouts of the input, so only meshes that resist pay it.
+      relay.context.faces = input_faces;
+      if (std::optional<Net> net = start_tree_net(mesh, options.tabu.seed)) {
+        result.coarse_faces = faces;
+        result.splits_total = pm.splits_left();
+        return complete_with(std::move(*net), relay);
+      }
+    }
+    const std::size_t next = faces / 2;
+    const bool last = !can_go_coarser || next < kMinCoarseFaces || out_of_time;
+    relay.context.faces = faces;
+    coarse = make_state(pm, mesh, options.tabu.seed + attempt, attempt > 0);
+    Unfolding& u = coarse->unfolding;
+    TabuOptions tabu = options.tabu;
+    tabu.seed = options.tabu.seed + attempt;
+    tabu.phase = "unfold";
+    tabu.input_faces = input_faces;
+    if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
+    // The last coarse attempt leaves half the budget to plain Tabu Unfolding of the input.
+    if (last && limit > 0 && faces < input_faces)
+      tabu.time_limit_seconds = std::max(1e-3, remaining() / 2);
+    if (out_of_time) {
+      tabu.time_limit_seconds = kOutOfTimeSeconds;
+      tabu.max_iterations =
+          at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
+    }
+    if (!last) {
+      if (options.coarse_iterations > 0) {
+        tabu.max_iterations = options.coarse_iterations;
+      } else {
+        tabu.max_iterations =
+            at_most(tabu.max_iterations, kCoarseIterationsBase + kCoarseIterationsPerFace * faces);
+        tabu.stall_iterations = std::max<std::size_t>(kCoarseStallBase, 5 * faces);
+        // A little work per face: a coarse mesh that needs more is usually better retried
+        // coarser (CAD parts of genus 20+). And a share of the time limit, which only binds
+        // when that limit is short.
+        tabu.max_tests =
+            at_most(tabu.max_tests, std::max(kCoarseTestsMin, kCoarseTestsPerFace * faces));
+        if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining() / 4);
+      }
+    }
+    const bool hopeless = !last && u.overlap_count() > kHopelessPairsPerFace * faces;
+    coarse_ok = !hopeless && u.resolve_overlaps(tabu, relay, &stats);
+    result.stats.iterations += stats.iterations;
+    result.stats.evaluations += stats.evaluations;
+    result.stats.tests += stats.tests;
+    stats = {};
+    if (coarse_ok || last) break;
+    collapse_further(pm, options.strategy, next, progress);
+    // No legal collapse left: one more attempt on this mesh, with the whole budget.
+    if (pm.face_count() >= faces) can_go_coarser = false;
+    ++result.coarse_retries;
+  }
+  result.coarse_faces = pm.face_count();
+  result.splits_total = pm.splits_left();
+  if (!coarse_ok && pm.face_count() < input_faces && (limit <= 0 || remaining() > 0)) {
+    // No coarse mesh could be unfolded: plain Tabu Unfolding of the input itself with what is
+    // left of the budget (unfold_tabu starts from the better of two trees; on meshes of slivers
+    // such as the Twin plate the input's minimum-perimeter tree can be a net when no collapsed
+    // version is unfolded).
+    TabuOptions tabu = options.tabu;
+    tabu.input_faces = input_faces;
+    if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
+    relay.context.faces = input_faces;
+    UnfoldResult full;
+    try {
+      full = unfold_tabu(mesh, tabu, relay);
+    } catch (const InvalidInputException&) {
+      // The input has no net at all (a dual graph that is a tree): keep the coarse attempt.
+    }
+    result.stats.iterations += full.stats.iterations;
+    result.stats.evaluations += full.stats.evaluations;
+    if (full.overlap_free) return complete_with(std::move(full.net), relay);
+  }
+  State st = std::move(*coarse);
+  coarse.reset();
+
+  bool failed = !coarse_ok;
+  std::vector<Applied> log;  // splits applied since the checkpoint
+  std::size_t logged_splits = 0;
+  Clock::time_point last_checkpoint = Clock::now();
+  const auto checkpoint_period =
+      std::chrono::duration<double>(limit > 0 ? std::max(0.25, limit / 20) : 1.0);
+  std::optional<State> checkpoint;
+  if (coarse_ok) {
+    progress.intermediate(st.unfolding.mesh(), st.unfolding.net());
+    checkpoint = st;
+  }
+  // Checkpoints cost a copy of the state: a few per run, so that going back to the last
+  // overlap-free state replays at most an eighth of the splits.
+  const std::size_t checkpoint_every = std::max<std::size_t>(64, result.splits_total / 8);
+  relay.context.phase = "uncollapse";
+  Clock::time_point last_output = Clock::now();
+  std::size_t index = 0;
+  std::size_t split_tests = 0;  // Tabu work after splits, against its budget
+  while (!failed && pm.splits_left() > 0) {
+    if (progress.cancelled()) throw CancelledException();
+    // The time limit ends the uncollapse also between splits that need no search: the state is
+    // overlap-free here, an approximate result.
+    if (limit > 0 && remaining() <= 0) break;
+    // A few splits per update: the parts they move are re-laid out and tested once; on large
+    // meshes batches also keep the O(faces) cost of a full update per face added bounded.
+    Applied step;
+    step.seed = split_seed(options.tabu.seed, index++);
+    const std::size_t batch = options.splits_per_update > 0
+                                  ? options.splits_per_update
+                                  : std::max(kSplitsPerUpdate, pm.face_count() / kBatchFaces);
+    for (std::size_t i = 0; i < batch && pm.splits_left() > 0; ++i)
+      step.splits.push_back(pm.split());
+    relay.context.faces = pm.face_count();
+    if (place_splits(st, step.splits, step.seed) > 0) {
+      TabuOptions t = options.tabu;
+      t.seed = step.seed;
+      t.phase = "uncollapse";
+      t.input_faces = input_faces;
+      t.time_limit_seconds = options.split_time_limit_seconds;
+      t.max_iterations =
+          options.split_iterations > 0
+              ? options.split_iterations
+              : at_most(t.max_iterations,
+                        std::max(kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count(),
+                                 result.stats.iterations));
+      if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
+      if (options.split_tests_per_face > 0) {
+        const std::size_t budget =
+            options.split_tests_per_face * std::max(input_faces, kSplitTestsMinFaces);
+        if (split_tests >= budget) {
+          failed = true;
+          break;
+        }
+        t.max_tests = budget - split_tests;
+      }
+      if (limit > 0 && t.time_limit_seconds <= 0) {
+        failed = true;
+        break;
+      }
+      if (!st.unfolding.resolve_overlaps(t, relay, &stats)) failed = true;
+      result.stats.iterations += stats.iterations;
+      result.stats.evaluations += stats.evaluations;
+      result.stats.tests += stats.tests;
+      split_tests += stats.tests;
+      step.iterations = stats.iterations;
+      if (failed) break;
+    }
+    logged_splits += step.splits.size();
+    log.push_back(std::move(step));
+    // Also by time: replaying costs about the time spent since the checkpoint, which must stay
+    // a small part of the time limit.
+    if (logged_splits >= checkpoint_every || Clock::now() - last_checkpoint > checkpoint_period) {
+      checkpoint = st;
+      log.clear();
+      logged_splits = 0;
+      last_checkpoint = Clock::now();
+    }
+    if (Clock::now() - last_output > std::chrono::milliseconds(100)) {
+      last_output = Clock::now();
+      relay.report(ProgressInfo{});
+      progress.intermediate(st.unfolding.mesh(), st.unfolding.net());
+    }
+  }
+
+  if (failed && checkpoint) {
+    // Back to the last overlap-free state: the checkpoint plus the splits that followed it,
+    // replayed with their seeds and iteration counts (deterministic, no time limit).
+    relay.quiet = true;
+    std::size_t upto = log.size();
+    for (;;) {
+      st = *checkpoint;
+      std::size_t i = 0;
+      for (; i < upto; ++i) {
+        if (place_splits(st, log[i].splits, log[i].seed) == 0) continue;
+        TabuOptions t = options.tabu;
+        t.seed = log[i].seed;
+        t.max_iterations = log[i].iterations;
+        t.time_limit_seconds = 0;
+        if (!st.unfolding.resolve_overlaps(t, relay)) break;
+      }
+      if (i == upto) break;
+      upto = i;
+    }
+    relay.quiet = false;
+  }
+
+  result.splits = st.splits;
+  result.overlaps = st.unfolding.overlap_count();
+  result.overlap_free = result.overlaps == 0;
+  result.complete = result.overlap_free && st.unfolding.face_count() == input_faces;
+  if (result.complete) {
+    result.mesh = mesh;
+    result.net = net_in_input_ids(st, input_faces);
+    result.face_ids.resize(input_faces);
+    for (std::size_t f = 0; f < input_faces; ++f) result.face_ids[f] = static_cast<int>(f);
+  } else {
+    result.mesh = st.unfolding.mesh();
+    result.net = st.unfolding.net();
+    result.face_ids.assign(st.unfolding.face_count(), -1);
+    for (std::size_t f = 0; f < input_faces; ++f)
+      if (st.face[f] >= 0) result.face_ids[st.face[f]] = static_cast<int>(f);
+    if (result.overlap_free) {
+      result.hausdorff = approximation_distance(mesh, result.mesh);
+    }
+  }
+  relay.context.faces = result.mesh.faces.size();
+  ProgressInfo last;
+  last.overlaps = result.overlaps;
+  relay.report(last);
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
+                                  Progress& progress) {
+  if (faces == 0 || faces >= mesh.faces.size()) return std::nullopt;
+  Mesh simple = decimate(mesh, {strategy, faces}, progress).compact();
+  if (simple.faces.size() >= mesh.faces.size()) return std::nullopt;
+  return simple;
+}
+
+double approximation_distance(const Mesh& input, const Mesh& approximation) {
+  // A bounded amount of refinement: CAD meshes kept exactly by the quadrics would otherwise
+  // refine their flat sides towards the absolute accuracy for a long time.
+  HausdorffOptions accuracy;
+  accuracy.max_refinements = kHausdorffRefinements;
+  return hausdorff_distance(input, approximation, accuracy).distance;
+}
+
+}  // namespace papernet

@@ -1,0 +1,112 @@
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "core/mesh/decimate.h"
+#include "core/mesh/mesh.h"
+#include "core/progress.h"
+#include "core/unfold/net.h"
+#include "core/unfold/unfolding.h"
+
+namespace papernet {
+
+struct ProgressiveOptions {
+  CollapseStrategy strategy = CollapseStrategy::QQ;
+  /// Face count of the coarse mesh; 0 means the paper's t_f (see collapse_target).
+  std::size_t target_faces = 0;
+  /// Seed of every random choice, the whole run's time limit, and the iteration limit of each
+  /// Tabu Unfolder run (on the coarse mesh and after each split that creates overlaps).
+  TabuOptions tabu;
+  /// Time limit of the Tabu Unfolder after one split (the whole run's limit applies too); when
+  /// a split's overlaps cannot be removed within it, the result is approximate.
+  double split_time_limit_seconds = 10;
+  /// Iteration limit of the Tabu Unfolder after one split; 0 means automatic: the larger of
+  /// 2,000 + 5 per face of the current mesh and all Tabu iterations before that split (capped by
+  /// tabu.max_iterations).
+  std::size_t split_iterations = 0;
+  /// Work budget of the Tabu Unfolder over all splits, in faces moved and tested while evaluating
+  /// candidate moves (TabuStats::tests), per input face (at least 2,000 faces; 0: none). Most
+  /// splits need none (the local repair clears their overlaps); a mesh whose splits keep needing
+  /// long Tabu runs (CAD parts with slivers) ends as an approximation once the budget is spent,
+  /// instead of taking up to the whole time limit. Deterministic.
+  std::size_t split_tests_per_face = 1250;
+  /// Vertex splits applied together before one re-layout (Unfolding::update) and repair; 0 means
+  /// automatic: four, and one per 4,000 faces of the current mesh beyond 16,000. Together, the
+  /// tree parts that several splits move are re-laid out and tested once (at 2,000 faces four
+  /// splits per update moved 24 % fewer faces than one).
+  std::size_t splits_per_update = 0;
+  /// Iteration limit of the Tabu Unfolder on a coarse mesh that may still be collapsed further
+  /// when it fails; 0 means automatic (iterations and moved-face tests growing with its face
+  /// count, ended early by a stall: work, not time, so that load does not change the net).
+  std::size_t coarse_iterations = 0;
+};
+
+/// Outcome of progressive unfolding.
+struct ProgressiveResult {
+  /// The net folds into the input itself; `mesh` is the input and `face_ids` the identity.
+  bool complete = false;
+  /// `net` has no overlapping faces. False only when not even the coarse mesh could be unfolded
+  /// within the budget (then `net` is the coarse mesh's best attempt).
+  bool overlap_free = false;
+  Mesh mesh;                  ///< the mesh that `net` folds into
+  Net net;                    ///< net.points[i] belongs to mesh.faces[i]
+  std::vector<int> face_ids;  ///< input face id of each face of `mesh`
+  /// Two-sided Hausdorff distance of `mesh` to the input relative to the input's bounding-box
+  /// diagonal (0 when complete).
+  double hausdorff = 0;
+  std::size_t overlaps = 0;        ///< overlapping pairs left in `net`
+  std::size_t coarse_faces = 0;    ///< faces of the coarse mesh that was unfolded
+  std::size_t coarse_retries = 0;  ///< further collapses after a coarse mesh failed
+  std::size_t splits = 0;          ///< vertex splits the net includes
+  std::size_t splits_total = 0;    ///< collapses made
+  TabuStats stats;                 ///< Tabu Unfolder work summed over all runs
+  double seconds = 0;
+};
+
+/// Progressive Mesh Unfolding (the paper's Algorithm 1, DESIGN.md §1 steps 3-5): collapse the
+/// mesh with `options.strategy`, unfold the coarse mesh (steepest edge, then the Tabu Unfolder),
+/// then undo the collapses a few vertex splits at a time (`splits_per_update`), inserting each
+/// new face into the unfold tree between the two faces linked across its wing (else as a leaf
+/// of a random neighbour), re-laying out and testing only what moved, repairing new overlaps by
+/// local moves (Unfolding::repair_locally) and running the Tabu Unfolder only when those leave
+/// some. When that fails within the budget (the time limit, `split_tests_per_face`, or a split
+/// whose overlaps need more Tabu iterations than everything before it and than 2,000 + 5 per
+/// face), the last overlap-free state is returned (`complete` false).
+///
+/// When the coarse mesh itself cannot be unfolded within a budget that grows with its size (or,
+/// when it may still be collapsed, starts with more than 10 overlapping pairs per face):
+/// first, if the input's own steepest-edge or minimum-perimeter tree is already overlap-free,
+/// that net is returned (complete); else the coarse mesh is collapsed further (half the faces
+/// each time) and unfolded again, so that meshes too detailed for their shape still give an
+/// approximate net (a retry starts from the minimum-perimeter tree when it has fewer overlaps
+/// than the steepest-edge one). When no coarse mesh can be unfolded, plain Tabu Unfolding
+/// (unfold_tabu) of the input gets what is left of the budget (the last coarse attempt gets half
+/// of it) and gives a complete net when it finds one.
+///
+/// Progress: phases "collapse", "unfold", "uncollapse" in that order, faces never decreasing
+/// during "uncollapse", the last report at the face count of the returned mesh; `intermediate`
+/// receives overlap-free nets of coarser meshes now and then (at most every ~100 ms).
+/// \throw InvalidInputException when the mesh is not a manifold, oriented triangle mesh.
+/// \throw CancelledException when `progress` asks to stop.
+ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions& options,
+                                     Progress& progress);
+
+/// A low-poly version of `mesh` to print instead of it: collapsed with `strategy` (legal
+/// collapses only, as decimate) to at most `faces` faces, or as far as legal collapses go, with
+/// ids of its own. None when that is not fewer faces than `mesh` (`faces` 0 or not below its
+/// count, or no legal collapse): then print `mesh` itself. Fewer, larger faces have sharper
+/// vertices and longer edges, so more cut edges have room for a glue tab (docs/tabs.md).
+/// Reports phase "collapse".
+/// \throw InvalidInputException when `mesh` is not a manifold, oriented triangle mesh.
+/// \throw CancelledException when `progress` asks to stop.
+std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
+                                  Progress& progress);
+
+/// Two-sided Hausdorff distance of `approximation` to `input`, relative to the input's
+/// bounding-box diagonal, with the bounded refinement that approximate results use (a few tenths
+/// of a second at most).
+double approximation_distance(const Mesh& input, const Mesh& approximation);
+
+}  // namespace papernet

@@ -1,0 +1,304 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/progress.h"
+#include "core/unfold/net.h"
+#include "core/unfold/overlap.h"
+#include "core/unfold/unfold_tree.h"
+
+namespace papernet {
+
+/// A rotation about the origin followed by a translation: x -> to + R (x - from).
+struct Rigid {
+  Vec2 from, to;
+  double c = 1, s = 0;
+  Vec2 operator()(Vec2 x) const {
+    const Vec2 d = x - from;
+    return {to.x + c * d.x - s * d.y, to.y + s * d.x + c * d.y};
+  }
+};
+
+/// Budget and randomness of a Tabu Unfolder run (DESIGN.md §3).
+struct TabuOptions {
+  std::uint64_t seed = 1;                   ///< every random choice derives from it
+  std::size_t max_iterations = 10'000'000;  ///< moves (0: no limit)
+  /// Faces moved and tested while evaluating candidate moves, at most (0: no limit): a
+  /// deterministic measure of work (an evaluation costs the size of the side it moves).
+  std::size_t max_tests = 0;
+  double time_limit_seconds = 60;  ///< wall-clock budget (<= 0: no limit)
+  std::string phase = "unfold";    ///< ProgressInfo::phase of the reports
+  std::size_t input_faces = 0;     ///< ProgressInfo::input_faces (0: current faces)
+  /// resolve_overlaps stops (returns false) when the fewest overlaps seen have not dropped for
+  /// this many iterations (0: never); unfold_tabu then restarts from another start.
+  std::size_t stall_iterations = 0;
+  /// Walks per iteration at most, once stalled. The paper applies the best move of one walk;
+  /// on CAD meshes with slivers that move is often a large step up (+22 pairs on average on
+  /// `thingi10k__73416` at 400 faces) and the count wanders on a plateau. So once the fewest
+  /// overlaps seen have not dropped for |F| iterations, an iteration whose best move so far
+  /// raises the count by more than `accept_rise` pairs tries another walk (new random
+  /// overlapping face, new random root), up to `walks`, and applies the best move of all.
+  /// Before that stall (and with walks = 1) it is the paper's rule: organic meshes converge
+  /// faster with it, small and large steps up included.
+  std::size_t walks = 4;
+  std::size_t accept_rise = 2;  ///< see `walks`
+  /// Share of walks (a coin flip each, from the seed) that end at a face the start face overlaps
+  /// instead of at a random root, so that every cut on the walk separates an overlapping pair
+  /// and the walk is as short as the tree path between them. The paper's walks go to a random
+  /// root (0 restores that exactly); on CAD meshes of slivers their cuts are mostly far from
+  /// the overlap and move large sides, and the count stalls (`thingi10k__79741` at 2,000 faces:
+  /// ~30 pairs left after 60 s; with half the walks to a partner, nets in 27-35 s for seeds 1-3).
+  double partner_walks = 0.5;
+};
+
+/// What one Tabu Unfolder run did.
+struct TabuStats {
+  std::size_t iterations = 0;   ///< rounds (a random overlapping face each)
+  std::size_t evaluations = 0;  ///< candidate moves evaluated
+  std::size_t tests = 0;        ///< faces moved and tested by those evaluations
+  double seconds = 0;
+};
+
+/// Budget of Unfolding::repair_locally.
+struct LocalRepairOptions {
+  /// Largest side of a cut that is moved (tried from 16 faces up, fourfold while nothing helps).
+  std::size_t max_side = 256;
+  /// Moved-face tests (one grid query each) at most, summed over the whole repair.
+  std::size_t max_tests = 100'000;
+  /// Moves that do not lower the count (raising it by at most `max_rise` pairs) allowed when no
+  /// move lowers it; the links they cut or make are tabu for the next few moves.
+  std::size_t max_sideways = 32;
+  std::size_t max_rise = 1;
+  /// A cut met again in the same round (the pairs' tree paths share links) is not evaluated
+  /// again, only its tests are counted; false evaluates it again. The result and the stats are
+  /// the same either way (a test compares them).
+  bool reuse_cuts = true;
+};
+
+/// What Unfolding::repair_locally did.
+struct LocalRepairStats {
+  std::size_t moves = 0;        ///< moves applied
+  std::size_t sideways = 0;     ///< of which did not lower the overlap count
+  std::size_t evaluations = 0;  ///< candidate moves evaluated
+  std::size_t tests = 0;        ///< moved-face tests
+  std::size_t overlaps = 0;     ///< overlapping pairs left
+};
+
+/// The incremental state of an edge unfolding: mesh, unfold tree, 2D layout, spatial index and
+/// the set of overlapping face pairs. Both the plain Tabu Unfolder and progressive unfolding
+/// drive this one state; nothing that did not move is recomputed.
+///
+/// Faces are laid out per DESIGN.md §2: each face has its own 2D triangle; a child is placed
+/// across the edge it shares with its parent, counter-clockwise. Two faces overlap when their
+/// interiors intersect by more than 5e-8 of the mesh's bounding-box diagonal (half of what the
+/// net checker ignores).
+///
+/// Growing the mesh (vertex splits): change vertices and faces with add_vertex,
+/// set_vertex_position, set_face_corners and add_face; fix the tree with attach and
+/// insert_between; then call update() once, which rebuilds the adjacency of what changed,
+/// re-lays out only the faces whose position changed and tests only those for new overlaps.
+/// Between those edits and update() the layout and overlap queries are stale.
+class Unfolding {
+ public:
+  /// Builds the state from a mesh and an unfold tree (`parent[f]` is the face f hangs from,
+  /// -1 for the root; each link joins faces sharing an edge).
+  /// \throw InvalidInputException for a non-manifold or inconsistently oriented mesh.
+  /// \throw TopologyException when `parent` is not a spanning tree of adjacent faces.
+  Unfolding(Mesh mesh, const std::vector<int>& parent);
+
+  /// Builds the state from the Steepest Edge Unfolder's tree (see steepest_edge_tree).
+  static Unfolding steepest_edge(Mesh mesh, std::uint64_t seed);
+
+  const Mesh& mesh() const { return mesh_; }
+  std::size_t face_count() const { return mesh_.faces.size(); }
+  /// Number of overlapping face pairs.
+  std::size_t overlap_count() const { return pair_count_; }
+  /// Faces that overlap at least one other face, in no particular order.
+  const std::vector<int>& overlapping_faces() const { return overlapping_; }
+  /// Parent of f in the unfold tree (-1 for the root). The root changes as the tree is re-rooted;
+  /// re-rooting never moves a face.
+  int parent(int f) const { return parent_[f]; }
+  /// Face across edge k (corner k to k+1) of f, -1 on a boundary.
+  int neighbour(int f, int k) const { return adj_[f][k]; }
+  /// 2D corners of f: points(f)[k] is where mesh().faces[f][k] lands.
+  const Triangle2& points(int f) const { return pos_[f]; }
+  /// The net of the current state.
+  Net net() const { return Net{parent_, pos_}; }
+  /// Length below which 2D differences are ignored by the overlap test.
+  double tolerance() const { return tolerance_; }
+
+  /// Runs the Tabu Unfolder (DESIGN.md §3) on the current state until no overlaps remain or the
+  /// budget is spent. Returns true when the state is overlap-free. Reports progress (overlaps
+  /// left, iterations) through `progress`; \throw CancelledException when it asks to stop.
+  bool resolve_overlaps(const TabuOptions& options, Progress& progress, TabuStats* stats = nullptr);
+
+  /// Removes overlaps by local moves: for an overlapping pair, a link on the tree path between
+  /// the two faces is cut where one side has few faces (at most `options.max_side`), and that
+  /// side is glued back along another of its edges (any face of it, any edge to the rest); the
+  /// move that lowers the overlap count most is applied, until none is left or no such move
+  /// lowers it. Deterministic; costs O(side) per evaluated move, never O(|F|). The moved side is
+  /// laid out exactly from its new parent. Returns the overlap count left (0: overlap-free).
+  std::size_t repair_locally(const LocalRepairOptions& options, LocalRepairStats* stats = nullptr);
+
+  // ---- Editing for uncollapse steps (then call update()) ----
+
+  /// Appends a vertex; returns its index.
+  int add_vertex(Vec3 position);
+  /// Moves vertex v in 3D: every face using it changes shape and is re-laid out by update().
+  void set_vertex_position(int v, Vec3 position);
+  /// Replaces the corners of an existing face (counter-clockwise from outside).
+  void set_face_corners(int f, std::array<int, 3> corners);
+  /// Appends a face, not yet in the tree: give it a place with attach or insert_between before
+  /// update(). Returns its index (faces are numbered in order of addition).
+  int add_face(std::array<int, 3> corners);
+  /// Hangs face f from `parent` (they must share an edge when update() runs); f's own subtree,
+  /// if any, comes along.
+  void attach(int f, int parent);
+  /// Puts face f between two linked faces a and b: a - f - b. The pair may be linked in either
+  /// direction (the root moves as the Tabu Unfolder re-roots). f must share an edge with both
+  /// when update() runs and must not be in the tree yet.
+  void insert_between(int f, int a, int b);
+  /// True when faces a and b are linked in the unfold tree (in either direction).
+  bool linked(int a, int b) const { return parent_[a] == b || parent_[b] == a; }
+  /// Applies the edits: rebuilds adjacency around changed faces, re-roots the tree in the
+  /// largest part that did not change, re-lays out every other face and tests exactly those
+  /// for overlaps. Returns the overlap count.
+  /// \throw TopologyException naming the fault when the edits left a non-manifold mesh, a face
+  ///        outside the tree or a link between faces that share no edge; the state is then
+  ///        unusable (keep a copy of the last good one: Unfolding is copyable).
+  std::size_t update();
+  /// Faces update() has re-laid out (and tested), summed over all its calls.
+  std::size_t relaid_faces() const { return relaid_; }
+
+ private:
+  friend struct UnfoldingTestAccess;  // tests/unfold_test.cpp: the Tabu move primitives
+
+  // unfolding.cpp: construction, editing, update.
+  void set_adjacency(int f);
+  int edge_to(int f, int other) const;
+  void reroot(int r);
+  void add_pair(int a, int b);
+  void remove_pair(int a, int b);
+  // Sorts overlapping_ by face, newest (highest) first: the random choices of the Tabu Unfolder
+  // and the local repair read it in this order, so that they do not depend on the order in which
+  // pairs were found.
+  void sort_overlapping();
+  // Adds a pair for every face in the grid that overlaps face f (at pos_[f], box_[f]).
+  void add_pairs_in_grid(int f);
+  void test_moved(const std::vector<int>& moved);
+  // update() when few faces were edited: keeps the largest unedited part of the tree in place,
+  // lays out the rest (into `moved`) and tests it for overlaps, in time proportional to it. False
+  // when it cannot (then the full update runs). \throw TopologyException as update().
+  bool update_locally(const std::vector<int>& around, std::vector<int>& moved);
+
+  // unfolding_moves.cpp: the move primitives of the Tabu Unfolder.
+  void root_at(int r);
+  // True when x is in a's subtree in the pre-order of root_at.
+  bool in_subtree_of(int a, int x) const {
+    return static_cast<unsigned>(tin_[x] - tin_[a]) < static_cast<unsigned>(size_[a]);
+  }
+  // Next face on the tree path from g towards face r (g != r), from the pre-order of root_at.
+  int step_towards(int g, int r) const;
+  // Cuts the link between g and its neighbour `other` on the walk (its parent as the walk sees
+  // the tree, which need not be parent_[g]).
+  void cut(int g, int other);
+  bool in_range(int x) const {
+    return static_cast<unsigned>(tin_[x] - cut_lo_) < static_cast<unsigned>(cut_hi_ - cut_lo_);
+  }
+  // True when x is on g's side of the cut (g's subtree as the walk sees the tree).
+  bool in_subtree(int x) const { return in_range(x) == g_in_range_; }
+  bool in_small(int x) const { return in_range(x) == small_is_range_; }
+  int move_anchor(int g, int k, Triangle2& anchor_pos, Rigid& motion) const;
+  long long crossing_pairs() const;  // overlapping pairs between the two sides of the cut
+  // Calls f(a, b) for each overlapping pair with a on the cut's smaller side, b on the other.
+  template <class F>
+  void for_each_crossing(F&& f) const;
+  long long evaluate_move(int g, int k, long long crossing, long long cutoff);
+  void apply_move(int g, int k);
+  // After apply_move when the moved link was g - parent_[g]: g's subtree hangs from q now; updates
+  // the pre-order, sizes and parents to exactly what root_at(root_) gives, in time proportional to
+  // the faces between the old and new place of the subtree in the pre-order.
+  void move_subtree(int g, int q);
+  void relayout_all();
+  std::uint32_t next_seen_epoch();
+
+  // unfolding_repair.cpp: local repair.
+  std::uint32_t next_side_epoch();
+  // Faces reached from x over links without crossing to y, into side_ (marked with the epoch);
+  // false (side_ incomplete) when there are more than `limit`.
+  bool collect_side(int x, int y, std::size_t limit);
+  // The tree path a .. b into path_.
+  void tree_path(int a, int b);
+
+  Mesh mesh_;
+  std::vector<std::array<int, 3>> adj_;
+  std::vector<std::array<std::int8_t, 3>> adj_edge_;
+  std::vector<std::uint8_t> links_;  // bit k: the tree links f across edge k
+  std::vector<FaceShape> shape_;
+  std::vector<int> parent_;
+  std::vector<Triangle2> pos_;
+  std::vector<Box2> box_;
+  OverlapGrid grid_;
+  std::vector<std::vector<int>> overlaps_;  // partners of each face, in increasing order
+  std::vector<int> overlapping_;            // faces with partners
+  std::vector<int> overlapping_index_;      // position in overlapping_, -1 if absent
+  bool overlapping_sorted_ = true;          // overlapping_ is in decreasing order
+  std::size_t pair_count_ = 0;
+  double tolerance_ = 0;
+
+  // Editing state.
+  std::unordered_map<std::uint64_t, int> half_edges_;  // a->b -> 3 * face + edge
+  std::vector<std::vector<int>> vertex_faces_;
+  std::vector<int> dirty_;  // faces whose shape, corners or parent changed since update()
+  std::vector<char> is_dirty_;
+  std::size_t link_bits_ = 0;  // set bits of links_ (2 (|F| - 1) for a tree; 0: recount)
+  std::vector<int> part_;      // update_locally: part of each explored face
+  std::vector<std::vector<int>> part_queue_;
+  // update_locally, per part: union-find parent, size, next face to expand, still growing.
+  std::vector<int> part_up_, part_size_;
+  std::vector<std::size_t> part_head_;
+  std::vector<char> part_open_;
+  std::vector<std::pair<int, int>> todo_;
+  std::vector<int> group_;  // update_locally: what moved together (-2 outside a call)
+  std::vector<int> group_start_, group_order_;  // update_locally: moved faces by group
+  std::size_t relaid_ = 0;                      // faces re-laid out by update(), ever
+
+  // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
+  // is the pre-order range [cut_lo_, cut_hi_), the other its complement.
+  std::vector<int> order_, tin_, size_, stack_;
+  int root_ = 0, cut_lo_ = 0, cut_hi_ = 0, cut_other_ = -1;
+  bool g_in_range_ = true, small_is_range_ = true;
+  std::vector<std::pair<int, int>> crossing_;
+  std::vector<std::uint32_t> seen_;
+  std::uint32_t seen_epoch_ = 0;
+  std::size_t tested_ = 0;  // faces tested by evaluate_move, ever
+  std::vector<int> side_, path_;
+  std::vector<std::uint32_t> side_mark_;
+  std::uint32_t side_epoch_ = 0;
+};
+
+/// Result of an unfolding strategy.
+struct UnfoldResult {
+  Net net;
+  bool overlap_free = false;
+  std::size_t overlaps = 0;
+  TabuStats stats;
+};
+
+/// Plain Tabu Unfolding (strategy `TU`): starts from the steepest-edge tree of `options.seed` or
+/// the minimum-perimeter tree, whichever has fewer overlapping pairs, then resolve_overlaps. When
+/// the overlap count stalls (no new minimum for a number of iterations that grows with the mesh and
+/// with each restart) the walk restarts from the steepest-edge tree of another direction derived
+/// from the seed, within the same budget; the result is the state with the fewest overlaps seen at
+/// the end of an attempt. Deterministic for a seed (up to the time limit). The net is of `mesh`
+/// itself. \throw InvalidInputException when the mesh cannot be unfolded as one piece, and when its
+/// dual graph is a tree (a single edge unfolding exists) whose unfolding overlaps, at once.
+UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress);
+
+}  // namespace papernet

@@ -1,0 +1,280 @@
+#include "print/layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/errors.h"
+
+namespace papernet {
+
+TabMode parse_tab_mode(std::string_view text) {
+  if (text == "auto") return TabMode::Auto;
+  if (text == "strips") return TabMode::Strips;
+  if (text == "none") return TabMode::None;
+  throw InvalidInputException("unknown tab mode '" + std::string(text) +
+                              "': use auto, strips or none");
+}
+
+std::string tab_mode_name(TabMode mode) {
+  switch (mode) {
+    case TabMode::Auto:
+      return "auto";
+    case TabMode::Strips:
+      return "strips";
+    case TabMode::None:
+      return "none";
+  }
+  return "auto";
+}
+
+std::string PrintOptions::validate() const {
+  auto positive = [](double v) { return std::isfinite(v) && v > 0; };
+  if (!(scale > 0) && !positive(size_mm)) return "size must be a positive length";
+  if (!std::isfinite(scale) || scale < 0) return "scale must be a positive factor";
+  if (!std::isfinite(flat_angle_deg) || flat_angle_deg < 0 || flat_angle_deg > 180)
+    return "flat fold angle must be between 0 and 180 degrees";
+  if (!std::isfinite(tab_height_mm) || tab_height_mm < 0) return "tab height must be >= 0";
+  if (!(tab_angle_deg > 0 && tab_angle_deg <= 90)) return "tab angle must be in (0, 90] degrees";
+  if (!std::isfinite(min_tab_height_mm) || min_tab_height_mm < 0)
+    return "minimum tab height must be >= 0";
+  if (!positive(max_label_mm)) return "label size must be positive";
+  if (tab_room_budget > kMaxTabRoomBudget)
+    return "tab room budget must be at most " + std::to_string(kMaxTabRoomBudget) + " moves";
+  return {};
+}
+
+std::array<Vec2, 4> label_box(const Label& label) {
+  const Vec2 d{std::cos(label.angle), std::sin(label.angle)}, up{-d.y, d.x};
+  const double hw = 0.3 * label.size * static_cast<double>(label.text.size());
+  const double hh = 0.5 * label.size;
+  return {label.at - hw * d - hh * up, label.at + hw * d - hh * up, label.at + hw * d + hh * up,
+          label.at - hw * d + hh * up};
+}
+
+namespace {
+
+/// The label for `side`, sized to fit the face: text along the edge, inside the triangle.
+Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text, double max_size) {
+  const Vec2 p0 = tri[side.k], p1 = tri[(side.k + 1) % 3], p2 = tri[(side.k + 2) % 3];
+  const double len = norm(p1 - p0);
+  const Vec2 d = len > 0 ? (1 / len) * (p1 - p0) : Vec2{1, 0}, up{-d.y, d.x};
+  const double ht = dot(p2 - p0, up), a2 = dot(p2 - p0, d);  // apex height and offset
+  const double chars = static_cast<double>(text.size());
+  if (!(len > 0 && ht > 0))  // a degenerate face: an empty label at its centroid
+    return {(1.0 / 3) * (p0 + p1 + p2), 0, 0, std::move(text), -1, side};
+  Label label{{}, std::atan2(d.y, d.x), std::min(max_size, 0.3 * ht), std::move(text), -1, side};
+  for (int i = 0; i < 40; ++i, label.size *= 0.85) {
+    const double s = label.size;
+    const double lo = 0.08 * ht + 0.1 * s, hi = lo + s;  // the text box's distance from the edge
+    // Cross-section of the triangle between heights lo and hi, along d.
+    const double left_lo = lo / ht * a2, left_hi = hi / ht * a2;
+    const double right_lo = len + lo / ht * (a2 - len), right_hi = len + hi / ht * (a2 - len);
+    const double l = std::max(left_lo, left_hi), r = std::min(right_lo, right_hi);
+    const double width = 0.6 * s * chars;
+    if (r - l >= 1.15 * width || i == 39) {
+      label.at = p0 + (0.5 * (l + r)) * d + (0.5 * (lo + hi)) * up;
+      break;
+    }
+  }
+  // Read upright on the page where possible: turning the text half a turn keeps its box.
+  if (std::cos(label.angle) < -1e-9) label.angle += std::numbers::pi;
+  return label;
+}
+
+/// Places and sizes every label; labels that share a face shrink together until they are apart.
+void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Label>& labels,
+                 double max_size) {
+  std::vector<std::vector<int>> by_face(faces.size());
+  for (int i = 0; i < static_cast<int>(labels.size()); ++i)
+    by_face[labels[i].side.face].push_back(i);
+  for (const std::vector<int>& group : by_face) {
+    double cap = max_size;
+    for (int attempt = 0; attempt < 30; ++attempt, cap *= 0.8) {
+      for (int i : group) {
+        Label placed = make_label(faces[labels[i].side.face], labels[i].side, labels[i].text, cap);
+        placed.edge = labels[i].edge;
+        labels[i] = std::move(placed);
+      }
+      bool apart = true;
+      for (std::size_t a = 0; a < group.size() && apart; ++a)
+        for (std::size_t b = a + 1; b < group.size() && apart; ++b)
+          apart = !convex_overlap(label_box(labels[group[a]]), label_box(labels[group[b]]), 0);
+      if (apart) break;
+    }
+  }
+}
+
+/// "6" and "9" (and "16" and "91", ...) read as each other upside down: mark those with a dot.
+std::string label_text(int number) {
+  std::string text = std::to_string(number), turned;
+  for (auto it = text.rbegin(); it != text.rend(); ++it) {
+    const char c = *it;
+    if (c != '0' && c != '1' && c != '6' && c != '8' && c != '9') return text;
+    turned += c == '6' ? '9' : c == '9' ? '6' : c;
+  }
+  return turned == text ? text : text + ".";
+}
+
+}  // namespace
+
+double print_scale(const Mesh& mesh, const PrintOptions& options) {
+  if (options.scale > 0) return options.scale;
+  double extent = 0;  // longest side of the model's bounding box
+  if (!mesh.vertices.empty()) {
+    Vec3 lo = mesh.vertices[0], hi = lo;
+    for (const Vec3& v : mesh.vertices) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    }
+    extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  }
+  return extent > 0 && std::isfinite(extent) ? options.size_mm / extent : 1;
+}
+
+TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
+                                 Progress& progress) {
+  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || !options.tab_room ||
+      options.tab_room_budget == 0)
+    return {net, 0, 0, 0, 0};
+  return clear_tab_room(mesh, net, tab_clearance_options(mesh, options), progress);
+}
+
+TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& options) {
+  TabClearanceOptions clearance;
+  const double mm = std::min(options.min_tab_height_mm, options.tab_height_mm);
+  clearance.min_height = mm / print_scale(mesh, options);
+  clearance.angle_deg = options.tab_angle_deg;
+  clearance.time_limit_seconds = options.tab_room_seconds;
+  clearance.max_evaluations = options.tab_room_budget;
+  return clearance;
+}
+
+PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options) {
+  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  if (mesh.faces.empty()) throw InvalidInputException("nothing to print: the mesh has no faces");
+  if (net.points.size() != mesh.faces.size() || net.parent.size() != mesh.faces.size())
+    throw InvalidInputException("the net has " + std::to_string(net.points.size()) +
+                                " faces but the mesh has " + std::to_string(mesh.faces.size()));
+  const auto nv = static_cast<int>(mesh.vertices.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (const int v : mesh.faces[f])
+      if (v < 0 || v >= nv)
+        throw InvalidInputException("mesh face " + std::to_string(f) + " refers to vertex " +
+                                    std::to_string(v) + " of " + std::to_string(nv));
+  for (std::size_t f = 0; f < net.points.size(); ++f)
+    for (const Vec2 p : net.points[f])
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        throw InvalidInputException("net face " + std::to_string(f) + " has a non-finite point");
+  PrintLayout out;
+  out.metrics = net_metrics(mesh, net);
+  out.scale = print_scale(mesh, options);
+
+  // Rotate into the minimum-area box and scale to millimetres.
+  out.faces.resize(net.points.size());
+  for (std::size_t f = 0; f < net.points.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      out.faces[f][k] = out.scale * rotate(net.points[f][k], out.metrics.box.angle);
+
+  out.edges = classify_edges(mesh, net, {options.flat_angle_deg});
+  const TabMode mode = options.tab_height_mm > 0 ? options.tabs : TabMode::None;
+  std::vector<int> bare;  // cut edges that get no tab on the net
+  if (mode == TabMode::Auto) {
+    const TabOptions tab_options{options.tab_height_mm, options.tab_angle_deg,
+                                 options.min_tab_height_mm, 1e-6};
+    TabPlacement placed = place_tabs(out.faces, out.edges, tab_options);
+    out.tabs = std::move(placed.tabs);
+    bare = std::move(placed.omitted);
+  } else {
+    for (int e = 0; e < static_cast<int>(out.edges.size()); ++e)
+      if (out.edges[e].cut_index >= 0) bare.push_back(e);
+  }
+  if (mode == TabMode::None) {
+    out.omitted_tabs = std::move(bare);
+  } else {
+    StripOptions strip_options;
+    strip_options.max_half_width = options.tab_height_mm;
+    strip_options.min_half_width =
+        std::max(1.0, std::min(options.min_tab_height_mm, options.tab_height_mm));
+    out.strips =
+        place_strips(out.faces, out.tabs, strip_requests(out.faces, out.edges, bare, strip_options),
+                     {}, strip_options);
+    for (GlueStrip& s : out.strips) {
+      if (!options.labels) continue;
+      s.text = label_text(out.edges[s.edge].cut_index + 1);
+      // As tall as fits a half of the strip, and as long as fits its length.
+      const double length = norm(s.corners[1] - s.corners[0]);
+      const double half = 0.5 * norm(s.corners[3] - s.corners[0]);
+      const double chars = static_cast<double>(s.text.size());
+      s.text_size = std::min({options.max_label_mm, 0.6 * half, 0.8 * length / (0.6 * chars)});
+    }
+  }
+
+  std::vector<int> tab_of(out.edges.size(), -1);
+  for (int t = 0; t < static_cast<int>(out.tabs.size()); ++t) tab_of[out.tabs[t].edge] = t;
+  auto side_segment = [&](EdgeSide s) {
+    return Segment{out.faces[s.face][s.k], out.faces[s.face][(s.k + 1) % 3]};
+  };
+  for (int e = 0; e < static_cast<int>(out.edges.size()); ++e) {
+    const NetEdge& edge = out.edges[e];
+    const bool draw_fold = edge.kind != EdgeKind::Flat || options.draw_flat_folds;
+    if (edge.kind != EdgeKind::Cut) {
+      if (draw_fold) (edge.fold > 0 ? out.mountain : out.valley).push_back(side_segment(edge.a));
+      continue;
+    }
+    if (edge.cut_index >= 0) ++out.cut_edges;
+    for (EdgeSide s : {edge.a, edge.b}) {
+      if (s.face < 0) continue;
+      const int t = tab_of[e];
+      if (t >= 0 && out.tabs[t].side.face == s.face && out.tabs[t].side.k == s.k) {
+        const auto& c = out.tabs[t].corners;
+        const Segment edge_line = side_segment(s);
+        // A tab on part of the edge: the rest of the edge is still cut.
+        if (norm(c[1] - edge_line.a) > 0) out.cut.push_back({edge_line.a, c[1]});
+        if (norm(edge_line.b - c[0]) > 0) out.cut.push_back({c[0], edge_line.b});
+        out.mountain.push_back({c[1], c[0]});
+        out.cut.push_back({c[1], c[2]});
+        out.cut.push_back({c[2], c[3]});
+        out.cut.push_back({c[3], c[0]});
+      } else {
+        out.cut.push_back(side_segment(s));
+      }
+      if (options.labels && edge.cut_index >= 0) {
+        out.labels.push_back({{}, 0, 0, label_text(edge.cut_index + 1), e, s});
+      }
+    }
+  }
+
+  size_labels(out.faces, out.labels, options.max_label_mm);
+
+  // Translate so that everything starts at the origin.
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Vec2 lo{inf, inf}, hi{-inf, -inf};
+  auto grow = [&](Vec2 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  };
+  for (const auto& f : out.faces)
+    for (Vec2 p : f) grow(p);
+  for (const Tab& t : out.tabs)
+    for (Vec2 p : t.corners) grow(p);
+  for (const GlueStrip& t : out.strips)
+    for (Vec2 p : t.corners) grow(p);
+  if (out.faces.empty()) lo = hi = {0, 0};
+  const Vec2 shift = Vec2{0, 0} - lo;
+  for (auto& f : out.faces)
+    for (Vec2& p : f) p = p + shift;
+  for (Tab& t : out.tabs)
+    for (Vec2& p : t.corners) p = p + shift;
+  for (GlueStrip& t : out.strips)
+    for (Vec2& p : t.corners) p = p + shift;
+  for (auto* list : {&out.cut, &out.mountain, &out.valley})
+    for (Segment& s : *list) s = {s.a + shift, s.b + shift};
+  for (Label& l : out.labels) l.at = l.at + shift;
+  out.size = hi - lo;
+  return out;
+}
+
+}  // namespace papernet

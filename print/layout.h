@@ -1,0 +1,110 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/progress.h"
+#include "core/tabs/tab_clearance.h"
+#include "core/unfold/folds.h"
+#include "core/unfold/net.h"
+#include "core/unfold/net_metrics.h"
+#include "print/strips.h"
+#include "print/tab_mode.h"
+#include "print/tabs.h"
+
+namespace papernet {
+
+/// How a net is drawn on paper. Lengths are millimetres.
+struct PrintOptions {
+  double size_mm = 200;          ///< longest side of the model's bounding box, as folded
+  double scale = 0;              ///< millimetres per model unit; > 0 overrides size_mm
+  double flat_angle_deg = 1;     ///< folds flatter than this are Flat
+  bool draw_flat_folds = false;  ///< draw Flat folds (as mountain/valley by their sign)
+  TabMode tabs = TabMode::Auto;
+  double tab_height_mm = 6;  ///< tallest tab (and widest strip half); 0 means TabMode::None
+  double tab_angle_deg = 45;
+  /// Lowest tab printed (half the edge where that is less); edges without room for it get a
+  /// glue strip.
+  double min_tab_height_mm = 2;
+  /// Change the net before printing so that more cut edges have room for a tab (make_tab_room).
+  bool tab_room = true;
+  /// Candidate moves that pass evaluates at most in each of its two rounds
+  /// (TabClearanceOptions::max_evaluations; 0: no pass). More opens more edges on dense meshes,
+  /// at some 10-40 microseconds a move.
+  std::size_t tab_room_budget = kDefaultTabRoomBudget;
+  /// Clock limit of that pass in seconds (TabClearanceOptions::time_limit_seconds); <= 0: only
+  /// its deterministic budget. The service sets it from the job's time limit.
+  double tab_room_seconds = 0;
+  bool labels = true;
+  double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
+
+  /// Empty when valid, else a message naming the bad option.
+  std::string validate() const;
+};
+
+struct Segment {
+  Vec2 a, b;
+};
+
+/// A number printed inside a face next to one side of a cut edge; its twin carries the same
+/// text. The text's baseline runs parallel to the edge, turned to read upright on the page
+/// where it can; numbers that read as another number upside down (6, 9, 16, ...) end in a dot.
+struct Label {
+  Vec2 at;           ///< centre of the text box
+  double angle = 0;  ///< direction of the baseline, radians counter-clockwise from +x
+  double size = 0;   ///< text height (font size) in mm
+  std::string text;
+  int edge = -1;
+  EdgeSide side;
+};
+
+/// Corners (counter-clockwise) of the box a label's text occupies, for an average digit width
+/// of 0.6 of the font size.
+std::array<Vec2, 4> label_box(const Label& label);
+
+/// A net ready to draw: millimetres, y up, rotated into its minimum-area box, everything (faces,
+/// tabs, strips) inside [0, size.x] x [0, size.y]. Every interior cut edge has exactly one tab
+/// or one strip (unless TabMode::None), and none overlaps a face, a tab or a strip.
+struct PrintLayout {
+  double scale = 1;  ///< millimetres per model unit
+  std::vector<std::array<Vec2, 3>> faces;
+  std::vector<NetEdge> edges;
+  std::vector<Segment> cut;       ///< cut edges without a tab, tab outlines, boundary edges
+  std::vector<Segment> mountain;  ///< mountain folds and tab hinges (tabs fold backwards)
+  std::vector<Segment> valley;
+  std::vector<Tab> tabs;
+  std::vector<GlueStrip> strips;  ///< separate glue strips, for cut edges without a tab
+  std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) with neither (TabMode::None)
+  std::vector<Label> labels;
+  Vec2 size;
+  NetBoxMetrics metrics;  ///< of the net itself, in model units
+  int cut_edges = 0;      ///< interior cut edges (label numbers run 1..cut_edges)
+};
+
+/// Millimetres per model unit: `options.scale` when set, else `options.size_mm` over the
+/// longest side of the mesh's bounding box (1 for a mesh without extent).
+double print_scale(const Mesh& mesh, const PrintOptions& options);
+
+/// The tab clearance options (core/tab_clearance.h) of a print: the lowest tab
+/// (`min_tab_height_mm`, at most `tab_height_mm`) in model units at the print scale, the tabs'
+/// slant, the budget and the clock limit of the pass.
+TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& options);
+
+/// Makes room for glue tabs before printing (core/tab_clearance.h): the net with fewer cut
+/// edges lacking room for a tab of `options.min_tab_height_mm` at the print scale. Only in
+/// TabMode::Auto with tabs and `tab_room` on; otherwise returns `net` unchanged (no moves). The
+/// returned net folds into the same mesh; print it, and write it as the net JSON, instead of
+/// the input. \throw CancelledException when `progress` asks to stop.
+TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
+                                 Progress& progress);
+
+/// Lays out a net for printing.
+/// \throw InvalidInputException for invalid options, an empty mesh, or a net that does not
+///        match the mesh (sizes, non-finite points, vertex indices out of range).
+PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {});
+
+}  // namespace papernet

@@ -1,0 +1,89 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "print/layout.h"
+
+namespace papernet {
+
+/// A sheet of paper, portrait (width <= height), millimetres.
+struct Paper {
+  std::string name = "A4";
+  double width = 210, height = 297;
+};
+
+/// Parses "A4", "A3", "Letter" (any case) or "WxHmm" / "WxH" in millimetres ("300x200mm").
+/// \throw InvalidInputException naming the bad value.
+Paper parse_paper(std::string_view text);
+
+/// Parses a length: "200mm", "20cm", "8in", "150pt" or a bare number of millimetres.
+/// \throw InvalidInputException when it is not a positive finite length.
+double parse_length_mm(std::string_view text);
+
+struct PageOptions {
+  Paper paper;
+  double margin_mm = 10;   ///< unprinted border on each side
+  double overlap_mm = 10;  ///< shared strip between neighbouring tiles
+
+  /// Empty when valid, else a message naming the bad option.
+  std::string validate() const;
+};
+
+/// One printed page: the window of the layout it shows.
+struct Page {
+  int row = 0, col = 0;  ///< row 0 is the top row
+  Vec2 lo, hi;           ///< window in layout coordinates (mm, y up)
+};
+
+/// How a layout is split onto pages. All pages share one orientation.
+struct PageLayout {
+  double width = 0, height = 0;  ///< page size as printed (landscape when width > height)
+  double margin = 0, overlap = 0;
+  bool quarter_turn = false;  ///< the layout was turned by 90 degrees (see turn_quarter)
+  int rows = 1, cols = 1;
+  std::vector<Page> pages;  ///< row by row, left to right; empty tiles left out
+};
+
+/// Splits a layout onto pages, choosing orientation (page portrait or landscape, net turned or
+/// not) to use the fewest pages; ties prefer portrait pages, then the net's long side along
+/// the page's long side. Turns `layout` by a quarter when
+/// that is the choice. A layout that fits one page is centred on it. Tiles of the rows x cols
+/// grid that show nothing of the net (faces, tabs) are left out of `pages`, unless one is
+/// needed to print a glue strip wholly (a strip that no printed tile holds wholly). Glue strips
+/// that no tile showing the net holds wholly are first moved into free space on such a tile
+/// where there is room (nearest their edge; same checks as place_strips).
+/// \throw InvalidInputException for invalid options (e.g. margins that leave no room).
+PageLayout paginate(PrintLayout& layout, const PageOptions& options);
+
+/// Turns a layout by 90 degrees counter-clockwise, keeping it in [0, size.x] x [0, size.y].
+void turn_quarter(PrintLayout& layout);
+
+/// Which drawing layer a shape belongs to (one SVG group or one PDF drawing pass each).
+enum class Layer { Faces, Tabs, Strips, Cut, Mountain, Valley, Labels, Marks };
+
+/// A shape in page coordinates (mm, y down, origin at the page's top-left corner).
+struct Shape {
+  Layer layer = Layer::Cut;
+  std::vector<Vec2> points;  ///< polyline, or polygon when closed; text: its centre only
+  bool closed = false;
+  std::string text;      ///< non-empty for text
+  double size = 0;       ///< text height, mm
+  double angle_deg = 0;  ///< text baseline, degrees clockwise on the page (SVG rotate())
+};
+
+/// Everything on one page, culled to the page's printable area (writers clip to `clip_*`).
+struct PageDrawing {
+  double width = 0, height = 0;
+  Vec2 clip_lo, clip_hi;
+  std::vector<Shape> shapes;
+};
+
+/// The shapes of page `index` of a paginated layout, with tile overlap marks and page number.
+PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index);
+
+/// The whole layout as one drawing sized to the net plus `margin_mm` (no paper).
+PageDrawing draw_unpaged(const PrintLayout& layout, double margin_mm);
+
+}  // namespace papernet

@@ -1,0 +1,33 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "print/layout.h"
+#include "print/pages.h"
+
+namespace papernet {
+
+/// `s` with &, <, > and " replaced by their XML entities, for text and attribute values.
+std::string xml_escape(const std::string& s);
+
+/// One SVG document for a drawing: width/height in mm, a viewBox in mm, and one <g> per layer
+/// with ids faces, tabs, strips, cut, mountain, valley, labels, marks (strips: glue strips'
+/// outlines solid, their seams dotted, their labels). Cut lines are solid, mountain folds dashed,
+/// valley folds dash-dotted. `metadata` (e.g. omitted tab counts) goes into a <metadata> element as
+/// data-* attributes of a <papernet> element.
+std::string write_svg(const PageDrawing& drawing,
+                      const std::vector<std::pair<std::string, std::string>>& metadata = {});
+
+/// Metadata every print output carries: faces, cut edges, tabs, strips, omitted tabs, scale,
+/// pages.
+std::vector<std::pair<std::string, std::string>> layout_metadata(const PrintLayout& layout,
+                                                                 int pages);
+
+/// The net as one SVG sized to itself (no paper), with a margin.
+std::string write_net_svg(const PrintLayout& layout, double margin_mm = 5);
+
+/// One SVG per page of a paginated layout.
+std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLayout& pages);
+
+}  // namespace papernet

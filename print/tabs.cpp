@@ -1,0 +1,245 @@
+#include "print/tabs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "core/tabs/tab_clearance.h"
+
+namespace papernet {
+
+bool convex_overlap(std::span<const Vec2> a, std::span<const Vec2> b, double tolerance) {
+  // Separating axis theorem: the interiors are disjoint iff some edge normal of either polygon
+  // separates their projections (up to the tolerance).
+  auto separated_by_edges_of = [&](std::span<const Vec2> p) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec2 e = p[(i + 1) % p.size()] - p[i];
+      const double len = norm(e);
+      if (len == 0) continue;
+      const Vec2 axis{-e.y / len, e.x / len};
+      double a_lo = std::numeric_limits<double>::infinity(), a_hi = -a_lo;
+      double b_lo = a_lo, b_hi = a_hi;
+      for (Vec2 q : a) a_lo = std::min(a_lo, dot(q, axis)), a_hi = std::max(a_hi, dot(q, axis));
+      for (Vec2 q : b) b_lo = std::min(b_lo, dot(q, axis)), b_hi = std::max(b_hi, dot(q, axis));
+      if (std::min(a_hi, b_hi) - std::max(a_lo, b_lo) <= tolerance) return true;
+    }
+    return false;
+  };
+  return !separated_by_edges_of(a) && !separated_by_edges_of(b);
+}
+
+PolygonGrid::PolygonGrid(double cell) : cell_(cell > 0 && std::isfinite(cell) ? cell : 1) {}
+
+template <class F>
+void PolygonGrid::for_cells(std::span<const Vec2> poly, F&& f) const {
+  double x0 = poly[0].x, x1 = x0, y0 = poly[0].y, y1 = y0;
+  for (Vec2 p : poly)
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  const auto i0 = static_cast<std::int64_t>(std::floor(x0 / cell_));
+  const auto i1 = static_cast<std::int64_t>(std::floor(x1 / cell_));
+  const auto j0 = static_cast<std::int64_t>(std::floor(y0 / cell_));
+  const auto j1 = static_cast<std::int64_t>(std::floor(y1 / cell_));
+  for (auto i = i0; i <= i1; ++i)
+    for (auto j = j0; j <= j1; ++j)
+      f((static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint32_t>(j));
+}
+
+void PolygonGrid::add(std::span<const Vec2> poly) {
+  const int id = static_cast<int>(polys_.size());
+  polys_.emplace_back(poly.begin(), poly.end());
+  for_cells(poly, [&](std::uint64_t key) { cells_[key].push_back(id); });
+}
+
+bool PolygonGrid::overlaps(std::span<const Vec2> poly, double tolerance) {
+  ++stamp_;
+  seen_.resize(polys_.size(), 0);
+  bool hit = false;
+  for_cells(poly, [&](std::uint64_t key) {
+    if (hit) return;
+    const auto it = cells_.find(key);
+    if (it == cells_.end()) return;
+    for (int id : it->second) {
+      if (seen_[id] == stamp_) continue;
+      seen_[id] = stamp_;
+      if (convex_overlap(poly, polys_[id], tolerance)) {
+        hit = true;
+        return;
+      }
+    }
+  });
+  return hit;
+}
+
+namespace {
+
+/// The trapezoid of `shape` on the outside of `side`, `height` tall (core's tab_trapezoid, the
+/// shapes the clearance pass makes room for).
+std::array<Vec2, 4> trapezoid(const std::vector<std::array<Vec2, 3>>& faces, EdgeSide side,
+                              const TabShape& shape, double height) {
+  return tab_trapezoid(faces[side.face], side.k, shape, height);
+}
+
+double area(const std::array<Vec2, 4>& t) {
+  return 0.5 * std::abs(cross(t[2] - t[0], t[3] - t[1]));
+}
+
+/// Box of a polygon, grown by `d`.
+std::pair<Vec2, Vec2> bounds(std::span<const Vec2> p, double d) {
+  Vec2 lo = p[0], hi = p[0];
+  for (Vec2 q : p)
+    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)},
+    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+  return {{lo.x - d, lo.y - d}, {hi.x + d, hi.y + d}};
+}
+
+bool boxes_meet(const std::pair<Vec2, Vec2>& a, const std::pair<Vec2, Vec2>& b) {
+  return a.first.x <= b.second.x && b.first.x <= a.second.x && a.first.y <= b.second.y &&
+         b.first.y <= a.second.y;
+}
+
+/// Second stage of place_tabs: an edge left without a tab often has room against the faces
+/// but lost it to a neighbour's tab placed first (greedily, as large as fits). For each such
+/// edge, try a lowest tab (min_height) that overlaps no face and at most two tabs, and move
+/// those tabs to a lowest tab elsewhere on their own edge (either side, any shape) that
+/// overlaps nothing. Every tab stays checked against faces and all other tabs.
+void make_room_between_tabs(const std::vector<std::array<Vec2, 3>>& faces,
+                            const std::vector<NetEdge>& edges, const TabOptions& options,
+                            const std::vector<TabShape>& shapes, TabPlacement& result) {
+  double total = 0;
+  for (const auto& f : faces)
+    for (int k = 0; k < 3; ++k) total += norm(f[(k + 1) % 3] - f[k]);
+  PolygonGrid face_grid(
+      std::max(total / (3.0 * static_cast<double>(faces.size())), options.height));
+  for (const auto& f : faces) face_grid.add(f);
+  const auto low = [&](int e) {
+    const NetEdge& edge = edges[e];
+    const double len = norm(faces[edge.a.face][(edge.a.k + 1) % 3] - faces[edge.a.face][edge.a.k]);
+    return std::min(options.min_height, 0.5 * len);
+  };
+  // Every lowest tab of edge e that overlaps no face, as (side, corners).
+  const auto candidates = [&](int e) {
+    std::vector<Tab> out;
+    const NetEdge& edge = edges[e];
+    const double h = low(e);
+    if (!(h > 0)) return out;
+    for (EdgeSide side : {edge.a, edge.b}) {
+      const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
+      for (const TabShape& s : shapes) {
+        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
+        const auto t = trapezoid(faces, side, shape, h);
+        if (!face_grid.overlaps(t, options.tolerance)) out.push_back({e, side, t});
+      }
+    }
+    return out;
+  };
+  std::vector<int> still;
+  for (int e : result.omitted) {
+    bool done = false;
+    for (const Tab& want : candidates(e)) {
+      const auto box = bounds(want.corners, 0);
+      std::vector<int> conflicts;
+      for (int t = 0; t < static_cast<int>(result.tabs.size()) && conflicts.size() <= 2; ++t)
+        if (boxes_meet(box, bounds(result.tabs[t].corners, 0)) &&
+            convex_overlap(want.corners, result.tabs[t].corners, options.tolerance))
+          conflicts.push_back(t);
+      if (conflicts.empty() || conflicts.size() > 2) continue;
+      // New places for the conflicting tabs, avoiding `want`, each other and all other tabs.
+      std::vector<Tab> moved;
+      for (int c : conflicts) {
+        bool placed = false;
+        for (const Tab& r : candidates(result.tabs[c].edge)) {
+          if (convex_overlap(r.corners, want.corners, options.tolerance)) continue;
+          bool free = true;
+          const auto rbox = bounds(r.corners, 0);
+          for (int t = 0; t < static_cast<int>(result.tabs.size()) && free; ++t)
+            if (std::find(conflicts.begin(), conflicts.end(), t) == conflicts.end() &&
+                boxes_meet(rbox, bounds(result.tabs[t].corners, 0)))
+              free = !convex_overlap(r.corners, result.tabs[t].corners, options.tolerance);
+          for (const Tab& m : moved)
+            if (free) free = !convex_overlap(r.corners, m.corners, options.tolerance);
+          if (free) {
+            moved.push_back(r);
+            placed = true;
+            break;
+          }
+        }
+        if (!placed) break;
+      }
+      if (moved.size() != conflicts.size()) continue;
+      for (std::size_t i = 0; i < conflicts.size(); ++i) result.tabs[conflicts[i]] = moved[i];
+      result.tabs.push_back(want);
+      done = true;
+      break;
+    }
+    if (!done) still.push_back(e);
+  }
+  result.omitted = std::move(still);
+}
+
+}  // namespace
+
+TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
+                        const std::vector<NetEdge>& edges, const TabOptions& options) {
+  TabPlacement result;
+  if (faces.empty()) return result;
+  double total = 0;
+  for (const auto& f : faces)
+    for (int k = 0; k < 3; ++k) total += norm(f[(k + 1) % 3] - f[k]);
+  const double mean_edge = total / (3.0 * static_cast<double>(faces.size()));
+  PolygonGrid grid(std::max(mean_edge, options.height));
+  for (const auto& f : faces) grid.add(f);
+
+  const std::vector<TabShape> shapes = tab_shapes(options.angle_deg);
+
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
+    const NetEdge& edge = edges[e];
+    if (edge.cut_index < 0) continue;
+    const Vec2 p0 = faces[edge.a.face][edge.a.k], p1 = faces[edge.a.face][(edge.a.k + 1) % 3];
+    const double len = norm(p1 - p0);
+    if (!(len > 0)) {
+      result.omitted.push_back(e);
+      continue;
+    }
+    const double lo = std::min(options.min_height, 0.5 * len);
+    const double hi = std::max(lo, std::min(options.height, 0.5 * len));
+    Tab best;
+    double best_area = 0;
+    for (EdgeSide side : {edge.a, edge.b}) {
+      // Along side b the edge runs the other way: mirror the span so both sides mean the same
+      // stretch of the edge.
+      const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
+      for (const TabShape& s : shapes) {
+        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
+        // The tallest tab this shape can be bounds what it can add: skip hopeless shapes.
+        if (area(trapezoid(faces, side, shape, hi)) <= best_area) continue;
+        if (lo > 0 && grid.overlaps(trapezoid(faces, side, shape, lo), options.tolerance)) continue;
+        double h = hi;
+        if (grid.overlaps(trapezoid(faces, side, shape, hi), options.tolerance)) {
+          double ok = lo, bad = hi;  // bisection: a lower tab of one shape lies inside a taller
+          for (int i = 0; i < 6; ++i) {
+            const double mid = 0.5 * (ok + bad);
+            (grid.overlaps(trapezoid(faces, side, shape, mid), options.tolerance) ? bad : ok) = mid;
+          }
+          h = ok;
+          if (!(h > 0)) continue;
+        }
+        const auto t = trapezoid(faces, side, shape, h);
+        if (const double ta = area(t); ta > best_area) best_area = ta, best = {e, side, t};
+      }
+      // A full-size tab over the whole edge cannot be beaten: leave side b alone.
+      if (best.edge >= 0 && best_area >= area(trapezoid(faces, side, shapes.front(), hi)) - 1e-12)
+        break;
+    }
+    if (best.edge < 0) {
+      result.omitted.push_back(e);
+      continue;
+    }
+    grid.add(best.corners);
+    result.tabs.push_back(best);
+  }
+  if (!result.omitted.empty()) make_room_between_tabs(faces, edges, options, shapes, result);
+  return result;
+}
+
+}  // namespace papernet

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "core/unfold/folds.h"
+#include "core/vec.h"
+
+namespace papernet {
+
+/// A glue tab: a trapezoid on the outside of one side of a cut edge. `corners` are
+/// counter-clockwise: the two ends of its base, which lies on the edge (corners[1] nearer the
+/// side's first point), then the two top corners.
+struct Tab {
+  int edge = -1;  ///< index into the edge list the tab was placed for
+  EdgeSide side;  ///< the face side it hangs from
+  std::array<Vec2, 4> corners;
+};
+
+struct TabOptions {
+  double height = 6;        ///< tallest tab, in layout units
+  double angle_deg = 45;    ///< slant of the tab's sides against the edge
+  double min_height = 2;    ///< lowest tab worth printing (half the edge on shorter edges)
+  double tolerance = 1e-6;  ///< penetration depth below which polygons only touch
+};
+
+/// Result of placing tabs: at most one per interior cut edge.
+struct TabPlacement {
+  std::vector<Tab> tabs;
+  std::vector<int> omitted;  ///< edges that got no tab because none fitted on either side
+};
+
+/// Places at most one tab per interior cut edge (edges with cut_index >= 0), on side a or side b,
+/// so that no tab's interior meets a face's interior or another tab's interior (separating-axis
+/// test with `options.tolerance`). A tab is at most `height` tall and at most half its edge,
+/// and at least `min_height` tall, or half its edge where that is less (an edge shorter than
+/// 2 x min_height gets a tab exactly half its length tall). On each side the placer tries
+/// trapezoids over the whole edge and over stretches of it (at least 40 % of the edge, at either
+/// end or in the middle) with end angles of `angle_deg`, 60 % and 30 % of it chosen independently
+/// at each end, each as tall as fits (bisection on the height); the side whose best tab has the
+/// larger area wins. Edges where no tab of min_height fits are listed as omitted (they need a glue
+/// strip, see strips.h). Faces are the net's triangles in layout coordinates, counter-clockwise.
+TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
+                        const std::vector<NetEdge>& edges, const TabOptions& options = {});
+
+/// True when the interiors of two convex polygons (either orientation) overlap by more than
+/// `tolerance` along every separating axis candidate.
+bool convex_overlap(std::span<const Vec2> a, std::span<const Vec2> b, double tolerance);
+
+/// Uniform hash grid over convex polygons, answering "does this polygon overlap any stored one".
+class PolygonGrid {
+ public:
+  explicit PolygonGrid(double cell);
+  void add(std::span<const Vec2> poly);
+  /// True when `poly` overlaps a stored polygon by more than `tolerance` (convex_overlap).
+  bool overlaps(std::span<const Vec2> poly, double tolerance);
+
+ private:
+  template <class F>
+  void for_cells(std::span<const Vec2> poly, F&& f) const;
+
+  double cell_;
+  std::vector<std::vector<Vec2>> polys_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  std::vector<std::uint32_t> seen_;
+  std::uint32_t stamp_ = 0;
+};
+
+}  // namespace papernet

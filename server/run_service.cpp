@@ -1,0 +1,108 @@
+// The HTTP job service as a program: wires config, store, workers and routes; handles
+// SIGINT/SIGTERM by draining (no new jobs, running ones get a grace period), persisting and
+// stopping.
+#include "server/run_service.h"
+
+#include <httplib.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "server/http_api.h"
+#include "server/http_server.h"
+#include "server/job_service.h"
+#include "server/job_store.h"
+#include "server/metrics.h"
+#include "server/pipeline_runner.h"
+#include "server/static_files.h"
+
+namespace papernet::server {
+
+int run_service(const ServerConfig& config) {
+  // Signals go to one thread that waits for them; every other thread inherits the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  std::unique_ptr<JobStore> store;
+  try {
+    std::filesystem::create_directories(config.data_dir);
+    store = std::make_unique<JobStore>(
+        (std::filesystem::path(config.data_dir) / "papernet.sqlite").string());
+  } catch (const std::exception& e) {
+    std::cerr << "papernet serve: " << e.what() << "\n";
+    return 1;
+  }
+
+  ServiceSettings settings;
+  settings.workers = config.workers;
+  settings.queue_length = config.queue_length;
+  settings.options_limits.max_time_limit = config.max_job_time_limit;
+  settings.options_limits.max_target_faces = config.max_faces;
+  settings.default_time_limit = config.job_time_limit;
+  settings.reuse_results = config.reuse_results;
+  JobService service(*store, make_pipeline_runner({config.max_body_bytes, config.max_faces}),
+                     settings, [](const std::string& line) { log_line(line); });
+
+  HttpMetrics metrics;
+  HttpLimits http_limits;
+  http_limits.max_body_bytes = config.max_body_bytes + (64 << 10);  // multipart/chunk framing
+  http_limits.read_timeout = config.read_timeout;
+  http_limits.header_timeout = config.header_timeout;
+  http_limits.request_timeout = config.request_timeout;
+  http_limits.keep_alive_timeout = config.read_timeout;
+  GuardedHttpServer http(http_limits, config.http_threads);
+  http.set_tcp_nodelay(true);  // small JSON answers must not wait for delayed ACKs
+  install_routes(http, service, config, metrics);
+  const std::string& web_root = config.web_root;
+  try {
+    mount_web_root(http, web_root);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "papernet serve: " << e.what() << "\n";
+    return 2;
+  }
+
+  int port = config.port;
+  if (port == 0) {
+    port = http.bind_to_any_port(config.host);
+  } else if (!http.bind_to_port(config.host, port)) {
+    port = -1;
+  }
+  if (port <= 0 || !http.set_listen_backlog(1024)) {
+    std::cerr << "papernet serve: cannot listen on " << config.host << ":" << config.port << "\n";
+    return 1;
+  }
+  service.start();
+
+  std::thread signal_thread([&] {
+    int sig = 0;
+    sigwait(&signals, &sig);
+    if (sig == 0) return;
+    log_line(std::string("received ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
+             ": no new jobs; running ones get " +
+             std::to_string(static_cast<int>(config.shutdown_grace)) + " s");
+    service.shutdown(std::chrono::milliseconds(static_cast<long>(config.shutdown_grace * 1000)));
+    http.stop();
+  });
+
+  log_line("papernet listening on http://" + config.host + ":" + std::to_string(port) + " (data " +
+           config.data_dir + ", " + std::to_string(config.workers) + " workers, queue " +
+           std::to_string(config.queue_length) + ")" +
+           (web_root.empty() ? "" : "; web demo from " + web_root));
+  std::cout << "papernet listening on http://" << config.host << ":" << port << std::endl;
+  const bool ok = http.listen_after_bind();
+  if (!ok || http.is_running()) {
+    // listen failed by itself: wake the signal thread so it shuts the service down.
+    pthread_kill(signal_thread.native_handle(), SIGTERM);
+  }
+  signal_thread.join();
+  log_line("papernet stopped; unfinished jobs stay queued for the next start");
+  return 0;
+}
+
+}  // namespace papernet::server

@@ -1,0 +1,150 @@
+// `papernet unfold` as a user runs it: exit codes, what it says, and what it writes.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "tests/support/run_program.h"
+
+namespace papernet::test {
+namespace {
+
+TEST(UnfoldCli, QQIsTheDefaultAndWritesACompleteNet) {
+  const std::string out = ::testing::TempDir() + "papernet_progressive_cli.json";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/sample.obj -o " + out, &said),
+            0)
+      << said;
+  std::stringstream text;
+  text << std::ifstream(out).rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["strategy"], "QQ");
+  EXPECT_EQ(j["result"], "complete");
+  EXPECT_EQ(j["mesh"]["faces"].size(), 1000u);
+  EXPECT_EQ(j["net"]["faces"].size(), 1000u);
+  EXPECT_EQ(j["metrics"]["hausdorff"], 0.0);
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/mirror.ply --strategy se/mp " +
+                         "--target-faces 100 -o " + out,
+                     &said),
+            0)
+      << said;
+  text.str("");
+  text << std::ifstream(out).rdbuf();
+  EXPECT_EQ(nlohmann::json::parse(text.str())["strategy"], "SEMP");
+  std::remove(out.c_str());
+}
+
+// When edges stay without room for a tab, the command says how many of them end at a leaf of
+// the cut tree where no leaf can have room, and what helps; a strip-free print says nothing.
+TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
+  const std::string out = ::testing::TempDir() + "papernet_strips_cli.svg";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/sample.obj --strategy TU " +
+                         "--tab-room-budget 2000 --paper none -o " + out,
+                     &said),
+            0)
+      << said;
+  std::smatch room, why;
+  ASSERT_TRUE(std::regex_search(said, room, std::regex(R"(-> (\d+) cut edges without room)")))
+      << said;
+  ASSERT_TRUE(std::regex_search(
+      said, why,
+      std::regex(R"(tab room: (\d+) of the (\d+) end at a leaf of the cut tree where no leaf )"
+                 R"(has room \(only (\d+) of 502 vertices)")))
+      << said;
+  EXPECT_EQ(why[2].str(), room[1].str());
+  EXPECT_GT(std::stoi(why[1].str()), 0);
+  EXPECT_LE(std::stoi(why[1].str()), std::stoi(why[2].str()));
+  EXPECT_LT(std::stoi(why[3].str()), 502);
+  EXPECT_NE(said.find("print larger (--size)"), std::string::npos) << said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb --strategy TU " +
+                         "--paper none -o " + out,
+                     &said),
+            0)
+      << said;
+  EXPECT_NE(said.find("-> 0 cut edges without room"), std::string::npos) << said;
+  EXPECT_EQ(said.find("where no leaf has room"), std::string::npos) << said;
+  std::remove(out.c_str());
+}
+
+// --simplify prints a low-poly version: the Duck's 4,212 faces keep hundreds of glue strips at
+// 200 mm (docs/tabs.md), its 400-face version next to none. The net is approximate, of the
+// simplified mesh, and the JSON says how far that is from the input.
+TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
+  const std::string base = ::testing::TempDir() + "papernet_simplify_cli";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+                         "/Duck.glb --simplify 400 --paper none" + " -o " + base + ".json -o " +
+                         base + ".svg",
+                     &said),
+            0)
+      << said;
+  EXPECT_NE(said.find("simplified from 4212 to"), std::string::npos) << said;
+  std::stringstream text;
+  text << std::ifstream(base + ".json").rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["result"], "approximate");
+  EXPECT_EQ(j["input"]["faces"], 4212);
+  EXPECT_LE(j["mesh"]["faces"].size(), 400u);
+  EXPECT_GE(j["mesh"]["faces"].size(), 350u);
+  EXPECT_GT(j["metrics"]["hausdorff"].get<double>(), 0);
+  EXPECT_LT(j["metrics"]["hausdorff"].get<double>(), 0.05);
+  std::stringstream svg_text;
+  svg_text << std::ifstream(base + ".svg").rdbuf();
+  const std::string svg = svg_text.str();
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(svg, m, std::regex(R"re(data-strips="(\d+)")re"))) << said;
+  ASSERT_TRUE(
+      std::regex_search(said, std::regex(R"(, \d+ glue tabs, )" + m[1].str() + " glue strips")))
+      << said;
+  EXPECT_LE(std::stoi(m[1].str()), 5) << said;
+  // Not below the mesh's own face count: the mesh itself, complete.
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+                         "/Box_Draco.glb --simplify 12 -o " + base + ".json",
+                     &said),
+            0)
+      << said;
+  text.str("");
+  text << std::ifstream(base + ".json").rdbuf();
+  EXPECT_EQ(nlohmann::json::parse(text.str())["result"], "complete");
+  EXPECT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+                         "/Box_Draco.glb --simplify 3 -o " + base + ".json",
+                     &said),
+            1);
+  EXPECT_NE(said.find("--simplify must be at least 4 faces"), std::string::npos) << said;
+  std::remove((base + ".json").c_str());
+  std::remove((base + ".svg").c_str());
+}
+
+TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
+  const std::string mesh = std::string(PAPERNET_TEST_DATA) + "/sample.obj -o /dev/null";
+  EXPECT_EQ(papernet("unfold " + mesh + " --strategy QX"), 1);
+  EXPECT_EQ(papernet("unfold " + mesh + " --target-faces 0"), 1);
+}
+
+// The command validates before it unfolds: a fault the validator names ends in exit 2 with
+// that reason, never in a net (or a failed net check).
+TEST(UnfoldCli, MeshThatCannotBeUnfoldedExitsTwoNamingTheFault) {
+  const std::string obj = ::testing::TempDir() + "papernet_degenerate.obj";
+  // A tetrahedron plus a zero-area face glued to one of its edges (also non-manifold).
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 2 0 0\n"
+                        "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 2 5\n";
+  const std::string out = ::testing::TempDir() + "papernet_degenerate.json";
+  std::remove(out.c_str());
+  std::string said;
+  for (const char* strategy : {"QQ", "TU"}) {
+    EXPECT_EQ(papernet("unfold " + obj + " --strategy " + strategy + " -o " + out, &said), 2)
+        << said;
+    EXPECT_NE(said.find("cannot be unfolded: "), std::string::npos) << said;
+    EXPECT_NE(said.find("degenerate"), std::string::npos) << said;
+    EXPECT_FALSE(std::ifstream(out).good()) << "no net may be written";
+  }
+  std::remove(obj.c_str());
+}
+
+}  // namespace
+}  // namespace papernet::test

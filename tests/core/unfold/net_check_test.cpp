@@ -1,0 +1,110 @@
+#include "core/unfold/net_check.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/unfold/unfolding.h"
+#include "tests/support/meshes.h"
+
+namespace papernet {
+namespace {
+
+bool mentions(const NetCheckReport& report, const std::string& words) {
+  for (const std::string& f : report.failures)
+    if (f.find(words) != std::string::npos) return true;
+  return false;
+}
+
+// An overlap-free net of the cube, from the unfolder.
+Net cube_net() {
+  Unfolding u = Unfolding::steepest_edge(test::cube(), 3);
+  Progress quiet;
+  EXPECT_TRUE(u.resolve_overlaps({}, quiet));
+  return u.net();
+}
+
+int a_leaf(const Net& net) {
+  std::vector<int> children(net.parent.size(), 0);
+  for (int p : net.parent)
+    if (p >= 0) ++children[p];
+  for (std::size_t f = 0; f < net.parent.size(); ++f)
+    if (children[f] == 0 && net.parent[f] >= 0) return static_cast<int>(f);
+  return -1;
+}
+
+TEST(NetCheck, AcceptsAValidNet) {
+  const NetCheckReport report = check_net(test::cube(), cube_net());
+  EXPECT_TRUE(report.ok()) << report.summary();
+}
+
+TEST(NetCheck, RejectsAFlippedFace) {
+  Net net = cube_net();
+  const int f = a_leaf(net);
+  for (Vec2& p : net.points[f]) p.y = -p.y;  // mirror: congruent edges, reversed orientation
+  const NetCheckReport report = check_net(test::cube(), net);
+  EXPECT_FALSE(report.ok());
+  EXPECT_TRUE(mentions(report, "face " + std::to_string(f) + " is flipped")) << report.summary();
+}
+
+TEST(NetCheck, RejectsAGapOnAGluedEdge) {
+  Net net = cube_net();
+  const int f = a_leaf(net);
+  for (Vec2& p : net.points[f]) p = p + Vec2{0.01, 0};  // still congruent, no longer glued
+  const NetCheckReport report = check_net(test::cube(), net);
+  EXPECT_TRUE(mentions(report, "face " + std::to_string(f) + " is not glued")) << report.summary();
+}
+
+TEST(NetCheck, RejectsACycle) {
+  Net net = cube_net();
+  // Re-point the root to one of its children: no root left, and a cycle of two.
+  int root = 0;
+  while (net.parent[root] != -1) ++root;
+  int child = 0;
+  while (net.parent[child] != root) ++child;
+  net.parent[root] = child;
+  const NetCheckReport report = check_net(test::cube(), net);
+  EXPECT_TRUE(mentions(report, "form a cycle")) << report.summary();
+  EXPECT_TRUE(mentions(report, "0 roots")) << report.summary();
+}
+
+TEST(NetCheck, RejectsAParentThatSharesNoEdge) {
+  Net net = cube_net();
+  const int f = a_leaf(net);
+  // Faces 0 and 2 of the cube are the bottom and top: they share no vertex.
+  const int far = f == 2 || f == 3 ? 0 : 2;
+  net.parent[f] = far;
+  const NetCheckReport report = check_net(test::cube(), net);
+  EXPECT_FALSE(report.ok());
+}
+
+TEST(NetCheck, RejectsAnOverlappingPair) {
+  // The saddle's fan laid out as one path around the centre wraps past 360 degrees.
+  const Mesh mesh = test::saddle();
+  std::vector<int> parent(mesh.faces.size());
+  const int n = 8;
+  for (int i = 0; i < n; ++i) parent[i] = i - 1;  // fan: 0 <- 1 <- ... <- 7
+  for (int i = 0; i < n; ++i) {
+    parent[n + 2 * i] = n + 2 * i + 1;  // outer triangle hangs from its twin
+    parent[n + 2 * i + 1] = i;          // which hangs from the fan face
+  }
+  const Unfolding u(mesh, parent);
+  const NetCheckReport report = check_net(mesh, u.net());
+  EXPECT_GT(report.overlapping_pairs, 0u);
+  EXPECT_TRUE(mentions(report, "overlap")) << report.summary();
+}
+
+TEST(NetCheck, RejectsNonCongruentFace) {
+  Net net = cube_net();
+  net.points[0][0] = net.points[0][0] + Vec2{0.2, 0.1};
+  EXPECT_TRUE(mentions(check_net(test::cube(), net), "long in the net"));
+}
+
+TEST(NetCheck, RejectsWrongSizes) {
+  Net net = cube_net();
+  net.parent.pop_back();
+  EXPECT_FALSE(check_net(test::cube(), net).ok());
+}
+
+}  // namespace
+}  // namespace papernet

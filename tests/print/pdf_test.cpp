@@ -1,0 +1,282 @@
+#include "print/pdf.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "print/pages.h"
+#include "print/print_output.h"
+#include "print/svg.h"
+#include "tests/support/meshes.h"
+
+namespace papernet {
+namespace {
+
+/// Output of a shell command, or nullopt-like "" with ok=false when the tool is missing.
+struct ToolRun {
+  bool present = false;
+  int status = 0;
+  std::string out;
+};
+ToolRun run(const std::string& tool, const std::string& args) {
+  ToolRun r;
+  if (std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) != 0) return r;
+  r.present = true;
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((tool + " " + args).c_str(), "r"), pclose);
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe.get())) r.out.append(buf, n);
+  r.status = pclose(pipe.release());
+  return r;
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("papernet_pdf_test_" + name)).string();
+}
+
+/// Pages needed for `content` on printable `room` with `overlap`, computed independently of
+/// paginate: the smallest n with n * room - (n - 1) * overlap >= content.
+int tiles(double content, double room, double overlap) {
+  int n = 1;
+  while (n * room - (n - 1) * overlap < content) ++n;
+  return n;
+}
+
+TEST(Pages, ParsePaperAndLengths) {
+  EXPECT_DOUBLE_EQ(parse_paper("a4").height, 297);
+  EXPECT_DOUBLE_EQ(parse_paper("Letter").width, 215.9);
+  const Paper p = parse_paper("300x200mm");
+  EXPECT_DOUBLE_EQ(p.width, 200);
+  EXPECT_DOUBLE_EQ(p.height, 300);
+  EXPECT_THROW(parse_paper("B5"), std::invalid_argument);
+  EXPECT_THROW(parse_paper("0x10mm"), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(parse_length_mm("200mm"), 200);
+  EXPECT_DOUBLE_EQ(parse_length_mm("2cm"), 20);
+  EXPECT_DOUBLE_EQ(parse_length_mm("1in"), 25.4);
+  EXPECT_DOUBLE_EQ(parse_length_mm("15"), 15);
+  EXPECT_THROW(parse_length_mm("-3mm"), std::invalid_argument);
+  EXPECT_THROW(parse_length_mm("12 parsecs"), std::invalid_argument);
+  PageOptions o;
+  o.margin_mm = 120;
+  EXPECT_NE(o.validate(), "");
+}
+
+TEST(Pages, TilesCoverTheNetWithOverlapAndUseTheCheaperOrientation) {
+  const Mesh mesh = test::octahedron();
+  for (double size : {50.0, 200.0, 600.0}) {
+    PrintOptions print;
+    print.size_mm = size;
+    PrintLayout layout = layout_net(mesh, test::bfs_net(mesh), print);
+    const Vec2 before = layout.size;
+    const auto labels_before = layout.labels;
+    PageOptions o;  // A4, 10 mm margins, 10 mm overlap
+    const PageLayout pages = paginate(layout, o);
+    const int grid = std::min(tiles(before.x, 190, 10) * tiles(before.y, 277, 10),
+                              tiles(before.y, 190, 10) * tiles(before.x, 277, 10));
+    // Never more pages than the cheaper grid; fewer when tiles of it would be empty.
+    EXPECT_LE(static_cast<int>(pages.pages.size()), grid) << size;
+    EXPECT_GE(pages.rows * pages.cols, static_cast<int>(pages.pages.size()));
+    // Every face corner is on some page's window; neighbouring windows share the overlap.
+    for (const auto& tri : layout.faces)
+      for (Vec2 p : tri) {
+        bool seen = false;
+        for (const Page& pg : pages.pages)
+          seen |= p.x >= pg.lo.x - 1e-9 && p.x <= pg.hi.x + 1e-9 && p.y >= pg.lo.y - 1e-9 &&
+                  p.y <= pg.hi.y + 1e-9;
+        EXPECT_TRUE(seen);
+      }
+    // Labels still read upright (or vertically) and still fit their faces after any turn.
+    ASSERT_EQ(layout.labels.size(), labels_before.size());
+    for (const Label& l : layout.labels) {
+      EXPECT_GE(std::cos(l.angle), -1e-9) << size;
+      const auto& tri = layout.faces[l.side.face];
+      for (Vec2 p : label_box(l))
+        for (int k = 0; k < 3; ++k) EXPECT_GE(cross(tri[(k + 1) % 3] - tri[k], p - tri[k]), -1e-9);
+    }
+    for (const Page& a : pages.pages)
+      for (const Page& b : pages.pages) {
+        if (a.row == b.row && b.col == a.col + 1) {
+          EXPECT_NEAR(a.hi.x - b.lo.x, 10, 1e-9);
+        }
+        if (a.col == b.col && b.row == a.row + 1) {
+          EXPECT_NEAR(b.hi.y - a.lo.y, 10, 1e-9);
+        }
+      }
+  }
+}
+
+TEST(Pages, EmptyTilesAreNotPrinted) {
+  // Two small triangles in opposite corners of a 370 x 540 mm area: a 2 x 2 grid of A4 tiles
+  // (portrait, 190 x 277 printable, 10 mm overlap) of which only the two corner tiles show
+  // anything.
+  PrintLayout layout;
+  layout.faces = {{Vec2{0, 0}, Vec2{20, 0}, Vec2{0, 20}},
+                  {Vec2{370, 540}, Vec2{350, 540}, Vec2{370, 520}}};
+  layout.size = {370, 540};
+  const PageLayout pages = paginate(layout, {});
+  EXPECT_EQ(pages.rows * pages.cols, 4);
+  ASSERT_EQ(pages.pages.size(), 2u);
+  EXPECT_NE(pages.pages[0].row, pages.pages[1].row);
+  EXPECT_NE(pages.pages[0].col, pages.pages[1].col);
+}
+
+TEST(Pages, AWideNetThatFitsEitherWayRunsAlongThePortraitPage) {
+  PrintLayout layout;
+  layout.faces = {{Vec2{0, 0}, Vec2{150, 0}, Vec2{0, 50}}};
+  layout.size = {150, 50};
+  const PageLayout pages = paginate(layout, {});
+  ASSERT_EQ(pages.pages.size(), 1u);
+  EXPECT_LT(pages.width, pages.height);  // portrait
+  EXPECT_TRUE(pages.quarter_turn);
+  EXPECT_DOUBLE_EQ(layout.size.x, 50);
+  EXPECT_DOUBLE_EQ(layout.size.y, 150);
+}
+
+TEST(Pages, GlueStripsLandOnPagesAndTurnWithTheNet) {
+  // A strip far from the net, which would need a page of its own, moves onto the net's page;
+  // on real nets every strip prints whole on one page, whichever way the net is turned.
+  PrintLayout layout;
+  layout.faces = {{Vec2{0, 0}, Vec2{20, 0}, Vec2{0, 20}}};
+  layout.strips = {{-1, {Vec2{350, 520}, Vec2{370, 520}, Vec2{370, 532}, Vec2{350, 532}}, "7", 3}};
+  layout.size = {370, 540};
+  const PageLayout lone = paginate(layout, {});
+  ASSERT_EQ(lone.pages.size(), 1u);
+  for (Vec2 p : layout.strips[0].corners) {
+    EXPECT_TRUE(p.x >= lone.pages[0].lo.x && p.x <= lone.pages[0].hi.x) << p.x;
+    EXPECT_TRUE(p.y >= lone.pages[0].lo.y && p.y <= lone.pages[0].hi.y) << p.y;
+    EXPECT_FALSE(convex_overlap(layout.strips[0].corners, layout.faces[0], 0));
+  }
+  EXPECT_EQ(layout.strips[0].text, "7");
+  Mesh mesh;
+  for (auto& [name, m] : test::test_data_meshes())
+    if (name == "sample.obj") mesh = std::move(m);
+  ASSERT_FALSE(mesh.faces.empty());
+  for (double size : {100.0, 400.0}) {
+    PrintOptions print;
+    print.size_mm = size;
+    print.tabs = TabMode::Strips;
+    PrintLayout net = layout_net(mesh, test::bfs_net(mesh), print);
+    ASSERT_EQ(net.strips.size(), static_cast<std::size_t>(net.cut_edges));
+    const PageLayout pages = paginate(net, {});
+    int drawn = 0;
+    for (int i = 0; i < static_cast<int>(pages.pages.size()); ++i)
+      for (const Shape& s : draw_page(net, pages, i).shapes)
+        drawn += s.layer == Layer::Strips && s.closed;
+    EXPECT_GE(drawn, static_cast<int>(net.strips.size())) << size;
+    // Every strip prints whole on one page (strips are moved onto the net's pages for that).
+    for (const GlueStrip& strip : net.strips) {
+      bool whole = false;
+      for (const Page& page : pages.pages) {
+        bool inside = true;
+        for (Vec2 p : strip.corners)
+          inside = inside && p.x >= page.lo.x - 1e-9 && p.x <= page.hi.x + 1e-9 &&
+                   p.y >= page.lo.y - 1e-9 && p.y <= page.hi.y + 1e-9;
+        whole = whole || inside;
+      }
+      EXPECT_TRUE(whole) << size << ": strip " << strip.text << " is on no page whole";
+    }
+    if (size == 400) {
+      EXPECT_GT(pages.pages.size(), 1u);
+    }
+  }
+}
+
+TEST(Pdf, HasTheExpectedPageCountAndRenders) {
+  const Mesh mesh = test::octahedron(-0.4);
+  for (double size : {60.0, 400.0}) {
+    PrintOptions print;
+    print.size_mm = size;
+    PrintLayout layout = layout_net(mesh, test::bfs_net(mesh), print);
+    const PageLayout pages = paginate(layout, {});
+    const std::string pdf = write_pdf(layout, pages);
+    ASSERT_EQ(pdf.rfind("%PDF-", 0), 0u);
+    const std::string path = temp_path(std::to_string(int(size)) + ".pdf");
+    std::ofstream(path, std::ios::binary) << pdf;
+    const ToolRun info = run("pdfinfo", path);
+    if (!info.present) GTEST_SKIP() << "pdfinfo missing: install poppler-utils";
+    ASSERT_EQ(info.status, 0) << info.out;
+    const auto at = info.out.find("Pages:");
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_EQ(std::stoi(info.out.substr(at + 6)), static_cast<int>(pages.pages.size()));
+    EXPECT_NE(info.out.find(std::to_string(layout.strips.size()) + " glue strips, " +
+                            std::to_string(layout.omitted_tabs.size()) + " tabs omitted"),
+              std::string::npos)
+        << info.out;
+    if (size == 60) {
+      EXPECT_EQ(pages.pages.size(), 1u);
+    }
+    if (size == 400) {
+      EXPECT_GT(pages.pages.size(), 1u);
+    }
+    const ToolRun png = run("pdftoppm", "-r 30 -png -f 1 -l 1 " + path + " " + path);
+    if (png.present) {
+      EXPECT_EQ(png.status, 0);
+    }
+    std::filesystem::remove(path);
+    for (const char* suffix : {"-1.png", "-01.png"}) std::filesystem::remove(path + suffix);
+  }
+}
+
+TEST(Output, WritesByExtensionAndOneSvgPerPage) {
+  const Mesh mesh = test::cube();
+  const Net net = test::bfs_net(mesh);
+  OutputOptions o;
+  o.print.size_mm = 300;  // several A4 pages
+  const std::string base = temp_path("out");
+  const auto svgs = write_output_file(base + ".svg", mesh, net, o).files;
+  ASSERT_GT(svgs.size(), 1u);
+  EXPECT_EQ(svgs[0], base + "-1.svg");
+  for (const auto& f : svgs) {
+    const ToolRun lint = run("xmllint", "--noout " + f);
+    if (lint.present) {
+      EXPECT_EQ(lint.status, 0) << f;
+    }
+    std::filesystem::remove(f);
+  }
+  o.print.size_mm = 40;  // one page
+  EXPECT_EQ(write_output_file(base + ".svg", mesh, net, o).files.size(), 1u);
+  EXPECT_TRUE(std::filesystem::exists(base + ".svg"));
+  const WrittenOutput pdf = write_output_file(base + ".PDF", mesh, net, o);
+  EXPECT_EQ(pdf.files.size(), 1u);
+  EXPECT_EQ(pdf.pages, 1);
+  EXPECT_EQ(pdf.tabs + pdf.tabs_omitted, 7u);  // a cube net has 18 - 11 cut edges
+  EXPECT_EQ(write_output_file(base + ".glb", mesh, net, o).files.size(), 1u);
+  EXPECT_THROW(write_output_file(base + ".docx", mesh, net, o), std::invalid_argument);
+  for (const char* ext : {".svg", ".PDF", ".glb"}) std::filesystem::remove(base + ext);
+}
+
+TEST(Output, CommandLineOptionsFillTheOptionsOrNameTheBadValue) {
+  OutputOptions o;
+  EXPECT_TRUE(apply_output_option("--size", "15cm", o));
+  EXPECT_DOUBLE_EQ(o.print.size_mm, 150);
+  EXPECT_TRUE(apply_output_option("--paper", "letter", o));
+  EXPECT_EQ(o.page.paper.name, "Letter");
+  EXPECT_TRUE(apply_output_option("--margin", "0", o));
+  EXPECT_DOUBLE_EQ(o.page.margin_mm, 0);
+  EXPECT_TRUE(apply_output_option("--tab-height", "4mm", o));
+  EXPECT_DOUBLE_EQ(o.print.tab_height_mm, 4);
+  EXPECT_TRUE(apply_output_option("--labels", "off", o));
+  EXPECT_FALSE(o.print.labels);
+  EXPECT_TRUE(apply_output_option("--paper", "none", o));
+  EXPECT_FALSE(o.paper);
+  EXPECT_FALSE(apply_output_option("--strategy", "QQ", o));
+  try {
+    apply_output_option("--flat-angle", "lots", o);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--flat-angle"), std::string::npos);
+  }
+  EXPECT_THROW(apply_output_option("--labels", "maybe", o), std::invalid_argument);
+  EXPECT_TRUE(apply_output_option("--tab-room-budget", "250000", o));
+  EXPECT_EQ(o.print.tab_room_budget, 250'000u);
+  EXPECT_TRUE(apply_output_option("--tab-room-budget", "0", o));
+  EXPECT_EQ(o.print.tab_room_budget, 0u);
+  for (const char* bad : {"1.5", "-1", "1e9", "many"})
+    EXPECT_THROW(apply_output_option("--tab-room-budget", bad, o), std::invalid_argument) << bad;
+}
+
+}  // namespace
+}  // namespace papernet

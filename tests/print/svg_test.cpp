@@ -1,0 +1,608 @@
+#include "print/svg.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <regex>
+
+#include "core/errors.h"
+#include "core/unfold/net_check.h"
+#include "core/unfold/progressive.h"
+#include "core/unfold/unfolding.h"
+#include "print/layout.h"
+#include "print/tabs.h"
+#include "tests/support/meshes.h"
+
+namespace papernet {
+namespace {
+
+double signed_area(const std::vector<Vec2>& p) {
+  double a = 0;  // relative to p[0]: absolute coordinates would drown tiny areas in rounding
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) a += cross(p[i] - p[0], p[i + 1] - p[0]);
+  return 0.5 * a;
+}
+
+/// Intersection of two convex polygons (Sutherland-Hodgman clipping): an independent check of
+/// the separating-axis test the tab placer uses.
+std::vector<Vec2> intersection(std::vector<Vec2> subject, std::vector<Vec2> clip) {
+  if (signed_area(clip) < 0) std::reverse(clip.begin(), clip.end());
+  for (std::size_t i = 0; i < clip.size() && !subject.empty(); ++i) {
+    const Vec2 a = clip[i], b = clip[(i + 1) % clip.size()];
+    auto inside = [&](Vec2 p) { return cross(b - a, p - a) >= 0; };
+    std::vector<Vec2> out;
+    for (std::size_t j = 0; j < subject.size(); ++j) {
+      const Vec2 p = subject[j], q = subject[(j + 1) % subject.size()];
+      const bool ip = inside(p), iq = inside(q);
+      if (ip) out.push_back(p);
+      if (ip != iq) {
+        const double t = cross(b - a, p - a) / (cross(b - a, p - a) - cross(b - a, q - a));
+        out.push_back(p + t * (q - p));
+      }
+    }
+    subject = std::move(out);
+  }
+  return subject;
+}
+
+/// True when the bounding boxes of two polygons are apart by more than `gap`.
+bool boxes_apart(const std::vector<Vec2>& a, const std::vector<Vec2>& b, double gap) {
+  auto box = [](const std::vector<Vec2>& p) {
+    Vec2 lo = p[0], hi = p[0];
+    for (Vec2 q : p)
+      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)},
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+    return std::pair{lo, hi};
+  };
+  const auto [alo, ahi] = box(a);
+  const auto [blo, bhi] = box(b);
+  return alo.x > bhi.x + gap || blo.x > ahi.x + gap || alo.y > bhi.y + gap || blo.y > ahi.y + gap;
+}
+
+double intersection_area(std::vector<Vec2> a, std::vector<Vec2> b) {
+  const auto p = intersection(std::move(a), std::move(b));
+  return p.size() < 3 ? 0 : std::abs(signed_area(p));
+}
+
+/// Mean thickness of the intersection (area / longest extent), in mm: how deep two shapes
+/// really overlap. Shapes that only touch give 0 up to rounding.
+double overlap_thickness(std::vector<Vec2> a, std::vector<Vec2> b) {
+  if (boxes_apart(a, b, 0)) return 0;
+  const auto p = intersection(std::move(a), std::move(b));
+  if (p.size() < 3) return 0;
+  double extent = 0;
+  for (Vec2 u : p)
+    for (Vec2 v : p) extent = std::max(extent, norm(u - v));
+  return extent > 0 ? std::abs(signed_area(p)) / extent : 0;
+}
+
+bool point_in_triangle(Vec2 p, const std::array<Vec2, 3>& t, double tol) {
+  for (int k = 0; k < 3; ++k) {
+    const Vec2 a = t[k], b = t[(k + 1) % 3];
+    if (cross(b - a, p - a) / norm(b - a) < -tol) return false;
+  }
+  return true;
+}
+
+struct NamedNet {
+  std::string name;
+  Mesh mesh;
+  Net net;
+};
+
+/// Nets to check: breadth-first nets (overlapping, crowded) of the cube, octahedron,
+/// tetrahedron and every mesh of tests/data, the Tabu Unfolder's overlap-free nets (TU) of the
+/// tests/data meshes, and the progressive unfolder's (QQ, SEMP, SEQ) of those under 2000 faces
+/// (the Duck's take 10-30 s each). Built once.
+const std::vector<NamedNet>& all_nets() {
+  static const std::vector<NamedNet> nets = [] {
+    std::vector<NamedNet> out;
+    auto meshes = test::test_data_meshes();
+    for (const auto& [name, mesh] : meshes) {
+      Progress quiet;
+      TabuOptions options;
+      options.time_limit_seconds = 30;
+      out.push_back({name + " (TU)", mesh, unfold_tabu(mesh, options, quiet).net});
+    }
+    for (const auto& [name, mesh] : meshes) {
+      if (mesh.faces.size() >= 2000) continue;
+      for (auto [strategy, tag] :
+           {std::pair{CollapseStrategy::QQ, " (QQ)"}, std::pair{CollapseStrategy::SEMP, " (SEMP)"},
+            std::pair{CollapseStrategy::SEQ, " (SEQ)"}}) {
+        Progress quiet;
+        ProgressiveOptions options;
+        options.strategy = strategy;
+        options.tabu.time_limit_seconds = 30;
+        ProgressiveResult r = unfold_progressive(mesh, options, quiet);
+        out.push_back({name + tag, std::move(r.mesh), std::move(r.net)});
+      }
+    }
+    meshes.emplace_back("cube", test::cube());
+    meshes.emplace_back("octahedron", test::octahedron());
+    meshes.emplace_back("tetrahedron", test::tetrahedron());
+    for (auto& [name, mesh] : meshes) out.push_back({name + " (BFS)", mesh, test::bfs_net(mesh)});
+    return out;
+  }();
+  return nets;
+}
+
+/// True for the nets of all_nets() that are overlap-free (all but the breadth-first ones).
+bool unfolded(const std::string& name) { return name.find("(BFS)") == std::string::npos; }
+
+/// The nets of all_nets() as printed at the default 200 mm: the overlap-free ones after the tab
+/// clearance pass, the breadth-first ones as they are. Built once.
+const std::vector<TabClearanceResult>& all_print_nets() {
+  static const std::vector<TabClearanceResult> nets = [] {
+    std::vector<TabClearanceResult> out;
+    for (const auto& [name, mesh, net] : all_nets()) {
+      Progress quiet;
+      // make_tab_room's pass as printed by default (budget 100,000 candidate moves: about
+      // 3 s on the Duck, 1-2 s on reference.obj and sample.obj, less on the others) on the TU
+      // nets; on the progressive ones a fifth of it, so that the test stays fast.
+      TabClearanceOptions options;
+      options.min_height = PrintOptions{}.min_tab_height_mm / print_scale(mesh, {});
+      if (name.find("(TU)") == std::string::npos) options.max_evaluations = 20'000;
+      out.push_back(unfolded(name) ? clear_tab_room(mesh, net, options, quiet)
+                                   : TabClearanceResult{net, 0, 0, 0, 0});
+    }
+    return out;
+  }();
+  return nets;
+}
+
+/// The default print layout (200 mm, tabs auto) of every net of all_print_nets(), built once.
+const std::vector<PrintLayout>& all_layouts() {
+  static const std::vector<PrintLayout> layouts = [] {
+    std::vector<PrintLayout> out;
+    for (std::size_t n = 0; n < all_nets().size(); ++n)
+      out.push_back(layout_net(all_nets()[n].mesh, all_print_nets()[n].net, {}));
+    return out;
+  }();
+  return layouts;
+}
+
+/// Height of a tab above its base.
+double tab_height(const Tab& t) {
+  const Vec2 e = t.corners[0] - t.corners[1];
+  return std::max(std::abs(cross(e, t.corners[2] - t.corners[1])),
+                  std::abs(cross(e, t.corners[3] - t.corners[1]))) /
+         norm(e);
+}
+
+/// Every cut side of the layout is drawn as cut (or as a tab's hinge) along its whole length.
+void expect_cut_sides_covered(const PrintLayout& layout, const std::string& name) {
+  std::vector<Segment> lines = layout.cut;
+  lines.insert(lines.end(), layout.mountain.begin(), layout.mountain.end());
+  for (const NetEdge& e : layout.edges) {
+    if (e.kind != EdgeKind::Cut) continue;
+    for (EdgeSide s : {e.a, e.b}) {
+      if (s.face < 0) continue;
+      const Vec2 p0 = layout.faces[s.face][s.k], p1 = layout.faces[s.face][(s.k + 1) % 3];
+      const double len = norm(p1 - p0);
+      auto on_side = [&](Vec2 q) {
+        const double t = dot(q - p0, p1 - p0) / (len * len);
+        return std::abs(cross(p1 - p0, q - p0)) / len < 1e-9 && t > -1e-9 && t < 1 + 1e-9;
+      };
+      double covered = 0;
+      for (const Segment& l : lines)
+        if (on_side(l.a) && on_side(l.b)) covered += norm(l.b - l.a);
+      ASSERT_GE(covered, len - 1e-9) << name << ": a cut side is not cut along all its length";
+    }
+  }
+}
+
+TEST(Tabs, ConvexOverlapIgnoresTouchingAndSeesCrossing) {
+  const std::vector<Vec2> a = {{0, 0}, {1, 0}, {0, 1}}, b = {{1, 0}, {0, 1}, {1, 1}};
+  EXPECT_FALSE(convex_overlap(a, b, 1e-9));  // share an edge
+  const std::vector<Vec2> c = {{0.4, 0.4}, {2, 0.4}, {2, 2}};
+  EXPECT_TRUE(convex_overlap(a, c, 1e-9));
+  const std::vector<Vec2> d = {{1, 1}, {2, 1}, {2, 2}};
+  EXPECT_FALSE(convex_overlap(a, d, 1e-9));  // disjoint
+  // The independent clipping check measures what it should.
+  EXPECT_NEAR(intersection_area(a, c), 0.01, 1e-12);  // corners (.4,.4) (.6,.4) (.5,.5)
+  EXPECT_NEAR(intersection_area(a, b), 0, 1e-12);
+}
+
+/// The rectangle of a strip grown by `d` on every side.
+std::vector<Vec2> grown(const GlueStrip& strip, double d) {
+  const auto& c = strip.corners;
+  const Vec2 u = (1 / norm(c[1] - c[0])) * (c[1] - c[0]),
+             v = (1 / norm(c[3] - c[0])) * (c[3] - c[0]);
+  return {c[0] - d * u - d * v, c[1] + d * u - d * v, c[2] + d * u + d * v, c[3] - d * u + d * v};
+}
+
+// The tab clearance pass (core/tab_clearance.h) before printing: it never makes things worse,
+// its nets pass the net checker, the layout's strips are (about) its edges without room, and
+// on the nets where it opens every near-slit each cut edge gets exactly one tab and no strip.
+void expect_clearance_pass_makes_room() {
+  std::size_t before = 0, after = 0, nets_without_strips = 0;  // over the unfolders' nets
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const auto& [name, mesh, net] = all_nets()[n];
+    if (!unfolded(name)) continue;
+    const TabClearanceResult& room = all_print_nets()[n];
+    const PrintLayout& layout = all_layouts()[n];
+    EXPECT_LE(room.blocked_after, room.blocked_before) << name;
+    EXPECT_EQ(room.moves == 0, room.blocked_after == room.blocked_before) << name;
+    before += room.blocked_before;
+    after += room.blocked_after;
+    if (room.moves > 0) {
+      const NetCheckReport check = check_net(mesh, room.net);
+      EXPECT_TRUE(check.ok()) << name << ": " << check.summary();
+    }
+    // Edges without room get strips; the others get tabs (a few lose their room to
+    // neighbours' tabs: 5-11 of the Duck's 2106, by its net), so a net where the pass opened
+    // every near-slit has no strip.
+    EXPECT_GE(layout.strips.size(), room.blocked_after) << name;
+    EXPECT_LE(layout.strips.size(), room.blocked_after + 3 + room.blocked_after / 20) << name;
+    if (room.blocked_after == 0) {
+      EXPECT_TRUE(layout.strips.empty()) << name << ": " << layout.strips.size() << " strips";
+      EXPECT_EQ(layout.tabs.size(), static_cast<std::size_t>(layout.cut_edges)) << name;
+      ++nets_without_strips;
+    }
+    std::printf("%s: %zu -> %zu cut edges without tab room (%zu moves), %zu tabs, %zu strips\n",
+                name.c_str(), room.blocked_before, room.blocked_after, room.moves,
+                layout.tabs.size(), layout.strips.size());
+  }
+  // With the test's budgets 30 % of the blocked edges remain (37 % without the pass's second
+  // round, its kicks or more search: 3,937 -> 1,179 against 1,445 at de12866).
+  EXPECT_LT(3 * after, before) << "the pass should open most near-slits";
+  // Meshes where the pass reaches exactly one tab per cut edge and no strip (figures in
+  // docs/tabs.md). Which single net keeps a last blocked edge moves with every change to the
+  // unfolders (their nets are chaotic in the search's order), so the crowded two are asserted
+  // per mesh: at most one strip left on any of their nets, none on three of the four (test
+  // budget for the progressive nets: a fifth of the default; all four since the kicks).
+  // Box_Draco.glb and mirror.ply: none on every net.
+  const auto& nets = all_nets();
+  for (const std::string mesh :
+       {"Box_Draco.glb", "mirror.ply", "testplate.glb", "thingi10k_134617.stl"}) {
+    std::size_t nets_of_mesh = 0, strip_free = 0;
+    for (std::size_t n = 0; n < nets.size(); ++n) {
+      if (nets[n].name.rfind(mesh + " (", 0) != 0 || !unfolded(nets[n].name)) continue;
+      ++nets_of_mesh;
+      const PrintLayout& layout = all_layouts()[n];
+      EXPECT_LE(all_print_nets()[n].blocked_after, 1u) << nets[n].name;
+      EXPECT_LE(layout.strips.size(), 1u) << nets[n].name;
+      if (layout.strips.empty() && layout.tabs.size() == static_cast<std::size_t>(layout.cut_edges))
+        ++strip_free;
+    }
+    EXPECT_EQ(nets_of_mesh, 4u) << mesh;  // TU, QQ, SEMP, SEQ
+    const bool crowded = mesh == "testplate.glb" || mesh == "thingi10k_134617.stl";
+    EXPECT_GE(strip_free, crowded ? 3u : 4u) << mesh;
+  }
+  EXPECT_GE(nets_without_strips, 15u);  // 16 since the kicks
+}
+
+TEST(Tabs, EveryCutEdgeGetsOneTabOrStripAndNothingOverlaps) {
+  ASSERT_GE(all_nets().size(), 40u);
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& layout = all_layouts()[n];
+    expect_cut_sides_covered(layout, name);
+    EXPECT_TRUE(layout.omitted_tabs.empty())
+        << name << ": " << layout.omitted_tabs.size() << " cut edges without glue";
+    // Overlaps thinner than 10 nm are touching (the placer's tolerance is a 1 nm depth).
+    const double tol = 1e-5;
+    std::vector<std::vector<Vec2>> faces, tabs, strips;
+    for (const auto& f : layout.faces) faces.push_back({f.begin(), f.end()});
+    for (const Tab& t : layout.tabs) tabs.push_back({t.corners.begin(), t.corners.end()});
+    for (const GlueStrip& t : layout.strips) strips.push_back({t.corners.begin(), t.corners.end()});
+    for (std::size_t t = 0; t < tabs.size(); ++t) {
+      EXPECT_GT(signed_area(tabs[t]), 0) << name << " tab " << t;
+      for (std::size_t f = 0; f < faces.size(); ++f)
+        ASSERT_LE(overlap_thickness(tabs[t], faces[f]), tol)
+            << name << ": tab " << t << " overlaps face " << f;
+      for (std::size_t u = t + 1; u < tabs.size(); ++u)
+        ASSERT_LE(overlap_thickness(tabs[t], tabs[u]), tol)
+            << name << ": tabs " << t << " and " << u << " overlap";
+    }
+    // Strips keep a millimetre of free paper around them (0.5 mm checked) so they can be cut.
+    for (std::size_t t = 0; t < strips.size(); ++t) {
+      EXPECT_GT(signed_area(strips[t]), 0) << name << " strip " << t;
+      const std::vector<Vec2> around = grown(layout.strips[t], 0.5);
+      for (std::size_t f = 0; f < faces.size(); ++f)
+        ASSERT_LE(overlap_thickness(around, faces[f]), tol)
+            << name << ": strip " << t << " overlaps (or touches) face " << f;
+      for (std::size_t u = 0; u < tabs.size(); ++u)
+        ASSERT_LE(overlap_thickness(around, tabs[u]), tol)
+            << name << ": strip " << t << " overlaps (or touches) tab " << u;
+      for (std::size_t u = t + 1; u < strips.size(); ++u)
+        ASSERT_LE(overlap_thickness(around, strips[u]), tol)
+            << name << ": strips " << t << " and " << u << " overlap";
+      for (Vec2 p : strips[t]) {
+        EXPECT_GE(std::min(p.x, p.y), -1e-9) << name << ": strip outside the layout";
+        EXPECT_LE(p.x, layout.size.x + 1e-9) << name;
+        EXPECT_LE(p.y, layout.size.y + 1e-9) << name;
+      }
+    }
+    std::map<int, int> glue_per_edge;
+    double lowest = std::numeric_limits<double>::infinity();
+    std::size_t low = 0;
+    for (const Tab& tab : layout.tabs) {
+      ++glue_per_edge[tab.edge];
+      const NetEdge& e = layout.edges[tab.edge];
+      ASSERT_GE(e.cut_index, 0) << name;
+      const bool on_a = tab.side.face == e.a.face && tab.side.k == e.a.k;
+      const bool on_b = tab.side.face == e.b.face && tab.side.k == e.b.k;
+      EXPECT_TRUE(on_a || on_b) << name;
+      // The tab's base lies on the side it hangs from and covers at least 40 % of it; it is at
+      // least 2 mm tall, or half the edge on edges shorter than 4 mm, and at most 6 mm.
+      const auto& tri = layout.faces[tab.side.face];
+      const Vec2 e0 = tri[tab.side.k], e1 = tri[(tab.side.k + 1) % 3];
+      const double len = norm(e1 - e0);
+      for (Vec2 c : {tab.corners[0], tab.corners[1]}) {
+        EXPECT_NEAR(cross(e1 - e0, c - e0) / len, 0, 1e-9) << name;
+        EXPECT_GE(dot(c - e0, e1 - e0) / len, -1e-9) << name;
+        EXPECT_LE(dot(c - e0, e1 - e0) / len, len + 1e-9) << name;
+      }
+      EXPECT_GE(norm(tab.corners[0] - tab.corners[1]), 0.4 * len - 1e-9) << name;
+      const double h = tab_height(tab);
+      EXPECT_GE(h, std::min(2.0, 0.5 * len) - 1e-9) << name << ": tab too low to print";
+      EXPECT_LE(h, std::max(std::min(6.0, 0.5 * len), std::min(2.0, 0.5 * len)) + 1e-9) << name;
+      lowest = std::min(lowest, h);
+      low += h < 2;
+    }
+    std::map<int, const Label*> label_of;
+    for (const Label& l : layout.labels) label_of[l.edge] = &l;
+    for (const GlueStrip& strip : layout.strips) {
+      ++glue_per_edge[strip.edge];
+      const NetEdge& e = layout.edges[strip.edge];
+      ASSERT_GE(e.cut_index, 0) << name;
+      // As long as its edge, at least 4 mm wide, carrying the edge's label.
+      const auto& tri = layout.faces[e.a.face];
+      const double len = norm(tri[(e.a.k + 1) % 3] - tri[e.a.k]);
+      EXPECT_GE(norm(strip.corners[1] - strip.corners[0]), len - 1e-9) << name;
+      EXPECT_GE(norm(strip.corners[3] - strip.corners[0]), 4 - 1e-9) << name;
+      EXPECT_NEAR(
+          cross(strip.corners[1] - strip.corners[0], strip.corners[3] - strip.corners[0]),
+          norm(strip.corners[1] - strip.corners[0]) * norm(strip.corners[3] - strip.corners[0]),
+          1e-6)
+          << name << ": a strip is a rectangle";
+      ASSERT_TRUE(label_of.count(strip.edge)) << name;
+      EXPECT_EQ(strip.text, label_of[strip.edge]->text) << name;
+      EXPECT_GT(strip.text_size, 0) << name;
+    }
+    int cut_edges = 0;
+    for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
+      const NetEdge& edge = layout.edges[e];
+      if (edge.cut_index < 0) {
+        EXPECT_EQ(glue_per_edge.count(e), 0u) << name << ": glue on a fold or boundary";
+        continue;
+      }
+      ++cut_edges;
+      EXPECT_EQ(glue_per_edge[e], 1) << name << ": cut edge " << e << " needs one tab or strip";
+      // A cut edge never has its two sides on each other: those are folds.
+      const auto& fa = layout.faces[edge.a.face];
+      const auto& fb = layout.faces[edge.b.face];
+      const Vec2 a0 = fa[edge.a.k], a1 = fa[(edge.a.k + 1) % 3];
+      const Vec2 b0 = fb[edge.b.k], b1 = fb[(edge.b.k + 1) % 3];
+      EXPECT_GT(std::max(norm(a0 - b1), norm(a1 - b0)), 1e-6 * norm(a1 - a0))
+          << name << ": cut edge " << e << " has coincident sides";
+    }
+    EXPECT_EQ(cut_edges, layout.cut_edges);
+    EXPECT_EQ(layout.tabs.size() + layout.strips.size(), std::size_t(cut_edges)) << name;
+    EXPECT_GT(cut_edges, 0) << name;
+    std::printf(
+        "%s: %zu faces, %d cut edges, %zu tabs (lowest %.2f mm, %zu under 2 mm), "
+        "%zu strips, %zu omitted\n",
+        name.c_str(), layout.faces.size(), cut_edges, layout.tabs.size(),
+        layout.tabs.empty() ? 0.0 : lowest, low, layout.strips.size(), layout.omitted_tabs.size());
+  }
+  expect_clearance_pass_makes_room();
+}
+
+TEST(Tabs, ModesAndMinimumHeight) {
+  const auto& nets = all_nets();
+  const auto it = std::find_if(nets.begin(), nets.end(),
+                               [](const NamedNet& n) { return n.name == "sample.obj (TU)"; });
+  ASSERT_NE(it, nets.end());
+  const std::string& name = it->name;
+  const Mesh& mesh = it->mesh;
+  const std::size_t index = static_cast<std::size_t>(it - nets.begin());
+  const Net& net = all_print_nets()[index].net;  // the printed net
+  const PrintLayout& any = all_layouts()[index];
+  // This dense net needs both: tabs where there is room, strips where there is none.
+  EXPECT_GT(any.tabs.size(), 0u) << name;
+  EXPECT_GT(any.strips.size(), 0u) << name;
+  PrintOptions options;
+  options.min_tab_height_mm = 3;
+  const PrintLayout tall = layout_net(mesh, net, options);
+  for (const Tab& t : tall.tabs) {
+    const double len = norm(t.corners[0] - t.corners[1]);  // base: at most the edge
+    EXPECT_GE(tab_height(t), std::min(3.0, 0.5 * len) - 1e-9) << name;
+  }
+  EXPECT_TRUE(tall.omitted_tabs.empty());
+  EXPECT_EQ(tall.tabs.size() + tall.strips.size(), static_cast<std::size_t>(tall.cut_edges));
+  EXPECT_GT(tall.strips.size(), any.strips.size()) << name;
+
+  options = {};
+  options.tabs = TabMode::Strips;
+  const PrintLayout strips = layout_net(mesh, net, options);
+  EXPECT_TRUE(strips.tabs.empty());
+  EXPECT_EQ(strips.strips.size(), static_cast<std::size_t>(strips.cut_edges));
+  options.tabs = TabMode::None;
+  const PrintLayout none = layout_net(mesh, net, options);
+  EXPECT_TRUE(none.tabs.empty() && none.strips.empty());
+  EXPECT_EQ(none.omitted_tabs.size(), static_cast<std::size_t>(none.cut_edges));
+  options.tabs = TabMode::Auto;
+  options.tab_height_mm = 0;  // the old way to switch tabs off
+  EXPECT_EQ(layout_net(mesh, net, options).omitted_tabs.size(),
+            static_cast<std::size_t>(none.cut_edges));
+
+  // The pass runs in mode auto only, only with tab_room on and a budget, and within the budget.
+  Progress quiet;
+  options = {};
+  options.tabs = TabMode::Strips;
+  EXPECT_EQ(make_tab_room(mesh, net, options, quiet).moves, 0u);
+  options.tabs = TabMode::Auto;
+  options.tab_room = false;
+  EXPECT_EQ(make_tab_room(mesh, net, options, quiet).moves, 0u);
+  options.tab_room = true;
+  options.tab_room_budget = 0;
+  EXPECT_EQ(make_tab_room(mesh, net, options, quiet).evaluations, 0u);
+  options.tab_room_budget = 40;
+  const TabClearanceResult brief = make_tab_room(mesh, net, options, quiet);
+  EXPECT_GT(brief.evaluations, 0u);
+  EXPECT_LE(brief.evaluations, 80u);  // 40 in each of the pass's two rounds
+  options.tab_room_budget = kMaxTabRoomBudget + 1;
+  EXPECT_THROW(make_tab_room(mesh, net, options, quiet), InvalidInputException);
+  options.tab_room_budget = PrintOptions{}.tab_room_budget;
+  options.min_tab_height_mm = 3;  // taller tabs: more edges without room than at 2 mm
+  const TabClearanceResult taller = make_tab_room(mesh, net, options, quiet);
+  EXPECT_GT(taller.blocked_before, all_print_nets()[index].blocked_after) << name;
+  EXPECT_LT(taller.blocked_after, taller.blocked_before) << name;
+
+  EXPECT_EQ(parse_tab_mode("strips"), TabMode::Strips);
+  EXPECT_EQ(tab_mode_name(TabMode::None), "none");
+  EXPECT_THROW(parse_tab_mode("some"), std::invalid_argument);
+  PrintOptions bad;
+  bad.min_tab_height_mm = -1;
+  EXPECT_NE(bad.validate(), "");
+}
+
+TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& layout = all_layouts()[n];
+    std::map<int, std::vector<const Label*>> by_edge;
+    for (const Label& l : layout.labels) by_edge[l.edge].push_back(&l);
+    EXPECT_EQ(static_cast<int>(by_edge.size()), layout.cut_edges) << name;
+    std::map<std::string, int> texts;
+    for (const auto& [e, labels] : by_edge) {
+      ASSERT_EQ(labels.size(), 2u) << name << " edge " << e;
+      EXPECT_EQ(labels[0]->text, labels[1]->text);
+      // The edge's number, with a dot where it would read as another number upside down.
+      const std::string number = std::to_string(layout.edges[e].cut_index + 1);
+      EXPECT_TRUE(labels[0]->text == number || labels[0]->text == number + ".");
+      if (number == "6" || number == "9" || number == "16" || number == "91") {
+        EXPECT_EQ(labels[0]->text, number + ".");
+      }
+      if (number == "7" || number == "11" || number == "69") {
+        EXPECT_EQ(labels[0]->text, number);
+      }
+      EXPECT_NE(labels[0]->side.face, labels[1]->side.face);
+      ++texts[labels[0]->text];
+      for (const Label* l : labels) {
+        EXPECT_GT(l->size, 0);
+        const auto& tri = layout.faces[l->side.face];
+        for (Vec2 p : label_box(*l))
+          EXPECT_TRUE(point_in_triangle(p, tri, 1e-9)) << name << " label " << l->text;
+      }
+    }
+    for (const auto& [text, n] : texts) EXPECT_EQ(n, 1) << name << ": label " << text << " reused";
+    // Labels sharing a face (a face with two or three cut edges) stay apart.
+    std::map<int, std::vector<const Label*>> by_face;
+    for (const Label& l : layout.labels) by_face[l.side.face].push_back(&l);
+    for (const auto& [f, labels] : by_face)
+      for (std::size_t i = 0; i < labels.size(); ++i)
+        for (std::size_t j = i + 1; j < labels.size(); ++j) {
+          const auto a = label_box(*labels[i]), b = label_box(*labels[j]);
+          EXPECT_LE(intersection_area({a.begin(), a.end()}, {b.begin(), b.end()}), 1e-9)
+              << name << ": labels " << labels[i]->text << " and " << labels[j]->text
+              << " collide in face " << f;
+        }
+  }
+}
+
+TEST(Layout, ScaleMakesTheLongestModelSideTheTargetSize) {
+  Mesh m = test::cube();
+  for (Vec3& v : m.vertices) v = Vec3{3 * v.x, v.y, 0.5 * v.z};  // 3 x 1 x 0.5 box
+  PrintOptions options;
+  options.size_mm = 150;
+  const PrintLayout layout = layout_net(m, test::bfs_net(m), options);
+  EXPECT_DOUBLE_EQ(layout.scale, 50);
+  // The longest face edge of the layout is the 3-unit side: 150 mm.
+  double longest = 0;
+  for (const auto& t : layout.faces)
+    for (int k = 0; k < 3; ++k) longest = std::max(longest, norm(t[(k + 1) % 3] - t[k]));
+  EXPECT_NEAR(longest, std::hypot(150.0, 50.0), 1e-9);  // the quad diagonals
+  options.scale = 2;
+  EXPECT_DOUBLE_EQ(layout_net(m, test::bfs_net(m), options).scale, 2);
+  Net broken = test::bfs_net(m);
+  broken.points[3][1].y = std::nan("");
+  EXPECT_THROW(layout_net(m, broken, options), std::invalid_argument);
+  broken.points.pop_back();
+  EXPECT_THROW(layout_net(m, broken, options), std::invalid_argument);
+  EXPECT_THROW(layout_net(Mesh{}, Net{}, options), std::invalid_argument);
+  options.tab_angle_deg = 0;
+  EXPECT_THROW(layout_net(m, test::bfs_net(m), options), std::invalid_argument);
+}
+
+/// Runs a shell command; returns its exit status, or -1 when `tool` is not installed.
+int run_tool(const std::string& tool, const std::string& args) {
+  if (std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) != 0) return -1;
+  return std::system((tool + " " + args).c_str());
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("papernet_svg_test_" + name)).string();
+}
+
+void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+int count(const std::string& text, const std::string& pattern) {
+  const std::regex re(pattern);
+  return static_cast<int>(
+      std::distance(std::sregex_iterator(text.begin(), text.end(), re), std::sregex_iterator()));
+}
+
+/// The text between <g id="name" ...> and its </g> (groups are not nested).
+std::string group(const std::string& svg, const std::string& id) {
+  const auto start = svg.find("<g id=\"" + id + "\"");
+  if (start == std::string::npos) return {};
+  return svg.substr(start, svg.find("</g>", start) - start);
+}
+
+TEST(Svg, HasLayersTabsAndLabelsAndParsesAndRenders) {
+  const auto meshes = test::test_data_meshes();
+  ASSERT_FALSE(meshes.empty());
+  const Mesh& mesh = meshes.front().second;
+  const PrintLayout layout = layout_net(mesh, test::bfs_net(mesh), {});
+  const std::string svg = write_net_svg(layout, 5);
+  EXPECT_NE(svg.find("viewBox=\"0 0 "), std::string::npos);
+  EXPECT_NE(svg.find("mm\" height=\""), std::string::npos);
+  for (const char* id : {"faces", "tabs", "strips", "cut", "mountain", "valley", "labels"})
+    EXPECT_NE(svg.find(std::string("<g id=\"") + id + "\""), std::string::npos) << id;
+  EXPECT_EQ(count(group(svg, "tabs"), "<polygon "), static_cast<int>(layout.tabs.size()));
+  EXPECT_EQ(count(group(svg, "labels"), "<text "), 2 * layout.cut_edges);
+  EXPECT_EQ(count(group(svg, "faces"), "<polygon "), static_cast<int>(mesh.faces.size()));
+  EXPECT_NE(group(svg, "mountain").find("stroke-dasharray=\"2 1\""), std::string::npos);
+  EXPECT_NE(group(svg, "valley").find("stroke-dasharray=\"2 0.7 0.4 0.7\""), std::string::npos);
+  EXPECT_EQ(group(svg, "cut").find("dasharray"), std::string::npos);
+  EXPECT_NE(svg.find("data-tabs-omitted=\"" + std::to_string(layout.omitted_tabs.size())),
+            std::string::npos);
+  // With strips only: one outline, a seam and the edge's label twice per strip.
+  PrintOptions strip_options;
+  strip_options.tabs = TabMode::Strips;
+  const PrintLayout stripped = layout_net(mesh, test::bfs_net(mesh), strip_options);
+  ASSERT_GT(stripped.strips.size(), 0u);
+  const std::string strip_svg = write_net_svg(stripped, 5);
+  const std::string strips = group(strip_svg, "strips");
+  EXPECT_EQ(count(strips, "<polygon "), static_cast<int>(stripped.strips.size()));
+  EXPECT_EQ(count(strips, "<text "), 2 * static_cast<int>(stripped.strips.size()));
+  EXPECT_EQ(count(group(strip_svg, "tabs"), "<polygon "), 0);
+  EXPECT_NE(strip_svg.find("data-strips=\"" + std::to_string(stripped.strips.size())),
+            std::string::npos);
+  for (const GlueStrip& st : stripped.strips)
+    EXPECT_NE(strips.find(">" + st.text + "</text>"), std::string::npos) << st.text;
+
+  const std::string path = temp_path("net.svg"), png = temp_path("net.png");
+  write(path, svg);
+  const int xml = run_tool("xmllint", "--noout " + path);
+  if (xml == -1) GTEST_SKIP() << "xmllint missing: install libxml2-utils (scripts/install-deps.sh)";
+  EXPECT_EQ(xml, 0) << "xmllint rejects " << path;
+  const int rsvg = run_tool("rsvg-convert", "-o " + png + " " + path);
+  if (rsvg == -1) GTEST_SKIP() << "rsvg-convert missing: install librsvg2-bin";
+  EXPECT_EQ(rsvg, 0) << "rsvg-convert cannot render " << path;
+  EXPECT_GT(std::filesystem::file_size(png), 1000u);
+  std::filesystem::remove(path);
+  std::filesystem::remove(png);
+}
+
+}  // namespace
+}  // namespace papernet

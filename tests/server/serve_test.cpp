@@ -1,0 +1,370 @@
+// End-to-end: starts the real `papernet serve` on a free loopback port and speaks HTTP to it.
+#include <gtest/gtest.h>
+
+#include "api/net_json.h"
+#include "core/unfold/net_check.h"
+#include "tests/support/serve_process.h"
+
+using namespace papernet::test;
+
+namespace {
+
+// Three triangles on one edge: loads fine, cannot be unfolded (non-manifold edge).
+constexpr const char* kNonManifoldObj =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+
+}  // namespace
+
+TEST(ServeTest, HealthReadinessMetricsAndOpenApi) {
+  Server s({"--workers", "1"});
+  auto c = s.client();
+  EXPECT_EQ(c.Get("/healthz")->status, 200);
+  EXPECT_EQ(c.Get("/readyz")->status, 200);
+  auto metrics = c.Get("/metrics");
+  ASSERT_TRUE(metrics);
+  EXPECT_NE(metrics->body.find("papernet_queue_length 0"), std::string::npos);
+  EXPECT_NE(metrics->body.find("papernet_http_requests_total{status=\"200\"}"), std::string::npos);
+  auto api = c.Get("/v1/openapi.json");
+  ASSERT_TRUE(api);
+  const json doc = json::parse(api->body);
+  EXPECT_EQ(doc["openapi"].get<std::string>().substr(0, 2), "3.");
+  EXPECT_TRUE(doc["paths"].contains("/v1/jobs/{id}"));
+}
+
+TEST(ServeTest, SubmitPollAndFetchObj) {
+  Server s({"--workers", "1"});
+  const std::string id = submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3");
+  const json job = wait_final(s, id);
+  EXPECT_EQ(job["options"]["strategy"], "TU");
+  EXPECT_EQ(job["input"]["format"], "obj");
+  ASSERT_EQ(job["status"], "succeeded") << job.dump();
+  auto c = s.client();
+  auto net = c.Get("/v1/jobs/" + id + "/net.json");
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["format"], "papernet.net/1");
+  EXPECT_EQ(doc["metrics"]["overlaps"], 0);
+  EXPECT_EQ(doc["net"]["faces"].size(), doc["mesh"]["faces"].size());
+  const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
+  const papernet::NetCheckReport check = papernet::check_net(net_doc.mesh, net_doc.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
+
+  // The same mesh with the same options is answered from the stored result at once.
+  auto again = c.Post("/v1/jobs?strategy=TU&seed=3", test_mesh("sample.obj"), "model/obj");
+  ASSERT_EQ(again->status, 202);
+  EXPECT_EQ(body(again)["status"], "succeeded");
+  EXPECT_EQ(body(again)["result"]["metrics"]["reused_from"], id);
+  EXPECT_EQ(c.Get("/v1/jobs/" + body(again)["id"].get<std::string>() + "/net.json")->body,
+            net->body);
+  auto svg = c.Get("/v1/jobs/" + id + "/net.svg");
+  ASSERT_EQ(svg->status, 200);
+  EXPECT_NE(svg->body.find("<svg"), std::string::npos);
+  auto pdf = c.Get("/v1/jobs/" + id + "/net.pdf");
+  ASSERT_EQ(pdf->status, 200);
+  EXPECT_EQ(pdf->body.substr(0, 5), "%PDF-");
+  auto glb = c.Get("/v1/jobs/" + id + "/mesh.glb");
+  ASSERT_EQ(glb->status, 200);
+  EXPECT_EQ(glb->body.substr(0, 4), "glTF");
+}
+
+namespace {
+
+// The value of attribute data-NAME in an SVG document ("" when absent).
+std::string svg_data(const std::string& svg, const std::string& name) {
+  const std::string key = "data-" + name + "=\"";
+  const auto at = svg.find(key);
+  if (at == std::string::npos) return "";
+  const auto from = at + key.size();
+  return svg.substr(from, svg.find('"', from) - from);
+}
+
+}  // namespace
+
+// The `tabs` option takes a mode (auto, strips, none) or, as first, a boolean.
+TEST(ServeTest, TabsOptionTakesModesOrABoolean) {
+  Server s({"--workers", "1"});
+  auto c = s.client();
+  const std::string strips =
+      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tabs=strips");
+  const std::string yes =
+      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tabs=true");
+  const json a = wait_final(s, strips), b = wait_final(s, yes);
+  ASSERT_EQ(a["status"], "succeeded") << a.dump();
+  ASSERT_EQ(b["status"], "succeeded") << b.dump();
+  EXPECT_EQ(a["options"]["tabs"], "strips");
+  EXPECT_EQ(b["options"]["tabs"], "auto");
+  const std::string svg_a = c.Get("/v1/jobs/" + strips + "/net.svg")->body;
+  const std::string svg_b = c.Get("/v1/jobs/" + yes + "/net.svg")->body;
+  ASSERT_NE(svg_data(svg_a, "cut-edges"), "");
+  EXPECT_EQ(svg_data(svg_a, "tabs"), "0");
+  EXPECT_EQ(svg_data(svg_a, "strips"), svg_data(svg_a, "cut-edges"));
+  // auto: tabs on the net, after the cuts were changed to make room for them (docs/tabs.md),
+  // and the delivered net JSON is that net, valid.
+  EXPECT_GT(std::stoi(svg_data(svg_b, "tabs")), 4 * std::stoi(svg_data(svg_b, "strips")));
+  const papernet::NetDocument doc =
+      papernet::read_net_json(c.Get("/v1/jobs/" + yes + "/net.json")->body);
+  EXPECT_TRUE(papernet::check_net(doc.mesh, doc.net).ok());
+  expect_problem(c.Post("/v1/jobs?tabs=glue", test_mesh("sample.obj"), "model/obj"), 400,
+                 "invalid_option_value");
+
+  // tab_room_budget=0: the unfolder's net as it is, with more strips.
+  const std::string unchanged =
+      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tab_room_budget=0");
+  const json u = wait_final(s, unchanged);
+  ASSERT_EQ(u["status"], "succeeded") << u.dump();
+  EXPECT_EQ(u["options"]["tab_room_budget"], 0);
+  EXPECT_EQ(b["options"]["tab_room_budget"], 100000);
+  const std::string svg_u = c.Get("/v1/jobs/" + unchanged + "/net.svg")->body;
+  EXPECT_GT(std::stoi(svg_data(svg_u, "strips")), 2 * std::stoi(svg_data(svg_b, "strips")));
+  expect_problem(c.Post("/v1/jobs?tab_room_budget=-5", test_mesh("sample.obj"), "model/obj"), 400,
+                 "invalid_option_value");
+}
+
+// Progressive unfolding (the default, QQ): while the job runs, the result URLs serve the latest
+// overlap-free intermediate, said so in a header and in the body; then the complete net.
+TEST(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
+  Server s({"--workers", "1"});
+  const std::string id = submit(s, test_mesh("Duck.glb"), "model/gltf-binary");
+  auto c = s.client();
+  bool intermediate = false, not_ready = false;
+  // A deadline rather than a count of polls: on a loaded machine (CI runs this beside the other
+  // tests) the collapse and the coarse unfolding may take many seconds.
+  const auto end = std::chrono::steady_clock::now() + 120s;
+  while (!intermediate && std::chrono::steady_clock::now() < end) {
+    auto res = c.Get("/v1/jobs/" + id + "/net.json");
+    ASSERT_TRUE(res);
+    if (res->status == 409) {
+      not_ready = true;
+      EXPECT_EQ(json::parse(res->body)["code"], "result_not_ready");
+      EXPECT_FALSE(res->get_header_value("Retry-After").empty());
+    } else if (res->get_header_value("X-Papernet-Level").rfind("intermediate", 0) == 0) {
+      intermediate = true;
+      const json doc = json::parse(res->body);
+      EXPECT_EQ(doc["level"]["kind"], "intermediate");
+      EXPECT_LT(doc["mesh"]["faces"].size(), 4212u);
+      const papernet::NetDocument net = papernet::read_net_json(res->body);
+      EXPECT_TRUE(papernet::check_net(net.mesh, net.net).ok()) << "intermediate nets are valid";
+      EXPECT_EQ(c.Get("/v1/jobs/" + id + "/net.svg")->status, 200);
+      EXPECT_NE(body(c.Get("/v1/jobs/" + id))["links"].value("net.json", ""), "");
+    } else {
+      break;  // finished before we saw an intermediate
+    }
+    std::this_thread::sleep_for(2ms);
+  }
+  EXPECT_TRUE(not_ready || intermediate);
+  EXPECT_TRUE(intermediate) << "no intermediate was served while the job ran";
+  const json job = wait_final(s, id);
+  ASSERT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
+  EXPECT_EQ(job["options"]["strategy"], "QQ");
+  auto net = c.Get("/v1/jobs/" + id + "/net.json");
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["result"], job["result"]["kind"]);
+  EXPECT_FALSE(doc.contains("level"));
+  EXPECT_EQ(net->get_header_value("X-Papernet-Level").rfind(job["result"]["kind"], 0), 0u);
+}
+
+// A time limit too short to finish the uncollapse gives the last overlap-free approximation.
+// (QQ completes the Duck's 4,212 faces in ~0.4 s since TU's walks towards overlapping faces, so
+// 0.1 s. On a loaded machine 0.1 s may not even unfold the coarse mesh: then the net is of the
+// coarsest mesh the collapses reach, still an approximation.)
+TEST(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
+  Server s({"--workers", "1"});
+  const json job =
+      wait_final(s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?time_limit=0.1"));
+  ASSERT_EQ(job["status"], "approximated") << job.dump();
+  EXPECT_EQ(job["result"]["kind"], "approximate");
+  EXPECT_LT(job["result"]["faces"].get<int>(), 4212);
+  EXPECT_EQ(job["result"]["input_faces"], 4212);
+  auto net = s.client().Get("/v1/jobs/" + job["id"].get<std::string>() + "/net.json");
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["result"], "approximate");
+  EXPECT_GT(doc["metrics"]["hausdorff"].get<double>(), 0);
+  EXPECT_EQ(net->get_header_value("X-Papernet-Level").rfind("approximate", 0), 0u);
+}
+
+TEST(ServeTest, SubmitGlbDracoAndMultipartGltf) {
+  Server s({"--workers", "1"});
+  std::vector<std::string> ids = {
+      submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU"),
+      submit(s, test_mesh("Box_Draco.glb"), "", "?strategy=TU")};
+  httplib::MultipartFormDataItems items = {
+      {"mesh", test_mesh("gltf_external/Box.gltf"), "Box.gltf", "model/gltf+json"},
+      {"buffers", test_mesh("gltf_external/Box0.bin"), "Box0.bin", "application/octet-stream"},
+      {"options", R"({"strategy":"TU","seed":5})", "", "application/json"}};
+  auto res = s.client().Post("/v1/jobs", items);
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 202) << res->body;
+  EXPECT_EQ(body(res)["input"]["format"], "gltf");
+  EXPECT_EQ(body(res)["options"]["seed"], 5);
+  ids.push_back(body(res)["id"]);
+  for (const std::string& id : ids) {
+    const json job = wait_final(s, id);
+    EXPECT_EQ(job["status"], "succeeded") << job.dump();
+    EXPECT_GT(job["input"]["faces"].get<int>(), 0) << job.dump();
+    auto net = s.client().Get("/v1/jobs/" + id + "/net.json");
+    ASSERT_TRUE(net);
+    ASSERT_EQ(net->status, 200);
+    EXPECT_EQ(json::parse(net->body)["net"]["faces"].size(), job["result"]["faces"]);
+  }
+  // The .gltf without its buffer part cannot be read: the job says so.
+  httplib::MultipartFormDataItems no_buffer = {
+      {"mesh", test_mesh("gltf_external/Box.gltf"), "Box.gltf", "model/gltf+json"}};
+  const std::string missing = body(s.client().Post("/v1/jobs", no_buffer))["id"];
+  const json failed = wait_final(s, missing);
+  EXPECT_EQ(failed["error"]["code"], "unreadable_mesh") << failed.dump();
+  EXPECT_NE(failed["error"]["detail"].get<std::string>().find("Box0.bin"), std::string::npos)
+      << failed.dump();
+}
+
+TEST(ServeTest, EventStreamEndsWithTheFinalState) {
+  Server s({"--workers", "1"});
+  const std::string id = submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU");
+  std::string stream;
+  auto res = s.client().Get("/v1/jobs/" + id + "/events", [&](const char* data, size_t n) {
+    stream.append(data, n);
+    return true;
+  });
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_EQ(res->get_header_value("Content-Type"), "text/event-stream");
+  const auto done = stream.rfind("event: done\ndata: ");
+  ASSERT_NE(done, std::string::npos) << stream;
+  const std::string data = stream.substr(done + 18, stream.find('\n', done + 18) - done - 18);
+  const json last = json::parse(data);
+  EXPECT_EQ(last["id"], id);
+  EXPECT_EQ(last, wait_final(s, id)) << "the last event is the job's final state";
+  EXPECT_NE(stream.find("event: progress"), std::string::npos) << stream;
+  // The stream sends the state as it is when it looks (changes are coalesced, at most ten a
+  // second), so a short phase may pass unseen; the tab-room pass takes most of this job.
+  EXPECT_TRUE(stream.find("\"phase\":\"unfold\"") != std::string::npos ||
+              stream.find("\"phase\":\"tabs\"") != std::string::npos)
+      << "the stream shows the job's progress while it runs\n"
+      << stream;
+}
+
+TEST(ServeTest, EveryErrorCodeFromTheInputThatCausesIt) {
+  Server s({"--workers", "1", "--max-body-bytes", "100000", "--max-faces", "500"});
+  auto c = s.client();
+  const std::string obj = test_mesh("sample.obj");  // 1000 faces, 81 KB
+  expect_problem(c.Post("/v1/jobs?strategy=FAST", obj, "model/obj"), 400, "invalid_option_value");
+  expect_problem(c.Post("/v1/jobs?colour=red", obj, "model/obj"), 400, "unknown_option");
+  expect_problem(c.Post("/v1/jobs?time_limit=100000", obj, "model/obj"), 400,
+                 "option_out_of_range");
+  expect_problem(c.Get("/v1/jobs/0123456789abcdef0123456789abcdef"), 404, "job_not_found");
+  expect_problem(c.Get("/v1/jobs/not-a-job-id"), 404, "job_not_found");
+  expect_problem(c.Get("/v1/jobs/..%2F..%2Fetc%2Fpasswd/net.json"), 404, "not_found");
+  expect_problem(c.Get("/v1/nothing"), 404, "not_found");
+  expect_problem(c.Post("/v1/jobs", std::string(150000, 'v'), "model/obj"), 413,
+                 "payload_too_large");
+  expect_problem(c.Post("/v1/jobs", "\x89PNG\r\n", "image/png"), 415, "unsupported_format");
+  expect_problem(c.Post("/v1/jobs", "hello\nworld\n", "application/octet-stream"), 415,
+                 "unsupported_format");
+
+  // Faults found by a worker fail the job; its result answers with the problem.
+  const std::string too_big = submit(s, obj, "model/obj");
+  EXPECT_EQ(wait_final(s, too_big)["error"]["code"], "too_many_faces");
+  expect_problem(c.Get("/v1/jobs/" + too_big + "/net.json"), 413, "too_many_faces");
+
+  const std::string bad = submit(s, kNonManifoldObj, "model/obj");
+  const json failed = wait_final(s, bad);
+  EXPECT_EQ(failed["status"], "failed");
+  EXPECT_EQ(failed["error"]["code"], "invalid_mesh");
+  EXPECT_FALSE(failed["error"]["reasons"].empty()) << failed.dump();
+  expect_problem(c.Get("/v1/jobs/" + bad + "/net.svg"), 422, "invalid_mesh");
+  expect_problem(c.Delete("/v1/jobs/" + bad), 409, "job_finished");
+}
+
+TEST(ServeTest, ListsRecentJobsPaged) {
+  Server s({"--workers", "1"});
+  std::vector<std::string> ids;
+  for (int i = 0; i < 3; ++i)
+    ids.push_back(submit(s, kNonManifoldObj + std::string(i, '\n'), "model/obj"));
+  auto page = body(s.client().Get("/v1/jobs?limit=2"));
+  ASSERT_EQ(page["jobs"].size(), 2u);
+  EXPECT_EQ(page["jobs"][0]["id"], ids[2]);
+  EXPECT_EQ(page["jobs"][1]["id"], ids[1]);
+  ASSERT_TRUE(page["next"].is_string());
+  auto next = body(s.client().Get(page["next"].get<std::string>()));
+  ASSERT_EQ(next["jobs"].size(), 1u);
+  EXPECT_EQ(next["jobs"][0]["id"], ids[0]);
+  expect_problem(s.client().Get("/v1/jobs?limit=0"), 400, "malformed_request");
+}
+
+// Needs jobs that take a while: a full queue, cancelling a running job, a graceful stop.
+TEST(ServeTest, QueueFullCancelAndShutdown) {
+  Server s({"--workers", "1", "--queue-length", "1", "--shutdown-grace", "30"});
+  const std::string mesh = test_mesh("reference.obj");
+  const std::string first = submit(s, mesh, "model/obj", "?strategy=TU&time_limit=60");
+  std::this_thread::sleep_for(300ms);
+  const json probe = body(s.client().Get("/v1/jobs/" + first));
+  ASSERT_EQ(probe["status"], "running") << "the test needs a job that runs for a while";
+  const std::string queued = submit(s, mesh, "model/obj", "?strategy=TU&seed=2");
+  auto full = s.client().Post("/v1/jobs?seed=3", mesh, "model/obj");
+  expect_problem(full, 429, "queue_full");
+  EXPECT_FALSE(full->get_header_value("Retry-After").empty());
+  EXPECT_EQ(body(s.client().Get("/v1/jobs/" + queued))["progress"]["queue_position"], 1);
+
+  EXPECT_EQ(s.client().Delete("/v1/jobs/" + queued)->status, 202);
+  EXPECT_EQ(wait_final(s, queued)["status"], "cancelled");
+  const auto before = std::chrono::steady_clock::now();
+  EXPECT_EQ(s.client().Delete("/v1/jobs/" + first)->status, 202);
+  EXPECT_EQ(wait_final(s, first)["status"], "cancelled");
+  EXPECT_LT(std::chrono::steady_clock::now() - before, 1500ms);
+  expect_problem(s.client().Get("/v1/jobs/" + first + "/net.json"), 410, "job_cancelled");
+
+  // Graceful stop: while the running job has its grace period, no new work is accepted.
+  const std::string running = submit(s, mesh, "model/obj", "?strategy=TU&seed=4");
+  std::this_thread::sleep_for(300ms);
+  s.signal(SIGTERM);
+  std::this_thread::sleep_for(200ms);
+  expect_problem(s.client().Post("/v1/jobs", mesh, "model/obj"), 503, "shutting_down");
+  expect_problem(s.client().Get("/readyz"), 503, "shutting_down");
+}
+
+// SIGTERM with no grace: the running job is stopped, stays queued, and runs after a restart.
+TEST(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
+  auto server = std::make_unique<Server>(std::vector<std::string>{"--shutdown-grace", "0"});
+  const fs::path data = server->data();
+  const std::string id = submit(*server, test_mesh("Duck.glb"), "", "?strategy=TU");
+  wait_running(*server, id);
+  server->keep_data();
+  const int status = server->stop(SIGTERM);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  server.reset();
+  Server restarted({}, data);
+  const json job = wait_final(restarted, id);
+  EXPECT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
+  EXPECT_NE(restarted.log().find("running -> queued (server stopping)"), std::string::npos);
+}
+
+// kill -9 with jobs queued and running; a restart finishes every one and loses no result.
+TEST(ServeTest, KillNineThenRestartFinishesEveryJob) {
+  auto server = std::make_unique<Server>(std::vector<std::string>{"--workers", "1"});
+  const fs::path data = server->data();
+  const std::string finished = submit(*server, test_mesh("mirror.ply"), "", "?strategy=TU");
+  const json done_before = wait_final(*server, finished);
+  ASSERT_EQ(done_before["status"], "succeeded") << done_before.dump();
+  const std::string net_before = server->client().Get("/v1/jobs/" + finished + "/net.json")->body;
+
+  std::vector<std::string> ids = {finished};
+  for (const char* name : {"Duck.glb", "testplate.glb", "Box_Draco.glb"})
+    ids.push_back(submit(*server, test_mesh(name), "", "?strategy=TU"));
+  wait_running(*server, ids[1]);
+  EXPECT_EQ(body(server->client().Get("/v1/jobs/" + ids[3]))["status"], "queued");
+  server->keep_data();
+  EXPECT_TRUE(WIFSIGNALED(server->stop(SIGKILL)));
+  server.reset();
+
+  Server restarted({"--workers", "1"}, data);
+  for (const std::string& id : ids) {
+    const json job = wait_final(restarted, id);
+    EXPECT_EQ(job["status"], "succeeded") << job.dump();
+    auto net = restarted.client().Get("/v1/jobs/" + id + "/net.json");
+    ASSERT_TRUE(net);
+    EXPECT_EQ(net->status, 200);
+  }
+  EXPECT_EQ(body(restarted.client().Get("/v1/jobs/" + ids[1]))["result"]["metrics"]["faces"], 4212);
+  EXPECT_EQ(restarted.client().Get("/v1/jobs/" + finished + "/net.json")->body, net_before);
+}
