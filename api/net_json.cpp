@@ -34,7 +34,7 @@ nlohmann::json net_to_json(const NetDocument& doc) {
     net_faces.push_back({{"parent", i < doc.net.parent.size() ? doc.net.parent[i] : -1},
                          {"points", std::move(points)}});
   }
-  return json{
+  json out{
       {"format", kFormat},
       {"result", doc.result},
       {"strategy", doc.strategy},
@@ -53,6 +53,11 @@ nlohmann::json net_to_json(const NetDocument& doc) {
         {"overlaps", doc.metrics.overlaps},
         {"seconds", doc.metrics.seconds}}},
   };
+  if (doc.intermediate)
+    out["level"] = {{"kind", "intermediate"},
+                    {"faces", doc.mesh.faces.size()},
+                    {"input_faces", doc.input.faces}};
+  return out;
 }
 
 std::string write_net_json(const NetDocument& doc, int indent) {

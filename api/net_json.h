@@ -36,6 +36,9 @@ struct NetDocument {
   Mesh mesh;
   Net net;
   NetMetrics metrics;
+  /// An overlap-free net of a coarser mesh handed out while the job still runs: the JSON then
+  /// carries `level` (kind "intermediate", its faces and the input's).
+  bool intermediate = false;
 };
 
 /// The document as JSON, fields exactly as DESIGN.md §4 names them.

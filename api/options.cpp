@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 namespace papernet {
 namespace {
@@ -45,14 +46,20 @@ std::string upper(std::string s) {
   return s;
 }
 
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
 [[noreturn]] void bad_value(const std::string& name, const json& value, const std::string& want) {
   std::string shown = value.is_string() ? value.get<std::string>() : value.dump();
   if (shown.size() > kMaxShownValue) shown = shown.substr(0, kMaxShownValue) + "...";
-  throw OptionsError("invalid_option_value", name,
-                     "option '" + name + "': '" + shown + "' is not " + want);
+  throw InvalidOptionException("invalid_option_value", name,
+                               "option '" + name + "': '" + shown + "' is not " + want);
 }
 
-// Values come typed from JSON or as text from a query string; both are accepted everywhere.
+// Values come typed from JSON or as text from a query string or a command line; both are
+// accepted everywhere.
 double number(const std::string& name, const json& value) {
   if (value.is_number()) return value.get<double>();
   if (value.is_string()) {
@@ -75,28 +82,18 @@ std::uint64_t whole(const std::string& name, const json& value) {
   bad_value(name, value, "a non-negative whole number");
 }
 
-bool boolean(const std::string& name, const json& value) {
-  if (value.is_boolean()) return value.get<bool>();
-  if (value.is_string()) {
-    const std::string s = value.get<std::string>();
-    if (s == "true" || s == "1" || s == "yes") return true;
-    if (s == "false" || s == "0" || s == "no") return false;
-  }
-  bad_value(name, value, "true or false");
+std::optional<bool> boolean_word(std::string s) {
+  s = lower(std::move(s));
+  if (s == "true" || s == "1" || s == "yes" || s == "on") return true;
+  if (s == "false" || s == "0" || s == "no" || s == "off") return false;
+  return std::nullopt;
 }
 
-// true/false (the option was a boolean first) or a mode name.
-TabMode tab_mode(const std::string& name, const json& value) {
-  if (value.is_boolean()) return value.get<bool>() ? TabMode::Auto : TabMode::None;
-  if (value.is_string()) {
-    std::string s = value.get<std::string>();
-    std::transform(s.begin(), s.end(), s.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (s == "auto" || s == "true" || s == "1" || s == "yes") return TabMode::Auto;
-    if (s == "strips") return TabMode::Strips;
-    if (s == "none" || s == "false" || s == "0" || s == "no") return TabMode::None;
-  }
-  bad_value(name, value, "one of auto, strips, none (or true, false)");
+bool boolean(const std::string& name, const json& value) {
+  if (value.is_boolean()) return value.get<bool>();
+  if (value.is_string())
+    if (const std::optional<bool> b = boolean_word(value.get<std::string>())) return *b;
+  bad_value(name, value, "true or false");
 }
 
 std::string text(const std::string& name, const json& value) {
@@ -104,65 +101,130 @@ std::string text(const std::string& name, const json& value) {
   bad_value(name, value, "a string");
 }
 
-void apply(JobOptions& o, const std::string& name, const json& v) {
-  if (name == "strategy") {
-    const std::string s = upper(text(name, v));
-    if (s == "QQ")
-      o.strategy = Strategy::QQ;
-    else if (s == "SEMP")
-      o.strategy = Strategy::SEMP;
-    else if (s == "SEQ")
-      o.strategy = Strategy::SEQ;
-    else if (s == "TU")
-      o.strategy = Strategy::TU;
-    else
-      bad_value(name, v, "one of QQ, SEMP, SEQ, TU");
-  } else if (name == "seed") {
-    o.seed = whole(name, v);
-  } else if (name == "target_faces") {
-    o.target_faces = whole(name, v);
-  } else if (name == "simplify") {
-    o.simplify = whole(name, v);
-  } else if (name == "time_limit") {
-    o.time_limit = number(name, v);
-  } else if (name == "size_mm") {
-    o.size_mm = number(name, v);
-  } else if (name == "scale") {
-    o.scale = number(name, v);
-  } else if (name == "paper") {
-    const std::string s = upper(text(name, v));
-    if (s == "A4")
-      o.paper = PaperSize::A4;
-    else if (s == "LETTER")
-      o.paper = PaperSize::Letter;
-    else if (s == "A3")
-      o.paper = PaperSize::A3;
-    else if (s == "NONE")
-      o.paper = PaperSize::None;
-    else
-      bad_value(name, v, "one of A4, Letter, A3, none");
-  } else if (name == "margin_mm") {
-    o.margin_mm = number(name, v);
-  } else if (name == "tabs") {
-    o.tabs = tab_mode(name, v);
-  } else if (name == "tab_room_budget") {
-    o.tab_room_budget = whole(name, v);
-  } else if (name == "flat_fold_degrees") {
-    o.flat_fold_degrees = number(name, v);
-  } else if (name == "keep_largest_component") {
-    o.keep_largest_component = boolean(name, v);
-  } else {
-    throw OptionsError("unknown_option", name,
-                       "unknown option '" + name +
-                           "' (known: strategy, seed, target_faces, simplify, time_limit, "
-                           "size_mm, scale, paper, margin_mm, tabs, tab_room_budget, "
-                           "flat_fold_degrees, keep_largest_component)");
+Strategy strategy(const std::string& name, const json& value) {
+  const std::string s = upper(text(name, value));
+  if (s == "QQ" || s == "Q/Q") return Strategy::QQ;
+  if (s == "SEMP" || s == "SE/MP") return Strategy::SEMP;
+  if (s == "SEQ" || s == "SE/Q") return Strategy::SEQ;
+  if (s == "TU") return Strategy::TU;
+  bad_value(name, value, "one of QQ, SEMP, SEQ, TU");
+}
+
+// true/false (the option was a boolean first) or a mode name.
+TabMode tab_mode(const std::string& name, const json& value) {
+  if (value.is_boolean()) return value.get<bool>() ? TabMode::Auto : TabMode::None;
+  if (value.is_string()) {
+    const std::string s = lower(value.get<std::string>());
+    if (s == "auto") return TabMode::Auto;
+    if (s == "strips") return TabMode::Strips;
+    if (s == "none") return TabMode::None;
+    if (const std::optional<bool> b = boolean_word(s)) return *b ? TabMode::Auto : TabMode::None;
+  }
+  bad_value(name, value, "one of auto, strips, none (or true, false)");
+}
+
+std::string paper(const std::string& name, const json& value) {
+  const std::string s = text(name, value);
+  if (lower(s) == "none") return "none";
+  try {
+    return parse_paper(s).name;
+  } catch (const InvalidOptionException&) {
+    bad_value(name, value, "a paper: A4, A3, Letter, WxHmm (e.g. 300x200mm) or none");
   }
 }
 
-void range(bool ok, const std::string& name, const std::string& message) {
-  if (!ok) throw OptionsError("option_out_of_range", name, "option '" + name + "' " + message);
+// Every option: its name, how the command line shows its value, what it does, and how it is
+// read. Lengths (`_mm`) take units on the command line.
+struct Spec {
+  const char* name;
+  const char* value;  // "" for yes/no options
+  const char* help;
+  void (*apply)(JobOptions&, const std::string& name, const json& value);
+};
+
+constexpr Spec kOptions[] = {
+    {"strategy", "QQ|SEMP|SEQ|TU",
+     "QQ (default), SEMP, SEQ: progressive unfolding after collapsing the mesh; TU: Tabu "
+     "Unfolding of the full mesh",
+     [](JobOptions& o, const std::string& n, const json& v) { o.strategy = strategy(n, v); }},
+    {"seed", "N", "seed of every random choice (default 1): the same seed, the same net",
+     [](JobOptions& o, const std::string& n, const json& v) { o.seed = whole(n, v); }},
+    {"target_faces", "N",
+     "faces of the coarse mesh progressive unfolding starts from (default F/10 + "
+     "sqrt(F)(1+genus))",
+     [](JobOptions& o, const std::string& n, const json& v) { o.target_faces = whole(n, v); }},
+    {"simplify", "N",
+     "unfold and print a low-poly version, collapsed to N faces first (fewer, larger faces "
+     "leave room for more glue tabs); the net is then approximate",
+     [](JobOptions& o, const std::string& n, const json& v) { o.simplify = whole(n, v); }},
+    {"time_limit", "S",
+     "seconds the job may take (default 60 on the command line, the server's setting there)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.time_limit = number(n, v); }},
+    {"size_mm", "LEN", "longest side of the folded model (default 200 mm)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.size_mm = number(n, v); }},
+    {"scale", "F", "millimetres per model unit (instead of the size)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.scale = number(n, v); }},
+    {"paper", "P", "A4 (default), A3, Letter, WxHmm, or none (the SVG sized to the net)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.paper = paper(n, v); }},
+    {"margin_mm", "LEN", "page margin (default 10 mm)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.margin_mm = number(n, v); }},
+    {"overlap_mm", "LEN", "overlap of the tiles of a net larger than a page (default 10 mm)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.overlap_mm = number(n, v); }},
+    {"tabs", "MODE",
+     "auto (default): a glue tab where one fits, else a separate glue strip; strips: strips "
+     "only; none: no glue",
+     [](JobOptions& o, const std::string& n, const json& v) { o.tabs = tab_mode(n, v); }},
+    {"tab_height_mm", "LEN", "tallest glue tab, widest strip half (default 6 mm; 0: no glue)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.tab_height_mm = number(n, v); }},
+    {"min_tab_height_mm", "LEN", "lowest tab printed, or half a shorter edge (default 2 mm)",
+     [](JobOptions& o, const std::string& n, const json& v) {
+       o.min_tab_height_mm = number(n, v);
+     }},
+    {"tab_room_budget", "N",
+     "candidate moves of the pass that changes the cuts so more edges have room for a tab, in "
+     "each of its two rounds (default 100000; 0: no pass)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.tab_room_budget = whole(n, v); }},
+    {"flat_fold_degrees", "DEG", "folds flatter than this are not drawn (default 1)",
+     [](JobOptions& o, const std::string& n, const json& v) {
+       o.flat_fold_degrees = number(n, v);
+     }},
+    {"labels", "", "matching numbers on both sides of each cut edge (default yes)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.labels = boolean(n, v); }},
+    {"keep_largest_component", "",
+     "unfold only the largest connected part of a mesh in several (default no)",
+     [](JobOptions& o, const std::string& n, const json& v) {
+       o.keep_largest_component = boolean(n, v);
+     }},
+};
+
+const Spec* find_option(std::string_view name) {
+  for (const Spec& s : kOptions)
+    if (name == s.name) return &s;
+  return nullptr;
 }
+
+const Spec* find_flag(std::string_view flag) {
+  for (const Spec& s : kOptions)
+    if (flag == option_flag(s.name)) return &s;
+  return nullptr;
+}
+
+bool is_length(const Spec& spec) { return std::string_view(spec.name).ends_with("_mm"); }
+
+void apply(JobOptions& o, const std::string& name, const json& v) {
+  if (const Spec* spec = find_option(name)) return spec->apply(o, name, v);
+  std::string known;
+  for (const Spec& s : kOptions) known += std::string(known.empty() ? "" : ", ") + s.name;
+  throw InvalidOptionException("unknown_option", name,
+                               "unknown option '" + name + "' (known: " + known + ")");
+}
+
+void range(bool ok, const std::string& name, const std::string& message) {
+  if (!ok)
+    throw InvalidOptionException("option_out_of_range", name, "option '" + name + "' " + message);
+}
+
+bool within(double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; }
 
 }  // namespace
 
@@ -180,18 +242,66 @@ std::string strategy_name(Strategy strategy) {
   return "QQ";
 }
 
-std::string paper_name(PaperSize paper) {
-  switch (paper) {
-    case PaperSize::A4:
-      return "A4";
-    case PaperSize::Letter:
-      return "Letter";
-    case PaperSize::A3:
-      return "A3";
-    case PaperSize::None:
-      return "none";
+std::string option_flag(std::string_view name) {
+  std::string flag =
+      "--" + std::string(name.ends_with("_mm") ? name.substr(0, name.size() - 3) : name);
+  std::replace(flag.begin() + 2, flag.end(), '_', '-');
+  return flag;
+}
+
+bool is_boolean_flag(std::string_view flag) {
+  const Spec* spec = find_flag(flag);
+  return spec && std::string_view(spec->value).empty();
+}
+
+bool apply_option_flag(JobOptions& options, std::string_view flag,
+                       std::optional<std::string_view> value) {
+  const Spec* spec = find_flag(flag);
+  if (!spec) return false;
+  const std::string name = spec->name;
+  if (std::string_view(spec->value).empty() && !value) {
+    spec->apply(options, name, true);
+    return true;
   }
-  return "A4";
+  if (!value)
+    throw InvalidOptionException("invalid_option_value", name,
+                                 std::string(flag) + " needs a value (" + spec->value + ")");
+  if (!is_length(*spec)) {
+    spec->apply(options, name, std::string(*value));
+    return true;
+  }
+  try {
+    spec->apply(options, name, *value == "0" ? 0.0 : parse_length_mm(*value));
+  } catch (const InvalidOptionException& e) {
+    throw InvalidOptionException(e.code(), name, std::string(flag) + ": " + e.what());
+  }
+  return true;
+}
+
+std::string options_help() {
+  constexpr std::size_t kColumn = 26;  // where the help starts
+  std::string out;
+  for (const Spec& s : kOptions) {
+    std::string left = "  " + option_flag(s.name) + " " + (*s.value ? s.value : "[yes|no]");
+    if (left.size() >= kColumn) {  // a long flag: its help on the next line
+      out += left + "\n";
+      left.clear();
+    }
+    left.resize(kColumn, ' ');
+    // The help wrapped at 100 columns, continued under itself.
+    std::string line = left;
+    for (std::string_view rest = s.help; !rest.empty();) {
+      std::size_t take = rest.size();
+      if (line.size() + take > 99) {
+        take = rest.rfind(' ', 99 - line.size());
+        if (take == std::string_view::npos || take == 0) take = rest.size();
+      }
+      out += line + std::string(rest.substr(0, take)) + "\n";
+      rest.remove_prefix(std::min(rest.size(), take + 1));
+      line = std::string(kColumn, ' ');
+    }
+  }
+  return out;
 }
 
 void validate_options(const JobOptions& o, const OptionsLimits& limits) {
@@ -213,14 +323,20 @@ void validate_options(const JobOptions& o, const OptionsLimits& limits) {
     range(std::isfinite(*o.scale) && *o.scale > 0 && *o.scale <= 1e6, "scale",
           "must be more than 0 and at most 1e6 millimetres per unit");
   if (o.size_mm && o.scale)
-    throw OptionsError("conflicting_options", "scale",
-                       "options 'size_mm' and 'scale' both set the print size; give one");
-  range(std::isfinite(o.margin_mm) && o.margin_mm >= 0 && o.margin_mm <= 50, "margin_mm",
+    throw InvalidOptionException("conflicting_options", "scale",
+                                 "options 'size_mm' and 'scale' both set the print size; give one");
+  range(within(o.margin_mm, 0, 50), "margin_mm", "must be between 0 and 50 millimetres");
+  range(within(o.overlap_mm, 0, 50), "overlap_mm", "must be between 0 and 50 millimetres");
+  range(within(o.tab_height_mm, 0, 50), "tab_height_mm", "must be between 0 and 50 millimetres");
+  range(within(o.min_tab_height_mm, 0, 50), "min_tab_height_mm",
         "must be between 0 and 50 millimetres");
   range(o.tab_room_budget <= kMaxTabRoomBudget, "tab_room_budget",
         "must be at most " + std::to_string(kMaxTabRoomBudget) + " moves");
   range(std::isfinite(o.flat_fold_degrees) && o.flat_fold_degrees >= 0 && o.flat_fold_degrees < 90,
         "flat_fold_degrees", "must be at least 0 and less than 90 degrees");
+  // What the print checks of itself: a custom paper too small for its margins, say.
+  print_options(o).validate();
+  page_options(o).validate();
 }
 
 JobOptions parse_options_query(const std::multimap<std::string, std::string>& params,
@@ -228,8 +344,8 @@ JobOptions parse_options_query(const std::multimap<std::string, std::string>& pa
   JobOptions options;
   for (auto it = params.begin(); it != params.end(); ++it) {
     if (params.count(it->first) > 1)
-      throw OptionsError("invalid_option_value", it->first,
-                         "option '" + it->first + "' is given more than once");
+      throw InvalidOptionException("invalid_option_value", it->first,
+                                   "option '" + it->first + "' is given more than once");
     apply(options, it->first, json(it->second));
   }
   validate_options(options, limits);
@@ -238,18 +354,19 @@ JobOptions parse_options_query(const std::multimap<std::string, std::string>& pa
 
 JobOptions parse_options_json(std::string_view text, const OptionsLimits& limits) {
   if (text.size() > kMaxOptionsJsonBytes)
-    throw OptionsError("malformed_options", "",
-                       "the options part has " + std::to_string(text.size()) + " bytes; at most " +
-                           std::to_string(kMaxOptionsJsonBytes) + " are accepted");
+    throw InvalidOptionException("malformed_options", "",
+                                 "the options part has " + std::to_string(text.size()) +
+                                     " bytes; at most " + std::to_string(kMaxOptionsJsonBytes) +
+                                     " are accepted");
   if (json_depth(text) > kMaxOptionsJsonDepth)
-    throw OptionsError(
+    throw InvalidOptionException(
         "malformed_options", "",
         "the options part nests deeper than " + std::to_string(kMaxOptionsJsonDepth) + " levels");
   const json doc = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded())
-    throw OptionsError("malformed_options", "", "the options part is not valid JSON");
+    throw InvalidOptionException("malformed_options", "", "the options part is not valid JSON");
   if (!doc.is_object())
-    throw OptionsError("malformed_options", "", "the options part must be a JSON object");
+    throw InvalidOptionException("malformed_options", "", "the options part must be a JSON object");
   JobOptions options;
   for (const auto& [name, value] : doc.items()) {
     if (value.is_null()) continue;  // null means "the default", as if absent
@@ -268,12 +385,39 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"time_limit", opt(o.time_limit)},
               {"size_mm", opt(o.size_mm)},
               {"scale", opt(o.scale)},
-              {"paper", paper_name(o.paper)},
+              {"paper", o.paper},
               {"margin_mm", o.margin_mm},
+              {"overlap_mm", o.overlap_mm},
               {"tabs", tab_mode_name(o.tabs)},
+              {"tab_height_mm", o.tab_height_mm},
+              {"min_tab_height_mm", o.min_tab_height_mm},
               {"tab_room_budget", o.tab_room_budget},
               {"flat_fold_degrees", o.flat_fold_degrees},
+              {"labels", o.labels},
               {"keep_largest_component", o.keep_largest_component}};
+}
+
+PrintOptions print_options(const JobOptions& o) {
+  PrintOptions print;
+  if (o.size_mm) print.size_mm = *o.size_mm;
+  if (o.scale) print.scale = *o.scale;
+  print.flat_fold_degrees = o.flat_fold_degrees;
+  print.tabs = o.tabs;
+  print.tab_height_mm = o.tab_height_mm;
+  print.min_tab_height_mm = o.min_tab_height_mm;
+  print.tab_room_budget = o.tab_room_budget;
+  print.labels = o.labels;
+  return print;
+}
+
+bool has_paper(const JobOptions& o) { return o.paper != "none"; }
+
+PageOptions page_options(const JobOptions& o) {
+  PageOptions page;
+  if (has_paper(o)) page.paper = parse_paper(o.paper);
+  page.margin_mm = o.margin_mm;
+  page.overlap_mm = o.overlap_mm;
+  return page;
 }
 
 }  // namespace papernet

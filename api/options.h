@@ -5,77 +5,68 @@
 #include <map>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
-#include <stdexcept>
 #include <string>
+#include <string_view>
 
-#include "print/tab_mode.h"
+#include "core/errors.h"
+#include "print/layout.h"
+#include "print/pages.h"
 
 namespace papernet {
 
-/// Collapse strategy of Progressive Mesh Unfolding (DESIGN.md §1.3); TU unfolds the full mesh.
+/// How the net is found (docs/architecture.md): QQ, SEMP and SEQ collapse the mesh with their
+/// collapse strategy and unfold progressively; TU unfolds the full mesh with the Tabu Unfolder.
 enum class Strategy { QQ, SEMP, SEQ, TU };
 
-/// Paper sheet the SVG/PDF is tiled onto.
-enum class PaperSize { A4, Letter, A3, None };
-
 std::string strategy_name(Strategy strategy);
-std::string paper_name(PaperSize paper);
 
-/// Everything a client may choose about one unfolding job. Defaults are what a user who says
-/// nothing gets. Parsed and validated before any geometry runs.
+/// Everything a caller may choose about one unfolding job, the same for the command line and the
+/// service. Defaults are what a user who says nothing gets. Parsed and validated before any
+/// geometry runs. Each option has one name: `size_mm` in a query or JSON, `--size` on the
+/// command line (option_flag).
 struct JobOptions {
   Strategy strategy = Strategy::QQ;
   std::uint64_t seed = 1;
   /// Overrides the collapse target t_f; unset means the paper's formula.
   std::optional<std::size_t> target_faces;
   /// Unfold and print a low-poly version of the mesh, collapsed to this many faces first (the
-  /// strategy's collapses, QQ's for TU; fewer, larger faces leave room for more glue tabs); the
-  /// result is then approximate. Unset, or not below the mesh's face count: the mesh itself.
+  /// strategy's collapses, QQ's for TU); the result is then approximate. Unset, or not below the
+  /// mesh's face count: the mesh itself.
   std::optional<std::size_t> simplify;
-  /// Seconds the unfolder may spend; unset means the server's default.
+  /// Seconds the whole job may take; unset means the front end's default.
   std::optional<double> time_limit;
   /// Longest side of the model's bounding box in millimetres (exclusive with `scale`).
   std::optional<double> size_mm;
-  /// Millimetres per mesh unit (exclusive with `size_mm`); neither set means 1.
+  /// Millimetres per mesh unit (exclusive with `size_mm`); neither set means 200 mm.
   std::optional<double> scale;
-  PaperSize paper = PaperSize::A4;
+  /// "A4", "A3", "Letter", "WxHmm" or "none" (the SVG sized to the net; the PDF on A4).
+  std::string paper = "A4";
   double margin_mm = 10;
+  /// Shared strip between neighbouring tiles of a net larger than a page.
+  double overlap_mm = 10;
   /// Glue: auto (tabs on the net where they fit, after making room for them; strips for the
-  /// rest), strips (only strips) or none. JSON/query `true` means auto, `false` none.
+  /// rest), strips (only strips) or none.
   TabMode tabs = TabMode::Auto;
-  /// Candidate moves the pass that makes room for tabs (tabs auto) evaluates at most in each of
-  /// its two rounds; 0 skips it. More opens more edges on dense meshes; the job's time limit (at
-  /// least a second for the pass) also ends it.
+  double tab_height_mm = 6;      ///< tallest tab and widest strip half; 0 means no glue
+  double min_tab_height_mm = 2;  ///< lowest tab printed (or half a shorter edge)
+  /// Candidate moves the pass that makes room for tabs evaluates at most in each of its two
+  /// rounds; 0 skips it. The job's time limit (at least a second for the pass) also ends it.
   std::size_t tab_room_budget = kDefaultTabRoomBudget;
   /// Folds flatter than this many degrees are not drawn.
   double flat_fold_degrees = 1;
+  bool labels = true;  ///< matching numbers on both sides of each cut edge
   bool keep_largest_component = false;
 };
 
-/// Limits the service puts on options (from its configuration).
+/// Limits a front end puts on options (the service's from its configuration).
 struct OptionsLimits {
   double max_time_limit = 600;
   std::size_t max_target_faces = 2'000'000;
 };
 
-/// An option that cannot be accepted. `code` is stable for clients: unknown_option,
-/// invalid_option_value, option_out_of_range, conflicting_options, malformed_options.
-class OptionsError : public std::invalid_argument {
- public:
-  OptionsError(std::string code, std::string option, const std::string& message)
-      : std::invalid_argument(message), code_(std::move(code)), option_(std::move(option)) {}
-  const std::string& code() const { return code_; }
-  /// The offending option's name ("" when the whole document is at fault).
-  const std::string& option() const { return option_; }
-
- private:
-  std::string code_;
-  std::string option_;
-};
-
 /// Options from URL query parameters (`strategy=QQ&seed=3`). Names not listed here are
 /// rejected, so a typo never silently means a default.
-/// \throw OptionsError naming the first fault.
+/// \throw InvalidOptionException naming the first fault.
 JobOptions parse_options_query(const std::multimap<std::string, std::string>& params,
                                const OptionsLimits& limits = {});
 
@@ -85,15 +76,38 @@ inline constexpr int kMaxOptionsJsonDepth = 16;
 
 /// Options from a JSON object (the `options` part of a multipart upload). Longer or deeper
 /// documents than the limits above are refused (malformed_options) before they are built.
-/// \throw OptionsError naming the first fault.
+/// \throw InvalidOptionException naming the first fault.
 JobOptions parse_options_json(std::string_view text, const OptionsLimits& limits = {});
 
-/// Checks ranges and combinations. Called by both parsers.
-/// \throw OptionsError naming the first fault.
+/// The command-line flag of option `name`: "--" and the name with dashes, less a trailing "_mm"
+/// (lengths take units there: `--size 15cm`).
+std::string option_flag(std::string_view name);
+
+/// True when `flag` is the flag of a yes/no option, which may stand alone (`--labels`) or take
+/// yes/no, true/false, on/off or 1/0.
+bool is_boolean_flag(std::string_view flag);
+
+/// Applies one command-line option (`--size`, "150mm"). A boolean flag given alone has no value.
+/// Returns false when `flag` names no option. Call validate_options once all are applied.
+/// \throw InvalidOptionException naming the option.
+bool apply_option_flag(JobOptions& options, std::string_view flag,
+                       std::optional<std::string_view> value);
+
+/// One line (or two) per option for a command's --help: flag, value and what it does.
+std::string options_help();
+
+/// Checks ranges and combinations, including the print's (a margin that leaves no room on the
+/// paper). Called by both parsers. \throw InvalidOptionException naming the first fault.
 void validate_options(const JobOptions& options, const OptionsLimits& limits = {});
 
 /// Canonical JSON of the options (every field, stable key order): what the job record shows
 /// and what identifies "the same options" for result reuse.
 nlohmann::json options_to_json(const JobOptions& options);
+
+/// The print's own options for a job (print/layout.h, print/pages.h); the one place that maps
+/// one to the other. `paper` none gives A4 pages (for the PDF) and `has_paper` false.
+PrintOptions print_options(const JobOptions& options);
+PageOptions page_options(const JobOptions& options);
+bool has_paper(const JobOptions& options);
 
 }  // namespace papernet

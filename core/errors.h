@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace papernet {
 
@@ -30,6 +31,23 @@ class LimitExceededException : public IOException {
 class InvalidInputException : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
+};
+
+/// A caller's option cannot be accepted: an unknown name, a malformed value, a value out of
+/// range, or options that contradict each other. Not a fault of the mesh: a service answers it
+/// with 400 naming the option. `code` is stable: unknown_option, invalid_option_value,
+/// option_out_of_range, conflicting_options, malformed_options.
+class InvalidOptionException : public std::invalid_argument {
+ public:
+  InvalidOptionException(std::string code, std::string option, const std::string& message)
+      : std::invalid_argument(message), code_(std::move(code)), option_(std::move(option)) {}
+  const std::string& code() const { return code_; }
+  /// The offending option's name ("" when the whole set is at fault or the name is unknown).
+  const std::string& option() const { return option_; }
+
+ private:
+  std::string code_;
+  std::string option_;
 };
 
 /// An operation would break the mesh's connectivity (an illegal collapse, a broken tree).

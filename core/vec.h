@@ -33,4 +33,14 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
 }
 inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
 
+/// A rotation about the origin followed by a translation: x -> to + R (x - from).
+struct Rigid {
+  Vec2 from, to;
+  double c = 1, s = 0;
+  Vec2 operator()(Vec2 x) const {
+    const Vec2 d = x - from;
+    return {to.x + c * d.x - s * d.y, to.y + s * d.x + c * d.y};
+  }
+};
+
 }  // namespace papernet

@@ -48,12 +48,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     round_trip(papernet::parse_options_json(text, limits), limits);
-  } catch (const papernet::OptionsError& e) {
+  } catch (const papernet::InvalidOptionException& e) {
     if (e.code().empty() || std::string_view(e.what()).empty()) std::abort();
   }
   try {
     round_trip(papernet::parse_options_query(query_params(text), limits), limits);
-  } catch (const papernet::OptionsError& e) {
+  } catch (const papernet::InvalidOptionException& e) {
     if (e.code().empty() || std::string_view(e.what()).empty()) std::abort();
   }
   return 0;

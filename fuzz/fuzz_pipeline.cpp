@@ -5,13 +5,13 @@
 
 #include "core/errors.h"
 #include "core/mesh/validate.h"
-#include "server/pipeline_runner.h"
+#include "engine/pipeline.h"
 
 namespace papernet::fuzz {
 
 void load_and_validate(std::string_view bytes, MeshFormat format,
                        const std::map<std::string, std::string>& external_files) {
-  const server::PipelineLimits limits;
+  const PipelineLimits limits;
   LoadOptions options;
   options.max_bytes = limits.max_bytes;
   options.max_faces = limits.max_faces * 4 + 16;

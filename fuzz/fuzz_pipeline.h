@@ -9,7 +9,7 @@
 
 namespace papernet::fuzz {
 
-/// Loads `bytes` as the service's worker does (server/pipeline_runner.cpp: the default
+/// Loads `bytes` as the service's worker does (engine/pipeline.h: the default
 /// PipelineLimits, so max_bytes 64 MiB and 4 x 1,000,000 + 16 faces) and validates what loaded,
 /// once as it is and once keeping the largest component. IOException is the loader's promised
 /// answer to bad input and is swallowed (after checking it says something); any other exception

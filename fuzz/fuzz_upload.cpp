@@ -68,7 +68,7 @@ class FuzzServer final : public httplib::Server {
         res.status = 202;
       } catch (const server::ApiError&) {
         res.status = 400;
-      } catch (const OptionsError&) {
+      } catch (const InvalidOptionException&) {
         res.status = 400;
       } catch (const std::exception& e) {
         // The service would answer 500: no input may get there.

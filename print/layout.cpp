@@ -9,14 +9,6 @@
 
 namespace papernet {
 
-TabMode parse_tab_mode(std::string_view text) {
-  if (text == "auto") return TabMode::Auto;
-  if (text == "strips") return TabMode::Strips;
-  if (text == "none") return TabMode::None;
-  throw InvalidInputException("unknown tab mode '" + std::string(text) +
-                              "': use auto, strips or none");
-}
-
 std::string tab_mode_name(TabMode mode) {
   switch (mode) {
     case TabMode::Auto:
@@ -29,20 +21,25 @@ std::string tab_mode_name(TabMode mode) {
   return "auto";
 }
 
-std::string PrintOptions::validate() const {
+void PrintOptions::validate() const {
+  const auto fail = [](const char* option, const std::string& message) {
+    throw InvalidOptionException("option_out_of_range", option, message);
+  };
   auto positive = [](double v) { return std::isfinite(v) && v > 0; };
-  if (!(scale > 0) && !positive(size_mm)) return "size must be a positive length";
-  if (!std::isfinite(scale) || scale < 0) return "scale must be a positive factor";
-  if (!std::isfinite(flat_angle_deg) || flat_angle_deg < 0 || flat_angle_deg > 180)
-    return "flat fold angle must be between 0 and 180 degrees";
-  if (!std::isfinite(tab_height_mm) || tab_height_mm < 0) return "tab height must be >= 0";
-  if (!(tab_angle_deg > 0 && tab_angle_deg <= 90)) return "tab angle must be in (0, 90] degrees";
+  if (!(scale > 0) && !positive(size_mm)) fail("size_mm", "size must be a positive length");
+  if (!std::isfinite(scale) || scale < 0) fail("scale", "scale must be a positive factor");
+  if (!std::isfinite(flat_fold_degrees) || flat_fold_degrees < 0 || flat_fold_degrees > 180)
+    fail("flat_fold_degrees", "flat fold angle must be between 0 and 180 degrees");
+  if (!std::isfinite(tab_height_mm) || tab_height_mm < 0)
+    fail("tab_height_mm", "tab height must be >= 0");
+  if (!(tab_angle_deg > 0 && tab_angle_deg <= 90))
+    fail("tab_angle_deg", "tab angle must be in (0, 90] degrees");
   if (!std::isfinite(min_tab_height_mm) || min_tab_height_mm < 0)
-    return "minimum tab height must be >= 0";
-  if (!positive(max_label_mm)) return "label size must be positive";
+    fail("min_tab_height_mm", "minimum tab height must be >= 0");
+  if (!positive(max_label_mm)) fail("max_label_mm", "label size must be positive");
   if (tab_room_budget > kMaxTabRoomBudget)
-    return "tab room budget must be at most " + std::to_string(kMaxTabRoomBudget) + " moves";
-  return {};
+    fail("tab_room_budget",
+         "tab room budget must be at most " + std::to_string(kMaxTabRoomBudget) + " moves");
 }
 
 std::array<Vec2, 4> label_box(const Label& label) {
@@ -135,9 +132,8 @@ double print_scale(const Mesh& mesh, const PrintOptions& options) {
 
 TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
                                  Progress& progress) {
-  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
-  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || !options.tab_room ||
-      options.tab_room_budget == 0)
+  options.validate();
+  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || options.tab_room_budget == 0)
     return {net, 0, 0, 0, 0};
   return clear_tab_room(mesh, net, tab_clearance_options(mesh, options), progress);
 }
@@ -153,7 +149,7 @@ TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& 
 }
 
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options) {
-  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  options.validate();
   if (mesh.faces.empty()) throw InvalidInputException("nothing to print: the mesh has no faces");
   if (net.points.size() != mesh.faces.size() || net.parent.size() != mesh.faces.size())
     throw InvalidInputException("the net has " + std::to_string(net.points.size()) +
@@ -178,7 +174,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     for (int k = 0; k < 3; ++k)
       out.faces[f][k] = out.scale * rotate(net.points[f][k], out.metrics.box.angle);
 
-  out.edges = classify_edges(mesh, net, {options.flat_angle_deg});
+  out.edges = classify_edges(mesh, net, {options.flat_fold_degrees});
   const TabMode mode = options.tab_height_mm > 0 ? options.tabs : TabMode::None;
   std::vector<int> bare;  // cut edges that get no tab on the net
   if (mode == TabMode::Auto) {

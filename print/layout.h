@@ -22,7 +22,7 @@ namespace papernet {
 struct PrintOptions {
   double size_mm = 200;          ///< longest side of the model's bounding box, as folded
   double scale = 0;              ///< millimetres per model unit; > 0 overrides size_mm
-  double flat_angle_deg = 1;     ///< folds flatter than this are Flat
+  double flat_fold_degrees = 1;  ///< folds flatter than this are Flat
   bool draw_flat_folds = false;  ///< draw Flat folds (as mountain/valley by their sign)
   TabMode tabs = TabMode::Auto;
   double tab_height_mm = 6;  ///< tallest tab (and widest strip half); 0 means TabMode::None
@@ -30,9 +30,8 @@ struct PrintOptions {
   /// Lowest tab printed (half the edge where that is less); edges without room for it get a
   /// glue strip.
   double min_tab_height_mm = 2;
-  /// Change the net before printing so that more cut edges have room for a tab (make_tab_room).
-  bool tab_room = true;
-  /// Candidate moves that pass evaluates at most in each of its two rounds
+  /// Candidate moves of the pass that changes the net before printing so that more cut edges
+  /// have room for a tab (make_tab_room), at most, in each of its two rounds
   /// (TabClearanceOptions::max_evaluations; 0: no pass). More opens more edges on dense meshes,
   /// at some 10-40 microseconds a move.
   std::size_t tab_room_budget = kDefaultTabRoomBudget;
@@ -42,8 +41,8 @@ struct PrintOptions {
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
 
-  /// Empty when valid, else a message naming the bad option.
-  std::string validate() const;
+  /// \throw InvalidOptionException naming the bad option (by its JobOptions name).
+  void validate() const;
 };
 
 struct Segment {
@@ -96,15 +95,16 @@ TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& 
 
 /// Makes room for glue tabs before printing (core/tab_clearance.h): the net with fewer cut
 /// edges lacking room for a tab of `options.min_tab_height_mm` at the print scale. Only in
-/// TabMode::Auto with tabs and `tab_room` on; otherwise returns `net` unchanged (no moves). The
+/// TabMode::Auto with tabs and a budget; otherwise returns `net` unchanged (no moves). The
 /// returned net folds into the same mesh; print it, and write it as the net JSON, instead of
 /// the input. \throw CancelledException when `progress` asks to stop.
 TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
                                  Progress& progress);
 
 /// Lays out a net for printing.
-/// \throw InvalidInputException for invalid options, an empty mesh, or a net that does not
-///        match the mesh (sizes, non-finite points, vertex indices out of range).
+/// \throw InvalidOptionException for invalid options; InvalidInputException for an empty mesh or
+///        a net that does not match the mesh (sizes, non-finite points, vertex indices out of
+///        range).
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {});
 
 }  // namespace papernet

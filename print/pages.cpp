@@ -25,6 +25,13 @@ bool leading_number(std::string_view s, double& value, std::string_view& rest) {
   return std::isfinite(value);
 }
 
+/// The shortest text that reads back as `v` ("297", "215.9").
+std::string shortest(double v) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return ec == std::errc() ? std::string(buf, end) : std::to_string(v);
+}
+
 }  // namespace
 
 Paper parse_paper(std::string_view text) {
@@ -38,9 +45,10 @@ Paper parse_paper(std::string_view text) {
   if (leading_number(s, w, rest) && rest.starts_with("x") &&
       leading_number(rest.substr(1), h, rest) && (rest.empty() || rest == "mm") && w > 0 && h > 0 &&
       w < 1e5 && h < 1e5)
-    return {std::string(text), std::min(w, h), std::max(w, h)};
-  throw InvalidInputException("unknown paper '" + std::string(text) +
-                              "': use A4, A3, Letter or WxHmm (e.g. 300x200mm)");
+    return {shortest(w) + "x" + shortest(h) + "mm", std::min(w, h), std::max(w, h)};
+  throw InvalidOptionException(
+      "invalid_option_value", "paper",
+      "unknown paper '" + std::string(text) + "': use A4, A3, Letter or WxHmm (e.g. 300x200mm)");
 }
 
 double parse_length_mm(std::string_view text) {
@@ -53,17 +61,22 @@ double parse_length_mm(std::string_view text) {
     if (unit == "in") return 25.4 * v;
     if (unit == "pt") return 25.4 / 72 * v;
   }
-  throw InvalidInputException("bad length '" + std::string(text) +
-                              "': use a positive number with mm, cm, in or pt (e.g. 200mm)");
+  throw InvalidOptionException("invalid_option_value", "",
+                               "bad length '" + std::string(text) +
+                                   "': use a positive number with mm, cm, in or pt (e.g. 200mm)");
 }
 
-std::string PageOptions::validate() const {
-  if (!std::isfinite(margin_mm) || margin_mm < 0) return "margin must be >= 0 mm";
-  if (!std::isfinite(overlap_mm) || overlap_mm < 0) return "overlap must be >= 0 mm";
+void PageOptions::validate() const {
+  const auto fail = [](const char* option, const std::string& message) {
+    throw InvalidOptionException("option_out_of_range", option, message);
+  };
+  if (!std::isfinite(margin_mm) || margin_mm < 0) fail("margin_mm", "margin must be >= 0 mm");
+  if (!std::isfinite(overlap_mm) || overlap_mm < 0) fail("overlap_mm", "overlap must be >= 0 mm");
   const double w = paper.width - 2 * margin_mm, h = paper.height - 2 * margin_mm;
-  if (w <= 0 || h <= 0) return "margins leave no printable area on " + paper.name + " paper";
-  if (overlap_mm >= 0.5 * std::min(w, h)) return "overlap must be less than half the page";
-  return {};
+  if (w <= 0 || h <= 0)
+    fail("margin_mm", "margins leave no printable area on " + paper.name + " paper");
+  if (overlap_mm >= 0.5 * std::min(w, h))
+    fail("overlap_mm", "overlap must be less than half the printable width of the page");
 }
 
 namespace {
@@ -207,7 +220,7 @@ PageLayout tile(PrintLayout& layout, double pw, double ph, const PageOptions& op
 }  // namespace
 
 PageLayout paginate(PrintLayout& layout, const PageOptions& options) {
-  if (const std::string why = options.validate(); !why.empty()) throw InvalidInputException(why);
+  options.validate();
   // Candidates: portrait pages with the net's long side along the page's long side, portrait
   // with it across, then the same on landscape pages. Fewest printed pages wins; ties keep the
   // earlier.

@@ -14,12 +14,12 @@ struct Paper {
   double width = 210, height = 297;
 };
 
-/// Parses "A4", "A3", "Letter" (any case) or "WxHmm" / "WxH" in millimetres ("300x200mm").
-/// \throw InvalidInputException naming the bad value.
+/// Parses "A4", "A3", "Letter" (any case) or "WxHmm" / "WxH" in millimetres ("300x200mm"; its
+/// name is then written "300x200mm"). \throw InvalidOptionException naming the bad value.
 Paper parse_paper(std::string_view text);
 
 /// Parses a length: "200mm", "20cm", "8in", "150pt" or a bare number of millimetres.
-/// \throw InvalidInputException when it is not a positive finite length.
+/// \throw InvalidOptionException when it is not a positive finite length.
 double parse_length_mm(std::string_view text);
 
 struct PageOptions {
@@ -27,8 +27,8 @@ struct PageOptions {
   double margin_mm = 10;   ///< unprinted border on each side
   double overlap_mm = 10;  ///< shared strip between neighbouring tiles
 
-  /// Empty when valid, else a message naming the bad option.
-  std::string validate() const;
+  /// \throw InvalidOptionException naming the bad option (by its JobOptions name).
+  void validate() const;
 };
 
 /// One printed page: the window of the layout it shows.
@@ -54,7 +54,7 @@ struct PageLayout {
 /// needed to print a glue strip wholly (a strip that no printed tile holds wholly). Glue strips
 /// that no tile showing the net holds wholly are first moved into free space on such a tile
 /// where there is room (nearest their edge; same checks as place_strips).
-/// \throw InvalidInputException for invalid options (e.g. margins that leave no room).
+/// \throw InvalidOptionException for invalid options (e.g. margins that leave no room).
 PageLayout paginate(PrintLayout& layout, const PageOptions& options);
 
 /// Turns a layout by 90 degrees counter-clockwise, keeping it in [0, size.x] x [0, size.y].

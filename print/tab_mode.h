@@ -10,8 +10,6 @@ namespace papernet {
 /// glue strip elsewhere; `Strips` gives every cut edge a strip; `None` prints no glue at all.
 enum class TabMode { Auto, Strips, None };
 
-/// Parses "auto", "strips" or "none". \throw InvalidInputException for anything else.
-TabMode parse_tab_mode(std::string_view text);
 std::string tab_mode_name(TabMode mode);
 
 /// Candidate moves that pass evaluates in each of its two rounds unless a caller says otherwise

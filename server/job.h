@@ -11,6 +11,7 @@
 #include "api/options.h"
 #include "core/io/load.h"
 #include "core/progress.h"
+#include "engine/pipeline.h"
 
 namespace papernet::server {
 
@@ -21,13 +22,6 @@ std::string status_name(JobStatus status);
 JobStatus parse_status(const std::string& name);
 /// True for succeeded, approximated, failed and cancelled: nothing will change any more.
 bool is_final(JobStatus status);
-
-/// What a job is given: the uploaded mesh and the files a .gltf refers to.
-struct JobInput {
-  std::string mesh;
-  MeshFormat format = MeshFormat::Unknown;
-  std::map<std::string, std::string> external_files;
-};
 
 /// One downloadable file of a result ("net.json", "net.svg", "net.pdf", "mesh.glb").
 struct Artifact {

@@ -1,22 +1,15 @@
 #pragma once
 
-#include <cstddef>
-
+#include "engine/pipeline.h"
 #include "server/job.h"
 
 namespace papernet::server {
 
-struct PipelineLimits {
-  std::size_t max_bytes = std::size_t{64} << 20;
-  std::size_t max_faces = 1'000'000;
-};
-
-/// The real job: load (core/load), validate (core/validate; 422 with reasons), unfold (TU:
-/// unfold_tabu; QQ/SEMP/SEQ: unfold_progressive, which may end approximate), check the net
-/// (core/net_check), write net JSON, SVG, PDF and GLB. Progress phases: load, validate, the
-/// unfolder's (collapse, unfold, uncollapse), tabs (tab mode auto: cuts changed so that glue
-/// tabs fit), write. Intermediate overlap-free nets are
-/// rendered at most every two seconds and handed to the sink.
+/// The real job: the engine's pipeline (engine/pipeline.h) with the service's limits, writing the
+/// net JSON, SVG, PDF and GLB a job serves. Progress phases: load, validate, the unfolder's
+/// (collapse, unfold, uncollapse), tabs, write. Intermediate overlap-free nets, rendered at most
+/// every two seconds, go to the sink. Failures become the problems clients see: invalid_mesh
+/// with the validator's reasons, unfold_failed, too_many_faces, and so on (server/problem.h).
 JobRunner make_pipeline_runner(PipelineLimits limits);
 
 }  // namespace papernet::server

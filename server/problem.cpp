@@ -3,8 +3,9 @@
 #include <new>
 #include <string_view>
 
-#include "api/options.h"
 #include "core/errors.h"
+#include "core/mesh/validate.h"
+#include "engine/pipeline.h"
 
 namespace papernet::server {
 namespace {
@@ -47,6 +48,22 @@ constexpr ProblemType kProblemTypes[] = {
     {"shutting_down", 503, "Server shutting down"},
 };
 
+// The validator's findings as the problem's extension members.
+Problem invalid_mesh(const ValidationReport& report) {
+  nlohmann::json reasons = nlohmann::json::array();
+  for (const MeshProblem& p : report.problems)
+    if (p.blocking)
+      reasons.push_back({{"code", p.code}, {"message", p.message}, {"elements", p.elements}});
+  return make_problem("invalid_mesh", report.reason(),
+                      {{"reasons", reasons},
+                       {"mesh",
+                        {{"vertices", report.vertices},
+                         {"faces", report.faces},
+                         {"components", report.components},
+                         {"genus", report.genus},
+                         {"boundary_loops", report.boundary_loops}}}});
+}
+
 const ProblemType* lookup(std::string_view code) {
   for (const ProblemType& t : kProblemTypes)
     if (t.code == code) return &t;
@@ -73,7 +90,7 @@ Problem problem_from_exception(std::exception_ptr error) {
     std::rethrow_exception(error);
   } catch (const ApiError& e) {
     return e.problem();
-  } catch (const OptionsError& e) {
+  } catch (const InvalidOptionException& e) {
     nlohmann::json extra = nlohmann::json::object();
     if (!e.option().empty()) extra["option"] = e.option();
     return make_problem(e.code(), e.what(), extra);
@@ -81,8 +98,12 @@ Problem problem_from_exception(std::exception_ptr error) {
     return make_problem(
         e.limit() == LimitExceededException::Limit::Bytes ? "payload_too_large" : "too_many_faces",
         e.what());
+  } catch (const InvalidMeshException& e) {
+    return invalid_mesh(e.report());
   } catch (const InvalidInputException& e) {
     return make_problem("invalid_mesh", e.what());
+  } catch (const UnfoldFailedException& e) {
+    return make_problem("unfold_failed", e.what());
   } catch (const IOException& e) {
     return make_problem("unreadable_mesh", e.what());
   } catch (const CancelledException&) {

@@ -38,7 +38,7 @@ class ApiError : public std::runtime_error {
   Problem problem_;
 };
 
-/// THE mapping from anything thrown (ApiError, OptionsError, the core exceptions, the rest)
+/// THE mapping from anything thrown (ApiError, the core and engine exceptions, the rest)
 /// to the problem a client sees.
 Problem problem_from_exception(std::exception_ptr error);
 

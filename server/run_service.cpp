@@ -46,8 +46,10 @@ int run_service(const ServerConfig& config) {
   settings.options_limits.max_target_faces = config.max_faces;
   settings.default_time_limit = config.job_time_limit;
   settings.reuse_results = config.reuse_results;
-  JobService service(*store, make_pipeline_runner({config.max_body_bytes, config.max_faces}),
-                     settings, [](const std::string& line) { log_line(line); });
+  JobService service(
+      *store,
+      make_pipeline_runner({config.max_body_bytes, config.max_faces, config.job_time_limit}),
+      settings, [](const std::string& line) { log_line(line); });
 
   HttpMetrics metrics;
   HttpLimits http_limits;

@@ -141,9 +141,10 @@ ParsedUpload parse_upload(UploadRequest request, const OptionsLimits& limits) {
     if (format == MeshFormat::Unknown) format = format_from_media_type(request.content_type);
   }
   if (options_part && !request.query.empty())
-    throw OptionsError("conflicting_options", request.query.begin()->first,
-                       "give options either as query parameters or as the 'options' part, not "
-                       "both");
+    throw InvalidOptionException(
+        "conflicting_options", request.query.begin()->first,
+        "give options either as query parameters or as the 'options' part, not "
+        "both");
   if (!options_part) out.options = parse_options_query(request.query, limits);
   if (out.input.mesh.empty()) throw ApiError("missing_mesh", "the request carries no mesh");
   if (format == MeshFormat::Unknown) format = sniff_format(out.input.mesh);

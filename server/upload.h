@@ -46,7 +46,7 @@ UploadRequest upload_request_of(const httplib::Request& req);
 /// Turns a request into a job's input and options: format from the `format` query parameter,
 /// the part's Content-Type or file name, the request's Content-Type, or else the content
 /// itself (core's sniff_format).
-/// \throw ApiError (missing_mesh, malformed_request, unsupported_format) or OptionsError.
+/// \throw ApiError (missing_mesh, malformed_request, unsupported_format) or InvalidOptionException.
 ParsedUpload parse_upload(UploadRequest request, const OptionsLimits& limits);
 
 /// The format a media type names; Unknown for generic types (octet-stream, text/plain, none).

@@ -238,21 +238,24 @@ LoadedMesh load_mesh(std::string_view bytes, MeshFormat format, const LoadOption
   return weld(std::move(raw), format);
 }
 
-LoadedMesh load_mesh_file(const std::string& path, const LoadOptions& options) {
+std::string read_mesh_file(const std::string& path, std::size_t max_bytes) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) throw IOException("cannot open " + path + ": " + ec.message());
-  if (size > options.max_bytes)
+  if (size > max_bytes)
     throw LimitExceededException(LimitExceededException::Limit::Bytes,
                                  "the file has " + std::to_string(size) +
-                                     " bytes, more than the limit of " +
-                                     std::to_string(options.max_bytes));
+                                     " bytes, more than the limit of " + std::to_string(max_bytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IOException("cannot open " + path);
   std::string bytes(static_cast<std::size_t>(size), '\0');
   in.read(bytes.data(), static_cast<std::streamsize>(size));
   if (in.gcount() != static_cast<std::streamsize>(size)) throw IOException("cannot read " + path);
-  return load_mesh(bytes, format_from_extension(path), options);
+  return bytes;
+}
+
+LoadedMesh load_mesh_file(const std::string& path, const LoadOptions& options) {
+  return load_mesh(read_mesh_file(path, options.max_bytes), format_from_extension(path), options);
 }
 
 }  // namespace papernet

@@ -54,6 +54,10 @@ LoadedMesh load_mesh(std::string_view bytes, MeshFormat format, const LoadOption
 /// \throw IOException when the text is not glTF JSON.
 std::vector<std::string> gltf_external_uris(std::string_view gltf_json);
 
+/// The bytes of a file, refused when it has more than `max_bytes`.
+/// \throw IOException naming the fault (LimitExceededException over the limit).
+std::string read_mesh_file(const std::string& path, std::size_t max_bytes);
+
 /// Loads a mesh file; the format comes from the extension, else from the content. For .gltf,
 /// sibling files named by the glTF are read only when they are listed in `options.external_files`;
 /// the command-line tool fills that map from the folder. \throw IOException naming the fault.

@@ -37,4 +37,9 @@ struct HausdorffResult {
 HausdorffResult hausdorff_distance(const Mesh& a, const Mesh& b,
                                    const HausdorffOptions& options = {});
 
+/// Two-sided Hausdorff distance of `approximation` to `input`, relative to the input's
+/// bounding-box diagonal, with the bounded refinement that approximate results use (a few tenths
+/// of a second at most).
+double approximation_distance(const Mesh& input, const Mesh& approximation);
+
 }  // namespace papernet

@@ -278,11 +278,11 @@ Mesh largest_component(const Mesh& m) {
 
 bool ValidationReport::unfoldable() const {
   return std::none_of(problems.begin(), problems.end(),
-                      [](const Problem& p) { return p.blocking; });
+                      [](const MeshProblem& p) { return p.blocking; });
 }
 
 std::string ValidationReport::reason() const {
-  for (const Problem& p : problems)
+  for (const MeshProblem& p : problems)
     if (p.blocking) return p.message;
   return "";
 }

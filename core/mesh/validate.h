@@ -2,8 +2,10 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "core/errors.h"
 #include "core/io/load.h"
 #include "core/mesh/mesh.h"
 
@@ -11,7 +13,7 @@ namespace papernet {
 
 /// One thing found wrong with (or done to) a mesh. `code` is stable and machine-readable;
 /// `message` says what and where in words a user can act on.
-struct Problem {
+struct MeshProblem {
   std::string
       code;  ///< empty_mesh, non_finite_coordinates, degenerate_faces,
              ///< non_manifold_edges, non_manifold_vertices, inconsistent_orientation,
@@ -38,13 +40,24 @@ struct ValidationReport {
   std::size_t vertices = 0, faces = 0, edges = 0, components = 0;
   std::size_t boundary_edges = 0, boundary_loops = 0;
   long genus = 0;
-  std::vector<Problem> problems;
+  std::vector<MeshProblem> problems;
   Mesh largest_component;  ///< filled only when keep_largest_component selected one
 
   /// True when no blocking problem was found: the mesh can be unfolded as it is.
   bool unfoldable() const;
   /// The first blocking problem's message, or "" when unfoldable.
   std::string reason() const;
+};
+
+/// A mesh that cannot be unfolded as it is, with everything validation found.
+class InvalidMeshException : public InvalidInputException {
+ public:
+  explicit InvalidMeshException(ValidationReport report)
+      : InvalidInputException(report.reason()), report_(std::move(report)) {}
+  const ValidationReport& report() const { return report_; }
+
+ private:
+  ValidationReport report_;
 };
 
 /// Judges a triangle mesh: emptiness, finite coordinates, degenerate faces, manifold edges and

@@ -59,9 +59,6 @@ struct Applied {
   std::size_t iterations = 0;  // 0: no overlaps appeared
 };
 
-// Hausdorff refinement budget per direction for approximate results (a few tenths of a second).
-constexpr std::size_t kHausdorffRefinements = 20000;
-
 // Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests.
 constexpr std::size_t kRepairTestsBase = 4000;
 constexpr std::size_t kRepairTestsPerFace = 4;
@@ -475,22 +472,6 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   relay.report(last);
   result.seconds = seconds_since(start);
   return result;
-}
-
-std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
-                                  Progress& progress) {
-  if (faces == 0 || faces >= mesh.faces.size()) return std::nullopt;
-  Mesh simple = decimate(mesh, {strategy, faces}, progress).compact();
-  if (simple.faces.size() >= mesh.faces.size()) return std::nullopt;
-  return simple;
-}
-
-double approximation_distance(const Mesh& input, const Mesh& approximation) {
-  // A bounded amount of refinement: CAD meshes kept exactly by the quadrics would otherwise
-  // refine their flat sides towards the absolute accuracy for a long time.
-  HausdorffOptions accuracy;
-  accuracy.max_refinements = kHausdorffRefinements;
-  return hausdorff_distance(input, approximation, accuracy).distance;
 }
 
 }  // namespace papernet

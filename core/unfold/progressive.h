@@ -93,20 +93,4 @@ struct ProgressiveResult {
 ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions& options,
                                      Progress& progress);
 
-/// A low-poly version of `mesh` to print instead of it: collapsed with `strategy` (legal
-/// collapses only, as decimate) to at most `faces` faces, or as far as legal collapses go, with
-/// ids of its own. None when that is not fewer faces than `mesh` (`faces` 0 or not below its
-/// count, or no legal collapse): then print `mesh` itself. Fewer, larger faces have sharper
-/// vertices and longer edges, so more cut edges have room for a glue tab (docs/tabs.md).
-/// Reports phase "collapse".
-/// \throw InvalidInputException when `mesh` is not a manifold, oriented triangle mesh.
-/// \throw CancelledException when `progress` asks to stop.
-std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
-                                  Progress& progress);
-
-/// Two-sided Hausdorff distance of `approximation` to `input`, relative to the input's
-/// bounding-box diagonal, with the bounded refinement that approximate results use (a few tenths
-/// of a second at most).
-double approximation_distance(const Mesh& input, const Mesh& approximation);
-
 }  // namespace papernet

@@ -1,4 +1,7 @@
-// The Tabu Unfolder (DESIGN.md §3) over the incremental state of an Unfolding.
+// The Tabu Unfolder (docs/architecture.md, "The unfolder") over the incremental state of an
+// Unfolding: Unfolding::resolve_overlaps and unfold_tabu.
+#include "core/unfold/tabu.h"
+
 #include <algorithm>
 #include <chrono>
 #include <climits>

@@ -8,12 +8,12 @@ using namespace papernet;
 
 namespace {
 
-// The stable code of the OptionsError that `f` throws ("" when it throws none).
+// The stable code of the InvalidOptionException that `f` throws ("" when it throws none).
 template <class F>
 std::string error_code(F f, std::string* option = nullptr) {
   try {
     f();
-  } catch (const OptionsError& e) {
+  } catch (const InvalidOptionException& e) {
     if (option) *option = e.option();
     return e.code();
   }
@@ -29,7 +29,7 @@ TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   EXPECT_FALSE(o.target_faces);
   EXPECT_FALSE(o.simplify);
   EXPECT_FALSE(o.time_limit);
-  EXPECT_EQ(o.paper, PaperSize::A4);
+  EXPECT_EQ(o.paper, "A4");
   EXPECT_EQ(o.tabs, TabMode::Auto);
   EXPECT_EQ(o.tab_room_budget, 100'000u);
   EXPECT_FALSE(o.keep_largest_component);
@@ -53,7 +53,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_EQ(o.simplify, 800u);
   EXPECT_DOUBLE_EQ(*o.time_limit, 2.5);
   EXPECT_DOUBLE_EQ(*o.size_mm, 120);
-  EXPECT_EQ(o.paper, PaperSize::Letter);
+  EXPECT_EQ(o.paper, "Letter");
   EXPECT_DOUBLE_EQ(o.margin_mm, 5);
   EXPECT_EQ(o.tabs, TabMode::None);
   EXPECT_EQ(o.tab_room_budget, 0u);
@@ -66,7 +66,7 @@ TEST(OptionsTest, JsonObjectIsParsedWithTypedValues) {
   EXPECT_EQ(o.strategy, Strategy::TU);
   EXPECT_EQ(o.seed, 7u);
   EXPECT_DOUBLE_EQ(*o.scale, 2.0);
-  EXPECT_EQ(o.paper, PaperSize::None);
+  EXPECT_EQ(o.paper, "none");
   EXPECT_EQ(o.tabs, TabMode::None);
   EXPECT_FALSE(o.time_limit);
 }
@@ -193,7 +193,7 @@ TEST(OptionsTest, DeepOrHugeDocumentsAreRefusedWithAMessage) {
   try {
     parse_options_json(nested);
     ADD_FAILURE() << "a nested array was accepted as a seed";
-  } catch (const OptionsError& e) {
+  } catch (const InvalidOptionException& e) {
     EXPECT_EQ(e.code(), "invalid_option_value");
     EXPECT_LT(std::string(e.what()).size(), 200u) << e.what();
   }
@@ -203,7 +203,7 @@ TEST(OptionsTest, DeepOrHugeDocumentsAreRefusedWithAMessage) {
   try {
     parse_options_json(long_value);
     ADD_FAILURE() << "a 10,000-letter strategy was accepted";
-  } catch (const OptionsError& e) {
+  } catch (const InvalidOptionException& e) {
     EXPECT_EQ(e.code(), "invalid_option_value");
     EXPECT_LT(std::string(e.what()).size(), 200u);
   }
@@ -222,4 +222,70 @@ TEST(OptionsTest, CanonicalJsonRoundTrips) {
   EXPECT_TRUE(doc["size_mm"].is_null());
   const JobOptions back = parse_options_json(doc.dump());
   EXPECT_EQ(options_to_json(back), doc);
+}
+
+TEST(OptionsTest, PaperIsANamedSheetOrASizeAndABadOneIsNamed) {
+  EXPECT_EQ(parse_options_query({{"paper", "a3"}}).paper, "A3");
+  EXPECT_EQ(parse_options_json(R"({"paper":"420x297"})").paper, "420x297mm");
+  std::string option;
+  EXPECT_EQ(error_code(
+                [] {
+                  parse_options_query({{"paper", "B7"}});
+                },
+                &option),
+            "invalid_option_value");
+  EXPECT_EQ(option, "paper");
+  // A sheet too small for its margins: the print's own check, before any geometry runs.
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"paper":"15x15mm"})"); }, &option),
+            "option_out_of_range");
+  EXPECT_EQ(option, "margin_mm");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"paper":"30x30mm","margin_mm":2})"); }), "");
+}
+
+// The command line reads the same options by their flags: lengths with units, yes/no options
+// alone or with a word, and a bad value names the option.
+TEST(OptionsTest, CommandLineFlagsFillTheSameOptions) {
+  EXPECT_EQ(option_flag("size_mm"), "--size");
+  EXPECT_EQ(option_flag("keep_largest_component"), "--keep-largest-component");
+  EXPECT_EQ(option_flag("flat_fold_degrees"), "--flat-fold-degrees");
+  JobOptions o;
+  EXPECT_TRUE(apply_option_flag(o, "--size", "15cm"));
+  EXPECT_DOUBLE_EQ(*o.size_mm, 150);
+  EXPECT_TRUE(apply_option_flag(o, "--paper", "letter"));
+  EXPECT_EQ(o.paper, "Letter");
+  EXPECT_TRUE(apply_option_flag(o, "--margin", "0"));
+  EXPECT_DOUBLE_EQ(o.margin_mm, 0);
+  EXPECT_TRUE(apply_option_flag(o, "--tab-height", "4mm"));
+  EXPECT_DOUBLE_EQ(o.tab_height_mm, 4);
+  EXPECT_TRUE(apply_option_flag(o, "--labels", "off"));
+  EXPECT_FALSE(o.labels);
+  EXPECT_TRUE(is_boolean_flag("--keep-largest-component"));
+  EXPECT_FALSE(is_boolean_flag("--seed"));
+  EXPECT_TRUE(apply_option_flag(o, "--keep-largest-component", std::nullopt));
+  EXPECT_TRUE(o.keep_largest_component);
+  EXPECT_TRUE(apply_option_flag(o, "--strategy", "se/mp"));
+  EXPECT_EQ(o.strategy, Strategy::SEMP);
+  EXPECT_TRUE(apply_option_flag(o, "--tab-room-budget", "250000"));
+  EXPECT_EQ(o.tab_room_budget, 250'000u);
+  EXPECT_FALSE(apply_option_flag(o, "--colour", "red"));
+  EXPECT_FALSE(apply_option_flag(o, "--size-mm", "100"));  // one name per option
+  std::string option;
+  EXPECT_EQ(error_code([&] { apply_option_flag(o, "--flat-fold-degrees", "lots"); }, &option),
+            "invalid_option_value");
+  EXPECT_EQ(option, "flat_fold_degrees");
+  EXPECT_EQ(error_code([&] { apply_option_flag(o, "--size", "12 parsecs"); }, &option),
+            "invalid_option_value");
+  EXPECT_EQ(option, "size_mm");
+  EXPECT_EQ(error_code([&] { apply_option_flag(o, "--labels", "maybe"); }), "invalid_option_value");
+  for (const char* bad : {"1.5", "-1", "many"})
+    EXPECT_EQ(error_code([&] { apply_option_flag(o, "--tab-room-budget", bad); }),
+              "invalid_option_value")
+        << bad;
+  EXPECT_EQ(error_code([&] { apply_option_flag(o, "--seed", std::nullopt); }),
+            "invalid_option_value");
+  // Every option of the service is on the command line, and its help names it.
+  const std::string help = options_help();
+  const nlohmann::json all = options_to_json(JobOptions{});
+  for (const auto& [name, value] : all.items())
+    EXPECT_NE(help.find(option_flag(name) + " "), std::string::npos) << name;
 }

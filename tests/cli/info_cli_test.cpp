@@ -52,7 +52,7 @@ TEST(InfoCli, UnreadableFileExitsOneAndUnfoldableNotExitsTwo) {
   const CliRun r = info((dir / "two.obj").string() + " --json");
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(nlohmann::json::parse(r.out)["problems"][0]["code"], "several_components");
-  EXPECT_EQ(info((dir / "two.obj").string() + " --largest").code, 0);
+  EXPECT_EQ(info((dir / "two.obj").string() + " --keep-largest-component").code, 0);
 }
 
 TEST(InfoCli, GltfReadsSiblingBuffersButNeverParentPaths) {

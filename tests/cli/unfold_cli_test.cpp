@@ -115,7 +115,7 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
                          "/Box_Draco.glb --simplify 3 -o " + base + ".json",
                      &said),
             1);
-  EXPECT_NE(said.find("--simplify must be at least 4 faces"), std::string::npos) << said;
+  EXPECT_NE(said.find("--simplify must be between 4 and"), std::string::npos) << said;
   std::remove((base + ".json").c_str());
   std::remove((base + ".svg").c_str());
 }

@@ -434,15 +434,12 @@ TEST(Tabs, ModesAndMinimumHeight) {
   EXPECT_EQ(layout_net(mesh, net, options).omitted_tabs.size(),
             static_cast<std::size_t>(none.cut_edges));
 
-  // The pass runs in mode auto only, only with tab_room on and a budget, and within the budget.
+  // The pass runs in mode auto only, only with a budget, and within the budget.
   Progress quiet;
   options = {};
   options.tabs = TabMode::Strips;
   EXPECT_EQ(make_tab_room(mesh, net, options, quiet).moves, 0u);
   options.tabs = TabMode::Auto;
-  options.tab_room = false;
-  EXPECT_EQ(make_tab_room(mesh, net, options, quiet).moves, 0u);
-  options.tab_room = true;
   options.tab_room_budget = 0;
   EXPECT_EQ(make_tab_room(mesh, net, options, quiet).evaluations, 0u);
   options.tab_room_budget = 40;
@@ -450,19 +447,22 @@ TEST(Tabs, ModesAndMinimumHeight) {
   EXPECT_GT(brief.evaluations, 0u);
   EXPECT_LE(brief.evaluations, 80u);  // 40 in each of the pass's two rounds
   options.tab_room_budget = kMaxTabRoomBudget + 1;
-  EXPECT_THROW(make_tab_room(mesh, net, options, quiet), InvalidInputException);
+  EXPECT_THROW(make_tab_room(mesh, net, options, quiet), InvalidOptionException);
   options.tab_room_budget = PrintOptions{}.tab_room_budget;
   options.min_tab_height_mm = 3;  // taller tabs: more edges without room than at 2 mm
   const TabClearanceResult taller = make_tab_room(mesh, net, options, quiet);
   EXPECT_GT(taller.blocked_before, all_print_nets()[index].blocked_after) << name;
   EXPECT_LT(taller.blocked_after, taller.blocked_before) << name;
 
-  EXPECT_EQ(parse_tab_mode("strips"), TabMode::Strips);
   EXPECT_EQ(tab_mode_name(TabMode::None), "none");
-  EXPECT_THROW(parse_tab_mode("some"), std::invalid_argument);
   PrintOptions bad;
   bad.min_tab_height_mm = -1;
-  EXPECT_NE(bad.validate(), "");
+  try {
+    bad.validate();
+    ADD_FAILURE() << "a negative tab height passed";
+  } catch (const InvalidOptionException& e) {
+    EXPECT_EQ(e.option(), "min_tab_height_mm");
+  }
 }
 
 TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {

@@ -22,7 +22,8 @@ Problem mapped(E error) {
 }  // namespace
 
 TEST(ProblemTest, EveryFailureMapsToItsStatusAndCode) {
-  EXPECT_EQ(mapped(OptionsError("unknown_option", "x", "unknown option 'x'")).status, 400);
+  EXPECT_EQ(mapped(InvalidOptionException("unknown_option", "x", "unknown option 'x'")).status,
+            400);
   EXPECT_EQ(mapped(ApiError("job_not_found", "no job")).status, 404);
   EXPECT_EQ(mapped(ApiError("payload_too_large", "big")).status, 413);
   EXPECT_EQ(mapped(ApiError("unsupported_format", "png")).status, 415);
@@ -40,7 +41,7 @@ TEST(ProblemTest, EveryFailureMapsToItsStatusAndCode) {
 }
 
 TEST(ProblemTest, OptionErrorsNameTheOption) {
-  const Problem p = mapped(OptionsError("option_out_of_range", "seed", "too big"));
+  const Problem p = mapped(InvalidOptionException("option_out_of_range", "seed", "too big"));
   EXPECT_EQ(p.code, "option_out_of_range");
   EXPECT_EQ(p.extra["option"], "seed");
   EXPECT_EQ(p.detail, "too big");

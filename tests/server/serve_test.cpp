@@ -368,3 +368,39 @@ TEST(ServeTest, KillNineThenRestartFinishesEveryJob) {
   EXPECT_EQ(body(restarted.client().Get("/v1/jobs/" + ids[1]))["result"]["metrics"]["faces"], 4212);
   EXPECT_EQ(restarted.client().Get("/v1/jobs/" + finished + "/net.json")->body, net_before);
 }
+
+// The command line and the service run one pipeline (engine/pipeline.h): the same mesh and
+// options give the same net JSON, its seconds aside, for a progressive, a TU and a simplified job.
+TEST(ServeTest, CommandLineAndServiceWriteTheSameNet) {
+  Server s({"--workers", "1"});
+  const std::string mesh = test_mesh("mirror.ply");  // 286 faces
+  struct Job {
+    std::string query, flags, status;
+  };
+  const Job jobs[] = {
+      {"strategy=QQ&seed=2&size_mm=150", "--strategy QQ --seed 2 --size 150mm", "succeeded"},
+      {"strategy=TU&seed=3&paper=none", "--strategy TU --seed 3 --paper none", "succeeded"},
+      {"simplify=60&seed=1&tabs=strips", "--simplify 60 --seed 1 --tabs strips", "approximated"},
+  };
+  const auto without_seconds = [](json doc) {
+    doc["metrics"].erase("seconds");
+    return doc;
+  };
+  const fs::path out =
+      fs::temp_directory_path() / ("papernet-same-net-" + std::to_string(getpid()) + ".json");
+  for (const auto& [query, flags, status] : jobs) {
+    SCOPED_TRACE(query);
+    const std::string id = submit(s, mesh, "model/x-ply", "?" + query);
+    ASSERT_EQ(wait_final(s, id)["status"], status);
+    auto served = s.client().Get("/v1/jobs/" + id + "/net.json");
+    ASSERT_EQ(served->status, 200);
+    const std::string cmd = std::string(PAPERNET_BINARY) + " unfold " +
+                            (fs::path(PAPERNET_TEST_DATA) / "mirror.ply").string() + " " + flags +
+                            " -o " + out.string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    const json cli = json::parse(read_file(out));
+    EXPECT_EQ(without_seconds(cli), without_seconds(json::parse(served->body)));
+    EXPECT_EQ(cli["mesh"]["faces"].size(), cli["net"]["faces"].size());
+  }
+  fs::remove(out);
+}

@@ -24,7 +24,7 @@ std::string problem_code(const UploadRequest& request) {
     parse_upload(request, {});
   } catch (const ApiError& e) {
     return e.problem().code;
-  } catch (const OptionsError& e) {
+  } catch (const InvalidOptionException& e) {
     return e.code();
   }
   return "";

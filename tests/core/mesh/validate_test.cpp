@@ -36,8 +36,8 @@ Mesh torus(int n, int m, bool close = true) {
   return t;
 }
 
-const Problem* find(const ValidationReport& r, const std::string& code) {
-  for (const Problem& p : r.problems)
+const MeshProblem* find(const ValidationReport& r, const std::string& code) {
+  for (const MeshProblem& p : r.problems)
     if (p.code == code) return &p;
   return nullptr;
 }
@@ -88,7 +88,7 @@ TEST(Validate, NonFiniteCoordinatesAreLocated) {
   m.vertices[2].y = std::numeric_limits<double>::quiet_NaN();
   const ValidationReport r = validate(m);
   EXPECT_FALSE(r.unfoldable());
-  const Problem* p = find(r, "non_finite_coordinates");
+  const MeshProblem* p = find(r, "non_finite_coordinates");
   ASSERT_NE(p, nullptr);
   EXPECT_EQ(p->elements, std::vector<int>{2});
   EXPECT_EQ(p->message, "1 vertex has non-finite coordinates: vertices 2 (0, nan, 0)");
@@ -100,7 +100,7 @@ TEST(Validate, DegenerateFacesAreCountedAndNamed) {
   m.faces.push_back({1, 4, 2});
   m.faces.push_back({0, 0, 3});  // a repeated vertex
   const ValidationReport r = validate(m);
-  const Problem* p = find(r, "degenerate_faces");
+  const MeshProblem* p = find(r, "degenerate_faces");
   ASSERT_NE(p, nullptr);
   EXPECT_EQ(p->elements, (std::vector<int>{4, 5}));
   EXPECT_EQ(p->message, "2 degenerate faces (zero area or a repeated vertex): faces 4, 5");
@@ -130,7 +130,7 @@ TEST(Validate, NonManifoldEdgeIsLocated) {
   m.vertices.push_back({1, 1, 1});
   m.faces.push_back({0, 1, 4});  // a third face on edge 0-1
   const ValidationReport r = validate(m);
-  const Problem* p = find(r, "non_manifold_edges");
+  const MeshProblem* p = find(r, "non_manifold_edges");
   ASSERT_NE(p, nullptr);
   EXPECT_EQ(p->elements, (std::vector<int>{0, 1}));
   EXPECT_EQ(p->message, "1 edge is shared by more than two faces: edges 0-1 (0, 0, 0)-(1, 0, 0)");
@@ -146,7 +146,7 @@ TEST(Validate, PinchedVertexIsNonManifold) {
   for (const auto& f : tetrahedron().faces) m.faces.push_back({map(f[0]), map(f[2]), map(f[1])});
   const ValidationReport r = validate(m);
   EXPECT_EQ(r.components, 1u);
-  const Problem* p = find(r, "non_manifold_vertices");
+  const MeshProblem* p = find(r, "non_manifold_vertices");
   ASSERT_NE(p, nullptr);
   EXPECT_EQ(p->elements, std::vector<int>{0});
   EXPECT_NE(p->message.find("1 vertex joins"), std::string::npos) << p->message;
@@ -157,7 +157,7 @@ TEST(Validate, FlippedFaceIsInconsistentOrientation) {
   Mesh m = tetrahedron();
   std::swap(m.faces[3][0], m.faces[3][1]);
   const ValidationReport r = validate(m);
-  const Problem* p = find(r, "inconsistent_orientation");
+  const MeshProblem* p = find(r, "inconsistent_orientation");
   ASSERT_NE(p, nullptr);
   EXPECT_NE(p->message.find("3 edges have"), std::string::npos) << p->message;
   EXPECT_EQ(p->elements.size(), 6u);
@@ -172,7 +172,7 @@ TEST(Validate, SeveralComponentsOrTheLargest) {
   for (const auto& f : t.faces) m.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
   const ValidationReport r = validate(m);
   EXPECT_EQ(r.components, 2u);
-  const Problem* p = find(r, "several_components");
+  const MeshProblem* p = find(r, "several_components");
   ASSERT_NE(p, nullptr);
   EXPECT_NE(p->message.find("2 separate components"), std::string::npos);
   EXPECT_FALSE(r.unfoldable());
@@ -197,7 +197,7 @@ TEST(Validate, TriangulatedIsANoteNotAProblem) {
   loaded.triangulated = true;
   const ValidationReport r = validate(loaded);
   EXPECT_TRUE(r.unfoldable());
-  const Problem* p = find(r, "triangulated");
+  const MeshProblem* p = find(r, "triangulated");
   ASSERT_NE(p, nullptr);
   EXPECT_FALSE(p->blocking);
 }

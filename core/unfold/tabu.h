@@ -1,0 +1,71 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "core/mesh/mesh.h"
+#include "core/progress.h"
+#include "core/unfold/net.h"
+
+namespace papernet {
+
+/// Budget and randomness of a Tabu Unfolder run (DESIGN.md §3).
+struct TabuOptions {
+  std::uint64_t seed = 1;                   ///< every random choice derives from it
+  std::size_t max_iterations = 10'000'000;  ///< moves (0: no limit)
+  /// Faces moved and tested while evaluating candidate moves, at most (0: no limit): a
+  /// deterministic measure of work (an evaluation costs the size of the side it moves).
+  std::size_t max_tests = 0;
+  double time_limit_seconds = 60;  ///< wall-clock budget (<= 0: no limit)
+  std::string phase = "unfold";    ///< ProgressInfo::phase of the reports
+  std::size_t input_faces = 0;     ///< ProgressInfo::input_faces (0: current faces)
+  /// resolve_overlaps stops (returns false) when the fewest overlaps seen have not dropped for
+  /// this many iterations (0: never); unfold_tabu then restarts from another start.
+  std::size_t stall_iterations = 0;
+  /// Walks per iteration at most, once stalled. The paper applies the best move of one walk;
+  /// on CAD meshes with slivers that move is often a large step up (+22 pairs on average on
+  /// `thingi10k__73416` at 400 faces) and the count wanders on a plateau. So once the fewest
+  /// overlaps seen have not dropped for |F| iterations, an iteration whose best move so far
+  /// raises the count by more than `accept_rise` pairs tries another walk (new random
+  /// overlapping face, new random root), up to `walks`, and applies the best move of all.
+  /// Before that stall (and with walks = 1) it is the paper's rule: organic meshes converge
+  /// faster with it, small and large steps up included.
+  std::size_t walks = 4;
+  std::size_t accept_rise = 2;  ///< see `walks`
+  /// Share of walks (a coin flip each, from the seed) that end at a face the start face overlaps
+  /// instead of at a random root, so that every cut on the walk separates an overlapping pair
+  /// and the walk is as short as the tree path between them. The paper's walks go to a random
+  /// root (0 restores that exactly); on CAD meshes of slivers their cuts are mostly far from
+  /// the overlap and move large sides, and the count stalls (`thingi10k__79741` at 2,000 faces:
+  /// ~30 pairs left after 60 s; with half the walks to a partner, nets in 27-35 s for seeds 1-3).
+  double partner_walks = 0.5;
+};
+
+/// What one Tabu Unfolder run did.
+struct TabuStats {
+  std::size_t iterations = 0;   ///< rounds (a random overlapping face each)
+  std::size_t evaluations = 0;  ///< candidate moves evaluated
+  std::size_t tests = 0;        ///< faces moved and tested by those evaluations
+  double seconds = 0;
+};
+
+/// Result of an unfolding strategy.
+struct UnfoldResult {
+  Net net;
+  bool overlap_free = false;
+  std::size_t overlaps = 0;
+  TabuStats stats;
+};
+
+/// Plain Tabu Unfolding (strategy `TU`): starts from the steepest-edge tree of `options.seed` or
+/// the minimum-perimeter tree, whichever has fewer overlapping pairs, then resolve_overlaps. When
+/// the overlap count stalls (no new minimum for a number of iterations that grows with the mesh and
+/// with each restart) the walk restarts from the steepest-edge tree of another direction derived
+/// from the seed, within the same budget; the result is the state with the fewest overlaps seen at
+/// the end of an attempt. Deterministic for a seed (up to the time limit). The net is of `mesh`
+/// itself. \throw InvalidInputException when the mesh cannot be unfolded as one piece, and when its
+/// dual graph is a tree (a single edge unfolding exists) whose unfolding overlaps, at once.
+UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress);
+
+}  // namespace papernet

@@ -1,0 +1,164 @@
+// The engine's one pipeline (engine/pipeline.h) driven directly: the documents it writes, what it
+// refuses and why, and its progress; every net it returns passes the net checker.
+#include "engine/pipeline.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/io/load.h"
+#include "core/mesh/validate.h"
+#include "core/unfold/net_check.h"
+
+namespace papernet::test {
+namespace {
+
+JobInput data_file(const std::string& name) {
+  JobInput input;
+  input.mesh = read_mesh_file(std::string(PAPERNET_TEST_DATA) + "/" + name, 64 << 20);
+  input.format = format_from_extension(name);
+  return input;
+}
+
+JobOptions tu(std::uint64_t seed = 1) {
+  JobOptions options;
+  options.strategy = Strategy::TU;
+  options.seed = seed;
+  return options;
+}
+
+void expect_checked(const UnfoldOutcome& out) {
+  const NetCheckReport check = check_net(out.net.mesh, out.net.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  const NetDocument doc = read_net_json(out.documents.net_json);
+  EXPECT_EQ(doc.net.parent, out.net.net.parent);
+  EXPECT_EQ(doc.mesh.faces.size(), out.net.mesh.faces.size());
+}
+
+int pdf_pages(const std::string& pdf) {
+  int pages = 0;
+  for (std::size_t at = 0; (at = pdf.find("/Type /Page", at)) != std::string::npos; ++at)
+    if (pdf.compare(at, 12, "/Type /Pages") != 0) ++pages;
+  return pages;
+}
+
+TEST(Pipeline, WritesTheDocumentsAskedForAndCountsThePrint) {
+  PipelineProgress quiet;
+  DocumentRequest all{.svg = true, .svg_pages = true, .pdf = true, .glb = true, .obj = true};
+  JobOptions big = tu();
+  big.size_mm = 300;  // the cube over several A4 sheets
+  const UnfoldOutcome out = run_pipeline(data_file("Box_Draco.glb"), big, {}, all, quiet);
+  expect_checked(out);
+  ASSERT_TRUE(out.print);
+  EXPECT_GT(out.print->pages, 1);
+  EXPECT_EQ(static_cast<int>(out.documents.svg_pages.size()), out.print->pages);
+  EXPECT_EQ(pdf_pages(out.documents.pdf), out.print->pages);
+  EXPECT_EQ(out.print->cut_edges, 7u);  // a cube's net: 18 edges, 11 glued
+  EXPECT_EQ(out.print->tabs + out.print->strips, out.print->cut_edges);
+  // Several pages: the one SVG is the whole net in one drawing, not a page.
+  EXPECT_NE(out.documents.svg, out.documents.svg_pages.front());
+  EXPECT_EQ(out.documents.glb.substr(0, 4), "glTF");
+  EXPECT_NE(out.documents.obj.find("\nf "), std::string::npos);
+
+  JobOptions small = tu();
+  small.size_mm = 40;
+  const UnfoldOutcome one = run_pipeline(data_file("Box_Draco.glb"), small, {}, all, quiet);
+  ASSERT_TRUE(one.print);
+  EXPECT_EQ(one.print->pages, 1);
+  EXPECT_EQ(one.documents.svg, one.documents.svg_pages.front());
+  // Without paper: one SVG sized to the net; the PDF still on A4 sheets.
+  small.paper = "none";
+  const UnfoldOutcome none = run_pipeline(data_file("Box_Draco.glb"), small, {}, all, quiet);
+  EXPECT_EQ(none.documents.svg_pages.size(), 1u);
+  EXPECT_EQ(pdf_pages(none.documents.pdf), 1);
+
+  // Only the net JSON: no layout is made.
+  const UnfoldOutcome json_only = run_pipeline(data_file("Box_Draco.glb"), tu(), {}, {}, quiet);
+  EXPECT_FALSE(json_only.print);
+  EXPECT_TRUE(json_only.documents.pdf.empty());
+  EXPECT_EQ(nlohmann::json::parse(json_only.documents.net_json)["format"], "papernet.net/1");
+}
+
+TEST(Pipeline, AMeshInPartsIsRefusedWithItsReportOrItsLargestPartUnfolded) {
+  // Two tetrahedra apart and a third, smaller one: three components.
+  std::string obj;
+  for (int k = 0; k < 3; ++k) {
+    const double s = k == 2 ? 0.5 : 1, x = 3.0 * k;
+    obj += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x + s) + " 0 0\nv " +
+           std::to_string(x) + " " + std::to_string(s) + " 0\nv " + std::to_string(x) + " 0 " +
+           std::to_string(s) + "\n";
+    const int b = 4 * k + 1;
+    for (const auto& f : {std::array{b, b + 2, b + 1}, std::array{b, b + 1, b + 3},
+                          std::array{b + 1, b + 2, b + 3}, std::array{b + 2, b, b + 3}})
+      obj += "f " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) +
+             "\n";
+  }
+  JobInput input{obj, MeshFormat::Obj, {}};
+  PipelineProgress quiet;
+  try {
+    run_pipeline(input, tu(), {}, {}, quiet);
+    FAIL() << "a mesh in three parts was unfolded as one";
+  } catch (const InvalidMeshException& e) {
+    EXPECT_EQ(e.report().components, 3u);
+    bool named = false;
+    for (const MeshProblem& p : e.report().problems) named |= p.code == "several_components";
+    EXPECT_TRUE(named);
+  }
+  JobOptions largest = tu();
+  largest.keep_largest_component = true;
+  const UnfoldOutcome out = run_pipeline(input, largest, {}, {}, quiet);
+  EXPECT_EQ(out.net.mesh.faces.size(), 4u);
+  EXPECT_EQ(out.net.input.faces, 4u);
+  expect_checked(out);
+}
+
+TEST(Pipeline, LimitsAndPrintOptionsAreRefusedByName) {
+  PipelineProgress quiet;
+  PipelineLimits limits;
+  limits.max_faces = 100;
+  EXPECT_THROW(run_pipeline(data_file("sample.obj"), tu(), limits, {}, quiet),
+               LimitExceededException);
+  JobOptions wide = tu();
+  wide.margin_mm = 200;  // passes no validate_options: the print still names it
+  try {
+    run_pipeline(data_file("Box_Draco.glb"), wide, {}, {.pdf = true}, quiet);
+    FAIL() << "margins wider than the paper were printed";
+  } catch (const InvalidOptionException& e) {
+    EXPECT_EQ(e.option(), "margin_mm");
+  }
+}
+
+// Progress through every phase in order, and intermediate nets of coarser meshes with their
+// documents while a progressive run works.
+TEST(Pipeline, ReportsPhasesInOrderAndIntermediateNets) {
+  struct Recorder : PipelineProgress {
+    std::vector<std::string> phases;
+    std::vector<UnfoldOutcome> intermediates;
+    void report(const ProgressInfo& info) override {
+      if (phases.empty() || phases.back() != info.phase) phases.push_back(info.phase);
+    }
+    bool wants_intermediates() const override { return true; }
+    void intermediate_outcome(const UnfoldOutcome& o) override { intermediates.push_back(o); }
+  } recorder;
+  JobOptions qq;
+  const UnfoldOutcome out = run_pipeline(data_file("sample.obj"), qq, {}, {.svg = true}, recorder);
+  expect_checked(out);
+  EXPECT_EQ(out.net.result, "complete");
+  const std::vector<std::string> want = {"load",       "validate", "collapse", "unfold",
+                                         "uncollapse", "tabs",     "write"};
+  EXPECT_EQ(recorder.phases, want);
+  ASSERT_FALSE(recorder.intermediates.empty());
+  for (const UnfoldOutcome& mid : recorder.intermediates) {
+    expect_checked(mid);
+    EXPECT_LT(mid.net.mesh.faces.size(), 1000u);
+    const auto level = nlohmann::json::parse(mid.documents.net_json)["level"];
+    EXPECT_EQ(level["kind"], "intermediate");
+    EXPECT_EQ(level["input_faces"], 1000);
+    EXPECT_FALSE(mid.documents.svg.empty());
+  }
+}
+
+}  // namespace
+}  // namespace papernet::test
