@@ -1,6 +1,8 @@
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace papernet {
 
@@ -32,6 +34,39 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
+
+/// An axis-aligned box in the plane. Box2::empty() holds nothing (lo above hi) until a point is
+/// added.
+struct Box2 {
+  Vec2 lo, hi;
+  static Box2 empty() {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    return {{inf, inf}, {-inf, -inf}};
+  }
+  void add(Vec2 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  void add(const Box2& b) {
+    lo = {std::min(lo.x, b.lo.x), std::min(lo.y, b.lo.y)};
+    hi = {std::max(hi.x, b.hi.x), std::max(hi.y, b.hi.y)};
+  }
+  Vec2 size() const { return hi - lo; }
+};
+
+/// An axis-aligned box in space; as Box2.
+struct Box3 {
+  Vec3 lo, hi;
+  static Box3 empty() {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    return {{inf, inf, inf}, {-inf, -inf, -inf}};
+  }
+  void add(Vec3 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  Vec3 size() const { return hi - lo; }
+};
 
 /// A rotation about the origin followed by a translation: x -> to + R (x - from).
 struct Rigid {

@@ -208,15 +208,15 @@ NetCheckReport make_room_for_tabs(const Mesh& mesh, Net& net, const JobOptions& 
                                   double seconds, Progress& progress,
                                   std::optional<TabRoomSummary>& summary) {
   PrintOptions print = print_options(options);
-  if (print.tabs != TabMode::Auto || !(print.tab_height_mm > 0) || print.tab_room_budget == 0)
-    return check_net(mesh, net);
+  if (!makes_tab_room(print)) return check_net(mesh, net);
   ProgressInfo info;
   info.phase = "tabs";
   info.faces = mesh.faces.size();
   progress.report(info);
   print.tab_room_seconds = seconds;
+  const TabClearanceOptions clearance = tab_clearance_options(mesh, print);
   const auto start = Clock::now();
-  const TabClearanceResult room = make_tab_room(mesh, net, print, progress);
+  const TabClearanceResult room = clear_tab_room(mesh, net, clearance, progress);
   TabRoomSummary& s = summary.emplace();
   s.seconds = seconds_since(start);
   s.blocked_before = room.blocked_before;
@@ -238,8 +238,7 @@ NetCheckReport make_room_for_tabs(const Mesh& mesh, Net& net, const JobOptions& 
   if (s.blocked_after > 0) {
     // Why edges stay without room: a leaf of the cut tree at a nearly flat vertex always lacks
     // it, and a dense mesh has few vertices where a leaf can have it.
-    const TabRoomReport why =
-        describe_tab_room(mesh, net, tab_clearance_options(mesh, print), kFlatDefect);
+    const TabRoomReport why = describe_tab_room(mesh, net, clearance, kFlatDefect);
     s.leaves_without_room = why.leaves_without_room_blocked;
     s.leaf_room_vertices = why.leaf_room_vertices;
     s.interior_vertices = why.interior_vertices;

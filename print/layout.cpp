@@ -118,24 +118,13 @@ std::string label_text(int number) {
 
 double print_scale(const Mesh& mesh, const PrintOptions& options) {
   if (options.scale > 0) return options.scale;
-  double extent = 0;  // longest side of the model's bounding box
-  if (!mesh.vertices.empty()) {
-    Vec3 lo = mesh.vertices[0], hi = lo;
-    for (const Vec3& v : mesh.vertices) {
-      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-    }
-    extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  }
+  const Vec3 size = bounding_box(mesh).size();
+  const double extent = std::max({size.x, size.y, size.z});  // -inf without vertices
   return extent > 0 && std::isfinite(extent) ? options.size_mm / extent : 1;
 }
 
-TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
-                                 Progress& progress) {
-  options.validate();
-  if (options.tabs != TabMode::Auto || !(options.tab_height_mm > 0) || options.tab_room_budget == 0)
-    return {net, 0, 0, 0, 0};
-  return clear_tab_room(mesh, net, tab_clearance_options(mesh, options), progress);
+bool makes_tab_room(const PrintOptions& options) {
+  return options.tabs == TabMode::Auto && options.tab_height_mm > 0 && options.tab_room_budget > 0;
 }
 
 TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& options) {
@@ -246,20 +235,15 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   size_labels(out.faces, out.labels, options.max_label_mm);
 
   // Translate so that everything starts at the origin.
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  Vec2 lo{inf, inf}, hi{-inf, -inf};
-  auto grow = [&](Vec2 p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  };
+  Box2 box = Box2::empty();
   for (const auto& f : out.faces)
-    for (Vec2 p : f) grow(p);
+    for (Vec2 p : f) box.add(p);
   for (const Tab& t : out.tabs)
-    for (Vec2 p : t.corners) grow(p);
+    for (Vec2 p : t.corners) box.add(p);
   for (const GlueStrip& t : out.strips)
-    for (Vec2 p : t.corners) grow(p);
-  if (out.faces.empty()) lo = hi = {0, 0};
-  const Vec2 shift = Vec2{0, 0} - lo;
+    for (Vec2 p : t.corners) box.add(p);
+  if (out.faces.empty()) box = {};
+  const Vec2 shift = Vec2{0, 0} - box.lo;
   for (auto& f : out.faces)
     for (Vec2& p : f) p = p + shift;
   for (Tab& t : out.tabs)
@@ -269,7 +253,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   for (auto* list : {&out.cut, &out.mountain, &out.valley})
     for (Segment& s : *list) s = {s.a + shift, s.b + shift};
   for (Label& l : out.labels) l.at = l.at + shift;
-  out.size = hi - lo;
+  out.size = box.size();
   return out;
 }
 

@@ -31,7 +31,7 @@ struct PrintOptions {
   /// glue strip.
   double min_tab_height_mm = 2;
   /// Candidate moves of the pass that changes the net before printing so that more cut edges
-  /// have room for a tab (make_tab_room), at most, in each of its two rounds
+  /// have room for a tab (makes_tab_room), at most, in each of its two rounds
   /// (TabClearanceOptions::max_evaluations; 0: no pass). More opens more edges on dense meshes,
   /// at some 10-40 microseconds a move.
   std::size_t tab_room_budget = kDefaultTabRoomBudget;
@@ -93,13 +93,9 @@ double print_scale(const Mesh& mesh, const PrintOptions& options);
 /// slant, the budget and the clock limit of the pass.
 TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& options);
 
-/// Makes room for glue tabs before printing (core/tab_clearance.h): the net with fewer cut
-/// edges lacking room for a tab of `options.min_tab_height_mm` at the print scale. Only in
-/// TabMode::Auto with tabs and a budget; otherwise returns `net` unchanged (no moves). The
-/// returned net folds into the same mesh; print it, and write it as the net JSON, instead of
-/// the input. \throw CancelledException when `progress` asks to stop.
-TabClearanceResult make_tab_room(const Mesh& mesh, const Net& net, const PrintOptions& options,
-                                 Progress& progress);
+/// True when a net printed with `options` first gets room made for its glue tabs
+/// (core/tabs/tab_clearance.h, with tab_clearance_options): tabs auto, tabs at all, a budget.
+bool makes_tab_room(const PrintOptions& options);
 
 /// Lays out a net for printing.
 /// \throw InvalidOptionException for invalid options; InvalidInputException for an empty mesh or

@@ -153,19 +153,15 @@ std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& face
     return std::pair{sizes[a].length, sizes[a].width} < std::pair{sizes[b].length, sizes[b].width};
   });
 
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  Vec2 lo{inf, inf}, hi{-inf, -inf};
-  auto grow = [&](Vec2 p) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  };
+  Box2 box = Box2::empty();
   double mean_edge = 0;
   for (const auto& f : faces)
-    for (int k = 0; k < 3; ++k) grow(f[k]), mean_edge += norm(f[(k + 1) % 3] - f[k]);
+    for (int k = 0; k < 3; ++k) box.add(f[k]), mean_edge += norm(f[(k + 1) % 3] - f[k]);
   for (const Tab& t : tabs)
-    for (Vec2 p : t.corners) grow(p);
+    for (Vec2 p : t.corners) box.add(p);
   for (const GlueStrip& t : others)
-    for (Vec2 p : t.corners) grow(p);
+    for (Vec2 p : t.corners) box.add(p);
+  const Vec2 lo = box.lo, hi = box.hi;
   mean_edge /= std::max<double>(1, 3.0 * static_cast<double>(faces.size()));
 
   PolygonGrid grid(std::max({mean_edge, longest, 1e-9}));

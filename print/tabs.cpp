@@ -86,11 +86,9 @@ double area(const std::array<Vec2, 4>& t) {
 
 /// Box of a polygon, grown by `d`.
 std::pair<Vec2, Vec2> bounds(std::span<const Vec2> p, double d) {
-  Vec2 lo = p[0], hi = p[0];
-  for (Vec2 q : p)
-    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)},
-    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
-  return {{lo.x - d, lo.y - d}, {hi.x + d, hi.y + d}};
+  Box2 box = Box2::empty();
+  for (Vec2 q : p) box.add(q);
+  return {{box.lo.x - d, box.lo.y - d}, {box.hi.x + d, box.hi.y + d}};
 }
 
 bool boxes_meet(const std::pair<Vec2, Vec2>& a, const std::pair<Vec2, Vec2>& b) {

@@ -37,10 +37,11 @@ struct TabPlacement {
 /// so that no tab's interior meets a face's interior or another tab's interior (separating-axis
 /// test with `options.tolerance`). A tab is at most `height` tall and at most half its edge,
 /// and at least `min_height` tall, or half its edge where that is less (an edge shorter than
-/// 2 x min_height gets a tab exactly half its length tall). On each side the placer tries
-/// trapezoids over the whole edge and over stretches of it (at least 40 % of the edge, at either
-/// end or in the middle) with end angles of `angle_deg`, 60 % and 30 % of it chosen independently
-/// at each end, each as tall as fits (bisection on the height); the side whose best tab has the
+/// 2 x min_height gets a tab exactly half its length tall). On each side the placer tries the
+/// shapes of tab_shapes (core/tabs/tab_clearance.h): trapezoids over the whole edge and over
+/// stretches of it (at least 40 % of the edge, at either end or in the middle) with each end
+/// slanted by `angle_deg` or by 40 % of it, each as tall as fits (bisection on the height); the
+/// side whose best tab has the
 /// larger area wins. Edges where no tab of min_height fits are listed as omitted (they need a glue
 /// strip, see strips.h). Faces are the net's triangles in layout coordinates, counter-clockwise.
 TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,

@@ -320,7 +320,7 @@ class CancelOnly : public Progress {
 
 }  // namespace
 
-std::string strategy_name(CollapseStrategy strategy) {
+std::string collapse_strategy_name(CollapseStrategy strategy) {
   switch (strategy) {
     case CollapseStrategy::QQ:
       return "QQ";
@@ -330,16 +330,6 @@ std::string strategy_name(CollapseStrategy strategy) {
       return "SEQ";
   }
   return "?";
-}
-
-std::optional<CollapseStrategy> parse_collapse_strategy(std::string_view name) {
-  std::string s;
-  for (char ch : name)
-    if (ch != '/') s.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(ch))));
-  if (s == "QQ") return CollapseStrategy::QQ;
-  if (s == "SEMP") return CollapseStrategy::SEMP;
-  if (s == "SEQ") return CollapseStrategy::SEQ;
-  return std::nullopt;
 }
 
 std::size_t collapse_target(std::size_t input_faces, int genus) {

@@ -1,9 +1,7 @@
 #pragma once
 
 #include <cstddef>
-#include <optional>
 #include <string>
-#include <string_view>
 
 #include "core/mesh/mesh.h"
 #include "core/mesh/progressive_mesh.h"
@@ -18,10 +16,8 @@ enum class CollapseStrategy {
   SEQ,   ///< shortest edge first, quadric-optimal placement
 };
 
-/// "QQ", "SEMP", "SEQ".
-std::string strategy_name(CollapseStrategy strategy);
-/// Parses a strategy name (case-insensitive; "Q/Q", "SE/MP", "SE/Q" also accepted).
-std::optional<CollapseStrategy> parse_collapse_strategy(std::string_view name);
+/// "QQ", "SEMP", "SEQ". (The job's strategies, TU among them, are api/options.h's Strategy.)
+std::string collapse_strategy_name(CollapseStrategy strategy);
 
 /// The paper's collapse target t_f = i_f/10 + sqrt(i_f)·(1+g), rounded to the nearest integer.
 std::size_t collapse_target(std::size_t input_faces, int genus);
@@ -38,10 +34,9 @@ struct DecimateOptions {
 /// Collapses `mesh` with legal collapses only (see ProgressiveMesh::can_collapse) until it has at
 /// most the target face count or no legal collapse is left, and returns the hierarchy whose
 /// splits restore `mesh` exactly. Reports phase "collapse" through `progress`.
-/// Our own loop on our own connectivity (ProgressiveMesh) rather than OpenMesh's Decimater: the
-/// unfolder needs the input's face and vertex ids kept through every collapse and split, the wing
-/// faces of each removed face, and bit-exact undo, none of which OpenMesh's garbage-collecting
-/// decimater or its vertex-split records give without the same amount of code around them.
+/// Our own loop on our own connectivity (ProgressiveMesh), not a library's decimater: the
+/// unfolder needs ids kept through every collapse and split and bit-exact undo
+/// (docs/architecture.md, "Dependencies").
 /// \throw InvalidInputException when `mesh` is not a manifold, oriented triangle mesh.
 /// \throw CancelledException when `progress` asks to stop.
 ProgressiveMesh decimate(const Mesh& mesh, const DecimateOptions& options, Progress& progress);

@@ -117,26 +117,19 @@ class FaceTree {
   int build(int begin, int end) {
     const int index = static_cast<int>(nodes_.size());
     nodes_.emplace_back();
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf}, clo = lo, chi = hi;
+    Box3 box = Box3::empty(), centroids = Box3::empty();
     for (int i = begin; i < end; ++i) {
-      for (int v : mesh_.faces[order_[i]]) {
-        const Vec3 q = mesh_.vertices[v];
-        lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
-        hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
-      }
-      const Vec3 c = centroid_[order_[i]];
-      clo = {std::min(clo.x, c.x), std::min(clo.y, c.y), std::min(clo.z, c.z)};
-      chi = {std::max(chi.x, c.x), std::max(chi.y, c.y), std::max(chi.z, c.z)};
+      for (int v : mesh_.faces[order_[i]]) box.add(mesh_.vertices[v]);
+      centroids.add(centroid_[order_[i]]);
     }
-    nodes_[index].lo = lo;
-    nodes_[index].hi = hi;
+    nodes_[index].lo = box.lo;
+    nodes_[index].hi = box.hi;
     if (end - begin <= kLeaf) {
       nodes_[index].first = begin;
       nodes_[index].count = end - begin;
       return index;
     }
-    const Vec3 ext = chi - clo;
+    const Vec3 ext = centroids.size();
     const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
     auto coord = [&](int f) {
       const Vec3 c = centroid_[f];

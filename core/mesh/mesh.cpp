@@ -1,7 +1,6 @@
 #include "core/mesh/mesh.h"
 
 #include <algorithm>
-#include <limits>
 #include <vector>
 
 namespace papernet {
@@ -14,15 +13,14 @@ Vec3 face_normal(const Mesh& mesh, int f) {
 
 double face_area(const Mesh& mesh, int f) { return 0.5 * norm(face_normal(mesh, f)); }
 
+Box3 bounding_box(const Mesh& mesh) {
+  Box3 box = Box3::empty();
+  for (const Vec3& v : mesh.vertices) box.add(v);
+  return box;
+}
+
 double bounding_box_diagonal(const Mesh& mesh) {
-  if (mesh.vertices.empty()) return 0;
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
-  for (const Vec3& v : mesh.vertices) {
-    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-  }
-  return norm(hi - lo);
+  return mesh.vertices.empty() ? 0 : norm(bounding_box(mesh).size());
 }
 
 double median_edge_length(const Mesh& mesh) {

@@ -21,6 +21,9 @@ Vec3 face_normal(const Mesh& mesh, int f);
 /// Area of face f.
 double face_area(const Mesh& mesh, int f);
 
+/// The mesh's axis-aligned bounding box (Box3::empty() for a mesh without vertices).
+Box3 bounding_box(const Mesh& mesh);
+
 /// Length of the diagonal of the mesh's axis-aligned bounding box (0 for an empty mesh).
 double bounding_box_diagonal(const Mesh& mesh);
 

@@ -16,7 +16,9 @@
 #include <cmath>
 #include <utility>
 
+#include "core/mesh/angle_defects.h"
 #include "core/mesh/dual_graph.h"
+#include "core/tabs/internal/tab_clearance_kick.h"
 #include "core/tabs/internal/tab_clearance_state.h"
 #include "core/tabs/tab_clearance_report.h"
 #include "core/unfold/unfold_tree.h"
@@ -49,7 +51,7 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
         break;
       }
   }
-  tol_ = kRelativeTolerance * bounding_box_diagonal(mesh);
+  tol_ = kOverlapTolerance * bounding_box_diagonal(mesh);
   height_ = options.min_height;
   budget_ = options.max_evaluations;
   time_limit_ = options.time_limit_seconds;
@@ -61,13 +63,11 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   grid_.reset(mean > 0 && std::isfinite(mean) ? mean : 1.0);
   keep_bounds_ = options.keep_bounds;
   compound_ = options.compound_moves && !options.keep_bounds;
+  bounds_ = Box2::empty();
   for (int f = 0; f < nf_; ++f) {
     box_[f] = triangle_box(pos_[f]);
     grid_.insert(f, box_[f]);
-    const Box2& b = box_[f];
-    bounds_ = f == 0 ? b
-                     : Box2{{std::min(bounds_.lo.x, b.lo.x), std::min(bounds_.lo.y, b.lo.y)},
-                            {std::max(bounds_.hi.x, b.hi.x), std::max(bounds_.hi.y, b.hi.y)}};
+    bounds_.add(box_[f]);
   }
   blocked_.assign(3 * static_cast<std::size_t>(nf_), 0);
   for (int f = 0; f < nf_; ++f)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/tabs/internal/tab_clearance_kick.h"
 #include "core/tabs/internal/tab_clearance_state.h"
 #include "core/unfold/unfolding.h"
 

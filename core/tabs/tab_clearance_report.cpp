@@ -5,29 +5,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/mesh/angle_defects.h"
 #include "core/mesh/dual_graph.h"
-#include "core/tabs/internal/tab_clearance_state.h"
+#include "core/tabs/internal/tab_clearance_params.h"
 #include "core/unfold/folds.h"
 #include "core/unfold/overlap.h"
 
 namespace papernet {
-
-std::vector<double> angle_defects(const Mesh& mesh) {
-  std::vector<double> sum(mesh.vertices.size(), 0);
-  std::vector<char> used(mesh.vertices.size(), 0);
-  for (const auto& f : mesh.faces)
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 p = mesh.vertices[f[k]];
-      const Vec3 a = mesh.vertices[f[(k + 1) % 3]] - p, b = mesh.vertices[f[(k + 2) % 3]] - p;
-      sum[f[k]] += std::atan2(norm(cross(a, b)), dot(a, b));
-      used[f[k]] = 1;
-    }
-  const std::vector<char> boundary = boundary_vertices(mesh, build_dual_graph(mesh));
-  std::vector<double> out(mesh.vertices.size(), 0);
-  for (std::size_t v = 0; v < out.size(); ++v)
-    if (used[v] && !boundary[v]) out[v] = 2 * std::numbers::pi - sum[v];
-  return out;
-}
 
 namespace {
 
@@ -45,7 +29,7 @@ std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options
   for (const auto& f : mesh.faces)
     for (int k = 0; k < 3; ++k) fan[f[k]].push_back({f[(k + 1) % 3], f[(k + 2) % 3]});
   const std::vector<TabShape> shapes = tab_shapes(options.angle_deg);
-  const double tol = 1e-9 * bounding_box_diagonal(mesh);
+  const double tol = kOverlapTolerance * bounding_box_diagonal(mesh);
   std::vector<Triangle2> flat;
   const auto hits_fan = [&](const Triangle2& t0, const Triangle2& t1, const Box2&) {
     return std::any_of(flat.begin(), flat.end(), [&](const Triangle2& c) {

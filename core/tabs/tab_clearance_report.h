@@ -50,8 +50,4 @@ TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
 /// leaf there), on the boundary or in no face.
 std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options);
 
-/// Angle defect of every vertex: 2 pi minus the sum of its face angles; 0 for boundary vertices
-/// and vertices in no face.
-std::vector<double> angle_defects(const Mesh& mesh);
-
 }  // namespace papernet

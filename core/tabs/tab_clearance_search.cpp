@@ -77,6 +77,7 @@ std::vector<int> Clearance::swapped_tree(int lf, int lk, int cf, int ck) const {
   return parent;
 }
 
+// The other ends of the cut edges at vertex x.
 std::vector<int> Clearance::cut_neighbours(int x) const {
   std::vector<int> out;
   for (int f : vertex_faces_[x])
@@ -89,6 +90,8 @@ std::vector<int> Clearance::cut_neighbours(int x) const {
   return out;
 }
 
+// When edge (u, v) lies on a hair (a path of two-cut interior vertices ending at a leaf),
+// the tree links across edges at the hair's vertices, from the leaf on; else none.
 std::vector<std::pair<int, int>> Clearance::hair_links(int u, int v) const {
   std::vector<std::pair<int, int>> out;
   for (auto [from, at] : {std::pair{v, u}, std::pair{u, v}}) {
@@ -206,6 +209,8 @@ bool Clearance::candidates(int f, int k, Consider&& consider) {
   return false;
 }
 
+// The hair blocked edge (u, v) lies on, as vertices from its flat leaf to the first vertex
+// that is not a two-cut interior vertex; empty when it lies on none.
 std::vector<int> Clearance::hair_path(int u, int v) const {
   // The leaf: an end of the edge, or the end of the hair the edge lies on.
   int leaf = -1;

@@ -162,13 +162,14 @@ NetCheckReport check_net(const Mesh& mesh, const Net& net, const NetCheckOptions
   }
 
   // Overlaps, over a grid of cells about an average edge long.
-  double lo_x = INFINITY, lo_y = INFINITY, edge_sum = 0;
+  Box2 box = Box2::empty();
+  double edge_sum = 0;
   for (const auto& t : net.points)
     for (int k = 0; k < 3; ++k) {
-      lo_x = std::min(lo_x, t[k].x);
-      lo_y = std::min(lo_y, t[k].y);
+      box.add(t[k]);
       edge_sum += norm(t[(k + 1) % 3] - t[k]);
     }
+  const double lo_x = box.lo.x, lo_y = box.lo.y;
   if (nf == 0 || !std::isfinite(lo_x) || !std::isfinite(lo_y) || !(edge_sum > 0)) return report;
   const double cell = edge_sum / (3.0 * static_cast<double>(nf));
   std::map<std::pair<long long, long long>, std::vector<std::size_t>> grid;

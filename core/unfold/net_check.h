@@ -6,14 +6,17 @@
 
 #include "core/mesh/mesh.h"
 #include "core/unfold/net.h"
+#include "core/unfold/overlap.h"
 
 namespace papernet {
 
 /// Tolerances of the net checker, relative to the mesh's bounding-box diagonal.
 struct NetCheckOptions {
-  double length_tolerance = 1e-6;   ///< edge lengths and glued corners
-  double overlap_tolerance = 1e-7;  ///< overlaps thinner than this are ignored
-  std::size_t max_messages = 20;    ///< failures listed in full; the rest are counted
+  double length_tolerance = 1e-6;  ///< edge lengths and glued corners
+  /// Overlaps thinner than this are ignored: twice the unfolder's, so that rounding in what the
+  /// unfolder accepted never fails the check.
+  double overlap_tolerance = 2 * kOverlapTolerance;
+  std::size_t max_messages = 20;  ///< failures listed in full; the rest are counted
 };
 
 /// What the checker found. `ok()` when nothing failed.

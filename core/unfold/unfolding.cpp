@@ -15,12 +15,6 @@ namespace papernet {
 
 namespace {
 
-// Overlap tolerance relative to the mesh's bounding-box diagonal: half of what the net checker
-// ignores (NetCheckOptions::overlap_tolerance, 1e-7). It was 1e-9, below the rounding of float
-// input: the Twin plate's flat sides of slivers (aspect ratios up to 1.6e8) overlapped by 1e-8
-// of the diagonal between faces adjacent in 3D, pairs no tree could avoid.
-constexpr double kRelativeTolerance = 5e-8;
-
 std::string face_name(int f) { return "face " + std::to_string(f); }
 
 FaceShape checked_shape(const Mesh& mesh, int f) {
@@ -33,7 +27,7 @@ FaceShape checked_shape(const Mesh& mesh, int f) {
 
 }  // namespace
 
-Unfolding::Unfolding(Mesh mesh, const std::vector<int>& parent) : mesh_(std::move(mesh)) {
+Unfolding::Unfolding(Mesh mesh, const std::vector<int>& parent) : UnfoldingState(std::move(mesh)) {
   const int nf = static_cast<int>(mesh_.faces.size());
   if (nf == 0) throw InvalidInputException("the mesh has no faces");
   if (static_cast<int>(parent.size()) != nf)
@@ -62,7 +56,7 @@ Unfolding::Unfolding(Mesh mesh, const std::vector<int>& parent) : mesh_(std::mov
   tin_.assign(nf, 0);
   seen_.assign(nf, 0);
   is_dirty_.assign(nf, 0);
-  tolerance_ = kRelativeTolerance * bounding_box_diagonal(mesh_);
+  tolerance_ = kOverlapTolerance * bounding_box_diagonal(mesh_);
 
   // The finest grid cell is the median edge length: robust to a few huge faces (coarser levels
   // of the grid take those).
@@ -134,6 +128,9 @@ void Unfolding::remove_pair(int a, int b) {
   --pair_count_;
 }
 
+// Sorts overlapping_ by face, newest (highest) first: the random choices of the Tabu Unfolder
+// and the local repair read it in this order, so that they do not depend on the order in which
+// pairs were found.
 void Unfolding::sort_overlapping() {
   if (overlapping_sorted_) return;
   std::sort(overlapping_.begin(), overlapping_.end(), std::greater<>());

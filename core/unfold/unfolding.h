@@ -3,59 +3,32 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "core/mesh/mesh.h"
 #include "core/progress.h"
+#include "core/unfold/internal/unfolding_state.h"
+#include "core/unfold/local_repair.h"
 #include "core/unfold/net.h"
 #include "core/unfold/overlap.h"
 #include "core/unfold/tabu.h"
-#include "core/unfold/unfold_tree.h"
 
 namespace papernet {
-
-/// Budget of Unfolding::repair_locally.
-struct LocalRepairOptions {
-  /// Largest side of a cut that is moved (tried from 16 faces up, fourfold while nothing helps).
-  std::size_t max_side = 256;
-  /// Moved-face tests (one grid query each) at most, summed over the whole repair.
-  std::size_t max_tests = 100'000;
-  /// Moves that do not lower the count (raising it by at most `max_rise` pairs) allowed when no
-  /// move lowers it; the links they cut or make are tabu for the next few moves.
-  std::size_t max_sideways = 32;
-  std::size_t max_rise = 1;
-  /// A cut met again in the same round (the pairs' tree paths share links) is not evaluated
-  /// again, only its tests are counted; false evaluates it again. The result and the stats are
-  /// the same either way (a test compares them).
-  bool reuse_cuts = true;
-};
-
-/// What Unfolding::repair_locally did.
-struct LocalRepairStats {
-  std::size_t moves = 0;        ///< moves applied
-  std::size_t sideways = 0;     ///< of which did not lower the overlap count
-  std::size_t evaluations = 0;  ///< candidate moves evaluated
-  std::size_t tests = 0;        ///< moved-face tests
-  std::size_t overlaps = 0;     ///< overlapping pairs left
-};
 
 /// The incremental state of an edge unfolding: mesh, unfold tree, 2D layout, spatial index and
 /// the set of overlapping face pairs. Both the plain Tabu Unfolder and progressive unfolding
 /// drive this one state; nothing that did not move is recomputed.
 ///
-/// Faces are laid out per DESIGN.md §2: each face has its own 2D triangle; a child is placed
-/// across the edge it shares with its parent, counter-clockwise. Two faces overlap when their
-/// interiors intersect by more than 5e-8 of the mesh's bounding-box diagonal (half of what the
-/// net checker ignores).
+/// Each face has its own 2D triangle; a child is placed across the edge it shares with its
+/// parent, counter-clockwise (docs/architecture.md, "The unfolder"). Two faces overlap when their
+/// interiors intersect by more than kOverlapTolerance of the mesh's bounding-box diagonal.
 ///
 /// Growing the mesh (vertex splits): change vertices and faces with add_vertex,
 /// set_vertex_position, set_face_corners and add_face; fix the tree with attach and
 /// insert_between; then call update() once, which rebuilds the adjacency of what changed,
 /// re-lays out only the faces whose position changed and tests only those for new overlaps.
 /// Between those edits and update() the layout and overlap queries are stale.
-class Unfolding {
+class Unfolding : private unfolding_detail::UnfoldingState {
  public:
   /// Builds the state from a mesh and an unfold tree (`parent[f]` is the face f hangs from,
   /// -1 for the root; each link joins faces sharing an edge).
@@ -136,16 +109,10 @@ class Unfolding {
   void reroot(int r);
   void add_pair(int a, int b);
   void remove_pair(int a, int b);
-  // Sorts overlapping_ by face, newest (highest) first: the random choices of the Tabu Unfolder
-  // and the local repair read it in this order, so that they do not depend on the order in which
-  // pairs were found.
   void sort_overlapping();
   // Adds a pair for every face in the grid that overlaps face f (at pos_[f], box_[f]).
   void add_pairs_in_grid(int f);
   void test_moved(const std::vector<int>& moved);
-  // update() when few faces were edited: keeps the largest unedited part of the tree in place,
-  // lays out the rest (into `moved`) and tests it for overlaps, in time proportional to it. False
-  // when it cannot (then the full update runs). \throw TopologyException as update().
   bool update_locally(const std::vector<int>& around, std::vector<int>& moved);
 
   // unfolding_moves.cpp: the move primitives of the Tabu Unfolder.
@@ -172,66 +139,15 @@ class Unfolding {
   void for_each_crossing(F&& f) const;
   long long evaluate_move(int g, int k, long long crossing, long long cutoff);
   void apply_move(int g, int k);
-  // After apply_move when the moved link was g - parent_[g]: g's subtree hangs from q now; updates
-  // the pre-order, sizes and parents to exactly what root_at(root_) gives, in time proportional to
-  // the faces between the old and new place of the subtree in the pre-order.
   void move_subtree(int g, int q);
   void relayout_all();
   std::uint32_t next_seen_epoch();
 
   // unfolding_repair.cpp: local repair.
   std::uint32_t next_side_epoch();
-  // Faces reached from x over links without crossing to y, into side_ (marked with the epoch);
-  // false (side_ incomplete) when there are more than `limit`.
   bool collect_side(int x, int y, std::size_t limit);
   // The tree path a .. b into path_.
   void tree_path(int a, int b);
-
-  Mesh mesh_;
-  std::vector<std::array<int, 3>> adj_;
-  std::vector<std::array<std::int8_t, 3>> adj_edge_;
-  std::vector<std::uint8_t> links_;  // bit k: the tree links f across edge k
-  std::vector<FaceShape> shape_;
-  std::vector<int> parent_;
-  std::vector<Triangle2> pos_;
-  std::vector<Box2> box_;
-  OverlapGrid grid_;
-  std::vector<std::vector<int>> overlaps_;  // partners of each face, in increasing order
-  std::vector<int> overlapping_;            // faces with partners
-  std::vector<int> overlapping_index_;      // position in overlapping_, -1 if absent
-  bool overlapping_sorted_ = true;          // overlapping_ is in decreasing order
-  std::size_t pair_count_ = 0;
-  double tolerance_ = 0;
-
-  // Editing state.
-  std::unordered_map<std::uint64_t, int> half_edges_;  // a->b -> 3 * face + edge
-  std::vector<std::vector<int>> vertex_faces_;
-  std::vector<int> dirty_;  // faces whose shape, corners or parent changed since update()
-  std::vector<char> is_dirty_;
-  std::size_t link_bits_ = 0;  // set bits of links_ (2 (|F| - 1) for a tree; 0: recount)
-  std::vector<int> part_;      // update_locally: part of each explored face
-  std::vector<std::vector<int>> part_queue_;
-  // update_locally, per part: union-find parent, size, next face to expand, still growing.
-  std::vector<int> part_up_, part_size_;
-  std::vector<std::size_t> part_head_;
-  std::vector<char> part_open_;
-  std::vector<std::pair<int, int>> todo_;
-  std::vector<int> group_;  // update_locally: what moved together (-2 outside a call)
-  std::vector<int> group_start_, group_order_;  // update_locally: moved faces by group
-  std::size_t relaid_ = 0;                      // faces re-laid out by update(), ever
-
-  // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
-  // is the pre-order range [cut_lo_, cut_hi_), the other its complement.
-  std::vector<int> order_, tin_, size_, stack_;
-  int root_ = 0, cut_lo_ = 0, cut_hi_ = 0, cut_other_ = -1;
-  bool g_in_range_ = true, small_is_range_ = true;
-  std::vector<std::pair<int, int>> crossing_;
-  std::vector<std::uint32_t> seen_;
-  std::uint32_t seen_epoch_ = 0;
-  std::size_t tested_ = 0;  // faces tested by evaluate_move, ever
-  std::vector<int> side_, path_;
-  std::vector<std::uint32_t> side_mark_;
-  std::uint32_t side_epoch_ = 0;
 };
 
 }  // namespace papernet

@@ -185,6 +185,9 @@ void Unfolding::apply_move(int g, int k) {
     root_at(root_);  // the pre-order of the changed tree
 }
 
+// After apply_move when the moved link was g - parent_[g]: g's subtree hangs from q now; updates
+// the pre-order, sizes and parents to exactly what root_at(root_) gives, in time proportional to
+// the faces between the old and new place of the subtree in the pre-order.
 void Unfolding::move_subtree(int g, int q) {
   // g's subtree, the pre-order range [lo, hi), now hangs from q (outside it). root_at visits a
   // face's children by decreasing edge index, each with its whole subtree: the range keeps its

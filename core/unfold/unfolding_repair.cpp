@@ -42,6 +42,8 @@ std::uint32_t Unfolding::next_side_epoch() {
   return side_epoch_;
 }
 
+// Faces reached from x over links without crossing to y, into side_ (marked with the epoch);
+// false (side_ incomplete) when there are more than `limit`.
 bool Unfolding::collect_side(int x, int y, std::size_t limit) {
   side_.clear();
   const std::uint32_t epoch = next_side_epoch();

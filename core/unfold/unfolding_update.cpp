@@ -23,6 +23,9 @@ std::size_t link_count(std::uint8_t bits) {
 
 }  // namespace
 
+// update() when few faces were edited: keeps the largest unedited part of the tree in place,
+// lays out the rest (into `moved`) and tests it for overlaps, in time proportional to it. False
+// when it cannot (then the full update runs). \throw TopologyException as update().
 bool Unfolding::update_locally(const std::vector<int>& around, std::vector<int>& moved) {
   const int nf = static_cast<int>(mesh_.faces.size());
   // Links of the faces around the edits, from their parents; the total count must stay |F| - 1.

@@ -130,6 +130,42 @@ TEST(Pipeline, LimitsAndPrintOptionsAreRefusedByName) {
   }
 }
 
+// The pass that makes room for glue tabs runs with tabs auto and a budget, within the budget;
+// taller tabs leave more edges without room.
+TEST(Pipeline, MakesRoomForTabsWithinItsBudget) {
+  PipelineProgress quiet;
+  const JobInput sample = data_file("sample.obj");
+  JobOptions options = tu();
+  const UnfoldOutcome full = run_pipeline(sample, options, {}, {}, quiet);
+  expect_checked(full);
+  ASSERT_TRUE(full.tab_room);
+  EXPECT_LT(full.tab_room->blocked_after, full.tab_room->blocked_before);
+  EXPECT_GT(full.tab_room->moves, 0u);
+  options.tabs = TabMode::Strips;
+  EXPECT_FALSE(run_pipeline(sample, options, {}, {}, quiet).tab_room);
+  options.tabs = TabMode::Auto;
+  options.tab_room_budget = 0;
+  EXPECT_FALSE(run_pipeline(sample, options, {}, {}, quiet).tab_room);
+  options.tab_room_budget = 40;
+  const UnfoldOutcome brief = run_pipeline(sample, options, {}, {}, quiet);
+  ASSERT_TRUE(brief.tab_room);
+  EXPECT_GT(brief.tab_room->evaluations, 0u);
+  EXPECT_LE(brief.tab_room->evaluations, 80u);  // 40 in each of the pass's two rounds
+  EXPECT_EQ(brief.tab_room->blocked_before, full.tab_room->blocked_before);
+  expect_checked(brief);
+  options.tab_room_budget = JobOptions{}.tab_room_budget;
+  options.min_tab_height_mm = 3;  // taller tabs: more edges without room than at 2 mm
+  const UnfoldOutcome taller = run_pipeline(sample, options, {}, {}, quiet);
+  ASSERT_TRUE(taller.tab_room);
+  EXPECT_GT(taller.tab_room->blocked_before, full.tab_room->blocked_before);
+  EXPECT_LT(taller.tab_room->blocked_after, taller.tab_room->blocked_before);
+  // Why edges stay without room (a leaf at a nearly flat vertex), as the command line says.
+  EXPECT_GT(taller.tab_room->leaves_without_room, 0u);
+  EXPECT_LE(taller.tab_room->leaves_without_room, taller.tab_room->blocked_after);
+  EXPECT_EQ(taller.tab_room->interior_vertices, 502u);
+  EXPECT_LT(taller.tab_room->leaf_room_vertices, 502u);
+}
+
 // Progress through every phase in order, and intermediate nets of coarser meshes with their
 // documents while a progressive run works.
 TEST(Pipeline, ReportsPhasesInOrderAndIntermediateNets) {

@@ -142,7 +142,7 @@ const std::vector<TabClearanceResult>& all_print_nets() {
     std::vector<TabClearanceResult> out;
     for (const auto& [name, mesh, net] : all_nets()) {
       Progress quiet;
-      // make_tab_room's pass as printed by default (budget 100,000 candidate moves: about
+      // The pass as the engine runs it by default (budget 100,000 candidate moves: about
       // 3 s on the Duck, 1-2 s on reference.obj and sample.obj, less on the others) on the TU
       // nets; on the progressive ones a fifth of it, so that the test stays fast.
       TabClearanceOptions options;
@@ -434,25 +434,17 @@ TEST(Tabs, ModesAndMinimumHeight) {
   EXPECT_EQ(layout_net(mesh, net, options).omitted_tabs.size(),
             static_cast<std::size_t>(none.cut_edges));
 
-  // The pass runs in mode auto only, only with a budget, and within the budget.
-  Progress quiet;
+  // When the pass runs (engine/pipeline.cpp; tests/engine/pipeline_test.cpp runs it).
   options = {};
+  EXPECT_TRUE(makes_tab_room(options));
   options.tabs = TabMode::Strips;
-  EXPECT_EQ(make_tab_room(mesh, net, options, quiet).moves, 0u);
+  EXPECT_FALSE(makes_tab_room(options));
   options.tabs = TabMode::Auto;
   options.tab_room_budget = 0;
-  EXPECT_EQ(make_tab_room(mesh, net, options, quiet).evaluations, 0u);
-  options.tab_room_budget = 40;
-  const TabClearanceResult brief = make_tab_room(mesh, net, options, quiet);
-  EXPECT_GT(brief.evaluations, 0u);
-  EXPECT_LE(brief.evaluations, 80u);  // 40 in each of the pass's two rounds
-  options.tab_room_budget = kMaxTabRoomBudget + 1;
-  EXPECT_THROW(make_tab_room(mesh, net, options, quiet), InvalidOptionException);
-  options.tab_room_budget = PrintOptions{}.tab_room_budget;
-  options.min_tab_height_mm = 3;  // taller tabs: more edges without room than at 2 mm
-  const TabClearanceResult taller = make_tab_room(mesh, net, options, quiet);
-  EXPECT_GT(taller.blocked_before, all_print_nets()[index].blocked_after) << name;
-  EXPECT_LT(taller.blocked_after, taller.blocked_before) << name;
+  EXPECT_FALSE(makes_tab_room(options));
+  options.tab_room_budget = 1;
+  options.tab_height_mm = 0;
+  EXPECT_FALSE(makes_tab_room(options));
 
   EXPECT_EQ(tab_mode_name(TabMode::None), "none");
   PrintOptions bad;

@@ -1,82 +1,25 @@
-// Internal to the tab clearance pass (core/tab_clearance*.cpp): the search state, a net whose
-// cuts change by edge swaps of its unfold tree. Not part of the public API.
+// Internal to the tab clearance pass (core/tabs/tab_clearance*.cpp): the search state, a net
+// whose cuts change by edge swaps of its unfold tree. Not part of the public API.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <numbers>
 #include <utility>
 #include <vector>
 
 #include "core/mesh/mesh.h"
 #include "core/progress.h"
+#include "core/tabs/internal/tab_clearance_params.h"
 #include "core/tabs/tab_clearance.h"
 #include "core/unfold/folds.h"
 #include "core/unfold/net.h"
 #include "core/unfold/overlap.h"
+#include "core/unfold/overlap_grid.h"
 #include "core/unfold/unfold_tree.h"
 
 namespace papernet::tab_clearance_detail {
-
-// Overlap tolerance relative to the mesh's bounding-box diagonal (as the unfolder's).
-constexpr double kRelativeTolerance = 1e-9;
-// Cut edges farther along the cut tree tried per link (see Clearance::candidates).
-constexpr std::size_t kFarGlues = 32;
-// Vertices walked at most along a hair (see Clearance::hair_links).
-constexpr std::size_t kHairSteps = 64;
-// A vertex this far from flat (angle defect, radians: 10 degrees) hosts a leaf of the cut tree
-// without harm: its slit opens by that angle.
-constexpr double kSharpDefect = 10 * std::numbers::pi / 180;
-// Tabu search (Clearance::run): how many blocked edges a move may close net, for how many
-// steps a move's edges stay tabu, how many sweeps without a new best end a stage, and the
-// candidate moves evaluated per step in each stage.
-constexpr long long kMaxWorsening = 1;
-constexpr int kTenure = 40;
-constexpr int kStallSweeps = 3;
-// Endgame of the search: restarts from the best net without a new best before it stops, and the
-// stage (kStepCaps) a restart begins with.
-constexpr int kRestarts = 4;
-constexpr std::size_t kRestartLevel = 1;
-constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
-// Compound moves (Clearance::try_compound): glues tried per second link.
-constexpr std::size_t kCompoundGlues = 16;
-// ... and faces tried as the root of its layout (spread over the net).
-constexpr std::size_t kRoots = 8;
-// Kicks (kick): glues tried per link, moved-face tests of the local repair of each, faces of the
-// net per candidate move a kick counts as in the budget, how many blocked edges more than the
-// best net's a repaired net may have for a short search from it, and that search's budget as a
-// fraction of the round's (1 / kKickSearches: 10,000 candidate moves by default).
-constexpr std::size_t kKickGlues = 8;
-constexpr std::size_t kKickFacesPerEvaluation = 10;
-constexpr std::size_t kKickRepairTests = 5'000;
-constexpr std::size_t kKickSlack = 3;
-constexpr std::size_t kKickSearches = 10;
-// The second round (clear_tab_room) is more of the tabu search when it spent its budget with
-// more blocked edges than this left, else kicks.
-constexpr std::size_t kSearchOnBlocked = 64;
-
-// Whether a tab of one of `shapes`, `min_height` tall (half the edge on shorter edges), fits on
-// the outside of edge k of `face`: `hits(t0, t1, box)` says whether the tab's two triangles
-// (their bounding box `box`) overlap an obstacle. False on an edge of length 0. The one room test
-// of the pass (Clearance::side_has_room, against the net) and of leaf_room (against a fan).
-template <class Hits>
-bool tab_fits(const Triangle2& face, int k, const std::vector<TabShape>& shapes, double min_height,
-              Hits&& hits) {
-  const double len = norm(face[(k + 1) % 3] - face[k]);
-  if (!(len > 0)) return false;
-  const double h = std::min(min_height, 0.5 * len);
-  for (const TabShape& shape : shapes) {
-    const auto t = tab_trapezoid(face, k, shape, h);
-    const Triangle2 t0{t[0], t[1], t[2]}, t1{t[0], t[2], t[3]};
-    Box2 box = triangle_box(t0);
-    box = {{std::min(box.lo.x, t[3].x), std::min(box.lo.y, t[3].y)},
-           {std::max(box.hi.x, t[3].x), std::max(box.hi.y, t[3].y)}};
-    if (!hits(t0, t1, box)) return true;
-  }
-  return false;
-}
 
 class Clearance {
  public:
@@ -136,8 +79,6 @@ class Clearance {
   bool apply_compound(int tf, int tk, const std::vector<std::array<int, 4>>& swaps, int root,
                       Change& out);
   void recount(Change& out);
-  /// The hair blocked edge (u, v) lies on, as vertices from its flat leaf to the first vertex
-  /// that is not a two-cut interior vertex; empty when it lies on none.
   std::vector<int> hair_path(int u, int v) const;
   /// The best compound move try_compound found that does not lower the blocked count and closes
   /// at most max_blocked edges: the search's sideways move when it beats the best single swap.
@@ -160,10 +101,7 @@ class Clearance {
   std::vector<std::pair<int, int>> crossing_glues(int top, std::array<int, 2> link_ends, Vec3 at,
                                                   std::size_t most, Degree&& degree,
                                                   Skip&& skip) const;
-  /// The other ends of the cut edges at vertex x.
   std::vector<int> cut_neighbours(int x) const;
-  /// When edge (u, v) lies on a hair (a path of two-cut interior vertices ending at a leaf),
-  /// the tree links across edges at the hair's vertices, from the leaf on; else none.
   std::vector<std::pair<int, int>> hair_links(int u, int v) const;
   /// A leaf of the cut tree at v does no harm: v is on the boundary or far from flat.
   bool harmless(int v) const { return vboundary_[v] || std::abs(defect_[v]) >= kSharpDefect; }
@@ -206,18 +144,5 @@ class Clearance {
   std::vector<std::uint32_t> stamp_;
   std::uint32_t epoch_ = 0;
 };
-
-/// The pass's second round as kicks (core/tab_clearance_kick.cpp), after Clearance::run on
-/// `result.net`: for each blocked edge in turn, a swap that opens it (a link cut at one of its
-/// ends, one of the kKickGlues nearest cut edges across glued that leaves no new flat leaf) is
-/// made whether or not it overlaps; Unfolding::repair_locally removes the overlaps (the kick is
-/// dropped when it cannot); a repaired net with at most kKickSlack blocked edges more than
-/// `result`'s gets a tabu search of a tenth of the budget (kKickSearches) that visits only the
-/// edges near what moved (focus_), and replaces `result` when it ends with fewer. Sweeps until one
-/// makes no kick, `options.max_evaluations` more candidate moves are spent (a kick counts as 1 +
-/// faces / kKickFacesPerEvaluation of them, its search as what it evaluates), or `seconds_left`
-/// runs out (only when options.time_limit_seconds > 0). Deterministic otherwise.
-void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_left,
-          Progress& progress, TabClearanceResult& result);
 
 }  // namespace papernet::tab_clearance_detail

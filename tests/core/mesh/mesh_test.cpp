@@ -3,6 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "core/mesh/angle_defects.h"
+#include "tests/support/meshes.h"
 
 namespace papernet {
 namespace {
@@ -14,6 +19,33 @@ TEST(Mesh, AreaNormalAndDiagonalOfAUnitRightTriangle) {
   EXPECT_DOUBLE_EQ(face_area(m, 0), 0.5);
   EXPECT_DOUBLE_EQ(face_normal(m, 0).z, 1.0);
   EXPECT_DOUBLE_EQ(bounding_box_diagonal(m), std::sqrt(2.0));
+}
+
+// Angle defects sum to 2 pi times the Euler characteristic on a closed mesh (Gauss-Bonnet): 4 pi
+// on the cube, whose every corner has a defect of pi / 2; 0 at a vertex inside a flat fan.
+TEST(Mesh, AngleDefectsOfACubeAndOfAFlatFan) {
+  const std::vector<double> cube = angle_defects(test::cube());
+  ASSERT_EQ(cube.size(), 8u);
+  double sum = 0;
+  for (double d : cube) {
+    EXPECT_NEAR(d, std::numbers::pi / 2, 1e-12);
+    sum += d;
+  }
+  EXPECT_NEAR(sum, 4 * std::numbers::pi, 1e-12);
+  Mesh fan;  // a square split into four triangles around its centre: the centre is flat
+  fan.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 0}};
+  fan.faces = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  const std::vector<double> flat = angle_defects(fan);
+  EXPECT_NEAR(flat[4], 0, 1e-12);
+  EXPECT_EQ(flat[0], 0);  // on the boundary
+}
+
+TEST(Mesh, BoundingBoxHoldsEveryVertex) {
+  const Box3 box = bounding_box(test::torus(8, 6));
+  EXPECT_NEAR(box.lo.x, -2.7, 1e-12);
+  EXPECT_NEAR(box.hi.z, 0.7 * std::sqrt(3.0) / 2, 1e-12);  // the ring at 60 and 120 degrees
+  EXPECT_NEAR(box.size().x, 5.4, 1e-12);
+  EXPECT_LT(bounding_box(Mesh{}).size().x, 0);  // nothing in it
 }
 
 }  // namespace

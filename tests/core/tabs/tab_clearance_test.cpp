@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "core/io/load.h"
+#include "core/mesh/angle_defects.h"
 #include "core/tabs/tab_clearance_report.h"
 #include "core/unfold/net_check.h"
 #include "core/unfold/progressive.h"

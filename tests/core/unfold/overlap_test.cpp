@@ -1,4 +1,5 @@
 #include "core/unfold/overlap.h"
+#include "core/unfold/overlap_grid.h"
 
 #include <gtest/gtest.h>
 

@@ -77,7 +77,7 @@ TEST_P(ProgressiveStrategies, NetsOfTestMeshesPassTheChecker) {
 INSTANTIATE_TEST_SUITE_P(Strategies, ProgressiveStrategies,
                          testing::Values(CollapseStrategy::QQ, CollapseStrategy::SEMP,
                                          CollapseStrategy::SEQ),
-                         [](const auto& info) { return strategy_name(info.param); });
+                         [](const auto& info) { return collapse_strategy_name(info.param); });
 
 TEST(Progressive, ReportsArriveInOrderAndEndAtTheInputFaceCount) {
   const Mesh input = load_test_mesh("sample.obj");

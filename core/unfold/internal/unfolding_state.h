@@ -1,0 +1,69 @@
+// Private to the unfolder (core/unfold/unfolding*.cpp, tabu.cpp): the data of an Unfolding,
+// which inherits it privately. Not part of the public API.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/unfold/overlap.h"
+#include "core/unfold/overlap_grid.h"
+#include "core/unfold/unfold_tree.h"
+
+namespace papernet::unfolding_detail {
+
+struct UnfoldingState {
+  explicit UnfoldingState(Mesh mesh) : mesh_(std::move(mesh)) {}
+
+  Mesh mesh_;
+  std::vector<std::array<int, 3>> adj_;
+  std::vector<std::array<std::int8_t, 3>> adj_edge_;
+  std::vector<std::uint8_t> links_;  // bit k: the tree links f across edge k
+  std::vector<FaceShape> shape_;
+  std::vector<int> parent_;
+  std::vector<Triangle2> pos_;
+  std::vector<Box2> box_;
+  OverlapGrid grid_;
+  std::vector<std::vector<int>> overlaps_;  // partners of each face, in increasing order
+  std::vector<int> overlapping_;            // faces with partners
+  std::vector<int> overlapping_index_;      // position in overlapping_, -1 if absent
+  bool overlapping_sorted_ = true;          // overlapping_ is in decreasing order
+  std::size_t pair_count_ = 0;
+  double tolerance_ = 0;
+
+  // Editing state.
+  std::unordered_map<std::uint64_t, int> half_edges_;  // a->b -> 3 * face + edge
+  std::vector<std::vector<int>> vertex_faces_;
+  std::vector<int> dirty_;  // faces whose shape, corners or parent changed since update()
+  std::vector<char> is_dirty_;
+  std::size_t link_bits_ = 0;  // set bits of links_ (2 (|F| - 1) for a tree; 0: recount)
+  std::vector<int> part_;      // update_locally: part of each explored face
+  std::vector<std::vector<int>> part_queue_;
+  // update_locally, per part: union-find parent, size, next face to expand, still growing.
+  std::vector<int> part_up_, part_size_;
+  std::vector<std::size_t> part_head_;
+  std::vector<char> part_open_;
+  std::vector<std::pair<int, int>> todo_;
+  std::vector<int> group_;  // update_locally: what moved together (-2 outside a call)
+  std::vector<int> group_start_, group_order_;  // update_locally: moved faces by group
+  std::size_t relaid_ = 0;                      // faces re-laid out by update(), ever
+
+  // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
+  // is the pre-order range [cut_lo_, cut_hi_), the other its complement.
+  std::vector<int> order_, tin_, size_, stack_;
+  int root_ = 0, cut_lo_ = 0, cut_hi_ = 0, cut_other_ = -1;
+  bool g_in_range_ = true, small_is_range_ = true;
+  std::vector<std::pair<int, int>> crossing_;
+  std::vector<std::uint32_t> seen_;
+  std::uint32_t seen_epoch_ = 0;
+  std::size_t tested_ = 0;  // faces tested by evaluate_move, ever
+  std::vector<int> side_, path_;
+  std::vector<std::uint32_t> side_mark_;
+  std::uint32_t side_epoch_ = 0;
+};
+
+}  // namespace papernet::unfolding_detail
