@@ -28,7 +28,7 @@ struct NetMetrics {
   double seconds = 0;
 };
 
-/// A `papernet.net/1` document (DESIGN.md §4): the net and the mesh it folds into.
+/// A `papernet.net/1` document (README.md "The net"): the net and the mesh it folds into.
 struct NetDocument {
   std::string result = "complete";  ///< "complete" or "approximate"
   std::string strategy;             ///< "TU", "QQ", "SEMP", "SEQ"
@@ -41,7 +41,7 @@ struct NetDocument {
   bool intermediate = false;
 };
 
-/// The document as JSON, fields exactly as DESIGN.md §4 names them.
+/// The document as JSON, fields exactly as README.md "The net" names them.
 nlohmann::json net_to_json(const NetDocument& doc);
 
 /// Serialised document; `indent` < 0 writes one line.

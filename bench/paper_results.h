@@ -1,6 +1,6 @@
 #pragma once
-// The published figures we compare against: the Appendix C table of "Progressive Mesh
-// Unfolding" (../shared/seeds/progressive-mesh-unfolding.tex, Table tab:DetailedTimings).
+// The published figures we compare against: the Appendix C table (detailed timings) of
+// Zawallich and Pajarola, "Unfolding via Progressive Mesh Approximation".
 
 #include <string>
 #include <vector>

@@ -32,8 +32,8 @@ struct PrintOptions {
   double min_tab_height_mm = 2;
   /// Candidate moves of the pass that changes the net before printing so that more cut edges
   /// have room for a tab (makes_tab_room), at most, in each of its two rounds
-  /// (TabClearanceOptions::max_evaluations; 0: no pass). More opens more edges on dense meshes,
-  /// at some 10-40 microseconds a move.
+  /// (TabClearanceOptions::max_evaluations; 0: no pass). More opens more edges on dense meshes
+  /// (docs/tabs.md has the cost of a move).
   std::size_t tab_room_budget = kDefaultTabRoomBudget;
   /// Clock limit of that pass in seconds (TabClearanceOptions::time_limit_seconds); <= 0: only
   /// its deterministic budget. The service sets it from the job's time limit.

@@ -1,7 +1,8 @@
 // TypeScript declarations of papernet.js (the papernet HTTP API client).
 
 export type Strategy = "QQ" | "SEMP" | "SEQ" | "TU";
-export type Paper = "A4" | "Letter" | "A3" | "none";
+/** A4, A3, Letter, a size "WxHmm" (e.g. "300x200mm"), or none (the SVG sized to the net). */
+export type Paper = "A4" | "Letter" | "A3" | "none" | `${number}x${number}mm`;
 export type MeshFormat = "glb" | "gltf" | "drc" | "obj" | "off" | "ply" | "stl";
 export type JobStatus = "queued" | "running" | "succeeded" | "approximated" | "failed" | "cancelled";
 export type ResultFile = "net.json" | "net.svg" | "net.pdf" | "mesh.glb";
@@ -20,11 +21,19 @@ export interface Options {
   scale?: number;
   paper?: Paper;
   margin_mm?: number;
+  /** Overlap of the tiles of a net larger than a page, in millimetres. */
+  overlap_mm?: number;
   /** Glue: "auto" (tabs where they fit, strips elsewhere), "strips", "none"; true = "auto", false = "none". */
   tabs?: "auto" | "strips" | "none" | boolean;
+  /** Tallest glue tab and widest strip half in millimetres (default 6; 0: no glue). */
+  tab_height_mm?: number;
+  /** Lowest glue tab printed in millimetres (default 2). */
+  min_tab_height_mm?: number;
   /** Moves the pass that makes room for tabs may try (default 100000; 0: no pass). */
   tab_room_budget?: number;
   flat_fold_degrees?: number;
+  /** Matching numbers on both sides of each cut edge (default true). */
+  labels?: boolean;
   keep_largest_component?: boolean;
 }
 
@@ -68,7 +77,9 @@ export interface Job {
     faces: number;
     input_faces: number;
     overlaps: number;
-    metrics?: Record<string, number>;
+    /** The net JSON's metrics, the print's (pages, cut_edges, glue_tabs, glue_strips) and, with
+     *  tabs auto, what the pass that makes room for tabs did. */
+    metrics?: Record<string, number> & { tab_room?: Record<string, number> };
   } | null;
   intermediate?: { faces: number; input_faces: number; overlaps: number };
   error?: Problem | null;
@@ -82,7 +93,7 @@ export interface Level {
   inputFaces: number | null;
 }
 
-/** The net document, papernet.net/1 (docs/DESIGN.md §4). */
+/** The net document, papernet.net/1 (README.md, "The net"). */
 export interface NetDocument {
   format: "papernet.net/1";
   result: "complete" | "approximate";

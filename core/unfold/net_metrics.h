@@ -29,7 +29,7 @@ std::vector<Vec2> convex_hull(std::vector<Vec2> points);
 /// optimal box has a side on a hull edge). Empty input gives an empty box at the origin.
 OrientedBox min_area_box(const std::vector<Vec2>& points);
 
-/// Figures describing how well a net uses its paper (DESIGN.md section 4).
+/// Figures describing how well a net uses its paper (the net JSON's coverage and aspect ratio).
 struct NetBoxMetrics {
   int faces = 0;
   double face_area = 0;     ///< summed area of the mesh's faces (mesh units squared)

@@ -34,8 +34,7 @@ struct ProgressiveOptions {
   std::size_t split_tests_per_face = 1250;
   /// Vertex splits applied together before one re-layout (Unfolding::update) and repair; 0 means
   /// automatic: four, and one per 4,000 faces of the current mesh beyond 16,000. Together, the
-  /// tree parts that several splits move are re-laid out and tested once (at 2,000 faces four
-  /// splits per update moved 24 % fewer faces than one).
+  /// tree parts that several splits move are re-laid out and tested once (docs/performance.md).
   std::size_t splits_per_update = 0;
   /// Iteration limit of the Tabu Unfolder on a coarse mesh that may still be collapsed further
   /// when it fails; 0 means automatic (iterations and moved-face tests growing with its face
@@ -65,7 +64,7 @@ struct ProgressiveResult {
   double seconds = 0;
 };
 
-/// Progressive Mesh Unfolding (the paper's Algorithm 1, DESIGN.md §1 steps 3-5): collapse the
+/// Progressive Mesh Unfolding (the paper's Algorithm 1, docs/architecture.md): collapse the
 /// mesh with `options.strategy`, unfold the coarse mesh (steepest edge, then the Tabu Unfolder),
 /// then undo the collapses a few vertex splits at a time (`splits_per_update`), inserting each
 /// new face into the unfold tree between the two faces linked across its wing (else as a leaf

@@ -10,7 +10,7 @@
 
 namespace papernet {
 
-/// Budget and randomness of a Tabu Unfolder run (DESIGN.md §3).
+/// Budget and randomness of a Tabu Unfolder run (docs/architecture.md, "The unfolder").
 struct TabuOptions {
   std::uint64_t seed = 1;                   ///< every random choice derives from it
   std::size_t max_iterations = 10'000'000;  ///< moves (0: no limit)
@@ -23,22 +23,20 @@ struct TabuOptions {
   /// resolve_overlaps stops (returns false) when the fewest overlaps seen have not dropped for
   /// this many iterations (0: never); unfold_tabu then restarts from another start.
   std::size_t stall_iterations = 0;
-  /// Walks per iteration at most, once stalled. The paper applies the best move of one walk;
-  /// on CAD meshes with slivers that move is often a large step up (+22 pairs on average on
-  /// `thingi10k__73416` at 400 faces) and the count wanders on a plateau. So once the fewest
-  /// overlaps seen have not dropped for |F| iterations, an iteration whose best move so far
-  /// raises the count by more than `accept_rise` pairs tries another walk (new random
-  /// overlapping face, new random root), up to `walks`, and applies the best move of all.
-  /// Before that stall (and with walks = 1) it is the paper's rule: organic meshes converge
-  /// faster with it, small and large steps up included.
+  /// Walks per iteration at most, once stalled. The paper applies the best move of one walk; on
+  /// CAD meshes with slivers that move is often a large step up and the count wanders on a
+  /// plateau. So once the fewest overlaps seen have not dropped for |F| iterations, an iteration
+  /// whose best move so far raises the count by more than `accept_rise` pairs tries another walk
+  /// (new random overlapping face, new random root), up to `walks`, and applies the best move of
+  /// all. Before that stall (and with walks = 1) it is the paper's rule. Measurements:
+  /// docs/performance.md.
   std::size_t walks = 4;
   std::size_t accept_rise = 2;  ///< see `walks`
   /// Share of walks (a coin flip each, from the seed) that end at a face the start face overlaps
   /// instead of at a random root, so that every cut on the walk separates an overlapping pair
   /// and the walk is as short as the tree path between them. The paper's walks go to a random
-  /// root (0 restores that exactly); on CAD meshes of slivers their cuts are mostly far from
-  /// the overlap and move large sides, and the count stalls (`thingi10k__79741` at 2,000 faces:
-  /// ~30 pairs left after 60 s; with half the walks to a partner, nets in 27-35 s for seeds 1-3).
+  /// root (0 restores that exactly); on CAD meshes of slivers their cuts are mostly far from the
+  /// overlap and move large sides, and the count stalls (docs/performance.md).
   double partner_walks = 0.5;
 };
 

@@ -57,8 +57,8 @@ class Unfolding : private unfolding_detail::UnfoldingState {
   /// Length below which 2D differences are ignored by the overlap test.
   double tolerance() const { return tolerance_; }
 
-  /// Runs the Tabu Unfolder (DESIGN.md §3) on the current state until no overlaps remain or the
-  /// budget is spent. Returns true when the state is overlap-free. Reports progress (overlaps
+  /// Runs the Tabu Unfolder (docs/architecture.md) on the current state until no overlaps remain or
+  /// the budget is spent. Returns true when the state is overlap-free. Reports progress (overlaps
   /// left, iterations) through `progress`; \throw CancelledException when it asks to stop.
   bool resolve_overlaps(const TabuOptions& options, Progress& progress, TabuStats* stats = nullptr);
 

@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "api/openapi.h"
 
 using namespace papernet;
 
@@ -288,4 +292,19 @@ TEST(OptionsTest, CommandLineFlagsFillTheSameOptions) {
   const nlohmann::json all = options_to_json(JobOptions{});
   for (const auto& [name, value] : all.items())
     EXPECT_NE(help.find(option_flag(name) + " "), std::string::npos) << name;
+}
+
+// The OpenAPI document lists exactly the options the parsers take, as query parameters and in
+// the JSON part's schema, so that a client generated from it never sends a refused name.
+TEST(OptionsTest, OpenApiListsEveryOption) {
+  const nlohmann::json api = nlohmann::json::parse(openapi_document());
+  std::set<std::string> query, schema, options;
+  for (const auto& p : api["paths"]["/v1/jobs"]["post"]["parameters"])
+    if (p["in"] == "query" && p["name"] != "format") query.insert(p["name"].get<std::string>());
+  for (const auto& [name, value] : api["components"]["schemas"]["Options"]["properties"].items())
+    schema.insert(name);
+  const nlohmann::json all = options_to_json(JobOptions{});
+  for (const auto& [name, value] : all.items()) options.insert(name);
+  EXPECT_EQ(query, options);
+  EXPECT_EQ(schema, options);
 }
