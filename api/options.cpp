@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string_view>
 
@@ -144,13 +145,13 @@ struct Spec {
 
 constexpr Spec kOptions[] = {
     {"strategy", "QQ|SEMP|SEQ|TU",
-     "QQ (default), SEMP, SEQ: progressive unfolding after collapsing the mesh; TU: Tabu "
-     "Unfolding of the full mesh",
+     "QQ, SEMP, SEQ: progressive unfolding after collapsing the mesh; TU: Tabu Unfolding of the "
+     "full mesh",
      [](JobOptions& o, const std::string& n, const json& v) { o.strategy = strategy(n, v); }},
-    {"seed", "N", "seed of every random choice (default 1): the same seed, the same net",
+    {"seed", "N", "seed of every random choice: the same seed, the same net",
      [](JobOptions& o, const std::string& n, const json& v) { o.seed = whole(n, v); }},
     {"target_faces", "N",
-     "faces of the coarse mesh progressive unfolding starts from (default F/10 + "
+     "faces of the coarse mesh progressive unfolding starts from (unset: F/10 + "
      "sqrt(F)(1+genus))",
      [](JobOptions& o, const std::string& n, const json& v) { o.target_faces = whole(n, v); }},
     {"simplify", "N",
@@ -158,40 +159,40 @@ constexpr Spec kOptions[] = {
      "leave room for more glue tabs); the net is then approximate",
      [](JobOptions& o, const std::string& n, const json& v) { o.simplify = whole(n, v); }},
     {"time_limit", "S",
-     "seconds the job may take (default 60 on the command line, the server's setting there)",
+     "seconds the whole job may take (unset: 60 on the command line, the server's setting there)",
      [](JobOptions& o, const std::string& n, const json& v) { o.time_limit = number(n, v); }},
-    {"size_mm", "LEN", "longest side of the folded model (default 200 mm)",
+    {"size_mm", "LEN", "longest side of the folded model (unset: 200 mm)",
      [](JobOptions& o, const std::string& n, const json& v) { o.size_mm = number(n, v); }},
     {"scale", "F", "millimetres per model unit (instead of the size)",
      [](JobOptions& o, const std::string& n, const json& v) { o.scale = number(n, v); }},
-    {"paper", "P", "A4 (default), A3, Letter, WxHmm, or none (the SVG sized to the net)",
+    {"paper", "P", "A4, A3, Letter, WxHmm, or none (the SVG sized to the net)",
      [](JobOptions& o, const std::string& n, const json& v) { o.paper = paper(n, v); }},
-    {"margin_mm", "LEN", "page margin (default 10 mm)",
+    {"margin_mm", "LEN", "page margin, mm",
      [](JobOptions& o, const std::string& n, const json& v) { o.margin_mm = number(n, v); }},
-    {"overlap_mm", "LEN", "overlap of the tiles of a net larger than a page (default 10 mm)",
+    {"overlap_mm", "LEN", "overlap of the tiles of a net larger than a page, mm",
      [](JobOptions& o, const std::string& n, const json& v) { o.overlap_mm = number(n, v); }},
     {"tabs", "MODE",
-     "auto (default): a glue tab where one fits, else a separate glue strip; strips: strips "
-     "only; none: no glue",
+     "auto: a glue tab where one fits, else a separate glue strip; strips: strips only; none: "
+     "no glue",
      [](JobOptions& o, const std::string& n, const json& v) { o.tabs = tab_mode(n, v); }},
-    {"tab_height_mm", "LEN", "tallest glue tab, widest strip half (default 6 mm; 0: no glue)",
+    {"tab_height_mm", "LEN", "tallest glue tab, widest strip half, mm (0: no glue)",
      [](JobOptions& o, const std::string& n, const json& v) { o.tab_height_mm = number(n, v); }},
-    {"min_tab_height_mm", "LEN", "lowest tab printed, or half a shorter edge (default 2 mm)",
+    {"min_tab_height_mm", "LEN", "lowest tab printed, or half a shorter edge, mm",
      [](JobOptions& o, const std::string& n, const json& v) {
        o.min_tab_height_mm = number(n, v);
      }},
     {"tab_room_budget", "N",
      "candidate moves of the pass that changes the cuts so more edges have room for a tab, in "
-     "each of its two rounds (default 100000; 0: no pass)",
+     "each of its two rounds (0: no pass)",
      [](JobOptions& o, const std::string& n, const json& v) { o.tab_room_budget = whole(n, v); }},
-    {"flat_fold_degrees", "DEG", "folds flatter than this are not drawn (default 1)",
+    {"flat_fold_degrees", "DEG", "folds flatter than this are not drawn",
      [](JobOptions& o, const std::string& n, const json& v) {
        o.flat_fold_degrees = number(n, v);
      }},
-    {"labels", "", "matching numbers on both sides of each cut edge (default yes)",
+    {"labels", "", "matching numbers on both sides of each cut edge",
      [](JobOptions& o, const std::string& n, const json& v) { o.labels = boolean(n, v); }},
     {"keep_largest_component", "",
-     "unfold only the largest connected part of a mesh in several (default no)",
+     "unfold only the largest connected part of a mesh in several",
      [](JobOptions& o, const std::string& n, const json& v) {
        o.keep_largest_component = boolean(n, v);
      }},
@@ -280,6 +281,7 @@ bool apply_option_flag(JobOptions& options, std::string_view flag,
 
 std::string options_help() {
   constexpr std::size_t kColumn = 26;  // where the help starts
+  const json defaults = options_to_json(JobOptions{});
   std::string out;
   for (const Spec& s : kOptions) {
     std::string left = "  " + option_flag(s.name) + " " + (*s.value ? s.value : "[yes|no]");
@@ -288,9 +290,18 @@ std::string options_help() {
       left.clear();
     }
     left.resize(kColumn, ' ');
-    // The help wrapped at 100 columns, continued under itself.
+    // The help and the default, wrapped at 100 columns, continued under itself.
+    std::string help = s.help;
+    if (const json& d = defaults.at(s.name); !d.is_null()) {
+      char number[32];
+      if (d.is_number_float()) std::snprintf(number, sizeof number, "%g", d.get<double>());
+      help += "; default " + (d.is_boolean()        ? std::string(d.get<bool>() ? "yes" : "no")
+                              : d.is_string()       ? d.get<std::string>()
+                              : d.is_number_float() ? std::string(number)
+                                                    : d.dump());
+    }
     std::string line = left;
-    for (std::string_view rest = s.help; !rest.empty();) {
+    for (std::string_view rest = help; !rest.empty();) {
       std::size_t take = rest.size();
       if (line.size() + take > 99) {
         take = rest.rfind(' ', 99 - line.size());

@@ -40,21 +40,23 @@ struct JobOptions {
   /// Millimetres per mesh unit (exclusive with `size_mm`); neither set means 200 mm.
   std::optional<double> scale;
   /// "A4", "A3", "Letter", "WxHmm" or "none" (the SVG sized to the net; the PDF on A4).
-  std::string paper = "A4";
-  double margin_mm = 10;
+  std::string paper = PageOptions{}.paper.name;
+  double margin_mm = PageOptions{}.margin_mm;
   /// Shared strip between neighbouring tiles of a net larger than a page.
-  double overlap_mm = 10;
+  double overlap_mm = PageOptions{}.overlap_mm;
   /// Glue: auto (tabs on the net where they fit, after making room for them; strips for the
   /// rest), strips (only strips) or none.
-  TabMode tabs = TabMode::Auto;
-  double tab_height_mm = 6;      ///< tallest tab and widest strip half; 0 means no glue
-  double min_tab_height_mm = 2;  ///< lowest tab printed (or half a shorter edge)
+  TabMode tabs = PrintOptions{}.tabs;
+  /// Tallest tab and widest strip half; 0 means no glue.
+  double tab_height_mm = PrintOptions{}.tab_height_mm;
+  /// Lowest tab printed (or half a shorter edge).
+  double min_tab_height_mm = PrintOptions{}.min_tab_height_mm;
   /// Candidate moves the pass that makes room for tabs evaluates at most in each of its two
   /// rounds; 0 skips it. The job's time limit (at least a second for the pass) also ends it.
   std::size_t tab_room_budget = kDefaultTabRoomBudget;
   /// Folds flatter than this many degrees are not drawn.
-  double flat_fold_degrees = 1;
-  bool labels = true;  ///< matching numbers on both sides of each cut edge
+  double flat_fold_degrees = PrintOptions{}.flat_fold_degrees;
+  bool labels = PrintOptions{}.labels;  ///< matching numbers on both sides of each cut edge
   bool keep_largest_component = false;
 };
 

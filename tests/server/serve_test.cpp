@@ -404,3 +404,47 @@ TEST(ServeTest, CommandLineAndServiceWriteTheSameNet) {
   }
   fs::remove(out);
 }
+
+// A bad option is the caller's fault, not the mesh's: 400 naming it, before any job exists;
+// also one only the print checks (a sheet too small for its margins). A mesh in three parts
+// is the mesh's: the job fails with invalid_mesh and the validator's reasons.
+TEST(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsTheMeshProblem) {
+  Server s({"--workers", "1"});
+  auto c = s.client();
+  const std::string cube = test_mesh("sample.obj");
+  for (const char* query : {"?paper=B7", "?paper=12x12mm", "?paper=A4&margin_mm=60"}) {
+    SCOPED_TRACE(query);
+    auto res = c.Post(std::string("/v1/jobs") + query, cube, "model/obj");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 400);
+    const json problem = json::parse(res->body);
+    EXPECT_TRUE(problem["option"] == "paper" || problem["option"] == "margin_mm") << res->body;
+  }
+  auto multipart = c.Post("/v1/jobs", httplib::MultipartFormDataItems{
+                                          {"mesh", cube, "sample.obj", "model/obj"},
+                                          {"options", R"({"paper":"A5"})", "", "application/json"}});
+  ASSERT_TRUE(multipart);
+  EXPECT_EQ(multipart->status, 400);
+  EXPECT_EQ(json::parse(multipart->body)["option"], "paper");
+
+  std::string parts;  // three tetrahedra apart
+  for (int k = 0; k < 3; ++k) {
+    const int x = 3 * k, b = 4 * k + 1;
+    parts += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x + 1) + " 0 0\nv " +
+             std::to_string(x) + " 1 0\nv " + std::to_string(x) + " 0 1\n";
+    parts += "f " + std::to_string(b) + " " + std::to_string(b + 2) + " " + std::to_string(b + 1) +
+             "\nf " + std::to_string(b) + " " + std::to_string(b + 1) + " " +
+             std::to_string(b + 3) + "\nf " + std::to_string(b + 1) + " " +
+             std::to_string(b + 2) + " " + std::to_string(b + 3) + "\nf " +
+             std::to_string(b + 2) + " " + std::to_string(b) + " " + std::to_string(b + 3) + "\n";
+  }
+  const json failed = wait_final(s, submit(s, parts, "model/obj"));
+  EXPECT_EQ(failed["status"], "failed");
+  EXPECT_EQ(failed["error"]["status"], 422);
+  EXPECT_EQ(failed["error"]["code"], "invalid_mesh");
+  EXPECT_EQ(failed["error"]["mesh"]["components"], 3);
+  ASSERT_FALSE(failed["error"]["reasons"].empty()) << failed.dump();
+  EXPECT_EQ(failed["error"]["reasons"][0]["code"], "several_components");
+  const json largest = wait_final(s, submit(s, parts, "model/obj", "?keep_largest_component=true"));
+  EXPECT_EQ(largest["status"], "succeeded") << largest.dump();
+}
