@@ -134,36 +134,41 @@ TEST(Pipeline, LimitsAndPrintOptionsAreRefusedByName) {
 // taller tabs leave more edges without room.
 TEST(Pipeline, MakesRoomForTabsWithinItsBudget) {
   PipelineProgress quiet;
-  const JobInput sample = data_file("sample.obj");
+  const JobInput part = data_file("thingi10k_134617.stl");  // 7 cut edges without room by TU
   JobOptions options = tu();
-  const UnfoldOutcome full = run_pipeline(sample, options, {}, {}, quiet);
+  const UnfoldOutcome full = run_pipeline(part, options, {}, {}, quiet);
   expect_checked(full);
   ASSERT_TRUE(full.tab_room);
+  EXPECT_GT(full.tab_room->blocked_before, 0u);
   EXPECT_LT(full.tab_room->blocked_after, full.tab_room->blocked_before);
   EXPECT_GT(full.tab_room->moves, 0u);
   options.tabs = TabMode::Strips;
-  EXPECT_FALSE(run_pipeline(sample, options, {}, {}, quiet).tab_room);
+  EXPECT_FALSE(run_pipeline(part, options, {}, {}, quiet).tab_room);
   options.tabs = TabMode::Auto;
   options.tab_room_budget = 0;
-  EXPECT_FALSE(run_pipeline(sample, options, {}, {}, quiet).tab_room);
-  options.tab_room_budget = 40;
-  const UnfoldOutcome brief = run_pipeline(sample, options, {}, {}, quiet);
-  ASSERT_TRUE(brief.tab_room);
-  EXPECT_GT(brief.tab_room->evaluations, 0u);
-  EXPECT_LE(brief.tab_room->evaluations, 80u);  // 40 in each of the pass's two rounds
-  EXPECT_EQ(brief.tab_room->blocked_before, full.tab_room->blocked_before);
-  expect_checked(brief);
+  EXPECT_FALSE(run_pipeline(part, options, {}, {}, quiet).tab_room);
   options.tab_room_budget = JobOptions{}.tab_room_budget;
   options.min_tab_height_mm = 3;  // taller tabs: more edges without room than at 2 mm
-  const UnfoldOutcome taller = run_pipeline(sample, options, {}, {}, quiet);
+  const UnfoldOutcome taller = run_pipeline(part, options, {}, {}, quiet);
   ASSERT_TRUE(taller.tab_room);
   EXPECT_GT(taller.tab_room->blocked_before, full.tab_room->blocked_before);
   EXPECT_LT(taller.tab_room->blocked_after, taller.tab_room->blocked_before);
-  // Why edges stay without room (a leaf at a nearly flat vertex), as the command line says.
-  EXPECT_GT(taller.tab_room->leaves_without_room, 0u);
-  EXPECT_LE(taller.tab_room->leaves_without_room, taller.tab_room->blocked_after);
-  EXPECT_EQ(taller.tab_room->interior_vertices, 502u);
-  EXPECT_LT(taller.tab_room->leaf_room_vertices, 502u);
+  expect_checked(taller);
+
+  // A budget of 40 candidate moves on a dense mesh: spent, edges left without room, and why
+  // (a leaf at a nearly flat vertex), as the command line says.
+  options = tu();
+  options.tab_room_budget = 40;
+  const UnfoldOutcome brief = run_pipeline(data_file("sample.obj"), options, {}, {}, quiet);
+  ASSERT_TRUE(brief.tab_room);
+  EXPECT_GT(brief.tab_room->evaluations, 0u);
+  EXPECT_LE(brief.tab_room->evaluations, 80u);  // 40 in each of the pass's two rounds
+  ASSERT_GT(brief.tab_room->blocked_after, 0u);
+  EXPECT_GT(brief.tab_room->leaves_without_room, 0u);
+  EXPECT_LE(brief.tab_room->leaves_without_room, brief.tab_room->blocked_after);
+  EXPECT_EQ(brief.tab_room->interior_vertices, 502u);
+  EXPECT_LT(brief.tab_room->leaf_room_vertices, 502u);
+  expect_checked(brief);
 }
 
 // Progress through every phase in order, and intermediate nets of coarser meshes with their
@@ -179,6 +184,7 @@ TEST(Pipeline, ReportsPhasesInOrderAndIntermediateNets) {
     void intermediate_outcome(const UnfoldOutcome& o) override { intermediates.push_back(o); }
   } recorder;
   JobOptions qq;
+  qq.tab_room_budget = 2000;  // the pass runs, briefly
   const UnfoldOutcome out = run_pipeline(data_file("sample.obj"), qq, {}, {.svg = true}, recorder);
   expect_checked(out);
   EXPECT_EQ(out.net.result, "complete");
