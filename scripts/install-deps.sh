@@ -5,10 +5,10 @@
 #   scripts/install-deps.sh runtime  only what the papernet binary needs to run
 set -euo pipefail
 
-runtime=(libdraco7 libsqlite3-0 libcairo2 libcpp-httplib0.11 ca-certificates)
+runtime=(libdraco7 libsqlite3-0 libpq5 libcairo2 libcpp-httplib0.11 ca-certificates)
 build=(build-essential cmake pkg-config git clang-format ccache
   libdraco-dev libtinygltf-dev nlohmann-json3-dev libcpp-httplib-dev
-  libgtest-dev libsqlite3-dev libcairo2-dev zlib1g-dev)
+  libgtest-dev libsqlite3-dev libpq-dev libcairo2-dev zlib1g-dev)
 # Node.js and npm bundle the web demo and run the JS client tests. Any Node >= 18 with npm
 # will do (Debian 12 ships 18); one already on the PATH is kept.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
@@ -20,6 +20,9 @@ test_tools=(librsvg2-bin poppler-utils libxml2-utils curl chromium)
 # clang with its sanitizer and libFuzzer runtimes: the ASan/UBSan/TSan builds and fuzz targets
 # of `make test` (docs/reliability.md).
 test_tools+=(clang libclang-rt-14-dev)
+# PostgreSQL 15: the tests of the shared job store start real servers of their own
+# (scripts/test-postgres.sh).
+test_tools+=(postgresql)
 
 case "${1:-all}" in
   runtime) wanted=("${runtime[@]}") ;;

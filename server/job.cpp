@@ -35,6 +35,50 @@ bool is_final(JobStatus status) {
   return status != JobStatus::Queued && status != JobStatus::Running;
 }
 
+MeshFormat format_of_record(const std::string& name) {
+  return name == "unknown" ? MeshFormat::Unknown : format_from_extension("x." + name);
+}
+
+nlohmann::json progress_to_json(const ProgressInfo& info) {
+  return {{"phase", info.phase},
+          {"faces", info.faces},
+          {"input_faces", info.input_faces},
+          {"overlaps", info.overlaps},
+          {"iterations", info.iterations},
+          {"elapsed_seconds", info.elapsed_seconds}};
+}
+
+std::optional<ProgressInfo> progress_from_json(const nlohmann::json& doc) {
+  if (!doc.is_object() || !doc.contains("phase")) return std::nullopt;
+  ProgressInfo info;
+  info.phase = doc.value("phase", "");
+  info.faces = doc.value("faces", std::size_t{0});
+  info.input_faces = doc.value("input_faces", std::size_t{0});
+  info.overlaps = doc.value("overlaps", std::size_t{0});
+  info.iterations = doc.value("iterations", std::size_t{0});
+  info.elapsed_seconds = doc.value("elapsed_seconds", 0.0);
+  return info;
+}
+
+nlohmann::json intermediate_level_json(const JobOutput& output) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& [name, file] : output.files) files.push_back(name);
+  return {{"faces", output.faces},
+          {"input_faces", output.input_faces},
+          {"overlaps", output.overlaps},
+          {"files", files}};
+}
+
+std::optional<IntermediateLevel> intermediate_level_from_json(const nlohmann::json& doc) {
+  if (!doc.is_object() || !doc.contains("files")) return std::nullopt;
+  IntermediateLevel level;
+  level.faces = doc.value("faces", std::size_t{0});
+  level.input_faces = doc.value("input_faces", std::size_t{0});
+  level.overlaps = doc.value("overlaps", std::size_t{0});
+  for (const auto& name : doc["files"]) level.files.push_back(name.get<std::string>());
+  return level;
+}
+
 std::string new_job_id() {
   thread_local std::mt19937_64 rng{std::random_device{}() ^
                                    (std::uint64_t{std::random_device{}()} << 32)};
