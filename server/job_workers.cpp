@@ -67,9 +67,10 @@ void JobService::start() {
   for (const std::string& id : store_.recover_interrupted())
     log_("job " + id + " running -> queued (recovered)");
   store_.listen([this](const StoreEvent& event) { on_store_event(event); });
+  char lease[32];
+  std::snprintf(lease, sizeof lease, "%g s", settings_.lease_seconds);
   log_("node " + settings_.node + ": " + store_.kind() + " store, " +
-       std::to_string(settings_.workers) + " workers, leases of " +
-       std::to_string(settings_.lease_seconds) + " s");
+       std::to_string(settings_.workers) + " workers, leases of " + lease);
   for (std::size_t i = 0; i < settings_.workers; ++i) workers_.emplace_back([this] { work(); });
   keeper_ = std::thread([this] { keep_leases(); });
 }
