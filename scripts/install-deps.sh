@@ -3,6 +3,8 @@
 # Used by `make`, by CI and by the Dockerfile, so all three install the same things.
 #   scripts/install-deps.sh          build + run + test dependencies
 #   scripts/install-deps.sh runtime  only what the papernet binary needs to run
+#   scripts/install-deps.sh postgres the database of several nodes (docker/compose.yaml)
+#   scripts/install-deps.sh nginx    the load balancer in front of them (docker/compose.yaml)
 set -euo pipefail
 
 runtime=(libdraco7 libsqlite3-0 libpq5 libcairo2 libcpp-httplib0.11 ca-certificates)
@@ -28,7 +30,9 @@ case "${1:-all}" in
   runtime) wanted=("${runtime[@]}") ;;
   build) wanted=("${build[@]}") ;;
   all) wanted=("${runtime[@]}" "${build[@]}" "${test_tools[@]}") ;;
-  *) echo "usage: $0 [runtime|build|all]" >&2; exit 2 ;;
+  postgres) wanted=(postgresql) ;;
+  nginx) wanted=(nginx) ;;
+  *) echo "usage: $0 [runtime|build|all|postgres|nginx]" >&2; exit 2 ;;
 esac
 
 missing=()
