@@ -158,14 +158,6 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
         job.seq = prior.integer(0, 0);
         return true;
       }
-      const bool queued = job.status == JobStatus::Queued;
-      if (queued) {
-        // Nodes submitting at once count the queue one after the other.
-        c.exec("SELECT pg_advisory_xact_lock($1::bigint)", Params().number(kQueueLock));
-        if (c.exec("SELECT count(*) FROM jobs WHERE status = 'queued'").integer(0, 0) >=
-            i64(queue_limit))
-          return false;
-      }
       job.seq = c.exec(
                      "INSERT INTO jobs(id, status, created, started, finished, options, "
                      "format, input_bytes, input_key, input_faces, faces, \"overlaps\", "
@@ -198,7 +190,14 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
           c.exec("INSERT INTO input_files(job_id, name, data) VALUES($1, $2, $3::bytea)",
                  Params().text(job.id).text(name).bytes(data));
       }
-      if (queued) notify(c, "queued");
+      if (job.status != JobStatus::Queued) return true;
+      // Nodes submitting at once count the queue one after the other, each with its own job
+      // (the upload is stored by then, so the lock is held only for the count and the commit).
+      c.exec("SELECT pg_advisory_xact_lock($1::bigint)", Params().number(kQueueLock));
+      if (c.exec("SELECT count(*) FROM jobs WHERE status = 'queued'").integer(0, 0) >
+          i64(queue_limit))
+        return false;
+      notify(c, "queued");
       return true;
     });
   });
