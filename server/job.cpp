@@ -1,5 +1,6 @@
 #include "server/job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <random>
 #include <stdexcept>
@@ -33,6 +34,17 @@ JobStatus parse_status(const std::string& name) {
 
 bool is_final(JobStatus status) {
   return status != JobStatus::Queued && status != JobStatus::Running;
+}
+
+std::vector<std::string> split_file_names(const std::string& joined) {
+  std::vector<std::string> names;
+  for (std::size_t from = 0; from < joined.size();) {
+    const auto end = std::min(joined.find('/', from), joined.size());
+    names.push_back(joined.substr(from, end - from));
+    from = end + 1;
+  }
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 MeshFormat format_of_record(const std::string& name) {

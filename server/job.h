@@ -81,6 +81,7 @@ struct JobRecord {
   bool cancel_requested = false;  ///< a client asked a running job to stop
   nlohmann::json progress;        ///< a running job's last published progress, or null
   nlohmann::json intermediate;    ///< a running job's published intermediate (level), or null
+  std::vector<std::string> result_files;  ///< names of the stored files of `result_job`
 };
 
 /// A running job's latest overlap-free intermediate as a client sees it: its level and files.
@@ -100,6 +101,9 @@ struct IntermediateFile {
 
 /// The format a record names (JobRecord::format, format_name's words).
 MeshFormat format_of_record(const std::string& name);
+
+/// The file names a store lists in one column ("mesh.glb/net.json"), sorted.
+std::vector<std::string> split_file_names(const std::string& joined);
 
 /// How the store keeps a running job's progress and intermediate level for other nodes.
 nlohmann::json progress_to_json(const ProgressInfo& info);

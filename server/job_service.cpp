@@ -123,7 +123,7 @@ std::optional<JobView> JobService::view(const std::string& id) {
   JobView view{std::move(*record), std::nullopt, 0, false, std::nullopt, {}};
   const JobRecord& r = view.record;
   if (is_final(r.status)) {
-    if (!r.result_job.empty()) view.result_files = store_.artifact_names(r.result_job);
+    view.result_files = r.result_files;
     return view;
   }
   view.cancel_requested = r.cancel_requested;

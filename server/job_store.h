@@ -120,8 +120,6 @@ class JobStore {
   /// A file of a finished job's result.
   virtual std::optional<Artifact> artifact(const std::string& result_job,
                                            const std::string& name) = 0;
-  /// Names of the stored result files of `result_job`.
-  virtual std::vector<std::string> artifact_names(const std::string& result_job) = 0;
 
   /// Calls `on_event` (from a thread of the store's own) for what other nodes do; an empty
   /// function stops that. A store with one node (SQLite) has nothing to tell and never calls.

@@ -42,6 +42,8 @@ CREATE TABLE results(job_id text NOT NULL REFERENCES jobs(id) ON DELETE CASCADE,
 CREATE TABLE intermediates(job_id text NOT NULL REFERENCES jobs(id) ON DELETE CASCADE,
   name text NOT NULL, content_type text NOT NULL, data bytea NOT NULL,
   PRIMARY KEY(job_id, name));
+-- Rewritten every few seconds while a job runs: not worth compressing.
+ALTER TABLE intermediates ALTER COLUMN data SET STORAGE EXTERNAL;
 )sql",
 };
 
@@ -51,8 +53,9 @@ constexpr std::int64_t kSchemaLock = 0x7061706572'01, kQueueLock = 0x7061706572'
 constexpr const char* kColumns =
     "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
     "input_faces, faces, \"overlaps\", result_kind, metrics, error, result_job, attempts, "
-    "claimed_by, cancel_requested, progress, intermediate";
-constexpr int kColumnCount = 22;
+    "claimed_by, cancel_requested, progress, intermediate, "
+    "(SELECT string_agg(r.name, '/') FROM results r WHERE r.job_id = result_job)";
+constexpr int kColumnCount = 23;
 
 // A running job held by a claim: $1 id, $2 node, $3 attempt.
 constexpr const char* kHeld =
@@ -88,6 +91,7 @@ JobRecord read_job(const Result& r, int row) {
   j.cancel_requested = r.boolean(row, 19);
   j.progress = nlohmann::json::parse(r.text(row, 20));
   j.intermediate = nlohmann::json::parse(r.text(row, 21));
+  j.result_files = split_file_names(r.text(row, 22));
   return j;
 }
 
@@ -152,37 +156,36 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
   bool stored = false;
   pool_.run([&](Connection& c) {
     stored = c.transaction([&] {
-      // A repetition after a lost connection finds the job the first try stored.
-      Result prior = c.exec("SELECT seq FROM jobs WHERE id = $1", Params().text(job.id));
-      if (prior.rows() > 0) {
-        job.seq = prior.integer(0, 0);
+      Result inserted = c.exec(
+          "INSERT INTO jobs(id, status, created, started, finished, options, "
+          "format, input_bytes, input_key, input_faces, faces, \"overlaps\", "
+          "result_kind, metrics, error, result_job, attempts) VALUES($1, $2, "
+          "$3::float8, $4::float8, $5::float8, $6, $7, $8::bigint, $9, $10::bigint, "
+          "$11::bigint, $12::bigint, $13, $14, $15, $16, $17::int) "
+          "ON CONFLICT (id) DO NOTHING RETURNING seq",
+          Params()
+              .text(job.id)
+              .text(status_name(job.status))
+              .number(job.created)
+              .number(job.started)
+              .number(job.finished)
+              .text(job.options.dump())
+              .text(job.format)
+              .number(i64(job.input_bytes))
+              .text(job.input_key)
+              .number(i64(job.input_faces))
+              .number(i64(job.faces))
+              .number(i64(job.overlaps))
+              .text(job.result_kind)
+              .text(job.metrics.dump())
+              .text(job.error.dump())
+              .text(job.result_job)
+              .number(std::int64_t{job.attempts}));
+      if (inserted.rows() == 0) {  // a repetition after a lost connection: the first try stored it
+        job.seq = c.exec("SELECT seq FROM jobs WHERE id = $1", Params().text(job.id)).integer(0, 0);
         return true;
       }
-      job.seq = c.exec(
-                     "INSERT INTO jobs(id, status, created, started, finished, options, "
-                     "format, input_bytes, input_key, input_faces, faces, \"overlaps\", "
-                     "result_kind, metrics, error, result_job, attempts) VALUES($1, $2, "
-                     "$3::float8, $4::float8, $5::float8, $6, $7, $8::bigint, $9, $10::bigint, "
-                     "$11::bigint, $12::bigint, $13, $14, $15, $16, $17::int) RETURNING seq",
-                     Params()
-                         .text(job.id)
-                         .text(status_name(job.status))
-                         .number(job.created)
-                         .number(job.started)
-                         .number(job.finished)
-                         .text(job.options.dump())
-                         .text(job.format)
-                         .number(i64(job.input_bytes))
-                         .text(job.input_key)
-                         .number(i64(job.input_faces))
-                         .number(i64(job.faces))
-                         .number(i64(job.overlaps))
-                         .text(job.result_kind)
-                         .text(job.metrics.dump())
-                         .text(job.error.dump())
-                         .text(job.result_job)
-                         .number(std::int64_t{job.attempts}))
-                    .integer(0, 0);
+      job.seq = inserted.integer(0, 0);
       if (input) {
         c.exec("INSERT INTO inputs(job_id, mesh) VALUES($1, $2::bytea)",
                Params().text(job.id).bytes(input->mesh));
@@ -452,17 +455,6 @@ std::optional<Artifact> PgJobStore::artifact(const std::string& result_job,
     Result r = c.exec("SELECT content_type, data FROM results WHERE job_id = $1 AND name = $2",
                       Params().text(result_job).text(name), Connection::Format::Binary);
     if (r.rows() > 0) out = Artifact{r.text(0, 0), r.text(0, 1)};
-  });
-  return out;
-}
-
-std::vector<std::string> PgJobStore::artifact_names(const std::string& result_job) {
-  std::vector<std::string> out;
-  pool_.run([&](Connection& c) {
-    Result r = c.exec("SELECT name FROM results WHERE job_id = $1 ORDER BY name",
-                      Params().text(result_job));
-    out.clear();
-    for (int i = 0; i < r.rows(); ++i) out.push_back(r.text(i, 0));
   });
   return out;
 }

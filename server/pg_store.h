@@ -47,7 +47,6 @@ class PgJobStore : public JobStore {
                        double finished) override;
 
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) override;
-  std::vector<std::string> artifact_names(const std::string& result_job) override;
 
   void listen(std::function<void(const StoreEvent&)> on_event) override;
   void ping() override;

@@ -52,7 +52,8 @@ constexpr const char* kNow = "((julianday('now') - 2440587.5) * 86400.0)";
 constexpr const char* kColumns =
     "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
     "input_faces, faces, overlaps, result_kind, metrics, error, result_job, attempts, "
-    "claimed_by, cancel_requested, progress, intermediate";
+    "claimed_by, cancel_requested, progress, intermediate, "
+    "(SELECT group_concat(r.name, '/') FROM results r WHERE r.job_id = result_job)";
 
 // A running job held by this claim.
 constexpr const char* kHeld = "id=? AND claimed_by=? AND attempts=? AND status='running'";
@@ -160,6 +161,7 @@ JobRecord read_job(const Statement& s) {
   j.cancel_requested = s.integer(19) != 0;
   j.progress = nlohmann::json::parse(s.text(20));
   j.intermediate = nlohmann::json::parse(s.text(21));
+  j.result_files = split_file_names(s.text(22));
   return j;
 }
 
@@ -492,15 +494,6 @@ std::optional<Artifact> SqliteJobStore::artifact(const std::string& result_job,
   s.bind(1, result_job).bind(2, name);
   if (!s.step()) return std::nullopt;
   return Artifact{s.text(0), s.text(1)};
-}
-
-std::vector<std::string> SqliteJobStore::artifact_names(const std::string& result_job) {
-  std::lock_guard lock(mutex_);
-  Statement s(db_, "SELECT name FROM results WHERE job_id=? ORDER BY name");
-  s.bind(1, result_job);
-  std::vector<std::string> out;
-  while (s.step()) out.push_back(s.text(0));
-  return out;
 }
 
 }  // namespace papernet::server

@@ -46,7 +46,6 @@ class SqliteJobStore : public JobStore {
                        double finished) override;
 
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) override;
-  std::vector<std::string> artifact_names(const std::string& result_job) override;
   void ping() override {}
 
  private:
