@@ -3,8 +3,8 @@
 // sharing a PostgreSQL server (by default a throwaway one, started with scripts/test-postgres.sh
 // with durable settings and TCP on loopback), and prints:
 //   - jobs per second: N small jobs (the test meshes mirror.ply and testplate.glb, distinct
-//     seeds) submitted at once, until every one has ended; SQLite on one node, PostgreSQL on one
-//     node and on two (submissions alternate between them, as behind a load balancer);
+//     seeds) submitted at once, until every one has ended; SQLite and PostgreSQL on one node, in
+//     turns, then PostgreSQL on two (submissions alternate, as behind a load balancer);
 //   - status polls per second per node: C keep-alive connections per node for S seconds;
 //   - cross-node cancel latency: DELETE sent to the node that does not run the job, until that
 //     node answers "cancelled" (the running node saw it and stopped);
@@ -12,8 +12,9 @@
 //     other node's event stream show it, the second's arrival minus the first's.
 // It prints figures; it asserts nothing.
 //
-//   papernet-store-bench [--jobs 60] [--workers 2] [--seconds 5] [--connections 4] [--rounds 5]
-//                        [--postgres URL] [--papernet PATH] [--data DIR]
+//   papernet-store-bench [--jobs 60] [--workers 2] [--seconds 5] [--connections 4] [--repeat 3]
+//                        [--rounds 5] [--postgres URL] [--papernet PATH] [--data DIR]
+// (--repeat: one-node runs per store, in turns; --rounds: samples of each latency)
 #include <httplib.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -26,6 +27,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -52,8 +54,40 @@ double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
+// CPU seconds a process used (user + system; with `children`, also its waited-for children's).
+double cpu_seconds(pid_t pid, bool children = false) {
+  const std::string stat = read_file("/proc/" + std::to_string(pid) + "/stat");
+  const auto paren = stat.rfind(')');
+  if (paren == std::string::npos) return 0;
+  std::istringstream fields(stat.substr(paren + 2));
+  std::vector<std::string> f{std::istream_iterator<std::string>(fields), {}};
+  if (f.size() < 15) return 0;
+  // After "pid (comm)": state ppid ... utime (index 11), stime, cutime, cstime.
+  double ticks = std::stod(f[11]) + std::stod(f[12]);
+  if (children) ticks += std::stod(f[13]) + std::stod(f[14]);
+  return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+// CPU seconds of a PostgreSQL server: the postmaster, its live processes and those it reaped.
+double server_cpu_seconds(pid_t postmaster) {
+  double total = cpu_seconds(postmaster, true);
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string stat = read_file(entry.path() / "stat");
+    const auto paren = stat.rfind(')');
+    if (paren == std::string::npos) continue;
+    std::istringstream fields(stat.substr(paren + 2));
+    std::string state;
+    pid_t parent = 0;
+    fields >> state >> parent;
+    if (parent == postmaster) total += cpu_seconds(std::stoi(name));
+  }
+  return total;
+}
+
 struct Settings {
-  int jobs = 60, workers = 2, connections = 4, rounds = 5;
+  int jobs = 60, workers = 2, connections = 4, rounds = 5, repeat = 3;
   double seconds = 5;
   std::string postgres, program = PAPERNET_PROGRAM, data;
 };
@@ -104,6 +138,7 @@ class Node {
     return c;
   }
   std::string log() const { return read_file(dir_ / "server.log"); }
+  pid_t pid() const { return pid_; }
   bool runs(const std::string& id) const {
     return log().find("job " + id + " queued -> running") != std::string::npos;
   }
@@ -142,7 +177,7 @@ double jobs_per_second(const Settings& s, const std::vector<const Node*>& nodes,
                          "?seed=" + std::to_string(round * 100000 + i + 1)));
   for (const std::string& id : ids)
     for (std::string st; (st = status(*nodes[0], id)) == "queued" || st == "running";)
-      std::this_thread::sleep_for(5ms);
+      std::this_thread::sleep_for(50ms);  // a client polling its job, not a load on the store
   return s.jobs / since(start);
 }
 
@@ -183,6 +218,11 @@ std::size_t running_node(const std::vector<const Node*>& nodes, const std::strin
       if (nodes[n]->runs(id)) return n;
     std::this_thread::sleep_for(2ms);
   }
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
 }
 
 std::string summary(std::vector<double> v, const char* unit) {
@@ -265,6 +305,9 @@ class Postgres {
     if (std::system(cmd.c_str()) != 0) std::cerr << "could not remove " << dir_ << "\n";
   }
   const std::string& url() const { return url_; }
+  pid_t postmaster() const {
+    return std::stoi(read_file(fs::path(dir_) / "data" / "postmaster.pid"));
+  }
 
  private:
   std::string dir_, url_;
@@ -292,6 +335,8 @@ int main(int argc, char** argv) {
       s.seconds = std::clamp(std::stod(value), 1.0, 120.0);
     else if (flag == "--connections")
       s.connections = std::clamp(std::stoi(value), 1, 64);
+    else if (flag == "--repeat")
+      s.repeat = std::clamp(std::stoi(value), 1, 20);
     else if (flag == "--rounds")
       s.rounds = std::clamp(std::stoi(value), 1, 100);
     else if (flag == "--postgres")
@@ -319,26 +364,41 @@ int main(int argc, char** argv) {
               << s.seconds << " s, " << s.rounds << " rounds of latencies; "
               << std::thread::hardware_concurrency() << " cores\n";
 
+    // One node, SQLite and PostgreSQL in turns (the machine's load drifts), each on a new store.
     std::vector<std::string> ids;
-    {
-      Node sqlite(s, "sqlite", {});
-      const double rate = jobs_per_second(s, {&sqlite}, meshes, ids, 1);
-      std::cout << "SQLite, 1 node:      " << rate << " jobs/s; status polls "
-                << polls_per_second(s, {&sqlite}, ids)[0] << "/s\n";
-    }
-    ids.clear();
-    {
-      Node a(s, "pg-one", {"--store", new_database(server, "bench_one")});
-      const double rate = jobs_per_second(s, {&a}, meshes, ids, 2);
-      std::cout << "PostgreSQL, 1 node:  " << rate << " jobs/s; status polls "
-                << polls_per_second(s, {&a}, ids)[0] << "/s\n";
-    }
+    std::vector<double> rates[2], poll_rates[2], cpu[2];
+    for (int r = 0; r < s.repeat; ++r)
+      for (int pg = 0; pg < 2; ++pg) {
+        ids.clear();
+        const std::string name = (pg ? "pg-" : "sqlite-") + std::to_string(r);
+        std::vector<std::string> flags;
+        if (pg) flags = {"--store", new_database(server, "bench_" + std::to_string(r))};
+        Node node(s, name, flags);
+        const double node_cpu = cpu_seconds(node.pid());
+        const double db_cpu = pg && own ? server_cpu_seconds(own->postmaster()) : 0;
+        rates[pg].push_back(jobs_per_second(s, {&node}, meshes, ids, 10 + 2 * r + pg));
+        const double node_ms = (cpu_seconds(node.pid()) - node_cpu) * 1000 / s.jobs;
+        const double db_ms =
+            pg && own ? (server_cpu_seconds(own->postmaster()) - db_cpu) * 1000 / s.jobs : 0;
+        cpu[pg].push_back(node_ms + db_ms);
+        poll_rates[pg].push_back(polls_per_second(s, {&node}, ids)[0]);
+        std::cout << (pg ? "PostgreSQL" : "SQLite    ") << ", 1 node, round " << r + 1 << ": "
+                  << rates[pg].back() << " jobs/s, CPU " << node_ms << " ms per job in papernet"
+                  << (pg && own ? " + " + std::to_string(db_ms) + " ms in PostgreSQL" : "")
+                  << "; status polls " << poll_rates[pg].back() << "/s\n";
+      }
+    std::cout << "1 node, median of " << s.repeat << ": SQLite " << median(rates[0])
+              << " jobs/s, PostgreSQL " << median(rates[1]) << " jobs/s ("
+              << 100 * (median(rates[1]) / median(rates[0]) - 1) << " %); status polls SQLite "
+              << median(poll_rates[0]) << "/s, PostgreSQL " << median(poll_rates[1])
+              << "/s; CPU per job SQLite " << median(cpu[0]) << " ms, PostgreSQL (papernet and "
+              << "database) " << median(cpu[1]) << " ms\n";
     ids.clear();
     const std::string shared = new_database(server, "bench_two");
     Node a(s, "pg-a", {"--store", shared}), b(s, "pg-b", {"--store", shared});
     const double rate = jobs_per_second(s, {&a, &b}, meshes, ids, 3);
     const auto polls = polls_per_second(s, {&a, &b}, ids);
-    std::cout << "PostgreSQL, 2 nodes: " << rate << " jobs/s; status polls " << polls[0]
+    std::cout << "PostgreSQL, 2 nodes:  " << rate << " jobs/s; status polls " << polls[0]
               << "/s and " << polls[1] << "/s (both polled at once)\n";
     std::cout << "cross-node cancel (DELETE on the other node until it answers cancelled): "
               << summary(cancel_latencies(s, {&a, &b}, meshes), "ms") << "\n";
