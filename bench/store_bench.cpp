@@ -220,6 +220,12 @@ std::size_t running_node(const std::vector<const Node*>& nodes, const std::strin
   }
 }
 
+std::string one_decimal(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", v);
+  return text;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0 : v[v.size() / 2];
@@ -384,7 +390,7 @@ int main(int argc, char** argv) {
         poll_rates[pg].push_back(polls_per_second(s, {&node}, ids)[0]);
         std::cout << (pg ? "PostgreSQL" : "SQLite    ") << ", 1 node, round " << r + 1 << ": "
                   << rates[pg].back() << " jobs/s, CPU " << node_ms << " ms per job in papernet"
-                  << (pg && own ? " + " + std::to_string(db_ms) + " ms in PostgreSQL" : "")
+                  << (pg && own ? " + " + one_decimal(db_ms) + " ms in PostgreSQL" : "")
                   << "; status polls " << poll_rates[pg].back() << "/s\n";
       }
     std::cout << "1 node, median of " << s.repeat << ": SQLite " << median(rates[0])
