@@ -17,15 +17,17 @@ after(async () => {
   await server?.stop();
 });
 
-/** Checks the papernet.net/1 invariants the demo's folding relies on. */
+/** Checks the papernet.net/2 invariants the demo's folding relies on. */
 function checkNet(net) {
-  assert.equal(net.format, "papernet.net/1");
+  assert.equal(net.format, "papernet.net/2");
   assert.ok(["complete", "approximate"].includes(net.result));
   const faces = net.mesh.faces;
   assert.ok(faces.length >= 4);
   assert.equal(net.net.faces.length, faces.length);
   const roots = net.net.faces.filter((f) => f.parent === -1);
-  assert.equal(roots.length, 1, "exactly one root face");
+  assert.equal(roots.length, net.pieces.length, "exactly one root face per piece");
+  assert.ok(Array.isArray(net.repairs));
+  net.net.faces.forEach((f) => assert.ok(f.piece >= 0 && f.piece < net.pieces.length));
   net.net.faces.forEach((f, i) => {
     assert.equal(f.points.length, 3);
     if (f.parent === -1) return;
