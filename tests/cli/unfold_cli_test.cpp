@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -154,6 +155,41 @@ TEST(UnfoldCli, RepairsWhatItCanAndStrictRefusesIt) {
     EXPECT_EQ(j["mesh"]["faces"].size(), 4u);
   }
   std::remove(obj.c_str());
+  std::remove(out.c_str());
+}
+
+// A model that is a folder: a .gltf read with the buffer beside it, an OBJ with its material
+// library; a .gltf whose buffer is missing is refused naming it.
+TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
+  const std::string out = ::testing::TempDir() + "papernet_local.json";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+                         "/CesiumMilkTruck/CesiumMilkTruck.gltf --strategy TU -o " + out,
+                     &said),
+            0)
+      << said;
+  std::stringstream text;
+  text << std::ifstream(out).rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["mesh"]["faces"].size(), 3624u);  // 2,856 and the wheels twice more (node instances)
+  EXPECT_GT(j["pieces"].size(), 10u) << "one piece per part of the truck";
+  EXPECT_EQ(j["input"]["components"], j["pieces"].size());
+
+  const std::filesystem::path dir = ::testing::TempDir() + "papernet_local_models";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(
+      std::string(PAPERNET_TEST_DATA) + "/CesiumMilkTruck/CesiumMilkTruck.gltf", dir / "truck.gltf",
+      std::filesystem::copy_options::overwrite_existing);
+  EXPECT_EQ(papernet("unfold " + (dir / "truck.gltf").string() + " -o " + out, &said), 2);
+  EXPECT_NE(said.find("CesiumMilkTruck0.bin"), std::string::npos) << said;
+
+  std::filesystem::copy_file(std::string(PAPERNET_TEST_DATA) + "/sample.obj", dir / "fuze.obj",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir / "fuze.obj.mtl") << "newmtl a-super-duper-material\nKd 0.8 0.2 0.1\n";
+  EXPECT_EQ(papernet("unfold " + (dir / "fuze.obj").string() + " --strategy TU -o " + out, &said),
+            0)
+      << said;
+  std::filesystem::remove_all(dir);
   std::remove(out.c_str());
 }
 

@@ -141,6 +141,66 @@ TEST(Pipeline, EveryPartIsItsOwnPieceOrOnlyTheLargestOrStrictRefusesThem) {
   EXPECT_EQ(run_pipeline(three_parts(), strict, {}, {}, quiet).net.pieces.size(), 1u);
 }
 
+// One defect of each kind a real model has, each in a small mesh of its own: a pinch (two
+// tetrahedra sharing a vertex), an edge of three faces (a fin on a tetrahedron), a zero-area
+// face (a cap closing a T-junction in a square) and a flipped face (in a tetrahedron).
+const std::pair<std::string, std::string> kDefects[] = {
+    {"split_pinched_vertices",
+     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -1 0 0\nv 0 -1 0\nv 0 0 -1\n"
+     "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 5 6\nf 1 6 7\nf 5 7 6\nf 1 7 5\n"},
+    {"cut_non_manifold_edges",
+     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0.5 -1 0.5\n"
+     "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 2 5\n"},
+    {"removed_degenerate_faces",
+     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 5\nf 5 2 3\nf 1 3 4\nf 1 5 3\n"},
+    {"reoriented_faces",
+     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 4 1\n"},
+};
+
+TEST(Pipeline, EachDefectIsRepairedAndReportedAndStrictRefusesIt) {
+  PipelineProgress quiet;
+  std::ostringstream all;  // every defect in one model, each part apart
+  int offset = 0;
+  for (const auto& [code, obj] : kDefects) {
+    SCOPED_TRACE(code);
+    const JobInput input{obj, MeshFormat::Obj, {}};
+    const UnfoldOutcome out = run_pipeline(input, tu(), {}, {.pdf = true}, quiet);
+    expect_checked(out);
+    ASSERT_EQ(out.net.repairs.size(), 1u);
+    EXPECT_EQ(out.net.repairs[0].code, code);
+    EXPECT_EQ(out.net.repairs[0].count, 1u);
+    EXPECT_FALSE(out.documents.pdf.empty());
+    JobOptions strict = tu();
+    strict.strict = true;
+    EXPECT_THROW(run_pipeline(input, strict, {}, {}, quiet), InvalidMeshException);
+    // The defect's mesh, moved apart and renumbered, into the model of all of them.
+    int vertices = 0;
+    std::istringstream lines(obj);
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream words(line);
+      std::string key;
+      words >> key;
+      if (key == "v") {
+        double x, y, z;
+        words >> x >> y >> z;
+        all << "v " << x + 10 * offset << " " << y << " " << z << "\n";
+        ++vertices;
+      } else {
+        all << "f";
+        for (int v; words >> v;) all << " " << v + offset;
+        all << "\n";
+      }
+    }
+    offset += vertices;
+  }
+  const UnfoldOutcome out = run_pipeline({all.str(), MeshFormat::Obj, {}}, tu(), {}, {}, quiet);
+  expect_checked(out);
+  std::set<std::string> codes;
+  for (const NetRepair& r : out.net.repairs) codes.insert(r.code);
+  for (const auto& [code, obj] : kDefects) EXPECT_TRUE(codes.count(code)) << code;
+  EXPECT_GE(out.net.pieces.size(), 5u);
+}
+
 TEST(Pipeline, LimitsAndPrintOptionsAreRefusedByName) {
   PipelineProgress quiet;
   PipelineLimits limits;

@@ -429,6 +429,11 @@ TEST(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsPiecesOrStrictlyTheMeshPro
     const json problem = json::parse(res->body);
     EXPECT_TRUE(problem["option"] == "paper" || problem["option"] == "margin_mm") << res->body;
   }
+  // A GLB sent as OBJ: its bytes say otherwise, 415 naming both.
+  auto glb_as_obj = c.Post("/v1/jobs", test_mesh("Duck.glb"), "model/obj");
+  expect_problem(glb_as_obj, 415, "unsupported_format");
+  EXPECT_NE(glb_as_obj->body.find("glb by its content, not the declared obj"), std::string::npos)
+      << glb_as_obj->body;
   auto multipart = c.Post(
       "/v1/jobs",
       httplib::MultipartFormDataItems{{"mesh", cube, "sample.obj", "model/obj"},
