@@ -237,11 +237,13 @@ void finish_repair(const Mesh& mesh, const std::vector<Face>& faces, const Repai
   // soup (STL) has none, and then every defect is the input's.
   bool indexed = false;
   {
-    std::vector<int> seen;
+    int most = -1;
     for (const Face& f : faces)
-      if (f.alive) seen.insert(seen.end(), f.raw.begin(), f.raw.end());
-    std::sort(seen.begin(), seen.end());
-    indexed = std::adjacent_find(seen.begin(), seen.end()) != seen.end();
+      if (f.alive) most = std::max({most, f.raw[0], f.raw[1], f.raw[2]});
+    std::vector<char> seen(static_cast<std::size_t>(most + 1), 0);
+    for (const Face& f : faces)
+      for (int c = 0; c < 3 && f.alive && !indexed; ++c)
+        indexed = std::exchange(seen[f.raw[c]], 1) != 0;
   }
 
   // Sides of every edge, grouped: more than two is a non-manifold edge, whose sides are all cut.
@@ -375,33 +377,28 @@ void finish_repair(const Mesh& mesh, const std::vector<Face>& faces, const Repai
   // One vertex per fan; a vertex in several fans is a pinch of the input's when a vertex of the
   // loader's own lies in two of them (or there are none to tell). Ends of cut edges are counted
   // with those edges.
-  struct Use {
-    int v, fan, raw;
-    bool operator<(const Use& o) const {
-      return v != o.v ? v < o.v : fan != o.fan ? fan < o.fan : raw < o.raw;
-    }
-  };
-  std::vector<Use> uses;
-  uses.reserve(3 * nf);
+  // Vertices in several fans: found in one pass; only their corners are looked at again.
+  std::vector<int> first_fan(nv, -1);
+  std::vector<char> several(nv, 0);
   for (std::size_t f = 0; f < nf; ++f)
-    if (faces[f].alive)
-      for (int c = 0; c < 3; ++c)
-        uses.push_back({faces[f].v[c], fans.find(3 * int(f) + c), faces[f].raw[c]});
+    for (int c = 0; c < 3 && faces[f].alive; ++c) {
+      const int v = faces[f].v[c], fan = fans.find(3 * int(f) + c);
+      if (first_fan[v] < 0) first_fan[v] = fan;
+      several[v] |= first_fan[v] != fan;
+    }
+  std::vector<std::array<int, 3>> uses;  // (vertex, raw vertex, fan) of those vertices' corners
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int c = 0; c < 3 && faces[f].alive; ++c)
+      if (several[faces[f].v[c]] && !cut_vertex[faces[f].v[c]])
+        uses.push_back({faces[f].v[c], faces[f].raw[c], fans.find(3 * int(f) + c)});
   std::sort(uses.begin(), uses.end());
   Tally pinched;
   for (std::size_t i = 0; i < uses.size();) {
     std::size_t j = i;
-    while (j < uses.size() && uses[j].v == uses[i].v) ++j;
-    if (uses[j - 1].fan != uses[i].fan && !cut_vertex[uses[i].v]) {
-      bool own = !indexed;
-      std::vector<std::pair<int, int>> raw_fan;  // (raw, fan)
-      for (std::size_t k = i; k < j; ++k) raw_fan.push_back({uses[k].raw, uses[k].fan});
-      std::sort(raw_fan.begin(), raw_fan.end());
-      for (std::size_t k = 1; k < raw_fan.size(); ++k)
-        own |=
-            raw_fan[k].first == raw_fan[k - 1].first && raw_fan[k].second != raw_fan[k - 1].second;
-      if (own) pinched.add(uses[i].v, listed);
-    }
+    bool own = !indexed;
+    for (; j < uses.size() && uses[j][0] == uses[i][0]; ++j)
+      own |= j > i && uses[j][1] == uses[j - 1][1] && uses[j][2] != uses[j - 1][2];
+    if (own) pinched.add(uses[i][0], listed);
     i = j;
   }
 
