@@ -86,15 +86,17 @@ Outcome run_one(const std::string& papernet, const fs::path& dir, const fs::path
     std::stringstream text;
     text << in.rdbuf();
     const nlohmann::json net = nlohmann::json::parse(text.str(), nullptr, false);
-    if (net.is_discarded() || !net.contains("pieces")) {
+    if (net.is_discarded() || !net.contains("net") || !net.contains("mesh")) {
       o.kind = "failed";
       o.detail = "exit 0 without a net JSON";
       return o;
     }
+    // papernet.net/1 (a program from before pieces) has one piece and no repairs.
+    const std::size_t pieces = net.contains("pieces") ? net["pieces"].size() : 1;
     std::ostringstream d;
-    d << net["pieces"].size() << (net["pieces"].size() == 1 ? " piece" : " pieces") << ", "
-      << net["mesh"]["faces"].size() << " faces, " << net["result"].get<std::string>();
-    for (const auto& repair : net["repairs"])
+    d << pieces << (pieces == 1 ? " piece" : " pieces") << ", " << net["mesh"]["faces"].size()
+      << " faces, " << net["result"].get<std::string>();
+    for (const auto& repair : net.value("repairs", nlohmann::json::array()))
       d << "; " << repair["code"].get<std::string>() << " " << repair["count"].get<long>();
     o.detail = d.str();
   }
