@@ -31,7 +31,7 @@ struct NetMetrics {
 /// A `papernet.net/1` document (README.md "The net"): the net and the mesh it folds into.
 struct NetDocument {
   std::string result = "complete";  ///< "complete" or "approximate"
-  std::string strategy;             ///< "TU", "QQ", "SEMP", "SEQ"
+  std::string strategy;             ///< "AUTO", "TU", "QQ", "SEMP", "SEQ"
   NetInput input;
   Mesh mesh;
   Net net;

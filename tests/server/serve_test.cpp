@@ -156,7 +156,7 @@ TEST(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
   EXPECT_TRUE(intermediate) << "no intermediate was served while the job ran";
   const json job = wait_final(s, id);
   ASSERT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
-  EXPECT_EQ(job["options"]["strategy"], "QQ");
+  EXPECT_EQ(job["options"]["strategy"], "AUTO");
   auto net = c.Get("/v1/jobs/" + id + "/net.json");
   ASSERT_EQ(net->status, 200);
   const json doc = json::parse(net->body);
