@@ -8,7 +8,7 @@ namespace papernet {
 
 namespace {
 
-constexpr const char* kFormat = "papernet.net/1";
+constexpr const char* kFormat = "papernet.net/2";
 
 nlohmann::json optional_number(const std::optional<double>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
@@ -31,9 +31,18 @@ nlohmann::json net_to_json(const NetDocument& doc) {
     const auto& p = doc.net.points[i];
     json points = json::array();
     for (const Vec2& q : p) points.push_back({q.x, q.y});
-    net_faces.push_back({{"parent", i < doc.net.parent.size() ? doc.net.parent[i] : -1},
+    net_faces.push_back({{"piece", i < doc.piece.size() ? doc.piece[i] : 0},
+                         {"parent", i < doc.net.parent.size() ? doc.net.parent[i] : -1},
                          {"points", std::move(points)}});
   }
+  json repairs = json::array(), pieces = json::array();
+  for (const NetRepair& r : doc.repairs)
+    repairs.push_back({{"code", r.code}, {"count", r.count}, {"message", r.message}});
+  for (const NetPiece& p : doc.pieces)
+    pieces.push_back({{"component", p.component},
+                      {"result", p.result},
+                      {"faces", p.faces},
+                      {"hausdorff", p.hausdorff}});
   json out{
       {"format", kFormat},
       {"result", doc.result},
@@ -41,8 +50,11 @@ nlohmann::json net_to_json(const NetDocument& doc) {
       {"input",
        {{"vertices", doc.input.vertices},
         {"faces", doc.input.faces},
+        {"components", doc.input.components},
         {"genus", doc.input.genus},
         {"boundaries", doc.input.boundaries}}},
+      {"repairs", std::move(repairs)},
+      {"pieces", std::move(pieces)},
       {"mesh", {{"vertices", std::move(vertices)}, {"faces", std::move(faces)}}},
       {"net", {{"faces", std::move(net_faces)}}},
       {"metrics",
@@ -76,6 +88,7 @@ NetDocument read_net_json(std::string_view text) {
     const auto& in = field(j, "input", "the document");
     doc.input.vertices = field(in, "vertices", "input").get<std::size_t>();
     doc.input.faces = field(in, "faces", "input").get<std::size_t>();
+    doc.input.components = field(in, "components", "input").get<std::size_t>();
     doc.input.genus = field(in, "genus", "input").get<int>();
     doc.input.boundaries = field(in, "boundaries", "input").get<std::size_t>();
     const auto& mesh = field(j, "mesh", "the document");
@@ -84,7 +97,21 @@ NetDocument read_net_json(std::string_view text) {
           {v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()});
     for (const auto& f : field(mesh, "faces", "mesh"))
       doc.mesh.faces.push_back({f.at(0).get<int>(), f.at(1).get<int>(), f.at(2).get<int>()});
+    for (const auto& r : field(j, "repairs", "the document"))
+      doc.repairs.push_back({field(r, "code", "a repair").get<std::string>(),
+                             field(r, "count", "a repair").get<std::size_t>(),
+                             field(r, "message", "a repair").get<std::string>()});
+    for (const auto& p : field(j, "pieces", "the document"))
+      doc.pieces.push_back({field(p, "component", "a piece").get<std::size_t>(),
+                            field(p, "result", "a piece").get<std::string>(),
+                            field(p, "faces", "a piece").get<std::size_t>(),
+                            field(p, "hausdorff", "a piece").get<double>()});
     for (const auto& f : field(field(j, "net", "the document"), "faces", "net")) {
+      const int piece = field(f, "piece", "a net face").get<int>();
+      if (piece < 0 || static_cast<std::size_t>(piece) >= doc.pieces.size())
+        throw IOException("net JSON: a net face names piece " + std::to_string(piece) + " of " +
+                          std::to_string(doc.pieces.size()));
+      doc.piece.push_back(piece);
       doc.net.parent.push_back(field(f, "parent", "a net face").get<int>());
       const auto& p = field(f, "points", "a net face");
       std::array<Vec2, 3> t;

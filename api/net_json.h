@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -12,29 +13,51 @@
 
 namespace papernet {
 
-/// The `input` object of a net document: what was handed in, after welding.
+/// The `input` object of a net document: what was handed in, after repair.
 struct NetInput {
   std::size_t vertices = 0, faces = 0;
-  int genus = 0;
-  std::size_t boundaries = 0;
+  std::size_t components = 1;  ///< connected parts
+  int genus = 0;               ///< summed over the parts
+  std::size_t boundaries = 0;  ///< boundary loops, summed over the parts
+};
+
+/// One entry of `repairs`: a kind of repair made to the input (core/mesh/repair.h), or a note
+/// of what loading skipped or what `components=largest` dropped.
+struct NetRepair {
+  std::string code;
+  std::size_t count = 0;
+  std::string message;
+};
+
+/// One entry of `pieces`: a part of the input unfolded on its own into one piece.
+struct NetPiece {
+  std::size_t component = 0;        ///< which part of the input (largest first)
+  std::string result = "complete";  ///< "complete" or "approximate"
+  std::size_t faces = 0;            ///< faces of the mesh the piece folds into
+  double hausdorff = 0;             ///< an approximation's distance to its part
 };
 
 /// The `metrics` object. coverage and aspect_ratio are written as null while unknown.
 struct NetMetrics {
   std::size_t faces = 0;
   std::optional<double> coverage, aspect_ratio;
-  double hausdorff = 0;
+  double hausdorff = 0;  ///< the largest of the pieces'
   std::size_t overlaps = 0;
   double seconds = 0;
 };
 
-/// A `papernet.net/1` document (README.md "The net"): the net and the mesh it folds into.
+/// A `papernet.net/2` document (README.md "The net"): the pieces and the mesh they fold into.
+/// `net.points[i]` and `piece[i]` belong to `mesh.faces[i]`; each piece's faces form one tree
+/// (its root's parent is -1) in the piece's own 2D frame.
 struct NetDocument {
-  std::string result = "complete";  ///< "complete" or "approximate"
+  std::string result = "complete";  ///< "approximate" when any piece is
   std::string strategy;             ///< "AUTO", "TU", "QQ", "SEMP", "SEQ"
   NetInput input;
+  std::vector<NetRepair> repairs;
   Mesh mesh;
   Net net;
+  std::vector<int> piece;  ///< the piece of each face
+  std::vector<NetPiece> pieces;
   NetMetrics metrics;
   /// An overlap-free net of a coarser mesh handed out while the job still runs: the JSON then
   /// carries `level` (kind "intermediate", its faces and the input's).
@@ -47,7 +70,7 @@ nlohmann::json net_to_json(const NetDocument& doc);
 /// Serialised document; `indent` < 0 writes one line.
 std::string write_net_json(const NetDocument& doc, int indent = -1);
 
-/// Parses a `papernet.net/1` document.
+/// Parses a `papernet.net/2` document.
 /// \throw IOException naming the fault (not JSON, wrong format tag, missing or mistyped field,
 ///        sizes that do not match).
 NetDocument read_net_json(std::string_view text);

@@ -193,11 +193,21 @@ constexpr Spec kOptions[] = {
      }},
     {"labels", "", "matching numbers on both sides of each cut edge",
      [](JobOptions& o, const std::string& n, const json& v) { o.labels = boolean(n, v); }},
-    {"keep_largest_component", "",
-     "unfold only the largest connected part of a mesh in several",
+    {"components", "all|largest",
+     "all: every connected part of the mesh its own piece; largest: only the largest part",
      [](JobOptions& o, const std::string& n, const json& v) {
-       o.keep_largest_component = boolean(n, v);
+       const std::string s = lower(text(n, v));
+       if (s == "all")
+         o.components = Components::All;
+       else if (s == "largest")
+         o.components = Components::Largest;
+       else
+         bad_value(n, v, "all or largest");
      }},
+    {"strict", "",
+     "refuse a mesh that needs repair (non-manifold edges, pinched vertices, degenerate or "
+     "flipped faces, several parts) instead of repairing it",
+     [](JobOptions& o, const std::string& n, const json& v) { o.strict = boolean(n, v); }},
 };
 
 const Spec* find_option(std::string_view name) {
@@ -409,7 +419,8 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"tab_room_budget", o.tab_room_budget},
               {"flat_fold_degrees", o.flat_fold_degrees},
               {"labels", o.labels},
-              {"keep_largest_component", o.keep_largest_component}};
+              {"components", o.components == Components::All ? "all" : "largest"},
+              {"strict", o.strict}};
 }
 
 PrintOptions print_options(const JobOptions& o) {

@@ -22,6 +22,9 @@ enum class Strategy { QQ, SEMP, SEQ, TU, AUTO };
 
 std::string strategy_name(Strategy strategy);
 
+/// Which connected parts of a mesh become pieces: every one, or only the largest.
+enum class Components { All, Largest };
+
 /// Everything a caller may choose about one unfolding job, the same for the command line and the
 /// service. Defaults are what a user who says nothing gets. Parsed and validated before any
 /// geometry runs. Each option has one name: `size_mm` in a query or JSON, `--size` on the
@@ -59,7 +62,12 @@ struct JobOptions {
   /// Folds flatter than this many degrees are not drawn.
   double flat_fold_degrees = PrintOptions{}.flat_fold_degrees;
   bool labels = PrintOptions{}.labels;  ///< matching numbers on both sides of each cut edge
-  bool keep_largest_component = false;
+  /// Every connected part its own piece (all), or only the largest part (the result says what
+  /// it dropped).
+  Components components = Components::All;
+  /// Refuse what repair would fix (non-manifold edges, pinches, degenerate or flipped faces,
+  /// several parts unless `components` is largest) instead of repairing it.
+  bool strict = false;
 };
 
 /// Limits a front end puts on options (the service's from its configuration).

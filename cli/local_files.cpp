@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <vector>
 
 #include "core/errors.h"
@@ -20,24 +21,40 @@ bool safe_relative_name(const std::string& uri) {
   return true;
 }
 
-/// Reads the sibling files a .gltf's buffers name, so that they come "with the upload".
-void add_gltf_siblings(const std::string& path, std::size_t max_bytes, JobInput& input) {
-  std::vector<std::string> uris;
-  try {
-    uris = gltf_external_uris(input.mesh);
-  } catch (const IOException&) {
-    return;  // the loader says what is wrong with the file
+/// The files beside the model that it names: a .gltf's buffers (and images), an OBJ's
+/// material libraries.
+std::vector<std::string> named_files(const JobInput& input) {
+  if (input.format == MeshFormat::Gltf) {
+    try {
+      return gltf_external_uris(input.mesh);
+    } catch (const IOException&) {
+      return {};  // the loader says what is wrong with the file
+    }
   }
+  std::vector<std::string> names;
+  if (input.format != MeshFormat::Obj) return names;
+  std::istringstream lines(input.mesh);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string keyword, name;
+    if (words >> keyword && keyword == "mtllib")
+      while (words >> name) names.push_back(name);
+  }
+  return names;
+}
+
+/// Reads the files beside `path` that the model names, so that they come "with the upload".
+void add_siblings(const std::string& path, std::size_t max_bytes, JobInput& input) {
   const auto dir = std::filesystem::path(path).parent_path();
-  for (const std::string& uri : uris) {
-    if (!safe_relative_name(uri)) continue;  // never supplied: loading names it as missing
-    const auto sibling = dir / uri;
+  for (const std::string& name : named_files(input)) {
+    if (!safe_relative_name(name)) continue;  // never supplied: loading names it as missing
+    const auto sibling = dir / name;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(sibling, ec)) continue;
     if (std::filesystem::file_size(sibling, ec) > max_bytes) continue;
     std::ifstream s(sibling, std::ios::binary);
-    input.external_files[uri].assign(std::istreambuf_iterator<char>(s),
-                                     std::istreambuf_iterator<char>());
+    input.external_files[name].assign(std::istreambuf_iterator<char>(s),
+                                      std::istreambuf_iterator<char>());
   }
 }
 
@@ -47,7 +64,7 @@ JobInput read_local_input(const std::string& path, std::size_t max_bytes) {
   JobInput input;
   input.mesh = read_mesh_file(path, max_bytes);
   input.format = format_from_extension(path);
-  if (input.format == MeshFormat::Gltf) add_gltf_siblings(path, max_bytes, input);
+  add_siblings(path, max_bytes, input);
   return input;
 }
 

@@ -8,8 +8,9 @@
 namespace papernet::cli {
 
 /// A mesh file on this machine as the engine's input: its bytes and its format by extension
-/// (else sniffed), and for a .gltf the files beside it that its buffers name, when they are
-/// plain relative names inside its folder (never `..`, an absolute path or a URL).
+/// (else sniffed), and the files beside it that it names (a .gltf's buffers, an OBJ's `mtllib`
+/// material libraries) when they are plain relative names inside its folder (never `..`, an
+/// absolute path or a URL).
 /// \throw IOException naming the fault (LimitExceededException over `max_bytes`).
 JobInput read_local_input(const std::string& path, std::size_t max_bytes);
 

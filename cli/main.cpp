@@ -16,7 +16,8 @@ struct Command {
 constexpr Command kCommands[] = {
     {"info", papernet::cli::info, "describe a mesh and every problem found in it"},
     {"serve", papernet::cli::serve, "run the HTTP job service (papernet serve --help)"},
-    {"unfold", papernet::cli::unfold, "unfold a mesh into a net (papernet.net/1 JSON)"},
+    {"unfold", papernet::cli::unfold,
+     "unfold a mesh into nets to print (papernet.net/2 JSON, SVG, PDF)"},
 };
 
 int usage(std::ostream& out, int code) {

@@ -19,7 +19,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: papernet unfold FILE -o OUT [-o OUT]... [options]\n"
-    "OUT is chosen by extension: .json (papernet.net/1), .svg (one page, or OUT-1.svg ... per\n"
+    "OUT is chosen by extension: .json (papernet.net/2), .svg (one page, or OUT-1.svg ... per\n"
     "page), .pdf (one page per sheet), .glb / .obj (the mesh the net folds into).\n"
     "Exit codes: 0 net written (also an approximate one: a net of a coarser mesh, said on\n"
     "stderr and in the JSON), 2 input cannot be unfolded, 3 no overlap-free net within the\n"
@@ -203,6 +203,14 @@ int unfold(int argc, char** argv) {
     return 1;
   }
   const NetDocument& doc = out.net;
+  for (const NetRepair& r : doc.repairs)
+    std::cerr << "papernet unfold: " << file << ": "
+              << (r.code == "skipped_on_load" || r.code == "dropped_components" ? "note"
+                                                                                : "repaired")
+              << ": " << r.message << "\n";
+  if (doc.pieces.size() > 1)
+    std::cerr << "papernet unfold: " << file << ": " << doc.pieces.size()
+              << " parts, each unfolded into a piece of its own\n";
   if (out.simplified)
     std::cerr << "papernet unfold: " << file << ": simplified from " << doc.input.faces << " to "
               << doc.mesh.faces.size() << " faces\n";
@@ -212,7 +220,9 @@ int unfold(int argc, char** argv) {
             << " overlaps=" << doc.metrics.overlaps << " iterations=" << out.iterations
             << " seconds=" << doc.metrics.seconds
             << " coverage=" << doc.metrics.coverage.value_or(0)
-            << " aspect_ratio=" << doc.metrics.aspect_ratio.value_or(1) << " check=ok\n";
+            << " aspect_ratio=" << doc.metrics.aspect_ratio.value_or(1)
+            << " pieces=" << doc.pieces.size() << " repairs=" << doc.repairs.size()
+            << " check=ok\n";
   if (doc.result == "approximate")
     std::cerr << "papernet unfold: " << file << ": approximate result: the net folds into a "
               << "coarser mesh of " << doc.mesh.faces.size() << " of " << doc.input.faces

@@ -17,6 +17,9 @@ struct ProgressInfo {
   std::size_t overlaps = 0;
   std::size_t iterations = 0;
   double elapsed_seconds = 0;
+  /// The piece being worked on (1-based) and how many there are; 0 when the work is not one
+  /// piece's. `faces` and `input_faces` then count all pieces.
+  std::size_t piece = 0, pieces = 0;
 };
 
 /// Hook through which long algorithms report progress, hand out intermediate overlap-free

@@ -10,6 +10,7 @@
 #include "api/net_json.h"
 #include "api/options.h"
 #include "core/io/load.h"
+#include "core/mesh/validate.h"
 #include "core/progress.h"
 
 namespace papernet {
@@ -88,6 +89,24 @@ class PipelineProgress : public Progress {
   virtual void intermediate_outcome(const UnfoldOutcome&) {}
   virtual bool wants_intermediates() const { return false; }
 };
+
+/// What the pipeline makes of an input before it unfolds it (`papernet info`): the problems of
+/// the mesh as loaded, then what repair did (unless strict) and the parts that become pieces, or
+/// why it is refused.
+struct InputReport {
+  MeshFormat format = MeshFormat::Unknown;
+  std::size_t raw_vertices = 0;  ///< vertices as the file has them, before welding
+  ValidationReport as_loaded;    ///< the welded mesh as the file has it
+  std::vector<NetRepair> repairs;
+  NetInput repaired;       ///< counts after repair
+  std::size_t pieces = 0;  ///< the parts that would be unfolded (one with components=largest)
+  std::optional<std::string> refusal;  ///< why it cannot be unfolded, when it cannot
+};
+
+/// Loads, repairs and validates `input` as run_pipeline does, without unfolding it.
+/// \throw IOException, LimitExceededException (unreadable, unsupported, too large).
+InputReport inspect_input(const JobInput& input, const JobOptions& options,
+                          const PipelineLimits& limits = {});
 
 /// No overlap-free net was found within the job's limits.
 class UnfoldFailedException : public std::runtime_error {

@@ -11,7 +11,9 @@ namespace papernet::fuzz {
 
 /// Loads `bytes` as the service's worker does (engine/pipeline.h: the default
 /// PipelineLimits, so max_bytes 64 MiB and 4 x 1,000,000 + 16 faces) and validates what loaded,
-/// once as it is and once keeping the largest component. IOException is the loader's promised
+/// once as it is and once keeping the largest component; then repairs it (core/mesh/repair.h)
+/// and aborts when the repaired mesh fails validation for anything but being in several parts
+/// (or empty) or its parts lose a face. IOException is the loader's promised
 /// answer to bad input and is swallowed (after checking it says something); any other exception
 /// escapes, and libFuzzer reports it as a crash.
 void load_and_validate(std::string_view bytes, MeshFormat format,

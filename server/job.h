@@ -36,6 +36,8 @@ struct JobOutput {
   std::size_t faces = 0;  ///< faces of the mesh the net folds into
   std::size_t overlaps = 0;
   std::map<std::string, Artifact> files;
+  /// The result's metrics, and under "repairs" and "pieces" what the net JSON lists by those
+  /// names: stored together, shown apart (job_json).
   nlohmann::json metrics = nlohmann::json::object();
 };
 

@@ -57,6 +57,10 @@ json job_to_json(const JobView& view, double now) {
     progress["input_faces"] = view.progress->input_faces;
     progress["overlaps"] = view.progress->overlaps;
     progress["iterations"] = view.progress->iterations;
+    if (view.progress->pieces > 0) {
+      progress["piece"] = view.progress->piece;
+      progress["pieces"] = view.progress->pieces;
+    }
   } else if (is_final(r.status) && !r.result_kind.empty()) {
     progress["phase"] = "done";
     progress["faces"] = r.faces;
@@ -70,11 +74,15 @@ json job_to_json(const JobView& view, double now) {
 
   json links = {{"self", self}, {"events", self + "/events"}};
   if (!r.result_kind.empty()) {
-    doc["result"] = {{"kind", r.result_kind},
-                     {"faces", r.faces},
-                     {"input_faces", r.input_faces},
-                     {"overlaps", r.overlaps},
-                     {"metrics", r.metrics}};
+    json metrics = r.metrics;
+    json repairs = metrics.contains("repairs") ? metrics["repairs"] : json::array();
+    json pieces = metrics.contains("pieces") ? metrics["pieces"] : json::array();
+    metrics.erase("repairs");
+    metrics.erase("pieces");
+    doc["result"] = {{"kind", r.result_kind},        {"faces", r.faces},
+                     {"input_faces", r.input_faces}, {"overlaps", r.overlaps},
+                     {"pieces", std::move(pieces)},  {"repairs", std::move(repairs)},
+                     {"metrics", std::move(metrics)}};
     for (const std::string& name : view.result_files) links[name] = self + "/" + name;
   } else {
     doc["result"] = nullptr;

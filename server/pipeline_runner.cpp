@@ -19,6 +19,17 @@ JobOutput job_output(const UnfoldOutcome& outcome) {
     out.metrics["glue_tabs"] = outcome.print->tabs;
     out.metrics["glue_strips"] = outcome.print->strips;
   }
+  // Stored with the metrics (server/job.h); job_json shows them beside them.
+  nlohmann::json repairs = nlohmann::json::array(), pieces = nlohmann::json::array();
+  for (const NetRepair& r : outcome.net.repairs)
+    repairs.push_back({{"code", r.code}, {"count", r.count}, {"message", r.message}});
+  for (const NetPiece& p : outcome.net.pieces)
+    pieces.push_back({{"component", p.component},
+                      {"result", p.result},
+                      {"faces", p.faces},
+                      {"hausdorff", p.hausdorff}});
+  out.metrics["repairs"] = std::move(repairs);
+  out.metrics["pieces"] = std::move(pieces);
   if (const auto& room = outcome.tab_room)
     out.metrics["tab_room"] = {{"blocked_before", room->blocked_before},
                                {"blocked_after", room->blocked_after},

@@ -147,7 +147,16 @@ ParsedUpload parse_upload(UploadRequest request, const OptionsLimits& limits) {
         "both");
   if (!options_part) out.options = parse_options_query(request.query, limits);
   if (out.input.mesh.empty()) throw ApiError("missing_mesh", "the request carries no mesh");
-  if (format == MeshFormat::Unknown) format = sniff_format(out.input.mesh);
+  const MeshFormat sniffed = sniff_format(out.input.mesh);
+  // The bytes name their format surely only by a signature (GLB, Draco, PLY, OFF, glTF's JSON,
+  // a binary STL's size); OBJ and ASCII STL are guessed, and a guess contradicts nothing.
+  const bool signed_bytes = sniffed != MeshFormat::Unknown && sniffed != MeshFormat::Obj &&
+                            !(sniffed == MeshFormat::Stl && out.input.mesh.starts_with("solid"));
+  if (format != MeshFormat::Unknown && signed_bytes && sniffed != format)
+    throw ApiError("unsupported_format",
+                   "the body is " + format_name(sniffed) + " by its content, not the declared " +
+                       format_name(format) + " (" + media_type_of(format) + ")");
+  if (format == MeshFormat::Unknown) format = sniffed;
   if (format == MeshFormat::Unknown)
     throw ApiError("unsupported_format",
                    "cannot tell the mesh format from the content; send a Content-Type such as "

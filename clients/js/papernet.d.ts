@@ -34,7 +34,10 @@ export interface Options {
   flat_fold_degrees?: number;
   /** Matching numbers on both sides of each cut edge (default true). */
   labels?: boolean;
-  keep_largest_component?: boolean;
+  /** "all" (default): every connected part its own piece; "largest": only the largest part. */
+  components?: "all" | "largest";
+  /** Refuse a mesh that needs repair instead of repairing it (default false). */
+  strict?: boolean;
 }
 
 /** RFC 9457 problem details with papernet's stable code. */
@@ -60,6 +63,9 @@ export interface Progress {
   elapsed_seconds?: number;
   /** 1 = next; null when not queued. */
   queue_position?: number | null;
+  /** The piece being unfolded (1-based) and how many there are, while one is. */
+  piece?: number;
+  pieces?: number;
 }
 
 export interface Job {
@@ -77,6 +83,8 @@ export interface Job {
     faces: number;
     input_faces: number;
     overlaps: number;
+    pieces: Piece[];
+    repairs: Repair[];
     /** The net JSON's metrics, the print's (pages, cut_edges, glue_tabs, glue_strips) and, with
      *  tabs auto, what the pass that makes room for tabs did. */
     metrics?: Record<string, number> & { tab_room?: Record<string, number> };
@@ -93,14 +101,32 @@ export interface Level {
   inputFaces: number | null;
 }
 
-/** The net document, papernet.net/1 (README.md, "The net"). */
+/** A repair made to the input, or a note of what loading skipped or what was dropped. */
+export interface Repair {
+  code: string;
+  count: number;
+  message: string;
+}
+
+/** A part of the input unfolded on its own into one piece. */
+export interface Piece {
+  component: number;
+  result: "complete" | "approximate";
+  faces: number;
+  hausdorff: number;
+}
+
+/** The net document, papernet.net/2 (README.md, "The net"). */
 export interface NetDocument {
-  format: "papernet.net/1";
+  format: "papernet.net/2";
   result: "complete" | "approximate";
   strategy?: string;
-  input?: { vertices: number; faces: number; genus?: number; boundaries?: number };
+  input?: { vertices: number; faces: number; components: number; genus?: number; boundaries?: number };
+  repairs: Repair[];
+  pieces: Piece[];
   mesh: { vertices: Array<[number, number, number]>; faces: Array<[number, number, number]> };
-  net: { faces: Array<{ parent: number; points: Array<[number, number]> }> };
+  /** One tree per piece: `parent` is -1 for its root, else a face of the same piece. */
+  net: { faces: Array<{ piece: number; parent: number; points: Array<[number, number]> }> };
   metrics?: Record<string, number>;
   /** Parsed from the X-Papernet-Level header (not enumerable). */
   readonly level: Level | null;

@@ -334,7 +334,7 @@ export class PapernetClient {
     return this._request(`/v1/jobs/${encodeURIComponent(id)}/${name}`, { signal });
   }
 
-  /** The net (papernet.net/1) with `level` parsed from X-Papernet-Level. */
+  /** The net (papernet.net/2) with `level` parsed from X-Papernet-Level. */
   async netJson(id, opts) {
     const res = await this.result(id, "net.json", opts);
     const net = await res.json();

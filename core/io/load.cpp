@@ -136,6 +136,7 @@ LoadedMesh weld(detail::RawMesh raw, MeshFormat format) {
   }
   out.mesh.faces.reserve(raw.faces.size());
   for (const auto& f : raw.faces) out.mesh.faces.push_back({remap[f[0]], remap[f[1]], remap[f[2]]});
+  out.raw_faces = std::move(raw.faces);
   if (unused > 0)
     out.notes.push_back(std::to_string(unused) + " vertices used by no face were dropped");
   return out;

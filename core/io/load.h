@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <map>
 #include <string>
@@ -36,7 +37,10 @@ struct LoadOptions {
 struct LoadedMesh {
   Mesh mesh;  ///< welded: vertices with equal positions merged
   MeshFormat format = MeshFormat::Unknown;
-  std::size_t raw_vertices = 0;    ///< vertex count before welding
+  std::size_t raw_vertices = 0;  ///< vertex count before welding
+  /// The vertex each corner had before welding (faces as mesh.faces): what repair_mesh needs
+  /// to tell the file's own connections from those welding made.
+  std::vector<std::array<int, 3>> raw_faces;
   bool triangulated = false;       ///< polygons (or strips/fans) were split into triangles
   std::vector<std::string> notes;  ///< what else loading did (skipped lines, points, primitives)
 };

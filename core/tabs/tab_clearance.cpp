@@ -51,7 +51,7 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
         break;
       }
   }
-  tol_ = kOverlapTolerance * bounding_box_diagonal(mesh);
+  tol_ = kTabRoomOverlapTolerance * bounding_box_diagonal(mesh);
   height_ = options.min_height;
   budget_ = options.max_evaluations;
   time_limit_ = options.time_limit_seconds;

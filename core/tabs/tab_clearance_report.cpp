@@ -29,7 +29,7 @@ std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options
   for (const auto& f : mesh.faces)
     for (int k = 0; k < 3; ++k) fan[f[k]].push_back({f[(k + 1) % 3], f[(k + 2) % 3]});
   const std::vector<TabShape> shapes = tab_shapes(options.angle_deg);
-  const double tol = kOverlapTolerance * bounding_box_diagonal(mesh);
+  const double tol = kTabRoomOverlapTolerance * bounding_box_diagonal(mesh);
   std::vector<Triangle2> flat;
   const auto hits_fan = [&](const Triangle2& t0, const Triangle2& t1, const Box2&) {
     return std::any_of(flat.begin(), flat.end(), [&](const Triangle2& c) {

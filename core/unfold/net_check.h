@@ -39,4 +39,10 @@ struct NetCheckReport {
 /// boxes meet is tested, found through a static bounding-box tree.
 NetCheckReport check_net(const Mesh& mesh, const Net& net, const NetCheckOptions& options = {});
 
+/// check_net for a net of several pieces: the faces with the same `piece[f]` must be a valid
+/// net (one tree) of the part of `mesh` they cover, in that piece's own frame; pieces are not
+/// tested against each other. Failures name the piece.
+NetCheckReport check_pieces(const Mesh& mesh, const Net& net, const std::vector<int>& piece,
+                            const NetCheckOptions& options = {});
+
 }  // namespace papernet

@@ -37,7 +37,8 @@ TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   EXPECT_EQ(o.paper, "A4");
   EXPECT_EQ(o.tabs, TabMode::Auto);
   EXPECT_EQ(o.tab_room_budget, 100'000u);
-  EXPECT_FALSE(o.keep_largest_component);
+  EXPECT_EQ(o.components, Components::All);
+  EXPECT_FALSE(o.strict);
 }
 
 TEST(OptionsTest, QueryParametersAreParsed) {
@@ -51,7 +52,8 @@ TEST(OptionsTest, QueryParametersAreParsed) {
                                             {"margin_mm", "5"},
                                             {"tabs", "false"},
                                             {"tab_room_budget", "0"},
-                                            {"keep_largest_component", "yes"}});
+                                            {"components", "largest"},
+                                            {"strict", "yes"}});
   EXPECT_EQ(o.strategy, Strategy::SEMP);
   EXPECT_EQ(o.seed, 42u);
   EXPECT_EQ(o.target_faces, 500u);
@@ -62,7 +64,8 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_DOUBLE_EQ(o.margin_mm, 5);
   EXPECT_EQ(o.tabs, TabMode::None);
   EXPECT_EQ(o.tab_room_budget, 0u);
-  EXPECT_TRUE(o.keep_largest_component);
+  EXPECT_EQ(o.components, Components::Largest);
+  EXPECT_TRUE(o.strict);
 }
 
 TEST(OptionsTest, JsonObjectIsParsedWithTypedValues) {
@@ -251,7 +254,7 @@ TEST(OptionsTest, PaperIsANamedSheetOrASizeAndABadOneIsNamed) {
 // alone or with a word, and a bad value names the option.
 TEST(OptionsTest, CommandLineFlagsFillTheSameOptions) {
   EXPECT_EQ(option_flag("size_mm"), "--size");
-  EXPECT_EQ(option_flag("keep_largest_component"), "--keep-largest-component");
+  EXPECT_EQ(option_flag("min_tab_height_mm"), "--min-tab-height");
   EXPECT_EQ(option_flag("flat_fold_degrees"), "--flat-fold-degrees");
   JobOptions o;
   EXPECT_TRUE(apply_option_flag(o, "--size", "15cm"));
@@ -264,10 +267,14 @@ TEST(OptionsTest, CommandLineFlagsFillTheSameOptions) {
   EXPECT_DOUBLE_EQ(o.tab_height_mm, 4);
   EXPECT_TRUE(apply_option_flag(o, "--labels", "off"));
   EXPECT_FALSE(o.labels);
-  EXPECT_TRUE(is_boolean_flag("--keep-largest-component"));
+  EXPECT_TRUE(is_boolean_flag("--strict"));
   EXPECT_FALSE(is_boolean_flag("--seed"));
-  EXPECT_TRUE(apply_option_flag(o, "--keep-largest-component", std::nullopt));
-  EXPECT_TRUE(o.keep_largest_component);
+  EXPECT_TRUE(apply_option_flag(o, "--strict", std::nullopt));
+  EXPECT_TRUE(o.strict);
+  EXPECT_TRUE(apply_option_flag(o, "--components", "largest"));
+  EXPECT_EQ(o.components, Components::Largest);
+  EXPECT_EQ(error_code([&] { apply_option_flag(o, "--components", "some"); }),
+            "invalid_option_value");
   EXPECT_TRUE(apply_option_flag(o, "--strategy", "se/mp"));
   EXPECT_EQ(o.strategy, Strategy::SEMP);
   EXPECT_TRUE(apply_option_flag(o, "--tab-room-budget", "250000"));

@@ -49,10 +49,26 @@ TEST(InfoCli, UnreadableFileExitsOneAndUnfoldableNotExitsTwo) {
   fs::create_directories(dir);
   std::ofstream(dir / "two.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\n"
                                     "f 1 2 3\nf 4 5 6\n";
-  const CliRun r = info((dir / "two.obj").string() + " --json");
-  EXPECT_EQ(r.code, 2);
+  // Two parts: two pieces, unless --strict refuses a mesh in parts (or judges the largest).
+  CliRun r = info((dir / "two.obj").string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(nlohmann::json::parse(r.out)["problems"][0]["code"], "several_components");
-  EXPECT_EQ(info((dir / "two.obj").string() + " --keep-largest-component").code, 0);
+  EXPECT_EQ(nlohmann::json::parse(r.out)["pieces"], 2);
+  r = info((dir / "two.obj").string() + " --json --strict");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(nlohmann::json::parse(r.out)["unfoldable"], false);
+  EXPECT_EQ(info((dir / "two.obj").string() + " --strict --components largest").code, 0);
+  // Nothing to unfold, repair or not: exit 2.
+  std::ofstream(dir / "points.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  EXPECT_EQ(info((dir / "points.obj").string()).code, 2);
+  // A pinch repaired: reported, unfoldable; refused with --strict.
+  std::ofstream(dir / "pinch.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -1 0 0\nv 0 -1 0\n"
+                                      "v 0 0 -1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 5 6\n"
+                                      "f 1 6 7\nf 5 7 6\nf 1 7 5\n";
+  r = info((dir / "pinch.obj").string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["repairs"][0]["code"], "split_pinched_vertices");
+  EXPECT_EQ(info((dir / "pinch.obj").string() + " --strict").code, 2);
 }
 
 TEST(InfoCli, GltfReadsSiblingBuffersButNeverParentPaths) {

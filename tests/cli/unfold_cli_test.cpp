@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -126,24 +127,70 @@ TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
   EXPECT_EQ(papernet("unfold " + mesh + " --target-faces 0"), 1);
 }
 
-// The command validates before it unfolds: a fault the validator names ends in exit 2 with
-// that reason, never in a net (or a failed net check).
-TEST(UnfoldCli, MeshThatCannotBeUnfoldedExitsTwoNamingTheFault) {
+// A mesh with faults is repaired, and the command says what it repaired; with --strict the
+// command refuses it (exit 2 with the validator's reason), never writing a net.
+TEST(UnfoldCli, RepairsWhatItCanAndStrictRefusesIt) {
   const std::string obj = ::testing::TempDir() + "papernet_degenerate.obj";
   // A tetrahedron plus a zero-area face glued to one of its edges (also non-manifold).
   std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 2 0 0\n"
                         "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 2 5\n";
   const std::string out = ::testing::TempDir() + "papernet_degenerate.json";
-  std::remove(out.c_str());
   std::string said;
   for (const char* strategy : {"QQ", "TU"}) {
-    EXPECT_EQ(papernet("unfold " + obj + " --strategy " + strategy + " -o " + out, &said), 2)
+    std::remove(out.c_str());
+    EXPECT_EQ(papernet("unfold " + obj + " --strategy " + strategy + " --strict -o " + out, &said),
+              2)
         << said;
     EXPECT_NE(said.find("cannot be unfolded: "), std::string::npos) << said;
     EXPECT_NE(said.find("degenerate"), std::string::npos) << said;
     EXPECT_FALSE(std::ifstream(out).good()) << "no net may be written";
+    ASSERT_EQ(papernet("unfold " + obj + " --strategy " + strategy + " -o " + out, &said), 0)
+        << said;
+    EXPECT_NE(said.find("repaired: removed 1 degenerate face"), std::string::npos) << said;
+    EXPECT_NE(said.find("pieces=1 repairs=1"), std::string::npos) << said;
+    std::stringstream text;
+    text << std::ifstream(out).rdbuf();
+    const auto j = nlohmann::json::parse(text.str());
+    EXPECT_EQ(j["repairs"][0]["code"], "removed_degenerate_faces");
+    EXPECT_EQ(j["mesh"]["faces"].size(), 4u);
   }
   std::remove(obj.c_str());
+  std::remove(out.c_str());
+}
+
+// A model that is a folder: a .gltf read with the buffer beside it, an OBJ with its material
+// library; a .gltf whose buffer is missing is refused naming it.
+TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
+  const std::string out = ::testing::TempDir() + "papernet_local.json";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+                         "/CesiumMilkTruck/CesiumMilkTruck.gltf --strategy TU -o " + out,
+                     &said),
+            0)
+      << said;
+  std::stringstream text;
+  text << std::ifstream(out).rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["mesh"]["faces"].size(), 3624u);  // 2,856 and the wheels twice more (node instances)
+  EXPECT_GT(j["pieces"].size(), 10u) << "one piece per part of the truck";
+  EXPECT_EQ(j["input"]["components"], j["pieces"].size());
+
+  const std::filesystem::path dir = ::testing::TempDir() + "papernet_local_models";
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(
+      std::string(PAPERNET_TEST_DATA) + "/CesiumMilkTruck/CesiumMilkTruck.gltf", dir / "truck.gltf",
+      std::filesystem::copy_options::overwrite_existing);
+  EXPECT_EQ(papernet("unfold " + (dir / "truck.gltf").string() + " -o " + out, &said), 2);
+  EXPECT_NE(said.find("CesiumMilkTruck0.bin"), std::string::npos) << said;
+
+  std::filesystem::copy_file(std::string(PAPERNET_TEST_DATA) + "/sample.obj", dir / "fuze.obj",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir / "fuze.obj.mtl") << "newmtl a-super-duper-material\nKd 0.8 0.2 0.1\n";
+  EXPECT_EQ(papernet("unfold " + (dir / "fuze.obj").string() + " --strategy TU -o " + out, &said),
+            0)
+      << said;
+  std::filesystem::remove_all(dir);
+  std::remove(out.c_str());
 }
 
 }  // namespace

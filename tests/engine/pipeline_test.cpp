@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -30,7 +31,7 @@ JobOptions tu(std::uint64_t seed = 1) {
 }
 
 void expect_checked(const UnfoldOutcome& out) {
-  const NetCheckReport check = check_net(out.net.mesh, out.net.net);
+  const NetCheckReport check = check_pieces(out.net.mesh, out.net.net, out.net.piece);
   EXPECT_TRUE(check.ok()) << check.summary();
   const NetDocument doc = read_net_json(out.documents.net_json);
   EXPECT_EQ(doc.net.parent, out.net.net.parent);
@@ -78,11 +79,11 @@ TEST(Pipeline, WritesTheDocumentsAskedForAndCountsThePrint) {
   const UnfoldOutcome json_only = run_pipeline(data_file("Box_Draco.glb"), tu(), {}, {}, quiet);
   EXPECT_FALSE(json_only.print);
   EXPECT_TRUE(json_only.documents.pdf.empty());
-  EXPECT_EQ(nlohmann::json::parse(json_only.documents.net_json)["format"], "papernet.net/1");
+  EXPECT_EQ(nlohmann::json::parse(json_only.documents.net_json)["format"], "papernet.net/2");
 }
 
-TEST(Pipeline, AMeshInPartsIsRefusedWithItsReportOrItsLargestPartUnfolded) {
-  // Two tetrahedra apart and a third, smaller one: three components.
+// Three tetrahedra apart (the third smaller): three parts.
+JobInput three_parts() {
   std::string obj;
   for (int k = 0; k < 3; ++k) {
     const double s = k == 2 ? 0.5 : 1, x = 3.0 * k;
@@ -95,23 +96,109 @@ TEST(Pipeline, AMeshInPartsIsRefusedWithItsReportOrItsLargestPartUnfolded) {
       obj += "f " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) +
              "\n";
   }
-  JobInput input{obj, MeshFormat::Obj, {}};
+  return {obj, MeshFormat::Obj, {}};
+}
+
+TEST(Pipeline, EveryPartIsItsOwnPieceOrOnlyTheLargestOrStrictRefusesThem) {
   PipelineProgress quiet;
+  const UnfoldOutcome all = run_pipeline(three_parts(), tu(), {}, {.svg_pages = true}, quiet);
+  EXPECT_TRUE(all.net.repairs.empty());
+  ASSERT_EQ(all.net.pieces.size(), 3u);
+  EXPECT_EQ(all.net.input.components, 3u);
+  EXPECT_EQ(all.net.mesh.faces.size(), 12u);
+  const NetCheckReport check = check_pieces(all.net.mesh, all.net.net, all.net.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  for (std::size_t p = 0; p < 3; ++p) {
+    EXPECT_EQ(all.net.pieces[p].faces, 4u);
+    EXPECT_EQ(std::count(all.net.piece.begin(), all.net.piece.end(), int(p)), 4);
+  }
+  ASSERT_TRUE(all.print);
+  EXPECT_EQ(all.print->cut_edges, 9u);  // a tetrahedron's net has 3 cut edges
+  EXPECT_EQ(read_net_json(all.documents.net_json).pieces.size(), 3u);
+
+  JobOptions largest = tu();
+  largest.components = Components::Largest;
+  const UnfoldOutcome one = run_pipeline(three_parts(), largest, {}, {}, quiet);
+  ASSERT_EQ(one.net.pieces.size(), 1u);
+  EXPECT_EQ(one.net.mesh.faces.size(), 4u);
+  ASSERT_EQ(one.net.repairs.size(), 1u);
+  EXPECT_EQ(one.net.repairs[0].code, "dropped_components");
+  EXPECT_EQ(one.net.repairs[0].count, 2u);
+  expect_checked(one);
+
+  JobOptions strict = tu();
+  strict.strict = true;
   try {
-    run_pipeline(input, tu(), {}, {}, quiet);
-    FAIL() << "a mesh in three parts was unfolded as one";
+    run_pipeline(three_parts(), strict, {}, {}, quiet);
+    FAIL() << "strict unfolded a mesh in three parts";
   } catch (const InvalidMeshException& e) {
     EXPECT_EQ(e.report().components, 3u);
     bool named = false;
     for (const MeshProblem& p : e.report().problems) named |= p.code == "several_components";
     EXPECT_TRUE(named);
   }
-  JobOptions largest = tu();
-  largest.keep_largest_component = true;
-  const UnfoldOutcome out = run_pipeline(input, largest, {}, {}, quiet);
-  EXPECT_EQ(out.net.mesh.faces.size(), 4u);
-  EXPECT_EQ(out.net.input.faces, 4u);
+  strict.components = Components::Largest;
+  EXPECT_EQ(run_pipeline(three_parts(), strict, {}, {}, quiet).net.pieces.size(), 1u);
+}
+
+// One defect of each kind a real model has, each in a small mesh of its own: a pinch (two
+// tetrahedra sharing a vertex), an edge of three faces (a fin on a tetrahedron), a zero-area
+// face (a cap closing a T-junction in a square) and a flipped face (in a tetrahedron).
+const std::pair<std::string, std::string> kDefects[] = {
+    {"split_pinched_vertices",
+     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -1 0 0\nv 0 -1 0\nv 0 0 -1\n"
+     "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 5 6\nf 1 6 7\nf 5 7 6\nf 1 7 5\n"},
+    {"cut_non_manifold_edges",
+     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0.5 -1 0.5\n"
+     "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 2 5\n"},
+    {"removed_degenerate_faces",
+     "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1 2 5\nf 5 2 3\nf 1 3 4\nf 1 5 3\n"},
+    {"reoriented_faces",
+     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 4 1\n"},
+};
+
+TEST(Pipeline, EachDefectIsRepairedAndReportedAndStrictRefusesIt) {
+  PipelineProgress quiet;
+  std::ostringstream all;  // every defect in one model, each part apart
+  int offset = 0;
+  for (const auto& [code, obj] : kDefects) {
+    SCOPED_TRACE(code);
+    const JobInput input{obj, MeshFormat::Obj, {}};
+    const UnfoldOutcome out = run_pipeline(input, tu(), {}, {.pdf = true}, quiet);
+    expect_checked(out);
+    ASSERT_EQ(out.net.repairs.size(), 1u);
+    EXPECT_EQ(out.net.repairs[0].code, code);
+    EXPECT_EQ(out.net.repairs[0].count, 1u);
+    EXPECT_FALSE(out.documents.pdf.empty());
+    JobOptions strict = tu();
+    strict.strict = true;
+    EXPECT_THROW(run_pipeline(input, strict, {}, {}, quiet), InvalidMeshException);
+    // The defect's mesh, moved apart and renumbered, into the model of all of them.
+    int vertices = 0;
+    std::istringstream lines(obj);
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream words(line);
+      std::string key;
+      words >> key;
+      if (key == "v") {
+        double x, y, z;
+        words >> x >> y >> z;
+        all << "v " << x + 10 * offset << " " << y << " " << z << "\n";
+        ++vertices;
+      } else {
+        all << "f";
+        for (int v; words >> v;) all << " " << v + offset;
+        all << "\n";
+      }
+    }
+    offset += vertices;
+  }
+  const UnfoldOutcome out = run_pipeline({all.str(), MeshFormat::Obj, {}}, tu(), {}, {}, quiet);
   expect_checked(out);
+  std::set<std::string> codes;
+  for (const NetRepair& r : out.net.repairs) codes.insert(r.code);
+  for (const auto& [code, obj] : kDefects) EXPECT_TRUE(codes.count(code)) << code;
+  EXPECT_GE(out.net.pieces.size(), 5u);
 }
 
 TEST(Pipeline, LimitsAndPrintOptionsAreRefusedByName) {

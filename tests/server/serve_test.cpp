@@ -42,7 +42,7 @@ TEST(ServeTest, SubmitPollAndFetchObj) {
   auto net = c.Get("/v1/jobs/" + id + "/net.json");
   ASSERT_EQ(net->status, 200);
   const json doc = json::parse(net->body);
-  EXPECT_EQ(doc["format"], "papernet.net/1");
+  EXPECT_EQ(doc["format"], "papernet.net/2");
   EXPECT_EQ(doc["metrics"]["overlaps"], 0);
   EXPECT_EQ(doc["net"]["faces"].size(), doc["mesh"]["faces"].size());
   const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
@@ -267,11 +267,19 @@ TEST(ServeTest, EveryErrorCodeFromTheInputThatCausesIt) {
   EXPECT_EQ(wait_final(s, too_big)["error"]["code"], "too_many_faces");
   expect_problem(c.Get("/v1/jobs/" + too_big + "/net.json"), 413, "too_many_faces");
 
-  const std::string bad = submit(s, kNonManifoldObj, "model/obj");
+  // A mesh strict refuses; repair cuts its non-manifold edge instead.
+  const std::string bad = submit(s, kNonManifoldObj, "model/obj", "?strict=true");
   const json failed = wait_final(s, bad);
   EXPECT_EQ(failed["status"], "failed");
   EXPECT_EQ(failed["error"]["code"], "invalid_mesh");
   EXPECT_FALSE(failed["error"]["reasons"].empty()) << failed.dump();
+  const json repaired = wait_final(s, submit(s, kNonManifoldObj, "model/obj"));
+  EXPECT_EQ(repaired["status"], "succeeded") << repaired.dump();
+  EXPECT_EQ(repaired["result"]["repairs"][0]["code"], "cut_non_manifold_edges");
+  // Nothing to unfold, repair or not.
+  const json points = wait_final(s, submit(s, "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "model/obj"));
+  EXPECT_EQ(points["error"]["code"], "invalid_mesh");
+  EXPECT_NE(points["error"]["detail"].get<std::string>().find("no faces"), std::string::npos);
   expect_problem(c.Get("/v1/jobs/" + bad + "/net.svg"), 422, "invalid_mesh");
   expect_problem(c.Delete("/v1/jobs/" + bad), 409, "job_finished");
 }
@@ -407,8 +415,9 @@ TEST(ServeTest, CommandLineAndServiceWriteTheSameNet) {
 
 // A bad option is the caller's fault, not the mesh's: 400 naming it, before any job exists;
 // also one only the print checks (a sheet too small for its margins). A mesh in three parts
-// is the mesh's: the job fails with invalid_mesh and the validator's reasons.
-TEST(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsTheMeshProblem) {
+// gives three pieces; with strict=true it is the mesh's fault: the job fails with invalid_mesh
+// and the validator's reasons.
+TEST(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsPiecesOrStrictlyTheMeshProblem) {
   Server s({"--workers", "1"});
   auto c = s.client();
   const std::string cube = test_mesh("sample.obj");
@@ -420,9 +429,15 @@ TEST(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsTheMeshProblem) {
     const json problem = json::parse(res->body);
     EXPECT_TRUE(problem["option"] == "paper" || problem["option"] == "margin_mm") << res->body;
   }
-  auto multipart = c.Post("/v1/jobs", httplib::MultipartFormDataItems{
-                                          {"mesh", cube, "sample.obj", "model/obj"},
-                                          {"options", R"({"paper":"A5"})", "", "application/json"}});
+  // A GLB sent as OBJ: its bytes say otherwise, 415 naming both.
+  auto glb_as_obj = c.Post("/v1/jobs", test_mesh("Duck.glb"), "model/obj");
+  expect_problem(glb_as_obj, 415, "unsupported_format");
+  EXPECT_NE(glb_as_obj->body.find("glb by its content, not the declared obj"), std::string::npos)
+      << glb_as_obj->body;
+  auto multipart = c.Post(
+      "/v1/jobs",
+      httplib::MultipartFormDataItems{{"mesh", cube, "sample.obj", "model/obj"},
+                                      {"options", R"({"paper":"A5"})", "", "application/json"}});
   ASSERT_TRUE(multipart);
   EXPECT_EQ(multipart->status, 400);
   EXPECT_EQ(json::parse(multipart->body)["option"], "paper");
@@ -434,17 +449,23 @@ TEST(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsTheMeshProblem) {
              std::to_string(x) + " 1 0\nv " + std::to_string(x) + " 0 1\n";
     parts += "f " + std::to_string(b) + " " + std::to_string(b + 2) + " " + std::to_string(b + 1) +
              "\nf " + std::to_string(b) + " " + std::to_string(b + 1) + " " +
-             std::to_string(b + 3) + "\nf " + std::to_string(b + 1) + " " +
-             std::to_string(b + 2) + " " + std::to_string(b + 3) + "\nf " +
-             std::to_string(b + 2) + " " + std::to_string(b) + " " + std::to_string(b + 3) + "\n";
+             std::to_string(b + 3) + "\nf " + std::to_string(b + 1) + " " + std::to_string(b + 2) +
+             " " + std::to_string(b + 3) + "\nf " + std::to_string(b + 2) + " " +
+             std::to_string(b) + " " + std::to_string(b + 3) + "\n";
   }
-  const json failed = wait_final(s, submit(s, parts, "model/obj"));
+  const json failed = wait_final(s, submit(s, parts, "model/obj", "?strict=true"));
   EXPECT_EQ(failed["status"], "failed");
   EXPECT_EQ(failed["error"]["status"], 422);
   EXPECT_EQ(failed["error"]["code"], "invalid_mesh");
   EXPECT_EQ(failed["error"]["mesh"]["components"], 3);
   ASSERT_FALSE(failed["error"]["reasons"].empty()) << failed.dump();
   EXPECT_EQ(failed["error"]["reasons"][0]["code"], "several_components");
-  const json largest = wait_final(s, submit(s, parts, "model/obj", "?keep_largest_component=true"));
-  EXPECT_EQ(largest["status"], "succeeded") << largest.dump();
+  // Without strict, every part is a piece; with components=largest, one, and it says so.
+  const json pieces = wait_final(s, submit(s, parts, "model/obj"));
+  ASSERT_EQ(pieces["status"], "succeeded") << pieces.dump();
+  EXPECT_EQ(pieces["result"]["pieces"].size(), 3u);
+  const json largest = wait_final(s, submit(s, parts, "model/obj", "?components=largest"));
+  ASSERT_EQ(largest["status"], "succeeded") << largest.dump();
+  EXPECT_EQ(largest["result"]["pieces"].size(), 1u);
+  EXPECT_EQ(largest["result"]["repairs"][0]["code"], "dropped_components");
 }

@@ -4,6 +4,8 @@
 
 #include <fstream>
 #include <sstream>
+#include <tuple>
+#include <vector>
 
 #include "server/problem.h"
 
@@ -52,6 +54,34 @@ TEST(UploadTest, DeclaredFormatWinsOverContent) {
   EXPECT_EQ(parse_upload(r, {}).input.format, MeshFormat::Stl);
   r.query = {{"format", "off"}};
   EXPECT_EQ(parse_upload(r, {}).input.format, MeshFormat::Off);
+}
+
+// Bytes whose signature names another format than the one declared answer 415 naming both;
+// formats told only by a guess (OBJ, ASCII STL) contradict nothing.
+TEST(UploadTest, BytesThatContradictTheDeclaredFormatAre415NamingBoth) {
+  for (const auto& [file, type, sniffed] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"Duck.glb", "model/obj", "glb"},
+           {"mirror.ply", "model/stl", "ply"},
+           {"thingi10k_65004.stl", "model/x-ply", "stl"},
+           {"gltf_external/Box.gltf", "model/gltf-binary", "gltf"}}) {
+    UploadRequest r;
+    r.content_type = type;
+    r.body = read(file);
+    try {
+      parse_upload(r, {});
+      ADD_FAILURE() << file << " was accepted as " << type;
+    } catch (const ApiError& e) {
+      EXPECT_EQ(e.problem().status, 415) << file;
+      EXPECT_NE(e.problem().detail.find("is " + sniffed + " by its content"), std::string::npos)
+          << e.problem().detail;
+      EXPECT_NE(e.problem().detail.find(type), std::string::npos) << e.problem().detail;
+    }
+  }
+  UploadRequest multipart;  // the declared type of a multipart's mesh part too
+  multipart.multipart = true;
+  multipart.parts = {{"mesh", "duck.obj", "model/obj", read("Duck.glb")}};
+  EXPECT_EQ(problem_code(multipart), "unsupported_format");
 }
 
 TEST(UploadTest, ContentThatIsNoMeshIsUnsupported) {

@@ -17,15 +17,17 @@ after(async () => {
   await server?.stop();
 });
 
-/** Checks the papernet.net/1 invariants the demo's folding relies on. */
+/** Checks the papernet.net/2 invariants the demo's folding relies on. */
 function checkNet(net) {
-  assert.equal(net.format, "papernet.net/1");
+  assert.equal(net.format, "papernet.net/2");
   assert.ok(["complete", "approximate"].includes(net.result));
   const faces = net.mesh.faces;
   assert.ok(faces.length >= 4);
   assert.equal(net.net.faces.length, faces.length);
   const roots = net.net.faces.filter((f) => f.parent === -1);
-  assert.equal(roots.length, 1, "exactly one root face");
+  assert.equal(roots.length, net.pieces.length, "exactly one root face per piece");
+  assert.ok(Array.isArray(net.repairs));
+  net.net.faces.forEach((f) => assert.ok(f.piece >= 0 && f.piece < net.pieces.length));
   net.net.faces.forEach((f, i) => {
     assert.equal(f.points.length, 3);
     if (f.parent === -1) return;
@@ -166,10 +168,17 @@ test("typed errors carry the server's problem code and status", async () => {
   await assert.rejects(down.job("x"), (e) => e instanceof PapernetError && e.code === "network_error");
 });
 
-test("an invalid mesh fails with invalid_mesh and its reasons", async () => {
-  // Three triangles on one edge: not manifold.
+test("a mesh with a non-manifold edge is repaired into pieces, and refused under strict", async () => {
+  // Three triangles on one edge: not manifold. Repair cuts the edge; strict refuses it as before.
   const obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
-  const job = await client.submit(obj, { filename: "fan.obj", options: { strategy: "TU" } });
+  const repaired = await client.wait((await client.submit(obj, { filename: "fan.obj", options: { strategy: "TU" } })).id);
+  assert.equal(repaired.status, "succeeded", JSON.stringify(repaired));
+  assert.ok(repaired.result.pieces.length >= 2, JSON.stringify(repaired.result));
+  assert.ok(
+    repaired.result.repairs.some((r) => r.code === "cut_non_manifold_edges" && r.count === 1),
+    JSON.stringify(repaired.result.repairs),
+  );
+  const job = await client.submit(obj, { filename: "fan.obj", options: { strategy: "TU", strict: true } });
   const done = await client.wait(job.id);
   assert.equal(done.status, "failed");
   assert.equal(done.error.code, "invalid_mesh");

@@ -1,8 +1,9 @@
-// Folding a papernet.net/1 net into its mesh along the unfold tree, without three.js (so it is
+// Folding a papernet.net/2 net into its mesh along the unfold trees, without three.js (so it is
 // tested in Node). Every face hangs from its parent by the mesh edge they share; folding by t
 // rotates each face's subtree about that edge by t × its fold angle, composed from the root down.
-// At t = 0 the net lies flat in z = 0 as drawn (x, y = the net's 2D points, y mirrored when the
-// net is drawn clockwise); at t = 1 it is the mesh, moved rigidly so the root face stays put.
+// At t = 0 every piece lies flat in z = 0 as drawn (x, y = its 2D points, y mirrored when the
+// piece is drawn clockwise), the pieces side by side in a row; at t = 1 each piece is its part of
+// the mesh, moved rigidly so its root face stays put.
 
 const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -52,9 +53,9 @@ function transform(m, p) {
 }
 
 /**
- * Prepares a net document (papernet.net/1) for folding: the tree order from the root, and per
- * face its hinge (a point and direction in the flat net) and fold angle (radians, signed).
- * Throws an Error naming the face when the document breaks the format's promises.
+ * Prepares a net document (papernet.net/2) for folding: the tree order from each piece's root,
+ * and per face its hinge (a point and direction in the flat net) and fold angle (radians,
+ * signed). Throws an Error naming the face when the document breaks the format's promises.
  */
 export function prepareFold(doc) {
   const vertices = doc.mesh.vertices;
@@ -62,47 +63,75 @@ export function prepareFold(doc) {
   const netFaces = doc.net.faces;
   const n = faces.length;
   if (netFaces.length !== n) throw new Error(`net has ${netFaces.length} faces, mesh ${n}`);
-  const roots = [];
+  const pieceOf = netFaces.map((f) => f.piece ?? 0);
+  const pieces = n === 0 ? 0 : Math.max(...pieceOf) + 1;
+  const roots = new Array(pieces).fill(-1);
   const children = Array.from({ length: n }, () => []);
   netFaces.forEach((f, i) => {
-    if (f.parent === -1) roots.push(i);
-    else if (f.parent >= 0 && f.parent < n && f.parent !== i) children[f.parent].push(i);
-    else throw new Error(`face ${i} has parent ${f.parent}`);
+    if (f.parent === -1) {
+      if (roots[pieceOf[i]] !== -1) throw new Error(`piece ${pieceOf[i]} has two root faces`);
+      roots[pieceOf[i]] = i;
+    } else if (f.parent >= 0 && f.parent < n && f.parent !== i && pieceOf[f.parent] === pieceOf[i]) {
+      children[f.parent].push(i);
+    } else throw new Error(`face ${i} has parent ${f.parent}`);
   });
-  if (roots.length !== 1) throw new Error(`net has ${roots.length} root faces, expected 1`);
-  const root = roots[0];
-  // Mirror the net when it is drawn clockwise, so the flat +z side is the outside.
-  const [r0, r1, r2] = netFaces[root].points;
-  const area = (r1[0] - r0[0]) * (r2[1] - r0[1]) - (r1[1] - r0[1]) * (r2[0] - r0[0]);
-  const flip = area < 0 ? -1 : 1;
-  const flat = netFaces.map((f) => f.points.map(([u, v]) => [u, flip * v, 0]));
+  if (roots.length === 0 || roots.includes(-1)) throw new Error("a piece has no root face");
+  // Each piece mirrored when it is drawn clockwise (so the flat +z side is the outside), then
+  // moved beside the one before it.
+  const flip = roots.map((root) => {
+    const [r0, r1, r2] = netFaces[root].points;
+    return (r1[0] - r0[0]) * (r2[1] - r0[1]) - (r1[1] - r0[1]) * (r2[0] - r0[0]) < 0 ? -1 : 1;
+  });
+  const lo = roots.map(() => [Infinity, Infinity]);
+  const hi = roots.map(() => [-Infinity, -Infinity]);
+  netFaces.forEach((f, i) => {
+    const p = pieceOf[i];
+    for (const [u, v] of f.points) {
+      const y = flip[p] * v;
+      lo[p] = [Math.min(lo[p][0], u), Math.min(lo[p][1], y)];
+      hi[p] = [Math.max(hi[p][0], u), Math.max(hi[p][1], y)];
+    }
+  });
+  const gap = 0.1 * Math.max(...roots.map((_, p) => Math.max(hi[p][0] - lo[p][0], hi[p][1] - lo[p][1])));
+  const shift = [];
+  let x = 0;
+  for (let p = 0; p < pieces; ++p) {
+    shift.push(p === 0 ? [0, 0] : [x - lo[p][0], lo[0][1] - lo[p][1]]);
+    x = (p === 0 ? hi[0][0] : x + hi[p][0] - lo[p][0]) + gap;
+  }
+  const flat = netFaces.map((f, i) => {
+    const p = pieceOf[i];
+    return f.points.map(([u, v]) => [u + shift[p][0], flip[p] * v + shift[p][1], 0]);
+  });
   const normal = faces.map(([a, b, c]) => unit(cross(sub(vertices[b], vertices[a]), sub(vertices[c], vertices[a]))));
 
   const order = [];
   const hinge = new Array(n);
   const seen = new Uint8Array(n);
-  const queue = [root];
-  seen[root] = 1;
-  while (queue.length > 0) {
-    const i = queue.shift();
-    order.push(i);
-    for (const c of children[i]) {
-      if (seen[c]) throw new Error(`the unfold tree has a cycle at face ${c}`);
-      seen[c] = 1;
-      queue.push(c);
-      const p = i;
-      const shared = faces[c].filter((v) => faces[p].includes(v));
-      if (shared.length !== 2) throw new Error(`face ${c} shares no edge with its parent ${p}`);
-      const [a, b] = shared;
-      const pa = flat[c][faces[c].indexOf(a)];
-      const pb = flat[c][faces[c].indexOf(b)];
-      const e = unit(sub(vertices[b], vertices[a]));
-      const angle = Math.atan2(dot(cross(normal[p], normal[c]), e), dot(normal[p], normal[c]));
-      hinge[c] = { parent: p, point: pa, direction: unit(sub(pb, pa)), angle };
+  for (const root of roots) {
+    const queue = [root];
+    seen[root] = 1;
+    while (queue.length > 0) {
+      const i = queue.shift();
+      order.push(i);
+      for (const c of children[i]) {
+        if (seen[c]) throw new Error(`the unfold tree has a cycle at face ${c}`);
+        seen[c] = 1;
+        queue.push(c);
+        const p = i;
+        const shared = faces[c].filter((v) => faces[p].includes(v));
+        if (shared.length !== 2) throw new Error(`face ${c} shares no edge with its parent ${p}`);
+        const [a, b] = shared;
+        const pa = flat[c][faces[c].indexOf(a)];
+        const pb = flat[c][faces[c].indexOf(b)];
+        const e = unit(sub(vertices[b], vertices[a]));
+        const angle = Math.atan2(dot(cross(normal[p], normal[c]), e), dot(normal[p], normal[c]));
+        hinge[c] = { parent: p, point: pa, direction: unit(sub(pb, pa)), angle };
+      }
     }
   }
-  if (order.length !== n) throw new Error(`${n - order.length} faces are not connected to the root`);
-  return { faces, flat, order, hinge, root };
+  if (order.length !== n) throw new Error(`${n - order.length} faces are not connected to a root`);
+  return { faces, flat, order, hinge, roots, pieces };
 }
 
 /**

@@ -8,7 +8,7 @@ const $ = (id) => document.getElementById(id);
 const client = new PapernetClient("");
 const ui = {
   drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
-  paper: $("paper"), simplify: $("simplify"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
+  paper: $("paper"), simplify: $("simplify"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
   model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
   downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
 };
@@ -163,6 +163,7 @@ function describe(job, withStatus = true) {
   const p = job.progress ?? {};
   const parts = withStatus ? [job.status] : [];
   if (p.phase && p.phase !== job.status && !isFinal(job.status)) parts.push(p.phase);
+  if (p.pieces > 1 && !isFinal(job.status)) parts.push(`piece ${p.piece} of ${p.pieces}`);
   if (p.queue_position) parts.push(`#${p.queue_position} in queue`);
   if (p.faces != null && p.input_faces) {
     parts.push(`approximation: ${p.faces} of ${p.input_faces} faces (${((100 * p.faces) / p.input_faces).toFixed(1)} %)`);
@@ -199,7 +200,7 @@ async function run() {
   const mesh = files.find((f) => formatOfFileName(f.name));
   if (!mesh) return;
   const buffers = files.filter((f) => f !== mesh).map((f) => ({ name: f.name, data: f }));
-  const options = { strategy: ui.strategy.value, paper: ui.paper.value };
+  const options = { strategy: ui.strategy.value, paper: ui.paper.value, components: ui.components.value };
   if (Number(ui.size.value) > 0) options.size_mm = Number(ui.size.value);
   if (Number(ui.timeLimit.value) > 0) options.time_limit = Number(ui.timeLimit.value);
   if (Number(ui.simplify.value) >= 4) options.simplify = Math.round(Number(ui.simplify.value));
@@ -210,6 +211,7 @@ async function run() {
   document.body.dataset.state = "running";
   for (const a of Object.values(ui.downloads)) a.removeAttribute("href");
   setStatus(`Uploading ${mesh.name}…`);
+  ui.repairs.replaceChildren();
   try {
     const job = await client.submit(mesh, { filename: mesh.name, buffers, options, signal: abort.signal });
     current = { id: job.id, abort };
@@ -235,7 +237,18 @@ async function run() {
       const r = final.result ?? {};
       const m = r.metrics ?? {};
       const glue = m.glue_tabs === undefined ? "" : ` · ${m.glue_tabs} glue tabs, ${m.glue_strips} glue strips, ${m.pages} pages`;
-      setStatus(`${final.status}: net of ${r.faces} faces (input ${r.input_faces})${glue} · ${describe(final, false)}`);
+      const pieces = (r.pieces ?? []).length;
+      const parts = pieces > 1 ? ` in ${pieces} pieces` : "";
+      setStatus(`${final.status}: net of ${r.faces} faces${parts} (input ${r.input_faces})${glue} · ${describe(final, false)}`);
+      // What was repaired (or skipped, or dropped), one line each.
+      ui.repairs.replaceChildren(
+        ...(r.repairs ?? []).map((repair) => {
+          const li = document.createElement("li");
+          li.dataset.code = repair.code;
+          li.textContent = repair.message;
+          return li;
+        }),
+      );
       document.body.dataset.state = "done";
     } else {
       const e = final.error;

@@ -131,3 +131,42 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   assert.deepEqual(problems, []);
   assert.deepEqual(foreign, []);
 });
+
+test("the demo unfolds every part of a model, or only the largest, and lists the repairs", async () => {
+  const page = await context.newPage();
+  const problems = [];
+  page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
+  await page.goto(`${server.url}/`);
+  await page.waitForSelector("#model canvas");
+  // A .gltf with its buffer and texture: the truck's 11 parts, two of them pinched.
+  const truck = ["CesiumMilkTruck.gltf", "CesiumMilkTruck0.bin", "CesiumMilkTruck.png"].map((f) =>
+    join(dataDir, "CesiumMilkTruck", f),
+  );
+  const run = async (components) => {
+    await page.setInputFiles("#file", truck);
+    await page.selectOption("#strategy", "TU");
+    await page.selectOption("#components", components);
+    await page.evaluate(() => delete document.body.dataset.state);
+    await page.click("#start");
+    await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
+      timeout: 120000,
+    });
+    return {
+      state: await page.evaluate(() => document.body.dataset.state),
+      status: await page.textContent("#status"),
+      repairs: await page.$$eval("#repairs li", (items) => items.map((li) => [li.dataset.code, li.textContent])),
+    };
+  };
+  const all = await run("all");
+  assert.equal(all.state, "done", all.status);
+  assert.match(all.status, /net of \d+ faces in (\d+) pieces/);
+  assert.ok(Number(all.status.match(/in (\d+) pieces/)[1]) > 10, all.status);
+  assert.ok(all.repairs.some(([code]) => code === "split_pinched_vertices"), JSON.stringify(all.repairs));
+  assert.ok(await page.isVisible("#repairs"));
+  const largest = await run("largest");
+  assert.equal(largest.state, "done", largest.status);
+  assert.doesNotMatch(largest.status, /pieces/);
+  assert.ok(largest.repairs.some(([code, text]) => code === "dropped_components" && /kept the largest/.test(text)), JSON.stringify(largest.repairs));
+  console.log(`parts: "${all.status.split(" · ")[0]}"; repairs: ${all.repairs.map(([c]) => c).join(", ")}`);
+  assert.deepEqual(problems, []);
+});

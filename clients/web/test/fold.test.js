@@ -39,7 +39,7 @@ function tetrahedron(mirror) {
   ];
   // Face 0 is drawn mirrored to the others' order when read as (0,2,1): fix orientation per face.
   return {
-    format: "papernet.net/1",
+    format: "papernet.net/2",
     mesh: { vertices, faces },
     net: { faces: points.map((p, i) => ({ parent: i === 0 ? -1 : 0, points: p.map(m) })) },
   };
@@ -69,11 +69,46 @@ test("a tetrahedron folds from flat to the mesh", () => {
 test("broken trees are refused with the face named", () => {
   const doc = tetrahedron(false);
   doc.net.faces[2].parent = -1;
-  assert.throws(() => prepareFold(doc), /2 root faces/);
+  assert.throws(() => prepareFold(doc), /two root faces/);
   const cyc = tetrahedron(false);
   cyc.net.faces[1].parent = 3;
   cyc.net.faces[3].parent = 1;
   assert.throws(() => prepareFold(cyc), /not connected|cycle/);
+});
+
+test("pieces lie side by side flat and each folds into its part", () => {
+  // Two tetrahedra as two pieces: the second drawn over the first in its own frame.
+  const one = tetrahedron(false);
+  const two = tetrahedron(true);
+  const offset = one.mesh.vertices.length;
+  const doc = {
+    format: "papernet.net/2",
+    mesh: {
+      vertices: [...one.mesh.vertices, ...two.mesh.vertices.map(([x, y, z]) => [x + 5, y, z])],
+      faces: [...one.mesh.faces, ...two.mesh.faces.map((f) => f.map((v) => v + offset))],
+    },
+    net: {
+      faces: [
+        ...one.net.faces.map((f) => ({ ...f, piece: 0 })),
+        ...two.net.faces.map((f) => ({ ...f, piece: 1, parent: f.parent < 0 ? -1 : f.parent + 4 })),
+      ],
+    },
+  };
+  const prepared = prepareFold(doc);
+  assert.equal(prepared.pieces, 2);
+  assert.deepEqual(prepared.roots, [0, 4]);
+  // Flat: every corner of the second piece right of every corner of the first.
+  const flat = foldPositions(prepared, 0);
+  const xs = (from, to) => Array.from({ length: (to - from) * 3 }, (_, k) => flat[from * 9 + 3 * k]);
+  assert.ok(Math.min(...xs(4, 8)) > Math.max(...xs(0, 4)));
+  // Folded: each piece a rigid copy of its part (its corners meet, its edges keep their length).
+  const folded = foldPositions(prepared, 1);
+  for (const [piece, from] of [[one, 0], [two, 4]]) {
+    const part = { mesh: { vertices: piece.mesh.vertices, faces: piece.mesh.faces } };
+    assertFoldsIntoMesh(part, folded.subarray(from * 9, (from + 4) * 9), 1e-5);
+  }
+  doc.net.faces[5].parent = 1;  // a parent in the other piece
+  assert.throws(() => prepareFold(doc), /face 5 has parent 1/);
 });
 
 test("a net from the server folds into its mesh", async () => {

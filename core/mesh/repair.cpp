@@ -1,0 +1,541 @@
+// Mesh repair: what modelling tools fix in one click (merge by distance, split non-manifold,
+// separate loose parts), done so that an unfolding can follow. Every repair is counted and
+// located, so the result can say what was changed.
+#include "core/mesh/repair.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <numeric>
+#include <string>
+#include <utility>
+
+namespace papernet {
+namespace {
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(int a, int b) { parent[find(a)] = find(b); }
+};
+
+std::string position(const Mesh& m, int v) {
+  char buf[96];
+  const Vec3 p = m.vertices[v];
+  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", p.x, p.y, p.z);
+  return buf;
+}
+
+std::string plural(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
+// A face while it is repaired: its corners, the loader's vertex of each corner, the input face
+// it comes from, and whether it is still there.
+struct Face {
+  std::array<int, 3> v;
+  std::array<int, 3> raw;
+  int origin = 0;
+  bool alive = true;
+};
+
+// Collects the first few elements of one kind of repair.
+struct Tally {
+  std::size_t count = 0;
+  std::vector<int> listed;
+  void add(int element, std::size_t max_listed) {
+    if (count++ < max_listed) listed.push_back(element);
+  }
+};
+
+// "3, 8, 17, ..." for the elements a tally lists of all it counted.
+std::string numbers(const Tally& t) {
+  std::string s;
+  for (std::size_t i = 0; i < t.listed.size(); ++i) {
+    if (i) s += ", ";
+    s += std::to_string(t.listed[i]);
+  }
+  return t.count > t.listed.size() ? s + ", ..." : s;
+}
+
+bool degenerate(const Mesh& m, const std::array<int, 3>& t, double eps) {
+  if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
+  const Vec3 a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
+  const double longest = std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
+  return !(0.5 * norm(cross(b - a, c - a)) > eps * longest);
+}
+
+// The zero-area faces of a mesh, removed by local edits that keep the surface closed (edge
+// flips for caps, edge collapses for needles), else dropped. Adjacency is built only when there
+// is such a face, and only as vertex -> faces.
+class Degenerates {
+ public:
+  Degenerates(const Mesh& m, std::vector<Face>& faces, double eps)
+      : m_(m), faces_(faces), eps_(eps), vertex_faces_(m.vertices.size()) {
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+      if (faces_[f].alive)
+        for (int v : faces_[f].v) vertex_faces_[v].push_back(int(f));
+  }
+
+  // Removes every zero-area face of `work`, counting them.
+  void run(std::vector<int> work, Tally& tally, std::size_t max_listed) {
+    std::size_t budget = 4 * faces_.size() + 16;  // every step removes a face or a degenerate one
+    while (!work.empty() && budget-- > 0) {
+      const int f = work.back();
+      work.pop_back();
+      if (!faces_[f].alive || !degenerate(m_, faces_[f].v, eps_)) continue;
+      tally.add(faces_[f].origin, max_listed);
+      const auto& v = faces_[f].v;
+      if (v[0] != v[1] && v[1] != v[2] && v[0] != v[2] && (flip_cap(f) || collapse_needle(f, work)))
+        continue;
+      faces_[f].alive = false;
+    }
+  }
+
+ private:
+  // Lists in vertex_faces_ may hold faces an edit took the vertex out of: every use checks.
+  bool has(int g, int x) const {
+    return faces_[g].alive &&
+           std::find(faces_[g].v.begin(), faces_[g].v.end(), x) != faces_[g].v.end();
+  }
+  std::vector<int> on_edge(int a, int b, int except) const {
+    std::vector<int> out;
+    for (int g : vertex_faces_[a])
+      if (g != except && has(g, a) && has(g, b) &&
+          std::find(out.begin(), out.end(), g) == out.end())
+        out.push_back(g);
+    return out;
+  }
+  static int corner_of(const Face& f, int v) {
+    return int(std::find(f.v.begin(), f.v.end(), v) - f.v.begin());
+  }
+
+  // A cap: the corner opposite its longest edge lies inside that edge. The edge is flipped with
+  // the face across it: (u, v, w) + (v, u, d) -> (u, d, w) + (d, v, w).
+  bool flip_cap(int f) {
+    Face& face = faces_[f];
+    int k = 0;  // the longest edge runs from corner k to k + 1
+    double longest = -1;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 e = m_.vertices[face.v[(i + 1) % 3]] - m_.vertices[face.v[i]];
+      if (dot(e, e) > longest) longest = dot(e, e), k = i;
+    }
+    const int u = face.v[k], v = face.v[(k + 1) % 3], w = face.v[(k + 2) % 3];
+    const Vec3 pu = m_.vertices[u], pv = m_.vertices[v], pw = m_.vertices[w];
+    const double t = dot(pw - pu, pv - pu) / longest;
+    if (!(t > 1e-3 && t < 1 - 1e-3)) return false;  // a needle: w almost on u or v
+    const std::vector<int> across = on_edge(u, v, f);
+    if (across.size() != 1) return false;
+    const int g = across[0];
+    Face& other = faces_[g];
+    const int cu = corner_of(other, u), cv = corner_of(other, v);
+    if ((cv + 1) % 3 != cu) return false;  // the neighbour runs the same way: not a flip
+    const int cd = (cu + 1) % 3, d = other.v[cd];
+    if (d == w || !on_edge(d, w, -1).empty()) return false;  // the new edge exists already
+    const std::array<int, 3> a{u, d, w}, b{d, v, w};
+    if (degenerate(m_, a, eps_) || degenerate(m_, b, eps_)) return false;
+    const int rw = face.raw[(k + 2) % 3], ru = face.raw[k];
+    const int rd = other.raw[cd], rv = other.raw[cv];
+    face.v = a;
+    face.raw = {ru, rd, rw};
+    other.v = b;
+    other.raw = {rd, rv, rw};
+    vertex_faces_[d].push_back(f);
+    vertex_faces_[w].push_back(g);
+    return true;
+  }
+
+  // A needle: two corners almost together. Its shortest edge (a, b) is collapsed into a when the
+  // link condition holds (the vertices next to both are those of the faces on the edge), so the
+  // surface stays manifold; the faces on the edge go.
+  bool collapse_needle(int f, std::vector<int>& work) {
+    const Face& face = faces_[f];
+    int k = 0;
+    double shortest = -1;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 e = m_.vertices[face.v[(i + 1) % 3]] - m_.vertices[face.v[i]];
+      if (shortest < 0 || dot(e, e) < shortest) shortest = dot(e, e), k = i;
+    }
+    const int a = face.v[k], b = face.v[(k + 1) % 3];
+    const std::vector<int> on_ab = on_edge(a, b, -1);
+    std::vector<int> opposite;
+    for (int g : on_ab)
+      for (int x : faces_[g].v)
+        if (x != a && x != b) opposite.push_back(x);
+    std::vector<int> next_a = neighbours(a), next_b = neighbours(b), common;
+    std::set_intersection(next_a.begin(), next_a.end(), next_b.begin(), next_b.end(),
+                          std::back_inserter(common));
+    std::sort(opposite.begin(), opposite.end());
+    opposite.erase(std::unique(opposite.begin(), opposite.end()), opposite.end());
+    if (common != opposite || on_ab.size() > 2) return false;
+    for (int g : on_ab) faces_[g].alive = false;
+    for (int g : vertex_faces_[b]) {
+      if (!has(g, b)) continue;
+      for (int& x : faces_[g].v)
+        if (x == b) x = a;
+      vertex_faces_[a].push_back(g);
+      work.push_back(g);
+    }
+    vertex_faces_[b].clear();
+    return true;
+  }
+
+  std::vector<int> neighbours(int a) const {
+    std::vector<int> out;
+    for (int g : vertex_faces_[a])
+      if (has(g, a))
+        for (int x : faces_[g].v)
+          if (x != a) out.push_back(x);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  const Mesh& m_;
+  std::vector<Face>& faces_;
+  double eps_;
+  std::vector<std::vector<int>> vertex_faces_;
+};
+
+// One side of an edge: face f, from corner k to k + 1.
+struct Side {
+  std::uint64_t key;
+  int f, k;
+};
+
+// Lists "3 (x, y, z), 8 (x, y, z), ..." (pairs: "3 (..)-4 (..)") of a tally's elements.
+std::string located(const Mesh& mesh, const Tally& t, bool pairs) {
+  std::string s;
+  const std::size_t step = pairs ? 2 : 1;
+  for (std::size_t i = 0; i + step <= t.listed.size(); i += step) {
+    if (i) s += ", ";
+    s += std::to_string(t.listed[i]) + " " + position(mesh, t.listed[i]);
+    if (pairs) {
+      s += '-';
+      s += std::to_string(t.listed[i + 1]) + " " + position(mesh, t.listed[i + 1]);
+    }
+  }
+  if (t.count * step > t.listed.size()) s += ", ...";
+  return s;
+}
+
+// Edges, orientation and fans of the faces left; builds the repaired mesh into `out`.
+void finish_repair(const Mesh& mesh, const std::vector<Face>& faces, const RepairOptions& options,
+                   RepairResult& out) {
+  const std::size_t nf = faces.size(), nv = mesh.vertices.size(), listed = options.max_listed;
+  // Whether the loader's vertices say anything: some vertex of its is used by two faces. A
+  // soup (STL) has none, and then every defect is the input's.
+  bool indexed = false;
+  {
+    int most = -1;
+    for (const Face& f : faces)
+      if (f.alive) most = std::max({most, f.raw[0], f.raw[1], f.raw[2]});
+    std::vector<char> seen(static_cast<std::size_t>(most + 1), 0);
+    for (const Face& f : faces)
+      for (int c = 0; c < 3 && f.alive && !indexed; ++c)
+        indexed = std::exchange(seen[f.raw[c]], 1) != 0;
+  }
+
+  // Sides of every edge, grouped: more than two is a non-manifold edge, whose sides are all cut.
+  std::vector<Side> sides;
+  sides.reserve(3 * nf);
+  for (std::size_t f = 0; f < nf; ++f)
+    if (faces[f].alive)
+      for (int k = 0; k < 3; ++k)
+        sides.push_back({edge_key(faces[f].v[k], faces[f].v[(k + 1) % 3]), int(f), k});
+  std::sort(sides.begin(), sides.end(), [](const Side& a, const Side& b) {
+    return a.key != b.key ? a.key < b.key : a.f != b.f ? a.f < b.f : a.k < b.k;
+  });
+  std::vector<int> across(3 * nf, -1);  // the glued side of each side (3 * face + corner)
+  std::vector<char> cut_vertex(nv, 0);  // an end of a cut edge (its splits are not pinches)
+  Tally non_manifold;                   // listed as vertex pairs
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    while (j < sides.size() && sides[j].key == sides[i].key) ++j;
+    if (j - i == 2) {
+      across[3 * sides[i].f + sides[i].k] = 3 * sides[i + 1].f + sides[i + 1].k;
+      across[3 * sides[i + 1].f + sides[i + 1].k] = 3 * sides[i].f + sides[i].k;
+    } else if (j - i > 2) {
+      const int a = int(sides[i].key >> 32), b = int(sides[i].key & 0xffffffffu);
+      cut_vertex[a] = cut_vertex[b] = 1;
+      // Sides running opposite ways are glued in pairs (those the file joined first, then in
+      // face order), so that a closed part with a fin on one edge stays closed; the rest are
+      // cut. The ends of the edge are then split by fans below.
+      const auto raw_key = [&](const Side& side) {
+        const Face& f = faces[side.f];
+        return edge_key(f.raw[side.k], f.raw[(side.k + 1) % 3]);
+      };
+      std::stable_sort(sides.begin() + long(i), sides.begin() + long(j),
+                       [&](const Side& x, const Side& y) { return raw_key(x) < raw_key(y); });
+      std::vector<char> paired(j - i, 0);
+      for (std::size_t x = i; x < j; ++x)
+        for (std::size_t y = x + 1; y < j && !paired[x - i]; ++y) {
+          const int sx = 3 * sides[x].f + sides[x].k, sy = 3 * sides[y].f + sides[y].k;
+          const Face& fx = faces[sides[x].f];
+          const Face& fy = faces[sides[y].f];
+          const bool opposite = fx.v[sides[x].k] == fy.v[(sides[y].k + 1) % 3];
+          if (paired[y - i] || !opposite) continue;
+          paired[x - i] = paired[y - i] = 1;
+          across[sx] = sy;
+          across[sy] = sx;
+        }
+      // The input's own when three sides share the loader's edge (or there are no shared
+      // vertices to tell): else only the merge of touching surfaces made it, and it is undone.
+      std::vector<std::uint64_t> raw;
+      for (std::size_t s = i; s < j; ++s) {
+        const Face& f = faces[sides[s].f];
+        raw.push_back(edge_key(f.raw[sides[s].k], f.raw[(sides[s].k + 1) % 3]));
+      }
+      std::sort(raw.begin(), raw.end());
+      bool own = !indexed;
+      for (std::size_t s = 2; s < raw.size(); ++s) own |= raw[s] == raw[s - 2];
+      if (own && non_manifold.count++ < listed)
+        non_manifold.listed.insert(non_manifold.listed.end(), {a, b});
+    }
+    i = j;
+  }
+  const auto forward = [&](int side) {  // the side runs from the smaller vertex to the larger
+    const Face& f = faces[side / 3];
+    return f.v[side % 3] < f.v[(side % 3 + 1) % 3];
+  };
+
+  // Orientation: each part's faces agree with their neighbours (a flip bit per face); an edge
+  // that contradicts what the part decided already is cut (a part that cannot be oriented).
+  std::vector<int> flip(nf, -1), part(nf, -1), order;
+  Tally non_orientable;
+  int parts = 0;
+  for (std::size_t seed = 0; seed < nf; ++seed) {
+    if (!faces[seed].alive || flip[seed] >= 0) continue;
+    flip[seed] = 0;
+    part[seed] = parts;
+    std::size_t head = order.size();
+    order.push_back(int(seed));
+    while (head < order.size()) {
+      const int f = order[head++];
+      for (int k = 0; k < 3; ++k) {
+        const int s = 3 * f + k, o = across[s];
+        if (o < 0) continue;
+        const int g = o / 3, want = flip[f] ^ (forward(s) == forward(o) ? 1 : 0);
+        if (flip[g] < 0) {
+          flip[g] = want;
+          part[g] = parts;
+          order.push_back(g);
+        } else if (flip[g] != want) {
+          const int a = faces[f].v[k], b = faces[f].v[(k + 1) % 3];
+          non_orientable.add(a, listed);
+          cut_vertex[a] = cut_vertex[b] = 1;
+          across[s] = across[o] = -1;
+        }
+      }
+    }
+    ++parts;
+  }
+  // Each part as a whole: outward when it is closed (positive volume), else as most of its
+  // faces were.
+  std::vector<double> volume(parts, 0);
+  std::vector<std::size_t> flipped(parts, 0), size(parts, 0);
+  std::vector<char> closed(parts, 1);
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!faces[f].alive) continue;
+    const int p = part[f];
+    ++size[p];
+    flipped[p] += flip[f];
+    for (int k = 0; k < 3; ++k)
+      if (across[3 * f + k] < 0) closed[p] = 0;
+    const Vec3 a = mesh.vertices[faces[f].v[0]], b = mesh.vertices[faces[f].v[1]],
+               c = mesh.vertices[faces[f].v[2]];
+    volume[p] += (flip[f] ? -1.0 : 1.0) * dot(a, cross(b, c));
+  }
+  std::vector<char> invert(parts, 0);
+  bool inverted = false;
+  for (int p = 0; p < parts; ++p) {
+    invert[p] = closed[p] ? volume[p] < 0 : 2 * flipped[p] > size[p];
+    inverted |= closed[p] && invert[p];
+  }
+
+  // Fans: corners around a vertex joined across glued edges (corner c of face f is 3f + c).
+  UnionFind fans(3 * nf);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int s = 3 * int(f) + k, o = across[s];
+      if (o < s) continue;  // each glued pair once (o is -1 when not glued)
+      const int g = o / 3;
+      for (int end : {k, (k + 1) % 3})
+        for (int c = 0; c < 3; ++c)
+          if (faces[g].v[c] == faces[f].v[end]) fans.unite(3 * int(f) + end, 3 * g + c);
+    }
+  // One vertex per fan; a vertex in several fans is a pinch of the input's when a vertex of the
+  // loader's own lies in two of them (or there are none to tell). Ends of cut edges are counted
+  // with those edges.
+  // Vertices in several fans: found in one pass; only their corners are looked at again.
+  std::vector<int> first_fan(nv, -1);
+  std::vector<char> several(nv, 0);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int c = 0; c < 3 && faces[f].alive; ++c) {
+      const int v = faces[f].v[c], fan = fans.find(3 * int(f) + c);
+      if (first_fan[v] < 0) first_fan[v] = fan;
+      several[v] |= first_fan[v] != fan;
+    }
+  std::vector<std::array<int, 3>> uses;  // (vertex, raw vertex, fan) of those vertices' corners
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int c = 0; c < 3 && faces[f].alive; ++c)
+      if (several[faces[f].v[c]] && !cut_vertex[faces[f].v[c]])
+        uses.push_back({faces[f].v[c], faces[f].raw[c], fans.find(3 * int(f) + c)});
+  std::sort(uses.begin(), uses.end());
+  Tally pinched;
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    bool own = !indexed;
+    for (; j < uses.size() && uses[j][0] == uses[i][0]; ++j)
+      own |= j > i && uses[j][1] == uses[j - 1][1] && uses[j][2] != uses[j - 1][2];
+    if (own) pinched.add(uses[i][0], listed);
+    i = j;
+  }
+
+  Mesh& m = out.mesh;
+  std::vector<int> vertex_of_fan(3 * nf, -1);
+  Tally reoriented;
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!faces[f].alive) continue;
+    std::array<int, 3> t{};
+    for (int c = 0; c < 3; ++c) {
+      int& id = vertex_of_fan[fans.find(3 * int(f) + c)];
+      if (id < 0) {
+        id = int(m.vertices.size());
+        m.vertices.push_back(mesh.vertices[faces[f].v[c]]);
+      }
+      t[c] = id;
+    }
+    if (flip[f] ^ invert[part[f]]) {
+      std::swap(t[1], t[2]);
+      reoriented.add(faces[f].origin, listed);
+    }
+    m.faces.push_back(t);
+  }
+  const auto add = [&](const char* code, const Tally& t, const std::string& message) {
+    if (t.count) out.repairs.push_back({code, t.count, message, t.listed});
+  };
+  add("cut_non_manifold_edges", non_manifold,
+      "cut " + plural(non_manifold.count, "edge", "edges") +
+          " shared by more than two faces (faces beyond a pair keep their own side): edges " +
+          located(mesh, non_manifold, true));
+  add("split_pinched_vertices", pinched,
+      "split " + plural(pinched.count, "vertex", "vertices") +
+          " where faces that share no edge met (one vertex per fan): vertices " +
+          located(mesh, pinched, false));
+  add("cut_non_orientable_edges", non_orientable,
+      "cut " + plural(non_orientable.count, "edge", "edges") +
+          " of a part that cannot be oriented consistently (a Moebius strip): at vertices " +
+          located(mesh, non_orientable, false));
+  add("reoriented_faces", reoriented,
+      "turned " + plural(reoriented.count, "face", "faces") + " to agree with their neighbours" +
+          (inverted ? " and to face outwards" : "") + ": faces " + numbers(reoriented));
+}
+
+}  // namespace
+
+RepairResult repair_mesh(const Mesh& mesh, const std::vector<std::array<int, 3>>& raw_corners,
+                         const RepairOptions& options) {
+  const std::size_t nf = mesh.faces.size(), listed = options.max_listed;
+  std::vector<Face> faces(nf);
+  for (std::size_t f = 0; f < nf; ++f)
+    faces[f] = {mesh.faces[f], raw_corners.size() == nf ? raw_corners[f] : mesh.faces[f], int(f)};
+  RepairResult out;
+  const auto report = [&](const char* code, const Tally& t, const std::string& what,
+                          const std::string& where) {
+    if (t.count == 0) return;
+    out.repairs.push_back({code, t.count, what + ": " + where + " " + numbers(t), t.listed});
+  };
+
+  // Duplicate faces (the same three vertices, either way round), then zero-area faces.
+  Tally duplicates, degenerates;
+  {
+    std::vector<std::pair<std::array<int, 3>, int>> sorted(nf);
+    for (std::size_t f = 0; f < nf; ++f) {
+      auto t = faces[f].v;
+      std::sort(t.begin(), t.end());
+      sorted[f] = {t, int(f)};
+    }
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 1; i < nf; ++i)
+      if (sorted[i].first == sorted[i - 1].first && sorted[i].first[0] != sorted[i].first[1] &&
+          sorted[i].first[1] != sorted[i].first[2]) {
+        faces[sorted[i].second].alive = false;
+        duplicates.add(sorted[i].second, listed);
+      }
+  }
+  std::vector<int> zero_area;
+  for (std::size_t f = nf; f-- > 0;)
+    if (faces[f].alive && degenerate(mesh, faces[f].v, options.degenerate_area))
+      zero_area.push_back(int(f));
+  if (!zero_area.empty()) {
+    std::reverse(zero_area.begin(), zero_area.end());
+    Degenerates(mesh, faces, options.degenerate_area).run(zero_area, degenerates, listed);
+  }
+  std::sort(degenerates.listed.begin(), degenerates.listed.end());
+  report("removed_degenerate_faces", degenerates,
+         "removed " + plural(degenerates.count, "degenerate face", "degenerate faces") +
+             " (zero area or a repeated vertex) without opening the surface",
+         "faces");
+  report("removed_duplicate_faces", duplicates,
+         "removed " + plural(duplicates.count, "duplicate face", "duplicate faces") +
+             " (the same three vertices as another face)",
+         "faces");
+  finish_repair(mesh, faces, options, out);
+  return out;
+}
+
+std::vector<Mesh> split_components(const Mesh& mesh) {
+  const std::size_t nf = mesh.faces.size();
+  UnionFind parts(nf);
+  std::vector<int> vertex_face(mesh.vertices.size(), -1);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int v : mesh.faces[f]) {
+      if (vertex_face[v] >= 0) parts.unite(int(f), vertex_face[v]);
+      vertex_face[v] = int(f);
+    }
+  // Parts by size, largest first; ties in the order of their first face.
+  std::vector<int> index(nf, -1), size, first;
+  for (std::size_t f = 0; f < nf; ++f) {
+    int& i = index[parts.find(int(f))];
+    if (i < 0) {
+      i = int(size.size());
+      size.push_back(0);
+      first.push_back(int(f));
+    }
+    ++size[i];
+  }
+  std::vector<int> rank(size.size());
+  std::iota(rank.begin(), rank.end(), 0);
+  std::stable_sort(rank.begin(), rank.end(), [&](int a, int b) { return size[a] > size[b]; });
+  std::vector<int> slot(size.size());
+  for (std::size_t r = 0; r < rank.size(); ++r) slot[rank[r]] = int(r);
+  std::vector<Mesh> out(size.size());
+  std::vector<int> remap(mesh.vertices.size(), -1);
+  for (std::size_t f = 0; f < nf; ++f) {
+    Mesh& part = out[slot[index[parts.find(int(f))]]];
+    std::array<int, 3> t{};
+    for (int c = 0; c < 3; ++c) {
+      int& r = remap[mesh.faces[f][c]];
+      if (r < 0) {  // a vertex belongs to one part only
+        r = int(part.vertices.size());
+        part.vertices.push_back(mesh.vertices[mesh.faces[f][c]]);
+      }
+      t[c] = r;
+    }
+    part.faces.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace papernet

@@ -1,0 +1,85 @@
+// The pipeline's last steps: the pieces as one net document, and the documents made from it.
+#include <algorithm>
+
+#include "core/io/write_mesh.h"
+#include "core/unfold/net_metrics.h"
+#include "engine/internal/steps.h"
+#include "print/arrange.h"
+#include "print/pages.h"
+#include "print/pdf.h"
+#include "print/svg.h"
+
+namespace papernet::engine_detail {
+namespace {
+
+// Millimetres between pieces set side by side: room for a glue tab on each, and a cut between.
+double piece_gap_mm(const JobOptions& options) { return 2 * options.tab_height_mm + 4; }
+
+}  // namespace
+
+NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
+                     const JobOptions& options) {
+  NetDocument doc;
+  doc.strategy = strategy_name(options.strategy);
+  doc.input = input.input;
+  doc.repairs = input.repairs;
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    const Piece& piece = pieces[p];
+    const int vertex_base = static_cast<int>(doc.mesh.vertices.size());
+    const int face_base = static_cast<int>(doc.mesh.faces.size());
+    doc.mesh.vertices.insert(doc.mesh.vertices.end(), piece.mesh.vertices.begin(),
+                             piece.mesh.vertices.end());
+    for (std::size_t f = 0; f < piece.mesh.faces.size(); ++f) {
+      const auto& t = piece.mesh.faces[f];
+      doc.mesh.faces.push_back({t[0] + vertex_base, t[1] + vertex_base, t[2] + vertex_base});
+      const int parent = piece.net.parent[f];
+      doc.net.parent.push_back(parent < 0 ? -1 : parent + face_base);
+      doc.net.points.push_back(piece.net.points[f]);
+      doc.piece.push_back(static_cast<int>(p));
+    }
+    doc.pieces.push_back(
+        {p, piece.complete ? "complete" : "approximate", piece.mesh.faces.size(), piece.hausdorff});
+    if (!piece.complete) doc.result = "approximate";
+    doc.metrics.hausdorff = std::max(doc.metrics.hausdorff, piece.hausdorff);
+  }
+  // Coverage and aspect ratio of the pieces as the print sets them side by side.
+  const double gap = piece_gap_mm(options) / print_scale(doc.mesh, print_options(options));
+  const NetBoxMetrics box = net_metrics(doc.mesh, arrange_pieces(doc.net, doc.piece, gap));
+  doc.metrics.faces = doc.mesh.faces.size();
+  doc.metrics.coverage = box.coverage;
+  doc.metrics.aspect_ratio = box.aspect_ratio;
+  return doc;
+}
+
+void write_documents(const JobOptions& options, const DocumentRequest& request,
+                     UnfoldOutcome& outcome) {
+  const Mesh& mesh = outcome.net.mesh;
+  Documents& docs = outcome.documents;
+  docs.net_json = write_net_json(outcome.net);
+  if (request.glb) docs.glb = write_glb(mesh);
+  if (request.obj) docs.obj = write_obj(mesh);
+  if (!request.print()) return;
+  const PrintOptions print = print_options(options);
+  const double gap = piece_gap_mm(options) / print_scale(mesh, print);
+  PrintLayout layout =
+      layout_net(mesh, arrange_pieces(outcome.net.net, outcome.net.piece, gap), print);
+  const PageOptions page = page_options(options);
+  PrintSummary& summary = outcome.print.emplace();
+  summary.cut_edges = static_cast<std::size_t>(layout.cut_edges);
+  summary.tabs = layout.tabs.size();
+  summary.strips = layout.strips.size();
+  summary.tabs_omitted = layout.omitted_tabs.size();
+  // Without paper, the SVG is the net as laid out; paginating may turn it and move strips.
+  if (request.svg_pages && !has_paper(options))
+    docs.svg_pages = {write_net_svg(layout, page.margin_mm)};
+  const PageLayout pages = paginate(layout, page);
+  summary.pages = static_cast<int>(pages.pages.size());
+  if (request.pdf) docs.pdf = write_pdf(layout, pages);
+  if (request.svg_pages && has_paper(options)) docs.svg_pages = write_page_svgs(layout, pages);
+  if (request.svg)
+    docs.svg = has_paper(options) && pages.pages.size() == 1
+                   ? write_page_svgs(layout, pages).front()
+                   : write_net_svg(layout, page.margin_mm);
+}
+
+}  // namespace papernet::engine_detail

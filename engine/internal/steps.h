@@ -1,0 +1,65 @@
+// Private to engine/: the pipeline's steps, each with its input and output, in the order
+// run_pipeline (engine/pipeline.cpp) calls them.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "api/net_json.h"
+#include "api/options.h"
+#include "core/io/load.h"
+#include "core/mesh/mesh.h"
+#include "core/progress.h"
+#include "core/unfold/net.h"
+#include "core/unfold/net_check.h"
+#include "engine/pipeline.h"
+
+namespace papernet::engine_detail {
+
+/// The input as parts to unfold: loaded, repaired (unless strict), validated, split.
+struct Prepared {
+  std::vector<Mesh> parts;  ///< largest first
+  NetInput input;           ///< of the repaired mesh, every part counted
+  std::vector<NetRepair> repairs;
+};
+
+/// Loads `job` within `limits` (engine/prepare.cpp).
+/// \throw IOException naming the fault, LimitExceededException.
+LoadedMesh load_input(const JobInput& job, const PipelineLimits& limits, Progress& progress);
+
+/// Repairs (unless strict), validates and splits what was loaded; what cannot be unfolded
+/// fails here. \throw InvalidMeshException (with the validator's report), CancelledException.
+Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progress);
+
+/// One part unfolded into one piece (engine/unfold_piece.cpp).
+struct Piece {
+  Mesh mesh;  ///< what the net folds into (a coarser mesh when approximate)
+  Net net;
+  bool complete = true;
+  bool simplified = false;
+  double hausdorff = 0;
+  std::size_t iterations = 0;
+};
+
+/// Unfolds `part` with the job's strategy within `seconds` (a low-poly version of `simplify`
+/// faces when asked). \throw UnfoldFailedException, CancelledException.
+Piece unfold_piece(const Mesh& part, const JobOptions& options, std::size_t simplify,
+                   double seconds, std::size_t input_faces, Progress& progress);
+
+/// Changes `piece`'s cuts so that more of its cut edges have room for a glue tab, within
+/// `seconds`, when the job prints tabs; keeps the new net only when it passes the net checker.
+/// Adds what it did to `summary`. Returns the checker's report on the net it leaves.
+NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, double seconds,
+                                  Progress& progress, std::optional<TabRoomSummary>& summary);
+
+/// The pieces as one document: their meshes and nets side by side (engine/documents.cpp).
+NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
+                     const JobOptions& options);
+
+/// The documents of `outcome.net` that `request` asks for; fills `outcome.print` when it asks
+/// for a print. \throw InvalidOptionException when the print refuses the options.
+void write_documents(const JobOptions& options, const DocumentRequest& request,
+                     UnfoldOutcome& outcome);
+
+}  // namespace papernet::engine_detail

@@ -1,0 +1,115 @@
+// The pipeline's middle steps for one part: unfold it by the job's strategy, then make room for
+// glue tabs on its net.
+#include <chrono>
+#include <numbers>
+#include <utility>
+
+#include "core/mesh/hausdorff.h"
+#include "core/mesh/simplify.h"
+#include "core/tabs/tab_clearance.h"
+#include "core/tabs/tab_clearance_report.h"
+#include "core/unfold/progressive.h"
+#include "core/unfold/tabu.h"
+#include "engine/internal/steps.h"
+#include "print/layout.h"
+
+namespace papernet::engine_detail {
+namespace {
+
+// The tab room report's threshold for a flat vertex (angle defect); only its flat-leaf counts
+// depend on it, and those are not reported.
+constexpr double kFlatDefect = 10 * std::numbers::pi / 180;
+
+// The collapses of a progressive strategy (AUTO's are QQ's), and those that simplify uses for TU.
+CollapseStrategy collapses_of(Strategy strategy) {
+  switch (strategy) {
+    case Strategy::SEMP:
+      return CollapseStrategy::SEMP;
+    case Strategy::SEQ:
+      return CollapseStrategy::SEQ;
+    case Strategy::QQ:
+    case Strategy::TU:
+    case Strategy::AUTO:
+      break;
+  }
+  return CollapseStrategy::QQ;
+}
+
+Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
+                  std::size_t input_faces, Progress& progress) {
+  TabuOptions tabu;
+  tabu.seed = options.seed;
+  tabu.time_limit_seconds = seconds;
+  tabu.input_faces = input_faces;
+  if (options.strategy == Strategy::TU) {
+    UnfoldResult r = unfold_tabu(mesh, tabu, progress);
+    if (!r.overlap_free)
+      throw UnfoldFailedException(r.overlaps, r.stats.iterations, mesh.faces.size(), input_faces);
+    return {mesh, std::move(r.net), true, false, 0, r.stats.iterations};
+  }
+  ProgressiveOptions p;
+  p.strategy = collapses_of(options.strategy);
+  p.target_faces = options.target_faces.value_or(0);
+  p.tabu = tabu;
+  p.complete_first = options.strategy == Strategy::AUTO;
+  ProgressiveResult r = unfold_progressive(mesh, p, progress);
+  if (!r.overlap_free)
+    throw UnfoldFailedException(r.overlaps, r.stats.iterations, r.mesh.faces.size(), input_faces);
+  return {std::move(r.mesh), std::move(r.net), r.complete, false, r.hausdorff, r.stats.iterations};
+}
+
+}  // namespace
+
+Piece unfold_piece(const Mesh& part, const JobOptions& options, std::size_t simplify,
+                   double seconds, std::size_t input_faces, Progress& progress) {
+  // A low-poly version to print instead of the part, when asked for: the net is then
+  // approximate, its distance measured to the part.
+  std::optional<Mesh> simple =
+      simplify_mesh(part, collapses_of(options.strategy), simplify, progress);
+  if (!simple) return unfold_mesh(part, options, seconds, input_faces, progress);
+  Piece piece = unfold_mesh(*simple, options, seconds, input_faces, progress);
+  piece.simplified = true;
+  piece.complete = false;
+  piece.hausdorff = approximation_distance(part, piece.mesh);
+  return piece;
+}
+
+NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, double seconds,
+                                  Progress& progress, std::optional<TabRoomSummary>& summary) {
+  PrintOptions print = print_options(options);
+  if (!makes_tab_room(print)) return check_net(piece.mesh, piece.net);
+  print.tab_room_seconds = seconds;
+  const TabClearanceOptions clearance = tab_clearance_options(piece.mesh, print);
+  const auto start = std::chrono::steady_clock::now();
+  const TabClearanceResult room = clear_tab_room(piece.mesh, piece.net, clearance, progress);
+  TabRoomSummary& s = summary ? *summary : summary.emplace();
+  s.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  s.blocked_before += room.blocked_before;
+  s.moves += room.moves;
+  s.kicks += room.kicks;
+  s.evaluations += room.evaluations;
+  std::optional<NetCheckReport> report;
+  std::size_t blocked = room.blocked_after;
+  if (room.moves > 0) {
+    report = check_net(piece.mesh, room.net);
+    if (report->ok()) {
+      piece.net = room.net;
+    } else {
+      s.rejected = true;
+      blocked = room.blocked_before;
+      report.reset();
+    }
+  }
+  s.blocked_after += blocked;
+  if (blocked > 0) {
+    // Why edges stay without room: a leaf of the cut tree at a nearly flat vertex always lacks
+    // it, and a dense mesh has few vertices where a leaf can have it.
+    const TabRoomReport why = describe_tab_room(piece.mesh, piece.net, clearance, kFlatDefect);
+    s.leaves_without_room += why.leaves_without_room_blocked;
+    s.leaf_room_vertices += why.leaf_room_vertices;
+    s.interior_vertices += why.interior_vertices;
+  }
+  return report ? std::move(*report) : check_net(piece.mesh, piece.net);
+}
+
+}  // namespace papernet::engine_detail
