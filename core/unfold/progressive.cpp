@@ -200,8 +200,8 @@ std::optional<Net> start_tree_net(const Mesh& mesh, std::uint64_t seed) {
 // ProgressiveOptions::complete_first: the tree the uncollapse stopped with, every split it had
 // left applied to it without re-laying anything out, is the Tabu Unfolder's start on the input
 // (unfold_tabu_from, which starts again elsewhere when it stalls). Most of that tree is
-// overlap-free already: on the CAD parts of bench/1000-2000 this found a net 1.5-6x sooner
-// than plain Tabu Unfolding in all but one case (docs/performance.md).
+// overlap-free already, but on the CAD parts of bench/800-2000 where QQ stops it needs about as
+// much work as a fresh start: fewer moved-face tests in 7 of 16 runs (docs/performance.md).
 UnfoldResult finish_on_input(State st, ProgressiveMesh& pm, const Mesh& input, std::uint64_t seed,
                              std::size_t index, const TabuOptions& tabu, Progress& progress) {
   while (pm.splits_left() > 0) apply_split(st, pm.split(), split_seed(seed, index++));

@@ -177,7 +177,7 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
 namespace {
 
 // Work of unfold_tabu_from's attempt from its start tree, per face (TabuStats::tests): the
-// successful ones on the CAD parts of bench/1000-2000 needed up to 11,000 (docs/performance.md).
+// successful ones on the CAD parts of bench/800-2000 needed up to 11,510 (docs/performance.md).
 constexpr std::size_t kStartTestsPerFace = 15'000;
 
 // unfold_tabu's attempts; attempt 0 starts from `start` (a parent per face) when given.
