@@ -8,6 +8,8 @@
 #               unprivileged user from the runtime paths with the image's environment
 #               (0.0.0.0, PAPERNET_WEB_ROOT), the HEALTHCHECK script passes, GET / serves the
 #               demo, and the compose client-test command (JS client tests at PAPERNET_URL) passes.
+#   4. compose: its services (PostgreSQL, two nodes, nginx) from their scripts on loopback, the
+#               client tests through the balancer, a node killed under a job (check-cluster.sh).
 #   docker/check-steps.sh [WORKDIR]      (default: a new directory under /tmp)
 #   REUSE_BUILD=1 docker/check-steps.sh WORKDIR   skips steps 1-2 when WORKDIR has a build
 set -euo pipefail
@@ -79,4 +81,7 @@ step "compose client-test: node --test clients/js/test/client.test.js against PA
 
 kill -TERM $pid && wait $pid || true
 trap - EXIT
+
+step "compose cluster: PostgreSQL, two nodes, nginx, client tests (docker/check-cluster.sh)"
+(cd "$work/src" && bash docker/check-cluster.sh "$bin" "$work/cluster")
 echo "docker steps OK in $(($(date +%s) - start)) s (work dir $work)"

@@ -3,12 +3,14 @@
 # Used by `make`, by CI and by the Dockerfile, so all three install the same things.
 #   scripts/install-deps.sh          build + run + test dependencies
 #   scripts/install-deps.sh runtime  only what the papernet binary needs to run
+#   scripts/install-deps.sh postgres the database of several nodes (docker/compose.yaml)
+#   scripts/install-deps.sh nginx    the load balancer in front of them (docker/compose.yaml)
 set -euo pipefail
 
-runtime=(libdraco7 libsqlite3-0 libcairo2 libcpp-httplib0.11 ca-certificates)
+runtime=(libdraco7 libsqlite3-0 libpq5 libcairo2 libcpp-httplib0.11 ca-certificates)
 build=(build-essential cmake pkg-config git clang-format ccache
   libdraco-dev libtinygltf-dev nlohmann-json3-dev libcpp-httplib-dev
-  libgtest-dev libsqlite3-dev libcairo2-dev zlib1g-dev)
+  libgtest-dev libsqlite3-dev libpq-dev libcairo2-dev zlib1g-dev)
 # Node.js and npm bundle the web demo and run the JS client tests. Any Node >= 18 with npm
 # will do (Debian 12 ships 18); one already on the PATH is kept.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
@@ -20,12 +22,17 @@ test_tools=(librsvg2-bin poppler-utils libxml2-utils curl chromium)
 # clang with its sanitizer and libFuzzer runtimes: the ASan/UBSan/TSan builds and fuzz targets
 # of `make test` (docs/reliability.md).
 test_tools+=(clang libclang-rt-14-dev)
+# PostgreSQL 15: the tests of the shared job store start real servers of their own
+# (scripts/test-postgres.sh).
+test_tools+=(postgresql)
 
 case "${1:-all}" in
   runtime) wanted=("${runtime[@]}") ;;
   build) wanted=("${build[@]}") ;;
   all) wanted=("${runtime[@]}" "${build[@]}" "${test_tools[@]}") ;;
-  *) echo "usage: $0 [runtime|build|all]" >&2; exit 2 ;;
+  postgres) wanted=(postgresql) ;;
+  nginx) wanted=(nginx) ;;
+  *) echo "usage: $0 [runtime|build|all|postgres|nginx]" >&2; exit 2 ;;
 esac
 
 missing=()

@@ -6,6 +6,8 @@
 #include <thread>
 #include <vector>
 
+#include "server/job_store.h"
+
 namespace papernet::server {
 namespace {
 
@@ -51,6 +53,28 @@ const std::vector<Setting>& settings() {
        }},
       {"data", "PAPERNET_DATA", "directory of the SQLite job store (default ./var)",
        [](ServerConfig& c, const std::string&, const std::string& v) { c.data_dir = v; }},
+      {"store", "PAPERNET_STORE",
+       "job store: sqlite (the file papernet.sqlite under --data; default) or a "
+       "postgres://user:password@host/database URL that several nodes share",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         if (v != "sqlite" && !is_postgres_url(v))
+           throw ConfigError(w + ": '" + redact_store_url(v) +
+                             "' is neither sqlite nor a postgres:// URL");
+         c.store = v;
+       }},
+      {"lease", "PAPERNET_LEASE",
+       "seconds a running job's lease lasts; when its node stops renewing it (a crash), "
+       "another node runs the job after this long (default 30)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.lease = seconds(w, v);
+         if (c.lease < 1) throw ConfigError(w + ": a lease lasts at least 1 second");
+       }},
+      {"max-attempts", "PAPERNET_MAX_ATTEMPTS",
+       "times a job may be started before it fails with interrupted_too_often, when its node "
+       "crashed or stopped each time (default 3)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.max_attempts = static_cast<int>(count(w, v, 1, 100));
+       }},
       {"workers", "PAPERNET_WORKERS", "geometry worker threads (default: one per core)",
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.workers = count(w, v, 1, 256);

@@ -14,6 +14,11 @@ struct ServerConfig {
   std::string host = "127.0.0.1";
   int port = 8080;  ///< 0 picks a free port (printed on start)
   std::string data_dir = "./var";
+  /// "sqlite" (the file papernet.sqlite under data_dir) or a postgres:// URL that several
+  /// nodes share (docs/scaling.md).
+  std::string store = "sqlite";
+  double lease = 30;              ///< seconds a running job's lease lasts without renewal
+  int max_attempts = 3;           ///< claims of one job before it fails with interrupted_too_often
   std::size_t workers = 0;        ///< geometry threads; 0 = one per core
   std::size_t http_threads = 16;  ///< threads serving connections (and SSE streams)
   std::size_t queue_length = 64;  ///< queued jobs before POST answers 429

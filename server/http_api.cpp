@@ -9,6 +9,7 @@
 #include "api/openapi.h"
 #include "server/http_server.h"
 #include "server/job_json.h"
+#include "server/job_store.h"
 #include "server/problem.h"
 #include "server/upload.h"
 
@@ -135,8 +136,9 @@ struct Api {
     const JobRecord job = service.submit(std::move(upload.input), std::move(upload.options));
     auto view = service.view(job.id);
     res.set_header("Location", "/v1/jobs/" + job.id);
-    send_json(res, 202,
-              job_to_json(view ? *view : JobView{job, {}, 0, false, nullptr, {}}, now_seconds()));
+    send_json(
+        res, 202,
+        job_to_json(view ? *view : JobView{job, {}, 0, false, std::nullopt, {}}, now_seconds()));
   }
 
   void list(const httplib::Request& req, httplib::Response& res) {
@@ -182,15 +184,11 @@ struct Api {
       res.set_content(std::move(file->data), file->content_type);
       return;
     }
-    if (view.intermediate) {
-      auto it = view.intermediate->files.find(name);
-      if (it != view.intermediate->files.end()) {
-        res.set_header("X-Papernet-Level",
-                       "intermediate; faces=" + std::to_string(view.intermediate->faces) +
-                           "; input-faces=" + std::to_string(view.intermediate->input_faces));
-        res.set_content(it->second.data, it->second.content_type);
-        return;
-      }
+    if (auto file = service.intermediate(r.id, name)) {
+      res.set_header("X-Papernet-Level", "intermediate; faces=" + std::to_string(file->faces) +
+                                             "; input-faces=" + std::to_string(file->input_faces));
+      res.set_content(std::move(file->file.data), file->file.content_type);
+      return;
     }
     Problem p = make_problem("result_not_ready", "job " + r.id + " is " + status_name(r.status) +
                                                      " and has no overlap-free intermediate " +
@@ -215,7 +213,13 @@ struct Api {
         "text/event-stream",
         [this, id, last_version, last_doc, sequence](std::size_t, httplib::DataSink& sink) {
           *last_version = service.wait_for_change(*last_version, std::chrono::seconds(1));
-          auto view = service.view(id);
+          std::optional<JobView> view;
+          try {
+            view = service.view(id);
+          } catch (const StoreError&) {  // the store is away for a moment: keep the stream
+            std::this_thread::sleep_for(std::chrono::milliseconds(500));
+            return sink.is_writable();
+          }
           const bool final = !view || is_final(view->record.status);
           std::string doc = view ? job_to_json(*view, now_seconds()).dump() : "null";
           if (doc != *last_doc || final) {
@@ -337,10 +341,12 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
   http.Get("/healthz", guarded([](const httplib::Request&, httplib::Response& res) {
              send_json(res, 200, {{"status", "ok"}});
            }));
+  // Ready: accepting jobs, and the store answers (a shared database may be down).
   http.Get("/readyz", guarded([&service](const httplib::Request&, httplib::Response& res) {
              if (!service.accepting())
                throw ApiError("shutting_down", "the server is shutting down");
-             send_json(res, 200, {{"status", "ready"}});
+             service.check_store();
+             send_json(res, 200, {{"status", "ready"}, {"node", service.node()}});
            }));
   http.Get("/metrics",
            guarded([&service, &metrics](const httplib::Request&, httplib::Response& res) {

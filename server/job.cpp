@@ -1,5 +1,6 @@
 #include "server/job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <random>
 #include <stdexcept>
@@ -33,6 +34,61 @@ JobStatus parse_status(const std::string& name) {
 
 bool is_final(JobStatus status) {
   return status != JobStatus::Queued && status != JobStatus::Running;
+}
+
+std::vector<std::string> split_file_names(const std::string& joined) {
+  std::vector<std::string> names;
+  for (std::size_t from = 0; from < joined.size();) {
+    const auto end = std::min(joined.find('/', from), joined.size());
+    names.push_back(joined.substr(from, end - from));
+    from = end + 1;
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+MeshFormat format_of_record(const std::string& name) {
+  return name == "unknown" ? MeshFormat::Unknown : format_from_extension("x." + name);
+}
+
+nlohmann::json progress_to_json(const ProgressInfo& info) {
+  return {{"phase", info.phase},
+          {"faces", info.faces},
+          {"input_faces", info.input_faces},
+          {"overlaps", info.overlaps},
+          {"iterations", info.iterations},
+          {"elapsed_seconds", info.elapsed_seconds}};
+}
+
+std::optional<ProgressInfo> progress_from_json(const nlohmann::json& doc) {
+  if (!doc.is_object() || !doc.contains("phase")) return std::nullopt;
+  ProgressInfo info;
+  info.phase = doc.value("phase", "");
+  info.faces = doc.value("faces", std::size_t{0});
+  info.input_faces = doc.value("input_faces", std::size_t{0});
+  info.overlaps = doc.value("overlaps", std::size_t{0});
+  info.iterations = doc.value("iterations", std::size_t{0});
+  info.elapsed_seconds = doc.value("elapsed_seconds", 0.0);
+  return info;
+}
+
+nlohmann::json intermediate_level_json(const JobOutput& output) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& [name, file] : output.files) files.push_back(name);
+  return {{"faces", output.faces},
+          {"input_faces", output.input_faces},
+          {"overlaps", output.overlaps},
+          {"files", files}};
+}
+
+std::optional<IntermediateLevel> intermediate_level_from_json(const nlohmann::json& doc) {
+  if (!doc.is_object() || !doc.contains("files")) return std::nullopt;
+  IntermediateLevel level;
+  level.faces = doc.value("faces", std::size_t{0});
+  level.input_faces = doc.value("input_faces", std::size_t{0});
+  level.overlaps = doc.value("overlaps", std::size_t{0});
+  for (const auto& name : doc["files"]) level.files.push_back(name.get<std::string>());
+  return level;
 }
 
 std::string new_job_id() {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "api/options.h"
 #include "core/io/load.h"
@@ -77,8 +78,41 @@ struct JobRecord {
   nlohmann::json metrics = nlohmann::json::object();
   nlohmann::json error;    ///< the problem document of a failed job, null otherwise
   std::string result_job;  ///< job whose stored files are this job's result (itself or reused)
-  int attempts = 0;        ///< times a worker started it (a restart after a crash adds one)
+  int attempts = 0;        ///< times a worker claimed it (a crash or an expired lease adds one)
+  std::string node;        ///< the node whose worker claimed it last ("" while never claimed)
+  bool cancel_requested = false;  ///< a client asked a running job to stop
+  nlohmann::json progress;        ///< a running job's last published progress, or null
+  nlohmann::json intermediate;    ///< a running job's published intermediate (level), or null
+  std::vector<std::string> result_files;  ///< names of the stored files of `result_job`
 };
+
+/// A running job's latest overlap-free intermediate as a client sees it: its level and files.
+struct IntermediateLevel {
+  std::size_t faces = 0;
+  std::size_t input_faces = 0;
+  std::size_t overlaps = 0;
+  std::vector<std::string> files;
+};
+
+/// One file of an intermediate, with the level it belongs to.
+struct IntermediateFile {
+  Artifact file;
+  std::size_t faces = 0;
+  std::size_t input_faces = 0;
+};
+
+/// The format a record names (JobRecord::format, format_name's words).
+MeshFormat format_of_record(const std::string& name);
+
+/// The file names a store lists in one column ("mesh.glb/net.json"), sorted.
+std::vector<std::string> split_file_names(const std::string& joined);
+
+/// How the store keeps a running job's progress and intermediate level for other nodes.
+nlohmann::json progress_to_json(const ProgressInfo& info);
+/// nullopt for null (nothing published) or a document that is not a progress.
+std::optional<ProgressInfo> progress_from_json(const nlohmann::json& doc);
+nlohmann::json intermediate_level_json(const JobOutput& output);
+std::optional<IntermediateLevel> intermediate_level_from_json(const nlohmann::json& doc);
 
 /// Opaque job ids: 32 lowercase hex digits from a random source.
 std::string new_job_id();

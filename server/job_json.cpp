@@ -91,7 +91,7 @@ json job_to_json(const JobView& view, double now) {
     doc["intermediate"] = {{"faces", view.intermediate->faces},
                            {"input_faces", view.intermediate->input_faces},
                            {"overlaps", view.intermediate->overlaps}};
-    for (const auto& [name, file] : view.intermediate->files) links[name] = self + "/" + name;
+    for (const std::string& name : view.intermediate->files) links[name] = self + "/" + name;
   }
   doc["error"] = r.error.is_object() ? r.error : json(nullptr);
   doc["links"] = links;

@@ -1,61 +1,18 @@
+// The service's front: submitting, looking at and cancelling jobs (HTTP threads). The workers'
+// side, claiming and running jobs under leases, is job_workers.cpp.
 #include "server/job_service.h"
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "server/internal/live_job.h"
 #include "server/problem.h"
 
 namespace papernet::server {
-
-struct JobService::Live {
-  JobStatus status = JobStatus::Queued;
-  std::optional<ProgressInfo> progress;
-  std::atomic<bool> cancel{false};
-  std::shared_ptr<const JobOutput> intermediate;
-};
-
-// The hook a running job talks to. Cancellation: the client's DELETE, the hard time limit,
-// or a server shutdown that outlived its grace period.
-class JobService::Sink : public JobSink {
- public:
-  Sink(JobService& service, std::shared_ptr<Live> live, double deadline)
-      : service_(service), live_(std::move(live)), deadline_(deadline) {}
-
-  void report(const ProgressInfo& info) override {
-    std::lock_guard lock(service_.mutex_);
-    live_->progress = info;
-    ++service_.version_;
-    service_.change_cv_.notify_all();
-  }
-  void intermediate(JobOutput output) override {
-    auto shared = std::make_shared<const JobOutput>(std::move(output));
-    std::lock_guard lock(service_.mutex_);
-    live_->intermediate = std::move(shared);
-    ++service_.version_;
-    service_.change_cv_.notify_all();
-  }
-  bool cancelled() override {
-    if (live_->cancel || service_.abort_running_) return true;
-    if (now_seconds() > deadline_) timed_out_ = true;
-    return timed_out_;
-  }
-  bool timed_out() const { return timed_out_; }
-
- private:
-  JobService& service_;
-  std::shared_ptr<Live> live_;
-  double deadline_;
-  bool timed_out_ = false;
-};
-
 namespace {
-
-std::string seconds_text(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f s", seconds);
-  return text;
-}
 
 std::uint64_t fnv1a(std::uint64_t h, std::string_view bytes) {
   for (unsigned char c : bytes) {
@@ -63,6 +20,19 @@ std::uint64_t fnv1a(std::uint64_t h, std::string_view bytes) {
     h *= 0x100000001b3ULL;
   }
   return h;
+}
+
+// host-pid-tag: the tag tells two lives of one container (both pid 1) apart.
+std::string default_node_name() {
+  char host[256] = "papernet";
+  gethostname(host, sizeof host - 1);
+  return std::string(host) + "-" + std::to_string(getpid()) + "-" + new_job_id().substr(0, 4);
+}
+
+IntermediateLevel level_of(const JobOutput& output) {
+  IntermediateLevel level{output.faces, output.input_faces, output.overlaps, {}};
+  for (const auto& [name, file] : output.files) level.files.push_back(name);
+  return level;
 }
 
 }  // namespace
@@ -91,25 +61,14 @@ std::string job_input_key(const JobInput& input, const JobOptions& options) {
 JobService::JobService(JobStore& store, JobRunner runner, ServiceSettings settings, Logger log)
     : store_(store),
       runner_(std::move(runner)),
-      settings_(settings),
+      settings_(std::move(settings)),
       log_(std::move(log)),
       buckets_{0.1, 0.5, 1, 2, 5, 10, 30, 60, 120, 300, 600},
-      bucket_counts_(buckets_.size() + 1, 0) {}
+      bucket_counts_(buckets_.size() + 1, 0) {
+  if (settings_.node.empty()) settings_.node = default_node_name();
+}
 
 JobService::~JobService() { shutdown(std::chrono::milliseconds(0)); }
-
-void JobService::start() {
-  {
-    std::lock_guard lock(mutex_);
-    for (const JobRecord& job : store_.unfinished()) {
-      if (job.status == JobStatus::Running) store_.requeue(job.id);
-      queue_.push_back(job.id);
-      live_[job.id] = std::make_shared<Live>();
-      log_("job " + job.id + " " + status_name(job.status) + " -> queued (recovered)");
-    }
-  }
-  for (std::size_t i = 0; i < settings_.workers; ++i) workers_.emplace_back([this] { work(); });
-}
 
 JobRecord JobService::submit(JobInput input, JobOptions options) {
   if (!accepting_) throw ApiError("shutting_down", "the server is shutting down; try again");
@@ -134,36 +93,23 @@ JobRecord JobService::submit(JobInput input, JobOptions options) {
       job.metrics = prior->metrics;
       job.metrics["reused_from"] = prior->id;
       job.result_job = prior->result_job;
-      store_.insert(job, nullptr);
+      store_.insert(job, nullptr, 0);
       log_("job " + job.id + " -> " + status_name(job.status) + " (reused " + prior->id + ")");
       return job;
     }
   }
-  {
-    std::lock_guard lock(mutex_);
-    if (queue_.size() + reserved_ >= settings_.queue_length) {
-      Problem p = make_problem("queue_full", "the job queue is full (" +
-                                                 std::to_string(settings_.queue_length) +
-                                                 " jobs); retry later");
-      p.retry_after = static_cast<int>(retry_after_seconds());
-      throw ApiError(p);
-    }
-    ++reserved_;
-  }
-  try {
-    store_.insert(job, &input);
-  } catch (...) {
-    std::lock_guard lock(mutex_);
-    --reserved_;
-    throw;
+  if (!store_.insert(job, &input, settings_.queue_length)) {
+    Problem p = make_problem(
+        "queue_full",
+        "the job queue is full (" + std::to_string(settings_.queue_length) + " jobs); retry later");
+    p.retry_after = static_cast<int>(retry_after_seconds(settings_.queue_length));
+    throw ApiError(p);
   }
   log_("job " + job.id + " -> queued (" + job.format + ", " + std::to_string(job.input_bytes) +
        " bytes)");
   {
     std::lock_guard lock(mutex_);
-    --reserved_;
-    queue_.push_back(job.id);
-    live_[job.id] = std::make_shared<Live>();
+    ++wakeups_;
     ++version_;
   }
   work_cv_.notify_one();
@@ -174,56 +120,71 @@ JobRecord JobService::submit(JobInput input, JobOptions options) {
 std::optional<JobView> JobService::view(const std::string& id) {
   std::optional<JobRecord> record = store_.find(id);
   if (!record) return std::nullopt;
-  JobView view{std::move(*record), std::nullopt, 0, false, nullptr, {}};
-  if (is_final(view.record.status)) {
-    if (!view.record.result_job.empty())
-      view.result_files = store_.artifact_names(view.record.result_job);
+  JobView view{std::move(*record), std::nullopt, 0, false, std::nullopt, {}};
+  const JobRecord& r = view.record;
+  if (is_final(r.status)) {
+    view.result_files = r.result_files;
     return view;
   }
-  std::lock_guard lock(mutex_);
-  auto it = live_.find(id);
-  if (it == live_.end()) return view;
-  view.record.status = it->second->status;
-  view.progress = it->second->progress;
-  view.cancel_requested = it->second->cancel;
-  view.intermediate = it->second->intermediate;
-  if (it->second->status == JobStatus::Queued) {
-    auto pos = std::find(queue_.begin(), queue_.end(), id);
-    if (pos != queue_.end())
-      view.queue_position = static_cast<std::size_t>(pos - queue_.begin()) + 1;
+  view.cancel_requested = r.cancel_requested;
+  if (r.status == JobStatus::Queued) {
+    view.queue_position = store_.queue_position(r.seq);
+    return view;
   }
+  {
+    std::lock_guard lock(mutex_);
+    auto it = live_.find(id);
+    if (it != live_.end() && it->second->claim.node == r.node &&
+        it->second->claim.attempt == r.attempts) {
+      const Live& live = *it->second;
+      view.progress = live.progress;
+      view.cancel_requested = view.cancel_requested || live.cancel;
+      if (live.intermediate) view.intermediate = level_of(*live.intermediate);
+      return view;
+    }
+  }
+  // Running on another node: what it published.
+  view.progress = progress_from_json(r.progress);
+  view.intermediate = intermediate_level_from_json(r.intermediate);
   return view;
+}
+
+std::optional<IntermediateFile> JobService::intermediate(const std::string& id,
+                                                         const std::string& name) {
+  {
+    std::lock_guard lock(mutex_);
+    if (auto it = live_.find(id); it != live_.end()) {
+      const std::shared_ptr<const JobOutput> output = it->second->intermediate;
+      if (!output) return std::nullopt;
+      auto file = output->files.find(name);
+      if (file == output->files.end()) return std::nullopt;
+      return IntermediateFile{file->second, output->faces, output->input_faces};
+    }
+  }
+  return store_.intermediate(id, name);
 }
 
 JobView JobService::cancel(const std::string& id) {
   std::optional<JobRecord> record = store_.find(id);
   if (!record) throw ApiError("job_not_found", "no job " + id);
-  if (is_final(record->status)) {
-    if (record->status == JobStatus::Cancelled) return *view(id);
-    throw ApiError("job_finished", "job " + id + " already " + status_name(record->status));
-  }
-  bool dequeued = false;
-  {
-    std::lock_guard lock(mutex_);
-    auto it = live_.find(id);
-    if (it != live_.end()) {
-      it->second->cancel = true;
-      auto pos = std::find(queue_.begin(), queue_.end(), id);
-      if (pos != queue_.end()) {
-        queue_.erase(pos);
-        live_.erase(it);
-        dequeued = true;
-      }
+  if (!is_final(record->status)) {
+    const CancelOutcome outcome = store_.cancel(
+        id, problem_json(make_problem("job_cancelled", "cancelled while queued")), now_seconds());
+    {
+      std::lock_guard lock(mutex_);
+      if (outcome == CancelOutcome::Requested)
+        if (auto it = live_.find(id); it != live_.end()) it->second->cancel = true;
       ++version_;
     }
+    change_cv_.notify_all();
+    if (outcome == CancelOutcome::Cancelled) log_("job " + id + " queued -> cancelled");
+    if (outcome != CancelOutcome::NotActive)
+      if (auto v = view(id)) return *v;
+    record = store_.find(id);  // it ended in the meantime
+    if (!record) throw ApiError("job_not_found", "no job " + id);
   }
-  if (dequeued) {
-    record->finished = now_seconds();
-    finish(*record, JobStatus::Cancelled, nullptr,
-           problem_json(make_problem("job_cancelled", "cancelled while queued")));
-  }
-  change_cv_.notify_all();
-  return *view(id);
+  if (record->status == JobStatus::Cancelled) return *view(id);
+  throw ApiError("job_finished", "job " + id + " already " + status_name(record->status));
 }
 
 std::uint64_t JobService::wait_for_change(std::uint64_t seen, std::chrono::milliseconds timeout) {
@@ -242,12 +203,8 @@ void JobService::shutdown(std::chrono::milliseconds grace) {
   {
     std::unique_lock lock(mutex_);
     draining_ = true;
-    auto running = [&] {
-      return std::any_of(live_.begin(), live_.end(),
-                         [](const auto& e) { return e.second->status == JobStatus::Running; });
-    };
-    if (running()) log_("shutdown: waiting for running jobs");
-    change_cv_.wait_for(lock, grace, [&] { return !running(); });
+    if (!live_.empty()) log_("shutdown: waiting for running jobs");
+    change_cv_.wait_for(lock, grace, [&] { return live_.empty(); });
     abort_running_ = true;
     stop_ = true;
   }
@@ -256,153 +213,44 @@ void JobService::shutdown(std::chrono::milliseconds grace) {
   for (std::thread& t : workers_)
     if (t.joinable()) t.join();
   workers_.clear();
+  {
+    std::lock_guard lock(mutex_);
+    keeper_stop_ = true;
+  }
+  keeper_cv_.notify_all();
+  if (keeper_.joinable()) keeper_.join();
+  store_.listen({});
 }
 
 ServiceStats JobService::stats() {
   ServiceStats s;
-  s.jobs_by_status = store_.count_by_status();
+  s.store_kind = store_.kind();
+  try {
+    s.jobs_by_status = store_.count_by_status();
+  } catch (const StoreError&) {
+    s.store_up = false;
+  }
+  if (auto it = s.jobs_by_status.find("queued"); it != s.jobs_by_status.end())
+    s.queued = it->second;
+  s.store = store_.stats();
   std::lock_guard lock(mutex_);
-  s.queued = queue_.size();
-  for (const auto& [id, live] : live_)
-    if (live->status == JobStatus::Running) ++s.running;
+  s.running = live_.size();
   s.duration_buckets = buckets_;
   s.duration_counts = bucket_counts_;
   s.duration_sum = duration_sum_;
   s.duration_count = duration_count_;
+  s.claims = claims_;
+  s.lease_expiries = lease_expiries_;
+  s.leases_lost = leases_lost_;
   return s;
 }
 
-std::size_t JobService::retry_after_seconds() const {
+std::size_t JobService::retry_after_seconds(std::size_t queued) {
+  std::lock_guard lock(mutex_);
   const double mean = duration_count_ ? duration_sum_ / static_cast<double>(duration_count_) : 5;
-  const double wait = mean * static_cast<double>(queue_.size()) /
+  const double wait = mean * static_cast<double>(queued) /
                       static_cast<double>(std::max<std::size_t>(1, settings_.workers));
   return static_cast<std::size_t>(std::clamp(std::ceil(wait), 1.0, 600.0));
-}
-
-void JobService::work() {
-  for (;;) {
-    std::string id;
-    {
-      std::unique_lock lock(mutex_);
-      work_cv_.wait(lock, [&] { return stop_ || (!draining_ && !queue_.empty()); });
-      if (stop_ || draining_) return;
-      id = queue_.front();
-      queue_.pop_front();
-      live_[id]->status = JobStatus::Running;
-      ++version_;
-    }
-    change_cv_.notify_all();
-    try {
-      run_one(id);
-    } catch (const std::exception& e) {
-      // Only the store can throw here (disk full, corrupt file): the job stays unfinished in
-      // the store and runs again after a restart.
-      log_("job " + id + " store error: " + e.what());
-      std::lock_guard lock(mutex_);
-      live_.erase(id);
-      ++version_;
-    }
-    change_cv_.notify_all();
-  }
-}
-
-void JobService::run_one(const std::string& id) {
-  const double started = now_seconds();
-  store_.mark_running(id, started);
-  JobRecord record = *store_.find(id);
-  log_("job " + id + " queued -> running (attempt " + std::to_string(record.attempts) + ")");
-  std::shared_ptr<Live> live;
-  {
-    std::lock_guard lock(mutex_);
-    live = live_[id];
-  }
-  if (record.attempts > settings_.max_attempts) {
-    record.finished = now_seconds();
-    finish(
-        record, JobStatus::Failed, nullptr,
-        problem_json(make_problem("interrupted_too_often",
-                                  "the job was interrupted " + std::to_string(record.attempts - 1) +
-                                      " times (server stopped or crashed while running it)")));
-    return;
-  }
-  JobOptions options;
-  JobInput input;
-  try {
-    options = parse_options_json(record.options.dump(), settings_.options_limits);
-    input = store_.input(id);
-  } catch (...) {
-    record.finished = now_seconds();
-    finish(record, JobStatus::Failed, nullptr,
-           problem_json(problem_from_exception(std::current_exception())));
-    return;
-  }
-  const double limit = options.time_limit.value_or(settings_.default_time_limit);
-  Sink sink(*this, live, started + limit + settings_.hard_time_grace);
-  try {
-    JobOutput output = runner_(input, options, sink);
-    record.finished = now_seconds();
-    record.input_faces = output.input_faces;
-    record.faces = output.faces;
-    record.overlaps = output.overlaps;
-    record.metrics = output.metrics;
-    record.result_kind = output.approximate ? "approximate" : "complete";
-    record.result_job = record.id;
-    finish(record, output.approximate ? JobStatus::Approximated : JobStatus::Succeeded, &output,
-           nullptr);
-  } catch (...) {
-    record.finished = now_seconds();
-    {
-      std::lock_guard lock(mutex_);
-      if (live->progress) record.input_faces = live->progress->input_faces;
-    }
-    if (abort_running_ && !live->cancel) {
-      store_.requeue(id);
-      log_("job " + id + " running -> queued (server stopping)");
-      std::lock_guard lock(mutex_);
-      live_.erase(id);
-      ++version_;
-      return;
-    }
-    if (live->cancel) {
-      finish(record, JobStatus::Cancelled, nullptr,
-             problem_json(make_problem("job_cancelled", "cancelled while running")));
-    } else if (sink.timed_out()) {
-      finish(record, JobStatus::Failed, nullptr,
-             problem_json(make_problem("time_limit_exceeded",
-                                       "the job did not finish within its time limit of " +
-                                           std::to_string(limit) + " seconds")));
-    } else {
-      finish(record, JobStatus::Failed, nullptr,
-             problem_json(problem_from_exception(std::current_exception())));
-    }
-  }
-}
-
-void JobService::finish(JobRecord& record, JobStatus status, const JobOutput* output,
-                        const nlohmann::json& error) {
-  const JobStatus before = record.status;
-  record.status = status;
-  record.error = error;
-  store_.finish(record, output);
-  const double seconds = record.started > 0 ? record.finished - record.started : 0;
-  {
-    std::lock_guard lock(mutex_);
-    live_.erase(record.id);
-    ++version_;
-    if (record.started > 0) {
-      for (std::size_t i = 0; i < buckets_.size(); ++i)
-        if (seconds <= buckets_[i]) ++bucket_counts_[i];
-      ++bucket_counts_.back();
-      duration_sum_ += seconds;
-      ++duration_count_;
-    }
-  }
-  change_cv_.notify_all();
-  std::string line = "job " + record.id + " " + status_name(before) + " -> " + status_name(status);
-  if (record.started > 0) line += " after " + seconds_text(seconds);
-  if (error.is_object())
-    line += " (" + error.value("code", "") + ": " + error.value("detail", "") + ")";
-  log_(line);
 }
 
 }  // namespace papernet::server

@@ -3,7 +3,6 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
-#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -21,40 +20,50 @@ namespace papernet::server {
 /// The service's limits (a slice of ServerConfig).
 struct ServiceSettings {
   std::size_t workers = 1;
-  std::size_t queue_length = 64;
+  std::size_t queue_length = 64;  ///< queued jobs in the store (of every node) before 429
   OptionsLimits options_limits;
   double default_time_limit = 120;
   /// A job that overruns its time_limit by this much (the unfolder should stop by itself) is
   /// cancelled and fails with time_limit_exceeded.
   double hard_time_grace = 5;
   bool reuse_results = true;
-  int max_attempts = 3;  ///< a job that took the server down this often fails instead
+  int max_attempts = 3;       ///< a job claimed again this often (its node died each time) fails
+  double lease_seconds = 30;  ///< a running job's lease; renewed five times a second
+  std::string node;           ///< this node's name in the store ("" = host, pid and a random tag)
 };
 
 /// A job as a client sees it: the stored record plus, while it is queued or running, the live
-/// state (progress, queue position, latest overlap-free intermediate).
+/// state (progress, queue position, latest overlap-free intermediate), from this node's memory
+/// when it runs here and from what its node published to the store otherwise.
 struct JobView {
   JobRecord record;
   std::optional<ProgressInfo> progress;
   std::size_t queue_position = 0;  ///< 1 = next; 0 = not queued
   bool cancel_requested = false;
-  std::shared_ptr<const JobOutput> intermediate;
+  std::optional<IntermediateLevel> intermediate;
   std::vector<std::string> result_files;  ///< stored result files of a finished job
 };
 
 /// Counters for /metrics.
 struct ServiceStats {
-  std::size_t queued = 0;
-  std::size_t running = 0;
+  std::size_t queued = 0;   ///< in the store: every node's queue
+  std::size_t running = 0;  ///< on this node
   std::map<std::string, std::size_t> jobs_by_status;
   std::vector<double> duration_buckets;        ///< upper bounds in seconds
   std::vector<std::uint64_t> duration_counts;  ///< cumulative, one per bucket, then +Inf
   double duration_sum = 0;
   std::uint64_t duration_count = 0;
+  std::string store_kind;
+  bool store_up = true;
+  std::uint64_t claims = 0;          ///< jobs this node's workers claimed
+  std::uint64_t lease_expiries = 0;  ///< of those, taken over from a node whose lease ran out
+  std::uint64_t leases_lost = 0;     ///< jobs this node ran whose lease passed to another node
+  StoreStats store;
 };
 
-/// Accepts jobs into a bounded queue and runs them on a fixed pool of worker threads, keeping
-/// every state change in the store. Callers (HTTP threads) only enqueue, look and cancel.
+/// Runs jobs from the store's queue on a fixed pool of worker threads, keeping every state
+/// change in the store, so that with a shared store any node answers for any job. Callers
+/// (HTTP threads) only submit, look and cancel.
 class JobService {
  public:
   using Logger = std::function<void(const std::string&)>;
@@ -63,12 +72,12 @@ class JobService {
   JobService(const JobService&) = delete;
   JobService& operator=(const JobService&) = delete;
 
-  /// Re-queues what the store says is unfinished (a crash or stop interrupted it) and starts
-  /// the workers. Call once.
+  /// Makes claimable what a stopped process left running (JobStore::recover_interrupted),
+  /// listens to other nodes and starts the workers and the lease keeper. Call once.
   void start();
 
   /// Stores the job and queues it, or answers it from an identical finished job.
-  /// \throw ApiError queue_full (with Retry-After) or shutting_down.
+  /// \throw ApiError queue_full (with Retry-After) or shutting_down; StoreError.
   JobRecord submit(JobInput input, JobOptions options);
 
   std::optional<JobView> view(const std::string& id);
@@ -80,8 +89,10 @@ class JobService {
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) {
     return store_.artifact(result_job, name);
   }
-  /// Cancels a queued job at once and asks a running one to stop (it stops at its next
-  /// progress poll). \throw ApiError job_not_found or job_finished.
+  /// A file of a running job's latest intermediate, wherever it runs.
+  std::optional<IntermediateFile> intermediate(const std::string& id, const std::string& name);
+  /// Cancels a queued job at once and asks a running one to stop (its node stops it at the
+  /// job's next progress poll, within a second). \throw ApiError job_not_found or job_finished.
   JobView cancel(const std::string& id);
 
   /// Blocks until something changed after `seen` (or `timeout`); returns the new version.
@@ -89,19 +100,25 @@ class JobService {
   std::uint64_t version();
 
   /// Stops accepting and starting jobs, gives running jobs `grace` to finish, then stops them
-  /// and leaves them queued in the store for the next start. Idempotent.
+  /// and puts them back in the queue. Idempotent.
   void shutdown(std::chrono::milliseconds grace);
   bool accepting() const { return accepting_; }
+  /// \throw StoreUnavailable when the store cannot be reached (/readyz).
+  void check_store() { store_.ping(); }
+  const std::string& node() const { return settings_.node; }
   ServiceStats stats();
 
  private:
   struct Live;
   class Sink;
   void work();
-  void run_one(const std::string& id);
-  void finish(JobRecord& record, JobStatus status, const JobOutput* output,
+  void run_one(ClaimedJob claimed);
+  void keep_leases();
+  void on_store_event(const StoreEvent& event);
+  bool finish(JobRecord& record, const Claim& claim, JobStatus status, const JobOutput* output,
               const nlohmann::json& error);
-  std::size_t retry_after_seconds() const;
+  void forget(const std::string& id);
+  std::size_t retry_after_seconds(std::size_t queued);
 
   JobStore& store_;
   JobRunner runner_;
@@ -111,19 +128,22 @@ class JobService {
   std::mutex mutex_;
   std::condition_variable work_cv_;
   std::condition_variable change_cv_;
-  std::deque<std::string> queue_;
-  std::size_t reserved_ = 0;  // submissions between the capacity check and the queue
-  std::map<std::string, std::shared_ptr<Live>> live_;
+  std::condition_variable keeper_cv_;
+  std::uint64_t wakeups_ = 0;  // submissions and other nodes' "queued": a claim may succeed
+  std::map<std::string, std::shared_ptr<Live>> live_;  // jobs running on this node
   std::uint64_t version_ = 0;
   std::atomic<bool> accepting_{true};
   bool draining_ = false;  // no new job starts
   bool stop_ = false;      // workers exit
+  bool keeper_stop_ = false;
   std::atomic<bool> abort_running_{false};
   std::vector<std::thread> workers_;
+  std::thread keeper_;
   std::vector<double> buckets_;
   std::vector<std::uint64_t> bucket_counts_;
   double duration_sum_ = 0;
   std::uint64_t duration_count_ = 0;
+  std::uint64_t claims_ = 0, lease_expiries_ = 0, leases_lost_ = 0;
 };
 
 /// Hash of mesh bytes, external files and canonical options: equal inputs, equal keys.

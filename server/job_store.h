@@ -1,59 +1,144 @@
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "server/job.h"
 
-struct sqlite3;
-
 namespace papernet::server {
 
-/// Durable home of jobs, their inputs and their results: one SQLite database in WAL mode.
-/// Every write is one transaction, so a kill -9 leaves either the old or the new state.
-/// Thread-safe (one connection behind a mutex).
+/// A store operation failed: a full disk, a statement timeout, a corrupt file.
+class StoreError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The store cannot be reached now (the database is down or restarting); a later try may work.
+class StoreUnavailable : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
+/// A worker's hold on a running job: the node and the attempt it claimed. Every write about a
+/// running job names it, so a node whose lease passed to another cannot overwrite the job.
+struct Claim {
+  std::string node;
+  int attempt = 0;
+};
+
+/// A job a worker just claimed. `expired_node` names the node whose lease ran out when the job
+/// was taken over from it (docs/scaling.md), and is empty for a job that was queued.
+struct ClaimedJob {
+  JobRecord record;
+  std::string expired_node;
+};
+
+/// What the holder of a running job learns when it renews its lease.
+struct LeaseState {
+  bool held = false;  ///< false: the lease passed to another node, or the job ended
+  bool cancel_requested = false;
+};
+
+/// How a cancellation went in the store.
+enum class CancelOutcome {
+  Cancelled,  ///< the job was queued and is cancelled now
+  Requested,  ///< the job runs; its node was told to stop it
+  NotActive,  ///< the job is finished or does not exist
+};
+
+/// What other nodes told the store (PostgreSQL's LISTEN/NOTIFY): a job was queued, a job
+/// changed (progress, result, state), or a running job is to be cancelled.
+struct StoreEvent {
+  enum class Kind { Queued, Changed, Cancel };
+  Kind kind = Kind::Changed;
+  std::string job_id;  ///< empty for Queued, and for Changed after a reconnect (anything changed)
+};
+
+/// The store's own counters for /metrics.
+struct StoreStats {
+  std::uint64_t reconnects = 0;  ///< connections to the database opened again after a loss
+};
+
+/// Durable home of jobs, their inputs, progress, results and the queue (DESIGN "Stores",
+/// docs/scaling.md): the embedded SQLite file for one node, or PostgreSQL shared by several.
+/// Every write is one transaction; all methods are thread-safe and throw StoreError (or
+/// StoreUnavailable) when the store fails.
 class JobStore {
  public:
-  /// Opens or creates `path` (":memory:" for tests).
-  /// \throw std::runtime_error when the database cannot be opened or migrated.
-  explicit JobStore(const std::string& path);
-  ~JobStore();
-  JobStore(const JobStore&) = delete;
-  JobStore& operator=(const JobStore&) = delete;
+  virtual ~JobStore() = default;
+  /// "sqlite" or "postgres".
+  virtual std::string kind() const = 0;
 
-  /// Stores a new job with its input (when `input` is set) atomically. Fills `job.seq`.
-  void insert(JobRecord& job, const JobInput* input);
-  std::optional<JobRecord> find(const std::string& id);
+  /// Stores a new job with its input (when `input` is set) atomically and fills `job.seq`,
+  /// unless `queue_limit` jobs are queued already: then stores nothing and returns false.
+  virtual bool insert(JobRecord& job, const JobInput* input, std::size_t queue_limit) = 0;
+  virtual std::optional<JobRecord> find(const std::string& id) = 0;
   /// Most recent first; `before_seq` > 0 pages on (jobs with a smaller seq).
-  std::vector<JobRecord> list(std::size_t limit, std::int64_t before_seq = 0);
-  /// Queued and running jobs, oldest first: what a restart must run again.
-  std::vector<JobRecord> unfinished();
-  /// \throw std::runtime_error when the job has no stored input.
-  JobInput input(const std::string& id);
+  virtual std::vector<JobRecord> list(std::size_t limit, std::int64_t before_seq) = 0;
+  /// \throw StoreError when the job has no stored input.
+  virtual JobInput input(const std::string& id) = 0;
+  /// A finished, successful job with exactly this input and key (for result reuse).
+  virtual std::optional<JobRecord> find_reusable(const std::string& input_key,
+                                                 const JobInput& input) = 0;
+  /// Jobs per status name.
+  virtual std::map<std::string, std::size_t> count_by_status() = 0;
+  /// 1 for the next queued job to run, 2 for the one after, ...
+  virtual std::size_t queue_position(std::int64_t seq) = 0;
 
-  /// Marks the job running and counts the attempt.
-  void mark_running(const std::string& id, double started);
-  /// Puts a running job back in the queue (shutdown interrupted it).
-  void requeue(const std::string& id);
-  /// Stores the final state; for succeeded/approximated also `output`'s files, atomically.
-  void finish(const JobRecord& job, const JobOutput* output);
+  /// At start: makes claimable again what a process that is gone left running. The SQLite
+  /// store (one node) requeues every running job and returns their ids; PostgreSQL leaves
+  /// that to lease expiry and returns nothing.
+  virtual std::vector<std::string> recover_interrupted() = 0;
+  /// Claims the oldest queued job, or the oldest running one whose lease has expired, for
+  /// `node`: marks it running under a lease of `lease_seconds` and counts the attempt.
+  virtual std::optional<ClaimedJob> claim(const std::string& node, double lease_seconds,
+                                          double started) = 0;
+  /// Extends the lease; with `progress` also publishes the job's progress to other nodes.
+  virtual LeaseState renew(const std::string& id, const Claim& claim, double lease_seconds,
+                           const nlohmann::json* progress) = 0;
+  /// Publishes a running job's latest overlap-free intermediate; false when not held.
+  virtual bool put_intermediate(const std::string& id, const Claim& claim,
+                                const JobOutput& output) = 0;
+  /// A file of a running job's published intermediate.
+  virtual std::optional<IntermediateFile> intermediate(const std::string& id,
+                                                       const std::string& name) = 0;
+  /// Stores a running job's final state (`job.status`, `job.error`, ...) and, for
+  /// succeeded/approximated, `output`'s files atomically. False when `claim` no longer holds it.
+  virtual bool finish(const JobRecord& job, const Claim& claim, const JobOutput* output) = 0;
+  /// Puts a running job back in the queue (its node is stopping); false when not held.
+  virtual bool release(const std::string& id, const Claim& claim) = 0;
+  /// Cancels a queued job (storing `error` and `finished`) or asks a running one to stop.
+  virtual CancelOutcome cancel(const std::string& id, const nlohmann::json& error,
+                               double finished) = 0;
 
   /// A file of a finished job's result.
-  std::optional<Artifact> artifact(const std::string& result_job, const std::string& name);
-  /// Names of the stored result files of `result_job`.
-  std::vector<std::string> artifact_names(const std::string& result_job);
-  /// A finished, successful job with exactly this input and key (for result reuse).
-  std::optional<JobRecord> find_reusable(const std::string& input_key, const JobInput& input);
-  /// Jobs per status name.
-  std::map<std::string, std::size_t> count_by_status();
+  virtual std::optional<Artifact> artifact(const std::string& result_job,
+                                           const std::string& name) = 0;
 
- private:
-  std::mutex mutex_;
-  sqlite3* db_ = nullptr;
+  /// Calls `on_event` (from a thread of the store's own) for what other nodes do; an empty
+  /// function stops that. A store with one node (SQLite) has nothing to tell and never calls.
+  virtual void listen(std::function<void(const StoreEvent&)> on_event) { (void)on_event; }
+  /// \throw StoreUnavailable when the store cannot be reached now (/readyz).
+  virtual void ping() = 0;
+  virtual StoreStats stats() { return {}; }
 };
+
+/// Opens the store `spec` names: "sqlite" (the file papernet.sqlite under `data_dir`) or a
+/// postgres:// URL with a pool of `connections`. Applies the schema's migrations.
+/// \throw StoreError with a message fit for the operator (a URL's password left out).
+std::unique_ptr<JobStore> open_job_store(const std::string& spec, const std::string& data_dir,
+                                         std::size_t connections);
+
+/// True for a postgres:// or postgresql:// URL.
+bool is_postgres_url(const std::string& spec);
+
+/// `url` with its password replaced by "***", for messages and logs.
+std::string redact_store_url(const std::string& url);
 
 }  // namespace papernet::server

@@ -26,7 +26,7 @@ double HttpMetrics::seconds_total() const {
 
 std::string render_metrics(const ServiceStats& jobs, const HttpMetrics& http) {
   std::ostringstream out;
-  out << "# HELP papernet_queue_length Jobs waiting for a worker.\n"
+  out << "# HELP papernet_queue_length Jobs waiting for a worker (of every node).\n"
          "# TYPE papernet_queue_length gauge\n"
       << "papernet_queue_length " << jobs.queued << "\n"
       << "# HELP papernet_jobs_running Jobs a worker is running now.\n"
@@ -40,6 +40,25 @@ std::string render_metrics(const ServiceStats& jobs, const HttpMetrics& http) {
     out << "papernet_jobs{status=\"" << status << "\"} "
         << (it == jobs.jobs_by_status.end() ? 0 : it->second) << "\n";
   }
+  out << "# HELP papernet_store_up Whether the job store answered (" << jobs.store_kind
+      << ").\n"
+         "# TYPE papernet_store_up gauge\n"
+      << "papernet_store_up " << (jobs.store_up ? 1 : 0) << "\n"
+      << "# HELP papernet_store_claims_total Jobs this node's workers claimed from the queue.\n"
+         "# TYPE papernet_store_claims_total counter\n"
+      << "papernet_store_claims_total " << jobs.claims << "\n"
+      << "# HELP papernet_store_lease_expiries_total Claims of running jobs whose node's lease "
+         "had expired.\n"
+         "# TYPE papernet_store_lease_expiries_total counter\n"
+      << "papernet_store_lease_expiries_total " << jobs.lease_expiries << "\n"
+      << "# HELP papernet_store_leases_lost_total Jobs running here whose lease passed to "
+         "another node.\n"
+         "# TYPE papernet_store_leases_lost_total counter\n"
+      << "papernet_store_leases_lost_total " << jobs.leases_lost << "\n"
+      << "# HELP papernet_store_reconnects_total Connections to the database made again after "
+         "one was lost.\n"
+         "# TYPE papernet_store_reconnects_total counter\n"
+      << "papernet_store_reconnects_total " << jobs.store.reconnects << "\n";
   out << "# HELP papernet_job_duration_seconds Time from start to end of finished jobs.\n"
          "# TYPE papernet_job_duration_seconds histogram\n";
   for (std::size_t i = 0; i < jobs.duration_buckets.size(); ++i)

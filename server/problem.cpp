@@ -6,6 +6,7 @@
 #include "core/errors.h"
 #include "core/mesh/validate.h"
 #include "engine/pipeline.h"
+#include "server/job_store.h"
 
 namespace papernet::server {
 namespace {
@@ -45,7 +46,9 @@ constexpr ProblemType kProblemTypes[] = {
     {"too_many_streams", 429, "Too many event streams"},
     {"request_head_too_large", 431, "Request line or headers too large"},
     {"internal_error", 500, "Internal error"},
+    {"store_failed", 500, "Job store failed"},
     {"shutting_down", 503, "Server shutting down"},
+    {"store_unavailable", 503, "Job store unavailable"},
 };
 
 // The validator's findings as the problem's extension members.
@@ -110,6 +113,10 @@ Problem problem_from_exception(std::exception_ptr error) {
     return make_problem("job_cancelled", "the job was cancelled");
   } catch (const TopologyException& e) {
     return make_problem("unfold_failed", e.what());
+  } catch (const StoreUnavailable& e) {
+    return make_problem("store_unavailable", e.what());
+  } catch (const StoreError& e) {
+    return make_problem("store_failed", e.what());
   } catch (const std::bad_alloc&) {
     return make_problem("too_many_faces", "the mesh needs more memory than this server gives");
   } catch (const std::exception& e) {

@@ -6,7 +6,6 @@
 #include <httplib.h>
 #include <signal.h>
 
-#include <filesystem>
 #include <iostream>
 #include <thread>
 
@@ -29,11 +28,10 @@ int run_service(const ServerConfig& config) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   signal(SIGPIPE, SIG_IGN);
 
+  // Every worker and HTTP thread may use a database connection at once, and the lease keeper.
   std::unique_ptr<JobStore> store;
   try {
-    std::filesystem::create_directories(config.data_dir);
-    store = std::make_unique<JobStore>(
-        (std::filesystem::path(config.data_dir) / "papernet.sqlite").string());
+    store = open_job_store(config.store, config.data_dir, config.workers + config.http_threads + 1);
   } catch (const std::exception& e) {
     std::cerr << "papernet serve: " << e.what() << "\n";
     return 1;
@@ -46,6 +44,8 @@ int run_service(const ServerConfig& config) {
   settings.options_limits.max_target_faces = config.max_faces;
   settings.default_time_limit = config.job_time_limit;
   settings.reuse_results = config.reuse_results;
+  settings.max_attempts = config.max_attempts;
+  settings.lease_seconds = config.lease;
   JobService service(
       *store,
       make_pipeline_runner({config.max_body_bytes, config.max_faces, config.job_time_limit}),
@@ -92,8 +92,10 @@ int run_service(const ServerConfig& config) {
     http.stop();
   });
 
-  log_line("papernet listening on http://" + config.host + ":" + std::to_string(port) + " (data " +
-           config.data_dir + ", " + std::to_string(config.workers) + " workers, queue " +
+  const std::string where =
+      store->kind() == "sqlite" ? "data " + config.data_dir : redact_store_url(config.store);
+  log_line("papernet listening on http://" + config.host + ":" + std::to_string(port) + " (" +
+           where + ", " + std::to_string(config.workers) + " workers, queue " +
            std::to_string(config.queue_length) + ")" +
            (web_root.empty() ? "" : "; web demo from " + web_root));
   std::cout << "papernet listening on http://" << config.host << ":" << port << std::endl;
@@ -103,7 +105,7 @@ int run_service(const ServerConfig& config) {
     pthread_kill(signal_thread.native_handle(), SIGTERM);
   }
   signal_thread.join();
-  log_line("papernet stopped; unfinished jobs stay queued for the next start");
+  log_line("papernet stopped; unfinished jobs stay queued for the next start (or another node)");
   return 0;
 }
 

@@ -9,31 +9,17 @@
 #include <cstdio>
 #include <numeric>
 #include <string>
+#include <unordered_map>
 #include <utility>
+
+#include "core/mesh/internal/describe.h"
+#include "core/union_find.h"
 
 namespace papernet {
 namespace {
 
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
-
-std::string position(const Mesh& m, int v) {
-  char buf[96];
-  const Vec3 p = m.vertices[v];
-  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", p.x, p.y, p.z);
-  return buf;
-}
-
-std::string plural(std::size_t n, const char* one, const char* many) {
-  return std::to_string(n) + " " + (n == 1 ? one : many);
-}
+using mesh_detail::plural;
+using mesh_detail::position;
 
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
@@ -259,6 +245,7 @@ void finish_repair(const Mesh& mesh, const std::vector<Face>& faces, const Repai
   std::vector<int> across(3 * nf, -1);  // the glued side of each side (3 * face + corner)
   std::vector<char> cut_vertex(nv, 0);  // an end of a cut edge (its splits are not pinches)
   Tally non_manifold;                   // listed as vertex pairs
+  std::vector<int> suspects;  // sides of edges with more than two sides, or cut for orientation
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i;
     while (j < sides.size() && sides[j].key == sides[i].key) ++j;
@@ -267,6 +254,7 @@ void finish_repair(const Mesh& mesh, const std::vector<Face>& faces, const Repai
       across[3 * sides[i + 1].f + sides[i + 1].k] = 3 * sides[i].f + sides[i].k;
     } else if (j - i > 2) {
       const int a = int(sides[i].key >> 32), b = int(sides[i].key & 0xffffffffu);
+      for (std::size_t s = i; s < j; ++s) suspects.push_back(3 * sides[s].f + sides[s].k);
       cut_vertex[a] = cut_vertex[b] = 1;
       // Sides running opposite ways are glued in pairs (those the file joined first, then in
       // face order), so that a closed part with a fin on one edge stays closed; the rest are
@@ -334,6 +322,7 @@ void finish_repair(const Mesh& mesh, const std::vector<Face>& faces, const Repai
           const int a = faces[f].v[k], b = faces[f].v[(k + 1) % 3];
           non_orientable.add(a, listed);
           cut_vertex[a] = cut_vertex[b] = 1;
+          suspects.insert(suspects.end(), {s, o});
           across[s] = across[o] = -1;
         }
       }
@@ -364,16 +353,55 @@ void finish_repair(const Mesh& mesh, const std::vector<Face>& faces, const Repai
   }
 
   // Fans: corners around a vertex joined across glued edges (corner c of face f is 3f + c).
-  UnionFind fans(3 * nf);
-  for (std::size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int s = 3 * int(f) + k, o = across[s];
-      if (o < s) continue;  // each glued pair once (o is -1 when not glued)
-      const int g = o / 3;
-      for (int end : {k, (k + 1) % 3})
-        for (int c = 0; c < 3; ++c)
-          if (faces[g].v[c] == faces[f].v[end]) fans.unite(3 * int(f) + end, 3 * g + c);
+  const auto fans_of = [&] {
+    UnionFind fans(3 * nf);
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int s = 3 * int(f) + k, o = across[s];
+        if (o < s) continue;  // each glued pair once (o is -1 when not glued)
+        const int g = o / 3;
+        for (int end : {k, (k + 1) % 3})
+          for (int c = 0; c < 3; ++c)
+            if (faces[g].v[c] == faces[f].v[end]) fans.unite(3 * int(f) + end, 3 * g + c);
+      }
+    return fans;
+  };
+  UnionFind fans = fans_of();
+  // A cut side whose two ends stay in the fans of the sides it was cut from (the fans close
+  // around it through other edges) would still share their edge: such a side's face is detached
+  // at one end (its other side there is cut too), until every edge has at most one glued pair.
+  // Only sides of edges with more than two sides, or cut for orientation, can be affected.
+  for (bool again = !suspects.empty(); again;) {
+    again = false;
+    std::vector<std::pair<std::uint64_t, int>> keyed;
+    for (int s : suspects) {
+      const int f = s / 3, k = s % 3;
+      keyed.push_back({edge_key(fans.find(3 * f + k), fans.find(3 * f + (k + 1) % 3)), s});
     }
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t i = 0; i < keyed.size();) {
+      std::size_t j = i;
+      while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+      int kept = -1;  // a glued pair within the group stays
+      for (std::size_t x = i; x < j && kept < 0; ++x)
+        for (std::size_t y = i; y < j; ++y)
+          if (across[keyed[x].second] == keyed[y].second) kept = keyed[x].second;
+      for (std::size_t x = i; x < j && j - i > 1; ++x) {
+        const int s = keyed[x].second;
+        if (s == kept || (kept >= 0 && s == across[kept])) continue;
+        const int f = s / 3, k = s % 3, before = 3 * f + (k + 2) % 3;
+        for (int side : {s, before})
+          if (across[side] >= 0) {
+            across[across[side]] = -1;
+            across[side] = -1;
+            again = true;
+          }
+        for (int c = 0; c < 3; ++c) cut_vertex[faces[f].v[c]] = 1;
+      }
+      i = j;
+    }
+    if (again) fans = fans_of();
+  }
   // One vertex per fan; a vertex in several fans is a pinch of the input's when a vertex of the
   // loader's own lies in two of them (or there are none to tell). Ends of cut edges are counted
   // with those edges.
@@ -457,7 +485,10 @@ RepairResult repair_mesh(const Mesh& mesh, const std::vector<std::array<int, 3>>
     out.repairs.push_back({code, t.count, what + ": " + where + " " + numbers(t), t.listed});
   };
 
-  // Duplicate faces (the same three vertices, either way round), then zero-area faces.
+  // Duplicate faces (the same three vertices, either way round), then zero-area faces. A face
+  // and its reverse hanging off a surface (a flap folded flat: some edge of theirs has two more
+  // faces that are no such pair) both go, which leaves the surface as if the flap were never
+  // there; otherwise (a sheet modelled two-sided, a face repeated) the first of them stays.
   Tally duplicates, degenerates;
   {
     std::vector<std::pair<std::array<int, 3>, int>> sorted(nf);
@@ -467,12 +498,49 @@ RepairResult repair_mesh(const Mesh& mesh, const std::vector<std::array<int, 3>>
       sorted[f] = {t, int(f)};
     }
     std::sort(sorted.begin(), sorted.end());
-    for (std::size_t i = 1; i < nf; ++i)
-      if (sorted[i].first == sorted[i - 1].first && sorted[i].first[0] != sorted[i].first[1] &&
-          sorted[i].first[1] != sorted[i].first[2]) {
-        faces[sorted[i].second].alive = false;
-        duplicates.add(sorted[i].second, listed);
+    // Groups of faces on the same three distinct vertices, and which of them hold both turns.
+    std::vector<std::pair<std::size_t, std::size_t>> groups;
+    std::vector<char> grouped(nf, 0);  // 1: in a group holding both turns, 2: a repeat that goes
+    for (std::size_t i = 0; i < nf;) {
+      std::size_t j = i + 1;
+      while (j < nf && sorted[j].first == sorted[i].first) ++j;
+      const auto& t = sorted[i].first;
+      if (j - i > 1 && t[0] != t[1] && t[1] != t[2]) {
+        groups.push_back({i, j});
+        // A turn is the cyclic order: the face's corners in the sorted triple's order or not.
+        const auto turn = [&](std::size_t x) {
+          const auto& v = faces[sorted[x].second].v;
+          const int k = int(std::find(v.begin(), v.end(), t[0]) - v.begin());
+          return v[(k + 1) % 3] == t[1];
+        };
+        bool mixed = false;
+        for (std::size_t x = i + 1; x < j; ++x) mixed |= turn(x) != turn(i);
+        for (std::size_t x = i; x < j; ++x) grouped[sorted[x].second] = mixed ? 1 : x > i ? 2 : 0;
       }
+      i = j;
+    }
+    // Faces outside such groups on each edge of a group holding both turns.
+    std::unordered_map<std::uint64_t, int> others;
+    for (std::size_t f = 0; f < nf; ++f)
+      if (grouped[f] == 1)
+        for (int k = 0; k < 3; ++k) others[edge_key(faces[f].v[k], faces[f].v[(k + 1) % 3])] = 0;
+    if (!others.empty())
+      for (std::size_t f = 0; f < nf; ++f)
+        for (int k = 0; k < 3 && !grouped[f]; ++k) {
+          auto it = others.find(edge_key(faces[f].v[k], faces[f].v[(k + 1) % 3]));
+          if (it != others.end()) ++it->second;
+        }
+    for (const auto& [i, j] : groups) {
+      bool flap = false;
+      const Face& first = faces[sorted[i].second];
+      for (int k = 0; k < 3 && grouped[sorted[i].second] == 1; ++k)
+        flap |= others[edge_key(first.v[k], first.v[(k + 1) % 3])] >= 2;
+      for (std::size_t x = flap ? i : i + 1; x < j; ++x) {
+        faces[sorted[x].second].alive = false;
+        duplicates.add(sorted[x].second, listed);
+      }
+    }
+    std::sort(duplicates.listed.begin(), duplicates.listed.end());
   }
   std::vector<int> zero_area;
   for (std::size_t f = nf; f-- > 0;)

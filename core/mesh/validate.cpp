@@ -8,29 +8,14 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "core/mesh/internal/describe.h"
+#include "core/union_find.h"
+
 namespace papernet {
 namespace {
 
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
-
-std::string position(const Mesh& m, int v) {
-  char buf[96];
-  const Vec3 p = m.vertices[v];
-  std::snprintf(buf, sizeof buf, "(%g, %g, %g)", p.x, p.y, p.z);
-  return buf;
-}
-
-std::string plural(std::size_t n, const char* one, const char* many) {
-  return std::to_string(n) + " " + (n == 1 ? one : many);
-}
+using mesh_detail::plural;
+using mesh_detail::position;
 
 /// "vertices 3 (0, 1, 2), 7 (...), ..." for the first few of `items`.
 std::string list_vertices(const Mesh& m, const std::vector<int>& items, std::size_t total) {

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "core/random.h"
+#include "core/union_find.h"
 
 namespace papernet {
 
@@ -42,22 +43,6 @@ Vec3 random_direction(Random& rng) {
   const double r = std::sqrt(std::max(0.0, 1 - z * z));
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
-
-struct UnionFind {
-  std::vector<int> up;
-  explicit UnionFind(int n) : up(n) { std::iota(up.begin(), up.end(), 0); }
-  int find(int x) {
-    while (up[x] != x) x = up[x] = up[up[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    up[a] = b;
-    return true;
-  }
-};
 
 // A dual edge between faces `face` and `other`, weighted: spanning trees prefer light links.
 struct DualEdge {

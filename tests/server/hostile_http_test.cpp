@@ -12,11 +12,16 @@
 #include <map>
 
 #include "tests/support/hostile_bytes.h"
+#include "tests/support/postgres.h"
 #include "tests/support/serve_process.h"
 
 using papernet::test::draco_header;
 using papernet::test::varint;
 using namespace papernet::test;
+
+// Both stores.
+class HostileHttp : public BothStores {};
+INSTANTIATE_BOTH_STORES(HostileHttp);
 
 namespace {
 
@@ -196,7 +201,7 @@ std::size_t job_count(const Server& s) {
 // Over --max-body-bytes: a declared length is refused before a byte of the body is read; a
 // chunked, length-less or gzip-encoded body is cut off at the limit. The server's peak memory
 // stays where it was although 24 MB were offered.
-TEST(HostileHttp, OversizedBodiesAreRefusedWithoutBeingBuffered) {
+TEST_P(HostileHttp, OversizedBodiesAreRefusedWithoutBeingBuffered) {
   Server s({"--workers", "1", "--max-body-bytes", "200000", "--reuse-results", "false"});
   const std::size_t peak_before = proc_status_kb(s.pid(), "VmHWM");
   {
@@ -258,7 +263,7 @@ TEST(HostileHttp, OversizedBodiesAreRefusedWithoutBeingBuffered) {
 }
 
 // A client that closes mid-body leaves no job behind, in any framing.
-TEST(HostileHttp, TruncatedUploadsCreateNoJob) {
+TEST_P(HostileHttp, TruncatedUploadsCreateNoJob) {
   Server s({"--workers", "1", "--reuse-results", "false"});
   const std::string mesh = test_mesh("sample.obj");
   const std::string boundary = "xyzzy";
@@ -299,7 +304,7 @@ TEST(HostileHttp, TruncatedUploadsCreateNoJob) {
 // Slow clients: headers trickled past --header-timeout, a body that stops (read timeout), a body
 // trickled past --request-timeout, and more silent connections than HTTP threads. Each is cut
 // off; everyone else is served meanwhile.
-TEST(HostileHttp, SlowClientsAreTimedOutAndOthersAreServed) {
+TEST_P(HostileHttp, SlowClientsAreTimedOutAndOthersAreServed) {
   Server s({"--workers", "1", "--http-threads", "4", "--read-timeout", "1", "--header-timeout", "2",
             "--request-timeout", "4", "--reuse-results", "false"});
   std::atomic<bool> stop{false};
@@ -337,7 +342,7 @@ TEST(HostileHttp, SlowClientsAreTimedOutAndOthersAreServed) {
   EXPECT_EQ(job_count(s), 1u);
 }
 
-TEST(HostileHttp, WrongContentTypesAre415) {
+TEST_P(HostileHttp, WrongContentTypesAre415) {
   Server s({"--workers", "1", "--reuse-results", "false"});
   auto c = s.client();
   for (const char* type : {"image/png", "text/html", "application/zip", "video/mp4"})
@@ -359,7 +364,7 @@ TEST(HostileHttp, WrongContentTypesAre415) {
 // the file contradicts is unreadable (422), a count over the server's limit is too large (413),
 // and so is a real mesh over --max-faces (it was 422 above 4 x max-faces before). Peak memory
 // does not move.
-TEST(HostileHttp, HugeDeclaredCountsAreRefusedBeforeAllocating) {
+TEST_P(HostileHttp, HugeDeclaredCountsAreRefusedBeforeAllocating) {
   Server s({"--workers", "1", "--max-faces", "200", "--reuse-results", "false"});
   const std::size_t peak_before = proc_status_kb(s.pid(), "VmHWM");
   const std::string ply_faces =
@@ -416,7 +421,7 @@ TEST(HostileHttp, HugeDeclaredCountsAreRefusedBeforeAllocating) {
   expect_memory_growth_below(peak_before, peak_after, 64 * 1024, "peak memory");
 }
 
-TEST(HostileHttp, NonFiniteCoordinatesAreInvalidMeshes) {
+TEST_P(HostileHttp, NonFiniteCoordinatesAreInvalidMeshes) {
   Server s({"--workers", "1", "--reuse-results", "false"});
   std::string tetra = kTetraObj;
   for (const char* value : {"nan", "inf", "-inf", "NaN"}) {
@@ -437,7 +442,7 @@ TEST(HostileHttp, NonFiniteCoordinatesAreInvalidMeshes) {
 }
 
 // Job ids are opaque: traversal, encoded dots, NUL and very long ids name no job and no file.
-TEST(HostileHttp, PathLikeJobIdsNameNothing) {
+TEST_P(HostileHttp, PathLikeJobIdsNameNothing) {
   Server s({"--workers", "1"});
   const std::string long_id(5000, 'a');
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -484,7 +489,7 @@ TEST(HostileHttp, PathLikeJobIdsNameNothing) {
 
 // glTF buffer URIs are keys into the upload, never paths: file URIs, traversal and absolute
 // paths fail the job naming the URI, and no server file appears in any answer.
-TEST(HostileHttp, GltfBufferUrisNeverReadServerFiles) {
+TEST_P(HostileHttp, GltfBufferUrisNeverReadServerFiles) {
   Server s({"--workers", "1", "--reuse-results", "false"});
   const json box = json::parse(test_mesh("gltf_external/Box.gltf"));
   for (const char* uri : {"file:///etc/passwd", "../../etc/passwd", "/etc/passwd",
@@ -511,7 +516,7 @@ TEST(HostileHttp, GltfBufferUrisNeverReadServerFiles) {
 
 // JSON nested ten thousand deep: in the options part it is refused at POST (400), in a glTF the
 // job fails naming the depth; the server neither overflows its stack nor builds the document.
-TEST(HostileHttp, DeeplyNestedJsonIsRefused) {
+TEST_P(HostileHttp, DeeplyNestedJsonIsRefused) {
   Server s({"--workers", "1", "--reuse-results", "false"});
   const std::size_t peak_before = proc_status_kb(s.pid(), "VmHWM");
   auto nested_object = [](int depth) {

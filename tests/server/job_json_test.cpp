@@ -39,11 +39,7 @@ TEST(JobJsonTest, RunningJobShowsProgressAndIntermediateLinks) {
   v.record.started = 1'700'000'001;
   v.queue_position = 0;
   v.progress = papernet::ProgressInfo{"uncollapse", 800, 2000, 0, 17, 4.5};
-  auto mid = std::make_shared<JobOutput>();
-  mid->faces = 800;
-  mid->input_faces = 2000;
-  mid->files["net.json"] = {"application/json", "{}"};
-  v.intermediate = mid;
+  v.intermediate = IntermediateLevel{800, 2000, 0, {"net.json"}};
   const nlohmann::json doc = job_to_json(v, 1'700'000'003);
   EXPECT_EQ(doc["progress"]["phase"], "uncollapse");
   EXPECT_EQ(doc["progress"]["faces"], 800);

@@ -4,17 +4,22 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "core/errors.h"
 #include "server/problem.h"
+#include "tests/support/postgres.h"
 
 using namespace papernet;
 using namespace papernet::server;
 using namespace std::chrono_literals;
+using papernet::test::BothStores;
+
+// The queue, the workers and the leases on both stores.
+class JobServiceTest : public BothStores {};
+INSTANTIATE_BOTH_STORES(JobServiceTest);
 
 namespace {
 
@@ -96,8 +101,9 @@ void quiet(const std::string&) {}
 
 }  // namespace
 
-TEST(JobServiceTest, JobRunsAndItsResultIsStored) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, JobRunsAndItsResultIsStored) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();
   gate->open = true;
   JobService service(store, gated_runner(gate), settings(1, 4), quiet);
@@ -114,8 +120,9 @@ TEST(JobServiceTest, JobRunsAndItsResultIsStored) {
   EXPECT_EQ(done.result_files, std::vector<std::string>{"net.json"});
 }
 
-TEST(JobServiceTest, ApproximateResultIsReportedAsSuch) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, ApproximateResultIsReportedAsSuch) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();
   gate->open = true;
   JobService service(store, gated_runner(gate), settings(1, 4), quiet);
@@ -127,8 +134,9 @@ TEST(JobServiceTest, ApproximateResultIsReportedAsSuch) {
   EXPECT_EQ(done.record.result_kind, "approximate");
 }
 
-TEST(JobServiceTest, FullQueueRefusesWithRetryAfter) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, FullQueueRefusesWithRetryAfter) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();
   JobService service(store, gated_runner(gate), settings(1, 2), quiet);
   service.start();
@@ -153,8 +161,9 @@ TEST(JobServiceTest, FullQueueRefusesWithRetryAfter) {
     EXPECT_EQ(wait_final(service, id).record.status, JobStatus::Succeeded);
 }
 
-TEST(JobServiceTest, RunningJobShowsProgressAndIntermediate) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, RunningJobShowsProgressAndIntermediate) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();
   JobService service(store, gated_runner(gate), settings(1, 4), quiet);
   service.start();
@@ -167,13 +176,15 @@ TEST(JobServiceTest, RunningJobShowsProgressAndIntermediate) {
   EXPECT_EQ(v.progress->phase, "uncollapse");
   EXPECT_EQ(v.progress->input_faces, 20u);
   ASSERT_TRUE(v.intermediate);
-  EXPECT_EQ(v.intermediate->files.at("net.json").data, R"({"level":10})");
+  EXPECT_EQ(v.intermediate->files, std::vector<std::string>{"net.json"});
+  EXPECT_EQ(service.intermediate(job.id, "net.json")->file.data, R"({"level":10})");
   gate->open = true;
   wait_final(service, job.id);
 }
 
-TEST(JobServiceTest, CancelQueuedAndRunningJobs) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, CancelQueuedAndRunningJobs) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();
   JobService service(store, gated_runner(gate), settings(1, 4), quiet);
   service.start();
@@ -196,8 +207,9 @@ TEST(JobServiceTest, CancelQueuedAndRunningJobs) {
   }
 }
 
-TEST(JobServiceTest, CancelFinishedJobIsAConflict) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, CancelFinishedJobIsAConflict) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();
   gate->open = true;
   JobService service(store, gated_runner(gate), settings(1, 4), quiet);
@@ -212,8 +224,9 @@ TEST(JobServiceTest, CancelFinishedJobIsAConflict) {
   }
 }
 
-TEST(JobServiceTest, OverrunningJobFailsWithTimeLimitExceeded) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, OverrunningJobFailsWithTimeLimitExceeded) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();  // never opened: the runner would wait forever
   ServiceSettings s = settings(1, 4);
   s.hard_time_grace = 0.05;
@@ -226,8 +239,9 @@ TEST(JobServiceTest, OverrunningJobFailsWithTimeLimitExceeded) {
   EXPECT_EQ(done.record.error["code"], "time_limit_exceeded");
 }
 
-TEST(JobServiceTest, RunnerErrorsBecomeStoredProblems) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, RunnerErrorsBecomeStoredProblems) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   JobService service(
       store,
       [](const JobInput&, const JobOptions&, JobSink&) -> JobOutput {
@@ -242,8 +256,9 @@ TEST(JobServiceTest, RunnerErrorsBecomeStoredProblems) {
   EXPECT_EQ(done.record.error["detail"], "edge (3, 4) has 3 faces: not manifold");
 }
 
-TEST(JobServiceTest, IdenticalInputIsAnsweredFromTheStoredResult) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, IdenticalInputIsAnsweredFromTheStoredResult) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();
   gate->open = true;
   JobService service(store, gated_runner(gate), settings(1, 4), quiet);
@@ -262,8 +277,9 @@ TEST(JobServiceTest, IdenticalInputIsAnsweredFromTheStoredResult) {
   EXPECT_EQ(gate->started, 2);
 }
 
-TEST(JobServiceTest, ShutdownRequeuesRunningJobsAndRefusesNewOnes) {
-  JobStore store(":memory:");
+TEST_P(JobServiceTest, ShutdownRequeuesRunningJobsAndRefusesNewOnes) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   auto gate = std::make_shared<Gate>();
   JobService service(store, gated_runner(gate), settings(1, 4), quiet);
   service.start();
@@ -280,15 +296,12 @@ TEST(JobServiceTest, ShutdownRequeuesRunningJobsAndRefusesNewOnes) {
   }
 }
 
-// What a kill -9 leaves behind: queued jobs, a job marked running, a finished one. A new
-// service on the same file runs the first two and leaves the third alone.
-TEST(JobServiceTest, RestartRunsQueuedAndInterruptedJobs) {
-  const auto dir = std::filesystem::temp_directory_path() / ("papernet_store_" + new_job_id());
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / "jobs.sqlite").string();
+// What a kill -9 leaves behind: a finished job, a job a dead node was running, a queued one.
+// A new service on the same store runs the last two and leaves the first alone.
+TEST_P(JobServiceTest, RestartRunsQueuedAndInterruptedJobs) {
   std::vector<std::string> ids;
   {
-    JobStore store(path);
+    const auto store = open_store();
     for (int i = 0; i < 3; ++i) {
       JobRecord job;
       job.id = new_job_id();
@@ -297,46 +310,58 @@ TEST(JobServiceTest, RestartRunsQueuedAndInterruptedJobs) {
       job.format = "obj";
       job.input_key = "k" + std::to_string(i);
       const JobInput in = input_of(sample_mesh() + std::string(i, '\n'));
-      store.insert(job, &in);
+      ASSERT_TRUE(store->insert(job, &in, 10));
       ids.push_back(job.id);
     }
-    store.mark_running(ids[1], now_seconds());
-    JobRecord done = *store.find(ids[2]);
+    // The dead node finished the first and was running the second (under a lease of 0 s: it
+    // expired as the node died).
+    JobRecord done = store->claim("dead-node", 3600, now_seconds())->record;
+    EXPECT_EQ(done.id, ids[0]);
     done.status = JobStatus::Succeeded;
     done.finished = now_seconds();
     done.result_kind = "complete";
     done.result_job = done.id;
     JobOutput out;
     out.files["net.json"] = {"application/json", "{\"kept\":true}"};
-    store.finish(done, &out);
+    ASSERT_TRUE(store->finish(done, {"dead-node", 1}, &out));
+    EXPECT_EQ(store->claim("dead-node", 0, now_seconds())->record.id, ids[1]);
   }
-  JobStore store(path);
-  EXPECT_EQ(store.unfinished().size(), 2u);
+  const auto owned = open_store();
+  JobStore& store = *owned;
+  EXPECT_EQ(store.count_by_status()["running"], 1u);
+  EXPECT_EQ(store.count_by_status()["queued"], 1u);
   auto gate = std::make_shared<Gate>();
   gate->open = true;
   {
     JobService service(store, gated_runner(gate), settings(2, 4), quiet);
     service.start();
-    EXPECT_EQ(wait_final(service, ids[0]).record.status, JobStatus::Succeeded);
     const JobView interrupted = wait_final(service, ids[1]);
     EXPECT_EQ(interrupted.record.status, JobStatus::Succeeded);
     EXPECT_EQ(interrupted.record.attempts, 2);
+    EXPECT_EQ(wait_final(service, ids[2]).record.status, JobStatus::Succeeded);
+    EXPECT_EQ(service.stats().lease_expiries, postgres() ? 1u : 0u)
+        << "PostgreSQL takes the job over when its lease expires; SQLite requeues it at start";
   }
   EXPECT_EQ(gate->started, 2);
-  EXPECT_EQ(store.artifact(ids[2], "net.json")->data, "{\"kept\":true}");
-  EXPECT_TRUE(store.unfinished().empty());
-  std::filesystem::remove_all(dir);
+  EXPECT_EQ(store.artifact(ids[0], "net.json")->data, "{\"kept\":true}");
+  EXPECT_EQ(store.count_by_status()["succeeded"], 3u);
 }
 
-TEST(JobServiceTest, JobThatKeepsKillingTheServerFails) {
-  JobStore store(":memory:");
+// A job whose node died each time it ran it (here: claims under leases that expire at once)
+// fails once it has used up its attempts, without running again.
+TEST_P(JobServiceTest, JobThatKeepsKillingTheServerFails) {
+  const auto owned = open_store();
+  JobStore& store = *owned;
   JobRecord job;
   job.id = new_job_id();
   job.options = options_to_json({});
   job.format = "obj";
   const JobInput in = input_of("v 0 0 0\n");
-  store.insert(job, &in);
-  for (int i = 0; i < 3; ++i) store.mark_running(job.id, now_seconds());  // three crashes
+  store.insert(job, &in, 10);
+  for (int i = 0; i < 3; ++i) {  // three crashes
+    ASSERT_TRUE(store.claim("crashing-node", 0, now_seconds()));
+    store.recover_interrupted();
+  }
   auto gate = std::make_shared<Gate>();
   gate->open = true;
   JobService service(store, gated_runner(gate), settings(1, 4), quiet);
@@ -344,10 +369,11 @@ TEST(JobServiceTest, JobThatKeepsKillingTheServerFails) {
   const JobView v = wait_final(service, job.id);
   EXPECT_EQ(v.record.status, JobStatus::Failed);
   EXPECT_EQ(v.record.error["code"], "interrupted_too_often");
+  EXPECT_EQ(v.record.attempts, 4);
   EXPECT_EQ(gate->started, 0);
 }
 
-TEST(JobServiceTest, JobIdsAreOpaqueAndValidated) {
+TEST(JobIdTest, OpaqueAndValidated) {
   const std::string id = new_job_id();
   EXPECT_TRUE(valid_job_id(id));
   EXPECT_NE(id, new_job_id());

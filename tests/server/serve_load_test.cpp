@@ -9,9 +9,14 @@
 #include <mutex>
 #include <set>
 
+#include "tests/support/postgres.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;
+
+// Both stores take the load and the kill.
+class ServeLoad : public BothStores {};
+INSTANTIATE_BOTH_STORES(ServeLoad);
 
 namespace {
 
@@ -56,7 +61,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 // worker is busy with a long job and the queue holds 40: every answer is 202, 200 or 429 with
 // Retry-After; every accepted job ends succeeded; the server's memory after the burst is within
 // a generous bound of before.
-TEST(ServeLoad, TwoHundredClientsAgainstABusyWorkerAndABoundedQueue) {
+TEST_P(ServeLoad, TwoHundredClientsAgainstABusyWorkerAndABoundedQueue) {
   Server s({"--workers", "1", "--queue-length", "40", "--http-threads", "16", "--reuse-results",
             "false"});
   const std::size_t rss_before = proc_status_kb(s.pid(), "VmRSS");
@@ -117,7 +122,7 @@ TEST(ServeLoad, TwoHundredClientsAgainstABusyWorkerAndABoundedQueue) {
 
 // kill -9 while a burst of clients submits and one job runs; a restart on the same store
 // finishes every job whose POST was answered 202: none lost, none duplicated.
-TEST(ServeLoad, KillNineDuringABurstLosesNoAcceptedJob) {
+TEST_P(ServeLoad, KillNineDuringABurstLosesNoAcceptedJob) {
   auto server = std::make_unique<Server>(std::vector<std::string>{
       "--workers", "1", "--queue-length", "1000", "--reuse-results", "false"});
   const fs::path data = server->data();

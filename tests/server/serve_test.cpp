@@ -3,9 +3,14 @@
 
 #include "api/net_json.h"
 #include "core/unfold/net_check.h"
+#include "tests/support/postgres.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;
+
+// The end-to-end tests run against both stores.
+class ServeTest : public BothStores {};
+INSTANTIATE_BOTH_STORES(ServeTest);
 
 namespace {
 
@@ -15,7 +20,7 @@ constexpr const char* kNonManifoldObj =
 
 }  // namespace
 
-TEST(ServeTest, HealthReadinessMetricsAndOpenApi) {
+TEST_P(ServeTest, HealthReadinessMetricsAndOpenApi) {
   Server s({"--workers", "1"});
   auto c = s.client();
   EXPECT_EQ(c.Get("/healthz")->status, 200);
@@ -31,7 +36,7 @@ TEST(ServeTest, HealthReadinessMetricsAndOpenApi) {
   EXPECT_TRUE(doc["paths"].contains("/v1/jobs/{id}"));
 }
 
-TEST(ServeTest, SubmitPollAndFetchObj) {
+TEST_P(ServeTest, SubmitPollAndFetchObj) {
   Server s({"--workers", "1"});
   const std::string id = submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3");
   const json job = wait_final(s, id);
@@ -82,7 +87,7 @@ std::string svg_data(const std::string& svg, const std::string& name) {
 }  // namespace
 
 // The `tabs` option takes a mode (auto, strips, none) or, as first, a boolean.
-TEST(ServeTest, TabsOptionTakesModesOrABoolean) {
+TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   Server s({"--workers", "1"});
   auto c = s.client();
   const std::string strips =
@@ -123,7 +128,7 @@ TEST(ServeTest, TabsOptionTakesModesOrABoolean) {
 
 // Progressive unfolding (the default, QQ): while the job runs, the result URLs serve the latest
 // overlap-free intermediate, said so in a header and in the body; then the complete net.
-TEST(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
+TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
   Server s({"--workers", "1"});
   const std::string id = submit(s, test_mesh("Duck.glb"), "model/gltf-binary");
   auto c = s.client();
@@ -169,7 +174,7 @@ TEST(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
 // (QQ completes the Duck's 4,212 faces in ~0.4 s since TU's walks towards overlapping faces, so
 // 0.1 s. On a loaded machine 0.1 s may not even unfold the coarse mesh: then the net is of the
 // coarsest mesh the collapses reach, still an approximation.)
-TEST(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
+TEST_P(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
   Server s({"--workers", "1"});
   const json job =
       wait_final(s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?time_limit=0.1"));
@@ -184,7 +189,7 @@ TEST(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
   EXPECT_EQ(net->get_header_value("X-Papernet-Level").rfind("approximate", 0), 0u);
 }
 
-TEST(ServeTest, SubmitGlbDracoAndMultipartGltf) {
+TEST_P(ServeTest, SubmitGlbDracoAndMultipartGltf) {
   Server s({"--workers", "1"});
   std::vector<std::string> ids = {
       submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU"),
@@ -218,7 +223,7 @@ TEST(ServeTest, SubmitGlbDracoAndMultipartGltf) {
       << failed.dump();
 }
 
-TEST(ServeTest, EventStreamEndsWithTheFinalState) {
+TEST_P(ServeTest, EventStreamEndsWithTheFinalState) {
   Server s({"--workers", "1"});
   const std::string id = submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU");
   std::string stream;
@@ -244,7 +249,7 @@ TEST(ServeTest, EventStreamEndsWithTheFinalState) {
       << stream;
 }
 
-TEST(ServeTest, EveryErrorCodeFromTheInputThatCausesIt) {
+TEST_P(ServeTest, EveryErrorCodeFromTheInputThatCausesIt) {
   Server s({"--workers", "1", "--max-body-bytes", "100000", "--max-faces", "500"});
   auto c = s.client();
   const std::string obj = test_mesh("sample.obj");  // 1000 faces, 81 KB
@@ -284,7 +289,7 @@ TEST(ServeTest, EveryErrorCodeFromTheInputThatCausesIt) {
   expect_problem(c.Delete("/v1/jobs/" + bad), 409, "job_finished");
 }
 
-TEST(ServeTest, ListsRecentJobsPaged) {
+TEST_P(ServeTest, ListsRecentJobsPaged) {
   Server s({"--workers", "1"});
   std::vector<std::string> ids;
   for (int i = 0; i < 3; ++i)
@@ -301,7 +306,7 @@ TEST(ServeTest, ListsRecentJobsPaged) {
 }
 
 // Needs jobs that take a while: a full queue, cancelling a running job, a graceful stop.
-TEST(ServeTest, QueueFullCancelAndShutdown) {
+TEST_P(ServeTest, QueueFullCancelAndShutdown) {
   Server s({"--workers", "1", "--queue-length", "1", "--shutdown-grace", "30"});
   const std::string mesh = test_mesh("reference.obj");
   const std::string first = submit(s, mesh, "model/obj", "?strategy=TU&time_limit=60");
@@ -332,7 +337,7 @@ TEST(ServeTest, QueueFullCancelAndShutdown) {
 }
 
 // SIGTERM with no grace: the running job is stopped, stays queued, and runs after a restart.
-TEST(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
+TEST_P(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
   auto server = std::make_unique<Server>(std::vector<std::string>{"--shutdown-grace", "0"});
   const fs::path data = server->data();
   const std::string id = submit(*server, test_mesh("Duck.glb"), "", "?strategy=TU");
@@ -348,7 +353,7 @@ TEST(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
 }
 
 // kill -9 with jobs queued and running; a restart finishes every one and loses no result.
-TEST(ServeTest, KillNineThenRestartFinishesEveryJob) {
+TEST_P(ServeTest, KillNineThenRestartFinishesEveryJob) {
   auto server = std::make_unique<Server>(std::vector<std::string>{"--workers", "1"});
   const fs::path data = server->data();
   const std::string finished = submit(*server, test_mesh("mirror.ply"), "", "?strategy=TU");
@@ -379,7 +384,7 @@ TEST(ServeTest, KillNineThenRestartFinishesEveryJob) {
 
 // The command line and the service run one pipeline (engine/pipeline.h): the same mesh and
 // options give the same net JSON, its seconds aside, for a progressive, a TU and a simplified job.
-TEST(ServeTest, CommandLineAndServiceWriteTheSameNet) {
+TEST_P(ServeTest, CommandLineAndServiceWriteTheSameNet) {
   Server s({"--workers", "1"});
   const std::string mesh = test_mesh("mirror.ply");  // 286 faces
   struct Job {
@@ -417,7 +422,7 @@ TEST(ServeTest, CommandLineAndServiceWriteTheSameNet) {
 // also one only the print checks (a sheet too small for its margins). A mesh in three parts
 // gives three pieces; with strict=true it is the mesh's fault: the job fails with invalid_mesh
 // and the validator's reasons.
-TEST(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsPiecesOrStrictlyTheMeshProblem) {
+TEST_P(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsPiecesOrStrictlyTheMeshProblem) {
   Server s({"--workers", "1"});
   auto c = s.client();
   const std::string cube = test_mesh("sample.obj");

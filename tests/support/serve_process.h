@@ -18,6 +18,8 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/postgres.h"
+
 namespace papernet::test {
 
 namespace fs = std::filesystem;
@@ -39,7 +41,7 @@ inline std::string test_mesh(const std::string& name) {
 class Server {
  public:
   explicit Server(std::vector<std::string> flags, fs::path data = {})
-      : flags_(std::move(flags)),
+      : flags_(with_store_flags(std::move(flags))),
         data_(data.empty()
                   ? fs::temp_directory_path() / ("papernet_serve_" + std::to_string(::getpid()) +
                                                  "_" + std::to_string(counter_++))
@@ -105,6 +107,10 @@ class Server {
   void keep_data() { owns_ = false; }
 
  private:
+  static std::vector<std::string> with_store_flags(std::vector<std::string> flags) {
+    flags.insert(flags.begin(), server_store_flags().begin(), server_store_flags().end());
+    return flags;
+  }
   static inline int counter_ = 0;
   std::vector<std::string> flags_;
   fs::path data_;

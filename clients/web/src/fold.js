@@ -2,8 +2,10 @@
 // tested in Node). Every face hangs from its parent by the mesh edge they share; folding by t
 // rotates each face's subtree about that edge by t × its fold angle, composed from the root down.
 // At t = 0 every piece lies flat in z = 0 as drawn (x, y = its 2D points, y mirrored when the
-// piece is drawn clockwise), the pieces side by side in a row; at t = 1 each piece is its part of
-// the mesh, moved rigidly so its root face stays put.
+// piece is drawn clockwise), the pieces side by side in a row; at t = 1 the first piece is its
+// part of the mesh, moved rigidly so its root face stays put, and every other piece is where its
+// part is in the model next to it (a model in parts is seen whole), each piece turning and moving
+// there steadily as t grows.
 
 const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -14,7 +16,6 @@ const unit = (a) => {
 };
 
 /** Affine 3×4 matrices as 12 numbers, row-major: [r00 r01 r02 tx, r10 ... ty, r20 ... tz]. */
-const IDENTITY = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0];
 
 function multiply(a, b) {
   const out = new Array(12);
@@ -28,7 +29,7 @@ function multiply(a, b) {
   return out;
 }
 
-/** Rotation by `angle` about the line through `p` (z = 0) with unit direction `d` (z = 0). */
+/** Rotation by `angle` about the line through `p` with unit direction `d`. */
 function rotationAbout(p, d, angle) {
   const c = Math.cos(angle);
   const s = Math.sin(angle);
@@ -42,6 +43,42 @@ function rotationAbout(p, d, angle) {
   // Translate p to the origin, rotate, translate back: t = p - R p.
   const t = [0, 1, 2].map((i) => p[i] - (r[i * 3] * p[0] + r[i * 3 + 1] * p[1] + r[i * 3 + 2] * p[2]));
   return [r[0], r[1], r[2], t[0], r[3], r[4], r[5], t[1], r[6], r[7], r[8], t[2]];
+}
+
+/** The rigid motion taking the triangle a (3 points) onto the congruent triangle b. */
+function rigidOnto(a, b) {
+  const frame = ([p0, p1, p2]) => {
+    const e1 = unit(sub(p1, p0));
+    const n = unit(cross(sub(p1, p0), sub(p2, p0)));
+    return [e1, cross(n, e1), n];
+  };
+  const fa = frame(a);
+  const fb = frame(b);
+  // R = Fb Fa^T (frames as columns), then t = b0 - R a0.
+  const r = [];
+  for (let i = 0; i < 3; ++i)
+    for (let j = 0; j < 3; ++j) r.push(fb[0][i] * fa[0][j] + fb[1][i] * fa[1][j] + fb[2][i] * fa[2][j]);
+  const t = [0, 1, 2].map((i) => b[0][i] - (r[i * 3] * a[0][0] + r[i * 3 + 1] * a[0][1] + r[i * 3 + 2] * a[0][2]));
+  return [r[0], r[1], r[2], t[0], r[3], r[4], r[5], t[1], r[6], r[7], r[8], t[2]];
+}
+
+/** The inverse of a rigid motion. */
+function inverseRigid(m) {
+  const r = [m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]];  // transposed
+  const t = [0, 1, 2].map((i) => -(r[i * 3] * m[3] + r[i * 3 + 1] * m[7] + r[i * 3 + 2] * m[11]));
+  return [r[0], r[1], r[2], t[0], r[3], r[4], r[5], t[1], r[6], r[7], r[8], t[2]];
+}
+
+/** The rotation of a rigid motion as a unit axis and an angle in [0, π]. */
+function axisAngle(m) {
+  const angle = Math.acos(Math.min(1, Math.max(-1, (m[0] + m[5] + m[10] - 1) / 2)));
+  const axis = [m[9] - m[6], m[2] - m[8], m[4] - m[1]];
+  if (Math.hypot(...axis) > 1e-6) return { axis: unit(axis), angle };
+  if (angle < 1) return { axis: [0, 0, 1], angle: 0 };
+  // A half turn: R = 2 a a^T - I, so a is along the column of R + I with the largest diagonal.
+  const d = [m[0], m[5], m[10]];
+  const k = d.indexOf(Math.max(...d));
+  return { axis: unit([0, 1, 2].map((i) => m[i * 4 + k] + (i === k ? 1 : 0))), angle };
 }
 
 function transform(m, p) {
@@ -131,7 +168,17 @@ export function prepareFold(doc) {
     }
   }
   if (order.length !== n) throw new Error(`${n - order.length} faces are not connected to a root`);
-  return { faces, flat, order, hinge, roots, pieces };
+  // Folded, a piece's root face stays where it lies flat; `place[p]` takes piece p from there to
+  // where its part is beside the first piece's, as a turn about an axis through the root face's
+  // centre and a move of that centre.
+  const onto = roots.map((root) => rigidOnto(flat[root], faces[root].map((v) => vertices[v])));
+  const intoFirst = inverseRigid(onto[0]);
+  const place = roots.map((root, p) => {
+    const motion = multiply(intoFirst, onto[p]);
+    const centre = [0, 1, 2].map((k) => (flat[root][0][k] + flat[root][1][k] + flat[root][2][k]) / 3);
+    return { centre, target: transform(motion, centre), ...axisAngle(motion) };
+  });
+  return { faces, flat, order, hinge, roots, pieces, pieceOf, place };
 }
 
 /**
@@ -139,11 +186,16 @@ export function prepareFold(doc) {
  * 9 numbers per face (face i's corners k = 0..2 at 9i + 3k), written into `out` if given.
  */
 export function foldPositions(prepared, t, out = new Float32Array(prepared.faces.length * 9)) {
-  const { flat, order, hinge } = prepared;
+  const { flat, order, hinge, pieceOf, place } = prepared;
   const matrix = new Array(flat.length);
+  const placed = place.map(({ centre, target, axis, angle }) => {
+    const m = rotationAbout(centre, axis, t * angle);
+    for (let k = 0; k < 3; ++k) m[k * 4 + 3] += t * (target[k] - centre[k]);
+    return m;
+  });
   for (const i of order) {
     const h = hinge[i];
-    matrix[i] = h ? multiply(matrix[h.parent], rotationAbout(h.point, h.direction, t * h.angle)) : IDENTITY;
+    matrix[i] = h ? multiply(matrix[h.parent], rotationAbout(h.point, h.direction, t * h.angle)) : placed[pieceOf[i]];
     for (let k = 0; k < 3; ++k) out.set(transform(matrix[i], flat[i][k]), i * 9 + k * 3);
   }
   return out;

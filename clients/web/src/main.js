@@ -165,7 +165,7 @@ function describe(job, withStatus = true) {
   if (p.phase && p.phase !== job.status && !isFinal(job.status)) parts.push(p.phase);
   if (p.pieces > 1 && !isFinal(job.status)) parts.push(`piece ${p.piece} of ${p.pieces}`);
   if (p.queue_position) parts.push(`#${p.queue_position} in queue`);
-  if (p.faces != null && p.input_faces) {
+  if (p.faces != null && p.input_faces && p.faces < p.input_faces) {
     parts.push(`approximation: ${p.faces} of ${p.input_faces} faces (${((100 * p.faces) / p.input_faces).toFixed(1)} %)`);
   }
   if (p.overlaps != null) parts.push(`${p.overlaps} overlaps`);

@@ -163,6 +163,9 @@ test("the demo unfolds every part of a model, or only the largest, and lists the
   assert.ok(Number(all.status.match(/in (\d+) pieces/)[1]) > 10, all.status);
   assert.ok(all.repairs.some(([code]) => code === "split_pinched_vertices"), JSON.stringify(all.repairs));
   assert.ok(await page.isVisible("#repairs"));
+  const pieces = screenshot.replace(/\.png$/, "-pieces.png");
+  await page.screenshot({ path: pieces, fullPage: true });
+  console.log(`screenshot: ${pieces}`);
   const largest = await run("largest");
   assert.equal(largest.state, "done", largest.status);
   assert.doesNotMatch(largest.status, /pieces/);

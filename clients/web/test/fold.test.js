@@ -107,6 +107,21 @@ test("pieces lie side by side flat and each folds into its part", () => {
     const part = { mesh: { vertices: piece.mesh.vertices, faces: piece.mesh.faces } };
     assertFoldsIntoMesh(part, folded.subarray(from * 9, (from + 4) * 9), 1e-5);
   }
+  // And together as in the model: every two corners as far apart as their vertices in the mesh.
+  const corners = doc.mesh.faces.flatMap((f, i) => f.map((v, k) => [v, Array.from(folded.subarray(i * 9 + k * 3, i * 9 + k * 3 + 3))]));
+  for (const [u, p] of corners)
+    for (const [w, q] of corners) {
+      const d3 = Math.hypot(...[0, 1, 2].map((k) => doc.mesh.vertices[u][k] - doc.mesh.vertices[w][k]));
+      assert.ok(Math.abs(Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]) - d3) < 1e-5, `vertices ${u} and ${w}`);
+    }
+  // Half way, the second piece is still rigid.
+  const half = foldPositions(prepared, 0.5);
+  for (let i = 4; i < 8; ++i)
+    for (const [u, w] of [[0, 1], [1, 2], [2, 0]]) {
+      const a = Math.hypot(...[0, 1, 2].map((k) => half[i * 9 + u * 3 + k] - half[i * 9 + w * 3 + k]));
+      const b = Math.hypot(...[0, 1, 2].map((k) => prepared.flat[i][u][k] - prepared.flat[i][w][k]));
+      assert.ok(Math.abs(a - b) < 1e-5);
+    }
   doc.net.faces[5].parent = 1;  // a parent in the other piece
   assert.throws(() => prepareFold(doc), /face 5 has parent 1/);
 });

@@ -116,6 +116,37 @@ TEST(Repair, AnEdgeOfThreeFacesIsCut) {
   EXPECT_EQ(parts[1].faces.size(), 1u);
 }
 
+// The same fin listed first: the file's order pairs it with a face of the tetrahedron, whose
+// cut side stays joined at both ends through the faces around them. That face is detached at one
+// end, so no edge keeps three faces.
+TEST(Repair, AFinPairedFirstStillLeavesNoEdgeOfThreeFaces) {
+  const LoadedMesh in =
+      obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0.5 -1 0.5\n"
+          "f 1 2 5\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
+  const RepairResult r = repair_mesh(in.mesh, in.raw_faces);
+  ASSERT_NE(find(r, "cut_non_manifold_edges"), nullptr) << codes(r);
+  EXPECT_EQ(r.mesh.faces.size(), 5u);
+  EXPECT_EQ(blocking(r.mesh), "") << codes(r);
+}
+
+// A face and its reverse folded flat on an edge of a closed surface (Suzanne's eyebrow in the
+// classic collection has one): both go, and the tetrahedron is left as it was, closed.
+TEST(Repair, AFlapOfAFaceAndItsReverseGoesWhole) {
+  const LoadedMesh in =
+      obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0.5 -1 0.5\n"
+          "f 1 3 2\nf 1 2 4\nf 1 2 5\nf 1 5 2\nf 2 3 4\nf 3 1 4\n");
+  ASSERT_FALSE(validate(in.mesh).unfoldable());
+  const RepairResult r = repair_mesh(in.mesh, in.raw_faces);
+  const MeshRepair* dup = find(r, "removed_duplicate_faces");
+  ASSERT_NE(dup, nullptr) << codes(r);
+  EXPECT_EQ(dup->count, 2u);
+  EXPECT_EQ(dup->elements, (std::vector<int>{2, 3}));
+  EXPECT_EQ(r.repairs.size(), 1u) << codes(r);
+  EXPECT_EQ(r.mesh.faces.size(), 4u);
+  EXPECT_EQ(blocking(r.mesh), "");
+  EXPECT_EQ(validate(r.mesh).boundary_loops, 0u);
+}
+
 // A T-junction closed by a zero-area face (a cap: vertex 5 on edge 1-3) is flipped away with
 // its neighbour: the square stays closed, with no degenerate face.
 TEST(Repair, ACapIsFlippedAwayWithoutAHole) {

@@ -1,0 +1,499 @@
+#include "server/sqlite_store.h"
+
+#include <sqlite3.h>
+
+namespace papernet::server {
+namespace {
+
+constexpr const char* kPragmas = R"sql(
+PRAGMA journal_mode=WAL;
+PRAGMA synchronous=NORMAL;
+PRAGMA busy_timeout=5000;
+)sql";
+
+// The schema's versions, applied in order; PRAGMA user_version says how many a file has.
+// Version 1 is the schema from before versioning, so files it made migrate from there.
+constexpr const char* kMigrations[] = {
+    R"sql(
+CREATE TABLE IF NOT EXISTS jobs(
+  seq INTEGER PRIMARY KEY AUTOINCREMENT,
+  id TEXT UNIQUE NOT NULL,
+  status TEXT NOT NULL,
+  created REAL NOT NULL, started REAL NOT NULL DEFAULT 0, finished REAL NOT NULL DEFAULT 0,
+  options TEXT NOT NULL, format TEXT NOT NULL, input_bytes INTEGER NOT NULL,
+  input_key TEXT NOT NULL, input_faces INTEGER NOT NULL DEFAULT 0,
+  faces INTEGER NOT NULL DEFAULT 0, overlaps INTEGER NOT NULL DEFAULT 0,
+  result_kind TEXT NOT NULL DEFAULT '', metrics TEXT NOT NULL DEFAULT '{}',
+  error TEXT NOT NULL DEFAULT 'null', result_job TEXT NOT NULL DEFAULT '',
+  attempts INTEGER NOT NULL DEFAULT 0);
+CREATE INDEX IF NOT EXISTS jobs_by_key ON jobs(input_key);
+CREATE INDEX IF NOT EXISTS jobs_by_status ON jobs(status);
+CREATE TABLE IF NOT EXISTS inputs(job_id TEXT PRIMARY KEY, mesh BLOB NOT NULL);
+CREATE TABLE IF NOT EXISTS input_files(job_id TEXT NOT NULL, name TEXT NOT NULL,
+  data BLOB NOT NULL, PRIMARY KEY(job_id, name));
+CREATE TABLE IF NOT EXISTS results(job_id TEXT NOT NULL, name TEXT NOT NULL,
+  content_type TEXT NOT NULL, data BLOB NOT NULL, PRIMARY KEY(job_id, name));
+)sql",
+    // Claims and leases (docs/scaling.md), published progress and intermediates.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN claimed_by TEXT NOT NULL DEFAULT '';
+ALTER TABLE jobs ADD COLUMN lease_until REAL NOT NULL DEFAULT 0;
+ALTER TABLE jobs ADD COLUMN cancel_requested INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE jobs ADD COLUMN progress TEXT NOT NULL DEFAULT 'null';
+ALTER TABLE jobs ADD COLUMN intermediate TEXT NOT NULL DEFAULT 'null';
+CREATE TABLE IF NOT EXISTS intermediates(job_id TEXT NOT NULL, name TEXT NOT NULL,
+  content_type TEXT NOT NULL, data BLOB NOT NULL, PRIMARY KEY(job_id, name));
+)sql",
+};
+
+// The store's clock, in seconds since the epoch, for leases.
+constexpr const char* kNow = "((julianday('now') - 2440587.5) * 86400.0)";
+
+constexpr const char* kColumns =
+    "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
+    "input_faces, faces, overlaps, result_kind, metrics, error, result_job, attempts, "
+    "claimed_by, cancel_requested, progress, intermediate, "
+    "(SELECT group_concat(r.name, '/') FROM results r WHERE r.job_id = result_job)";
+
+// A running job held by this claim.
+constexpr const char* kHeld = "id=? AND claimed_by=? AND attempts=? AND status='running'";
+
+[[noreturn]] void fail(sqlite3* db, const std::string& what) {
+  throw StoreError("job store: " + what + ": " + sqlite3_errmsg(db));
+}
+
+// One prepared statement; binds by position (1-based), finalised on scope exit.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& sql) : db_(db) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK) fail(db, "prepare");
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  Statement& bind(int i, const std::string& text) {
+    sqlite3_bind_text(stmt_, i, text.data(), static_cast<int>(text.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  Statement& blob(int i, const std::string& data) {
+    sqlite3_bind_blob64(stmt_, i, data.data(), data.size(), SQLITE_STATIC);
+    return *this;
+  }
+  Statement& bind(int i, double v) {
+    sqlite3_bind_double(stmt_, i, v);
+    return *this;
+  }
+  Statement& bind(int i, std::int64_t v) {
+    sqlite3_bind_int64(stmt_, i, v);
+    return *this;
+  }
+  // The three parameters of kHeld, from `first` on.
+  Statement& held(int first, const std::string& id, const Claim& claim) {
+    return bind(first, id).bind(first + 1, claim.node).bind(first + 2, std::int64_t{claim.attempt});
+  }
+  /// True while there is a row.
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc != SQLITE_DONE) fail(db_, "step");
+    return false;
+  }
+  /// Runs a statement without rows; returns the rows it changed.
+  int run() {
+    step();
+    return sqlite3_changes(db_);
+  }
+  std::string text(int col) const {
+    const auto* p = static_cast<const char*>(sqlite3_column_blob(stmt_, col));
+    return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, col)))
+             : std::string();
+  }
+  double real(int col) const { return sqlite3_column_double(stmt_, col); }
+  std::int64_t integer(int col) const { return sqlite3_column_int64(stmt_, col); }
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+// BEGIN IMMEDIATE .. COMMIT, rolled back when an exception or an early return leaves the scope.
+class Transaction {
+ public:
+  explicit Transaction(sqlite3* db) : db_(db) { exec("BEGIN IMMEDIATE"); }
+  ~Transaction() {
+    if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  }
+  void commit() {
+    exec("COMMIT");
+    done_ = true;
+  }
+
+ private:
+  void exec(const char* sql) {
+    if (sqlite3_exec(db_, sql, nullptr, nullptr, nullptr) != SQLITE_OK) fail(db_, sql);
+  }
+  sqlite3* db_;
+  bool done_ = false;
+};
+
+JobRecord read_job(const Statement& s) {
+  JobRecord j;
+  j.seq = s.integer(0);
+  j.id = s.text(1);
+  j.status = parse_status(s.text(2));
+  j.created = s.real(3);
+  j.started = s.real(4);
+  j.finished = s.real(5);
+  j.options = nlohmann::json::parse(s.text(6));
+  j.format = s.text(7);
+  j.input_bytes = static_cast<std::size_t>(s.integer(8));
+  j.input_key = s.text(9);
+  j.input_faces = static_cast<std::size_t>(s.integer(10));
+  j.faces = static_cast<std::size_t>(s.integer(11));
+  j.overlaps = static_cast<std::size_t>(s.integer(12));
+  j.result_kind = s.text(13);
+  j.metrics = nlohmann::json::parse(s.text(14));
+  j.error = nlohmann::json::parse(s.text(15));
+  j.result_job = s.text(16);
+  j.attempts = static_cast<int>(s.integer(17));
+  j.node = s.text(18);
+  j.cancel_requested = s.integer(19) != 0;
+  j.progress = nlohmann::json::parse(s.text(20));
+  j.intermediate = nlohmann::json::parse(s.text(21));
+  j.result_files = split_file_names(s.text(22));
+  return j;
+}
+
+std::int64_t i64(std::size_t v) { return static_cast<std::int64_t>(v); }
+
+void exec_script(sqlite3* db, const char* sql, const std::string& path) {
+  char* error = nullptr;
+  if (sqlite3_exec(db, sql, nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string message = error ? error : "unknown error";
+    sqlite3_free(error);
+    throw StoreError("job store: cannot prepare '" + path + "': " + message);
+  }
+}
+
+void migrate(sqlite3* db, const std::string& path) {
+  exec_script(db, kPragmas, path);
+  int version = 0;
+  {
+    Statement s(db, "PRAGMA user_version");
+    if (s.step()) version = static_cast<int>(s.integer(0));
+  }
+  const int known = static_cast<int>(std::size(kMigrations));
+  if (version > known)
+    throw StoreError("job store: '" + path + "' has schema version " + std::to_string(version) +
+                     ", newer than this papernet knows (" + std::to_string(known) + ")");
+  for (int v = version + 1; v <= known; ++v) {
+    Transaction tx(db);
+    exec_script(db, kMigrations[v - 1], path);
+    exec_script(db, ("PRAGMA user_version=" + std::to_string(v)).c_str(), path);
+    tx.commit();
+  }
+}
+
+}  // namespace
+
+SqliteJobStore::SqliteJobStore(const std::string& path) {
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) !=
+      SQLITE_OK) {
+    const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw StoreError("job store: cannot open '" + path + "': " + message);
+  }
+  try {
+    migrate(db_, path);
+  } catch (...) {
+    sqlite3_close(db_);
+    throw;
+  }
+}
+
+SqliteJobStore::~SqliteJobStore() { sqlite3_close(db_); }
+
+bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue_limit) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  if (job.status == JobStatus::Queued) {
+    Statement queued(db_, "SELECT COUNT(*) FROM jobs WHERE status='queued'");
+    if (queued.step() && queued.integer(0) >= i64(queue_limit)) return false;
+  }
+  Statement(db_,
+            "INSERT INTO jobs(id, status, created, started, finished, options, format, "
+            "input_bytes, input_key, input_faces, faces, overlaps, result_kind, metrics, error, "
+            "result_job, attempts) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)")
+      .bind(1, job.id)
+      .bind(2, status_name(job.status))
+      .bind(3, job.created)
+      .bind(4, job.started)
+      .bind(5, job.finished)
+      .bind(6, job.options.dump())
+      .bind(7, job.format)
+      .bind(8, i64(job.input_bytes))
+      .bind(9, job.input_key)
+      .bind(10, i64(job.input_faces))
+      .bind(11, i64(job.faces))
+      .bind(12, i64(job.overlaps))
+      .bind(13, job.result_kind)
+      .bind(14, job.metrics.dump())
+      .bind(15, job.error.dump())
+      .bind(16, job.result_job)
+      .bind(17, std::int64_t{job.attempts})
+      .run();
+  job.seq = sqlite3_last_insert_rowid(db_);
+  if (input) {
+    Statement(db_, "INSERT INTO inputs(job_id, mesh) VALUES(?,?)")
+        .bind(1, job.id)
+        .blob(2, input->mesh)
+        .run();
+    for (const auto& [name, data] : input->external_files)
+      Statement(db_, "INSERT INTO input_files(job_id, name, data) VALUES(?,?,?)")
+          .bind(1, job.id)
+          .bind(2, name)
+          .blob(3, data)
+          .run();
+  }
+  tx.commit();
+  return true;
+}
+
+std::optional<JobRecord> SqliteJobStore::find(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE id=?");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return read_job(s);
+}
+
+std::vector<JobRecord> SqliteJobStore::list(std::size_t limit, std::int64_t before_seq) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, std::string("SELECT ") + kColumns +
+                       " FROM jobs WHERE (?=0 OR seq<?) ORDER BY seq DESC LIMIT ?");
+  s.bind(1, before_seq).bind(2, before_seq).bind(3, i64(limit));
+  std::vector<JobRecord> out;
+  while (s.step()) out.push_back(read_job(s));
+  return out;
+}
+
+JobInput SqliteJobStore::input(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  JobInput in;
+  Statement mesh(db_,
+                 "SELECT inputs.mesh, jobs.format FROM inputs JOIN jobs ON jobs.id=job_id "
+                 "WHERE job_id=?");
+  mesh.bind(1, id);
+  if (!mesh.step()) throw StoreError("job store: no stored input for job " + id);
+  in.mesh = mesh.text(0);
+  in.format = format_of_record(mesh.text(1));
+  Statement files(db_, "SELECT name, data FROM input_files WHERE job_id=?");
+  files.bind(1, id);
+  while (files.step()) in.external_files[files.text(0)] = files.text(1);
+  return in;
+}
+
+std::optional<JobRecord> SqliteJobStore::find_reusable(const std::string& input_key,
+                                                       const JobInput& input) {
+  std::lock_guard lock(mutex_);
+  // The key is a hash; equal bytes make the match certain. External files are in the key.
+  Statement s(db_, std::string("SELECT ") + kColumns +
+                       " FROM jobs JOIN inputs ON inputs.job_id = jobs.id WHERE input_key=? "
+                       "AND status IN ('succeeded','approximated') AND inputs.mesh=? "
+                       "ORDER BY seq DESC LIMIT 1");
+  s.bind(1, input_key).blob(2, input.mesh);
+  if (!s.step()) return std::nullopt;
+  return read_job(s);
+}
+
+std::map<std::string, std::size_t> SqliteJobStore::count_by_status() {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "SELECT status, COUNT(*) FROM jobs GROUP BY status");
+  std::map<std::string, std::size_t> out;
+  while (s.step()) out[s.text(0)] = static_cast<std::size_t>(s.integer(1));
+  return out;
+}
+
+std::size_t SqliteJobStore::queue_position(std::int64_t seq) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "SELECT COUNT(*) FROM jobs WHERE status='queued' AND seq<=?");
+  s.bind(1, seq);
+  return s.step() ? static_cast<std::size_t>(s.integer(0)) : 0;
+}
+
+std::vector<std::string> SqliteJobStore::recover_interrupted() {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  std::vector<std::string> ids;
+  Statement running(db_, "SELECT id FROM jobs WHERE status='running' ORDER BY seq");
+  while (running.step()) ids.push_back(running.text(0));
+  Statement(db_,
+            "UPDATE jobs SET status='queued', started=0, claimed_by='', lease_until=0, "
+            "progress='null', intermediate='null' WHERE status='running'")
+      .run();
+  Statement(db_, "DELETE FROM intermediates").run();
+  tx.commit();
+  return ids;
+}
+
+std::optional<ClaimedJob> SqliteJobStore::claim(const std::string& node, double lease_seconds,
+                                                double started) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  Statement next(db_, std::string("SELECT seq, id, status, claimed_by FROM jobs WHERE "
+                                  "status='queued' OR (status='running' AND lease_until<=") +
+                          kNow + ") ORDER BY seq LIMIT 1");
+  if (!next.step()) return std::nullopt;
+  const std::int64_t seq = next.integer(0);
+  const std::string id = next.text(1);
+  ClaimedJob claimed;
+  if (next.text(2) == "running") claimed.expired_node = next.text(3);
+  Statement(db_, std::string("UPDATE jobs SET status='running', claimed_by=?, lease_until=") +
+                     kNow +
+                     "+?, attempts=attempts+1, started=?, progress='null', intermediate='null' "
+                     "WHERE seq=?")
+      .bind(1, node)
+      .bind(2, lease_seconds)
+      .bind(3, started)
+      .bind(4, seq)
+      .run();
+  Statement(db_, "DELETE FROM intermediates WHERE job_id=?").bind(1, id).run();
+  Statement row(db_, std::string("SELECT ") + kColumns + " FROM jobs WHERE seq=?");
+  row.bind(1, seq);
+  row.step();
+  claimed.record = read_job(row);
+  tx.commit();
+  return claimed;
+}
+
+LeaseState SqliteJobStore::renew(const std::string& id, const Claim& claim, double lease_seconds,
+                                 const nlohmann::json* progress) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, std::string("UPDATE jobs SET lease_until=") + kNow +
+                       "+?, progress=coalesce(?, progress) WHERE " + kHeld +
+                       " RETURNING cancel_requested");
+  s.bind(1, lease_seconds);
+  if (progress) s.bind(2, progress->dump());
+  s.held(3, id, claim);
+  LeaseState state;
+  if (s.step()) {
+    state.held = true;
+    state.cancel_requested = s.integer(0) != 0;
+  }
+  return state;
+}
+
+bool SqliteJobStore::put_intermediate(const std::string& id, const Claim& claim,
+                                      const JobOutput& output) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  if (Statement(db_, std::string("UPDATE jobs SET intermediate=? WHERE ") + kHeld)
+          .bind(1, intermediate_level_json(output).dump())
+          .held(2, id, claim)
+          .run() == 0)
+    return false;
+  Statement(db_, "DELETE FROM intermediates WHERE job_id=?").bind(1, id).run();
+  for (const auto& [name, file] : output.files)
+    Statement(db_, "INSERT INTO intermediates(job_id, name, content_type, data) VALUES(?,?,?,?)")
+        .bind(1, id)
+        .bind(2, name)
+        .bind(3, file.content_type)
+        .blob(4, file.data)
+        .run();
+  tx.commit();
+  return true;
+}
+
+std::optional<IntermediateFile> SqliteJobStore::intermediate(const std::string& id,
+                                                             const std::string& name) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_,
+              "SELECT i.content_type, i.data, j.intermediate FROM intermediates i JOIN jobs j ON "
+              "j.id=i.job_id WHERE i.job_id=? AND i.name=? AND j.status='running'");
+  s.bind(1, id).bind(2, name);
+  if (!s.step()) return std::nullopt;
+  const auto level = intermediate_level_from_json(nlohmann::json::parse(s.text(2)));
+  if (!level) return std::nullopt;
+  return IntermediateFile{{s.text(0), s.text(1)}, level->faces, level->input_faces};
+}
+
+bool SqliteJobStore::finish(const JobRecord& job, const Claim& claim, const JobOutput* output) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  if (Statement(db_, std::string("UPDATE jobs SET status=?, finished=?, input_faces=?, faces=?, "
+                                 "overlaps=?, result_kind=?, metrics=?, error=?, result_job=?, "
+                                 "lease_until=0, progress='null', intermediate='null' WHERE ") +
+                         kHeld)
+          .bind(1, status_name(job.status))
+          .bind(2, job.finished)
+          .bind(3, i64(job.input_faces))
+          .bind(4, i64(job.faces))
+          .bind(5, i64(job.overlaps))
+          .bind(6, job.result_kind)
+          .bind(7, job.metrics.dump())
+          .bind(8, job.error.dump())
+          .bind(9, job.result_job)
+          .held(10, job.id, claim)
+          .run() == 0)
+    return false;
+  if (output)
+    for (const auto& [name, file] : output->files)
+      Statement(db_,
+                "INSERT OR REPLACE INTO results(job_id, name, content_type, data) "
+                "VALUES(?,?,?,?)")
+          .bind(1, job.id)
+          .bind(2, name)
+          .bind(3, file.content_type)
+          .blob(4, file.data)
+          .run();
+  Statement(db_, "DELETE FROM intermediates WHERE job_id=?").bind(1, job.id).run();
+  tx.commit();
+  return true;
+}
+
+bool SqliteJobStore::release(const std::string& id, const Claim& claim) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  if (Statement(db_, std::string("UPDATE jobs SET status='queued', started=0, claimed_by='', "
+                                 "lease_until=0, progress='null', intermediate='null' WHERE ") +
+                         kHeld)
+          .held(1, id, claim)
+          .run() == 0)
+    return false;
+  Statement(db_, "DELETE FROM intermediates WHERE job_id=?").bind(1, id).run();
+  tx.commit();
+  return true;
+}
+
+CancelOutcome SqliteJobStore::cancel(const std::string& id, const nlohmann::json& error,
+                                     double finished) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  CancelOutcome outcome = CancelOutcome::NotActive;
+  if (Statement(db_,
+                "UPDATE jobs SET status='cancelled', finished=?, error=? "
+                "WHERE id=? AND status='queued'")
+          .bind(1, finished)
+          .bind(2, error.dump())
+          .bind(3, id)
+          .run() > 0)
+    outcome = CancelOutcome::Cancelled;
+  else if (Statement(db_, "UPDATE jobs SET cancel_requested=1 WHERE id=? AND status='running'")
+               .bind(1, id)
+               .run() > 0)
+    outcome = CancelOutcome::Requested;
+  tx.commit();
+  return outcome;
+}
+
+std::optional<Artifact> SqliteJobStore::artifact(const std::string& result_job,
+                                                 const std::string& name) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "SELECT content_type, data FROM results WHERE job_id=? AND name=?");
+  s.bind(1, result_job).bind(2, name);
+  if (!s.step()) return std::nullopt;
+  return Artifact{s.text(0), s.text(1)};
+}
+
+}  // namespace papernet::server
