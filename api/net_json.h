@@ -51,7 +51,7 @@ struct NetMetrics {
 /// (its root's parent is -1) in the piece's own 2D frame.
 struct NetDocument {
   std::string result = "complete";  ///< "approximate" when any piece is
-  std::string strategy;             ///< "TU", "QQ", "SEMP", "SEQ"
+  std::string strategy;             ///< "AUTO", "TU", "QQ", "SEMP", "SEQ"
   NetInput input;
   std::vector<NetRepair> repairs;
   Mesh mesh;

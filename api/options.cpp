@@ -108,7 +108,8 @@ Strategy strategy(const std::string& name, const json& value) {
   if (s == "SEMP" || s == "SE/MP") return Strategy::SEMP;
   if (s == "SEQ" || s == "SE/Q") return Strategy::SEQ;
   if (s == "TU") return Strategy::TU;
-  bad_value(name, value, "one of QQ, SEMP, SEQ, TU");
+  if (s == "AUTO") return Strategy::AUTO;
+  bad_value(name, value, "one of AUTO, QQ, SEMP, SEQ, TU");
 }
 
 // true/false (the option was a boolean first) or a mode name.
@@ -144,9 +145,10 @@ struct Spec {
 };
 
 constexpr Spec kOptions[] = {
-    {"strategy", "QQ|SEMP|SEQ|TU",
+    {"strategy", "AUTO|QQ|SEMP|SEQ|TU",
      "QQ, SEMP, SEQ: progressive unfolding after collapsing the mesh; TU: Tabu Unfolding of the "
-     "full mesh",
+     "full mesh; AUTO: QQ, and when it stops short of the full mesh, Tabu Unfolding from there "
+     "(an approximation only when neither finds a net)",
      [](JobOptions& o, const std::string& n, const json& v) { o.strategy = strategy(n, v); }},
     {"seed", "N", "seed of every random choice: the same seed, the same net",
      [](JobOptions& o, const std::string& n, const json& v) { o.seed = whole(n, v); }},
@@ -249,8 +251,10 @@ std::string strategy_name(Strategy strategy) {
       return "SEQ";
     case Strategy::TU:
       return "TU";
+    case Strategy::AUTO:
+      return "AUTO";
   }
-  return "QQ";
+  return "AUTO";
 }
 
 std::string option_flag(std::string_view name) {

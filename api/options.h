@@ -15,8 +15,10 @@
 namespace papernet {
 
 /// How the net is found (docs/architecture.md): QQ, SEMP and SEQ collapse the mesh with their
-/// collapse strategy and unfold progressively; TU unfolds the full mesh with the Tabu Unfolder.
-enum class Strategy { QQ, SEMP, SEQ, TU };
+/// collapse strategy and unfold progressively; TU unfolds the full mesh with the Tabu Unfolder;
+/// AUTO (the default) is QQ that, when its uncollapse stops short of the mesh, finishes the mesh
+/// with the Tabu Unfolder from where it stopped (ProgressiveOptions::complete_first).
+enum class Strategy { QQ, SEMP, SEQ, TU, AUTO };
 
 std::string strategy_name(Strategy strategy);
 
@@ -28,7 +30,7 @@ enum class Components { All, Largest };
 /// geometry runs. Each option has one name: `size_mm` in a query or JSON, `--size` on the
 /// command line (option_flag).
 struct JobOptions {
-  Strategy strategy = Strategy::QQ;
+  Strategy strategy = Strategy::AUTO;
   std::uint64_t seed = 1;
   /// Overrides the collapse target t_f; unset means the paper's formula.
   std::optional<std::size_t> target_faces;

@@ -29,6 +29,7 @@ std::string color_of(const std::string& strategy) {
   if (strategy == "SEMP") return "#e66101";
   if (strategy == "SEQ") return "#2166ac";
   if (strategy == "TU") return "#1a9641";
+  if (strategy == "AUTO") return "#d7191c";
   return "#555555";
 }
 
@@ -226,19 +227,29 @@ std::string markdown_report(const std::vector<BenchRun>& runs, const ReportConte
           << " %)";
     out << ".\n";
   }
-  if (find_group(groups, "QQ", h) && find_group(groups, "TU", h)) {
-    const double ratio = find_group(groups, "TU", h)->median / find_group(groups, "QQ", h)->median;
-    out << "- **QQ vs our TU**: our TU's median is " << fmt("%.2f", ratio) << "× QQ's at " << h
-        << " faces";
-    if (paper_result("QQ", h) && paper_result("TU", h))
+  // Our TU's median over QQ's and over the default's (AUTO, QQ finished by TU when it stops).
+  for (const char* s : {"AUTO", "QQ"}) {
+    if (!find_group(groups, s, h) || !find_group(groups, "TU", h)) continue;
+    const double ratio = find_group(groups, "TU", h)->median / find_group(groups, s, h)->median;
+    out << "- **" << s << " vs our TU**: our TU's median is " << fmt("%.2f", ratio) << "× " << s
+        << "'s at " << h << " faces";
+    if (paper_result(s, h) && paper_result("TU", h))
       out << " (paper: TU "
-          << fmt("%.2f", paper_result("TU", h)->median / paper_result("QQ", h)->median) << "× Q/Q)";
+          << fmt("%.2f", paper_result("TU", h)->median / paper_result(s, h)->median) << "× Q/Q)";
     out << "; per resolution:";
     for (int r : resolutions) {
-      const BenchGroup *q = find_group(groups, "QQ", r), *t = find_group(groups, "TU", r);
+      const BenchGroup *q = find_group(groups, s, r), *t = find_group(groups, "TU", r);
       if (q && t) out << " " << r << ": " << fmt("%.2f", t->median / q->median) << "×";
     }
     out << ".\n";
+  }
+  if (find_group(groups, "AUTO", h) && find_group(groups, "TU", h)) {
+    out << "- **Complete nets, AUTO / TU** per resolution:";
+    for (int r : resolutions) {
+      const BenchGroup *a = find_group(groups, "AUTO", r), *t = find_group(groups, "TU", r);
+      if (a && t) out << " " << r << ": " << a->complete << " / " << t->complete;
+    }
+    out << " (of " << find_group(groups, "TU", h)->runs << " meshes each).\n";
   }
   out << "- **Success over all resolutions**:";
   for (const std::string& s : strategies) {

@@ -20,7 +20,7 @@ namespace {
 // depend on it, and those are not reported.
 constexpr double kFlatDefect = 10 * std::numbers::pi / 180;
 
-// The collapses of a progressive strategy, and those that simplify uses for TU.
+// The collapses of a progressive strategy (AUTO's are QQ's), and those that simplify uses for TU.
 CollapseStrategy collapses_of(Strategy strategy) {
   switch (strategy) {
     case Strategy::SEMP:
@@ -29,6 +29,7 @@ CollapseStrategy collapses_of(Strategy strategy) {
       return CollapseStrategy::SEQ;
     case Strategy::QQ:
     case Strategy::TU:
+    case Strategy::AUTO:
       break;
   }
   return CollapseStrategy::QQ;
@@ -50,6 +51,7 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
   p.strategy = collapses_of(options.strategy);
   p.target_faces = options.target_faces.value_or(0);
   p.tabu = tabu;
+  p.complete_first = options.strategy == Strategy::AUTO;
   ProgressiveResult r = unfold_progressive(mesh, p, progress);
   if (!r.overlap_free)
     throw UnfoldFailedException(r.overlaps, r.stats.iterations, r.mesh.faces.size(), input_faces);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the benchmark document from scratch: builds papernet (Release), runs every mesh
-# of ../shared/data/bench at all ten resolutions with all four strategies (1,080 runs, each in
-# its own `papernet unfold` process), then writes
+# of ../shared/data/bench at all ten resolutions with the default strategy (AUTO) and the four of
+# the paper's comparison (1,350 runs, each in its own `papernet unfold` process), then writes
 #   docs/benchmarks/runs.csv   every run
 #   docs/benchmarks/*.svg      plots against face count (ours, and the paper's redrawn)
 #   docs/benchmarks.md         the generated document (Appendix C table, headline ratios, ...)
@@ -14,7 +14,7 @@
 #
 # Environment (all optional):
 #   DATA=../shared/data/bench  BUILD=build  JOBS=$(nproc)  TIME_LIMIT=60
-#   STRATEGIES=QQ,SEMP,SEQ,TU  SIZES=100,200 (a subset, for trying the pipeline)
+#   STRATEGIES=AUTO,QQ,SEMP,SEQ,TU  SIZES=100,200 (a subset, for trying the pipeline)
 #   OUT=docs (where benchmarks.md and benchmarks/ go)
 #   FROM_CSV=file.csv  only rewrite the document and plots from an earlier run's CSV
 set -euo pipefail
@@ -24,7 +24,7 @@ DATA=${DATA:-../shared/data/bench}
 BUILD=${BUILD:-build}
 JOBS=${JOBS:-$(nproc)}
 TIME_LIMIT=${TIME_LIMIT:-60}
-STRATEGIES=${STRATEGIES:-QQ,SEMP,SEQ,TU}
+STRATEGIES=${STRATEGIES:-AUTO,QQ,SEMP,SEQ,TU}
 OUT=${OUT:-docs}
 
 cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null

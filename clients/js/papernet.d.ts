@@ -1,6 +1,6 @@
 // TypeScript declarations of papernet.js (the papernet HTTP API client).
 
-export type Strategy = "QQ" | "SEMP" | "SEQ" | "TU";
+export type Strategy = "AUTO" | "QQ" | "SEMP" | "SEQ" | "TU";
 /** A4, A3, Letter, a size "WxHmm" (e.g. "300x200mm"), or none (the SVG sized to the net). */
 export type Paper = "A4" | "Letter" | "A3" | "none" | `${number}x${number}mm`;
 export type MeshFormat = "glb" | "gltf" | "drc" | "obj" | "off" | "ply" | "stl";

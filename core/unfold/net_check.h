@@ -30,10 +30,13 @@ struct NetCheckReport {
 };
 
 /// Checks that `net` is a valid edge unfolding of `mesh`: every 2D face is congruent to its 3D
-/// face with the same (counter-clockwise) orientation; exactly one root and parent links that
-/// form one spanning tree; each face shares a mesh edge with its parent, placed at the same 2D
-/// position in both (glued); and no two faces' interiors intersect. Independent of the
-/// unfolder's incremental structures: brute force over a simple grid.
+/// face with the same (counter-clockwise) orientation (its corners where the 3D face lands, within
+/// the length tolerance); exactly one root and parent links that form one spanning tree; each
+/// face shares a mesh edge with its parent, placed at the same 2D position in both (glued); and
+/// no two faces' interiors intersect (no disk of radius `overlap_tolerance` fits inside both).
+/// Every predicate holds for any valid mesh, slivers and faces far larger than the rest
+/// included. Independent of the unfolder's incremental structures: every pair of faces whose
+/// boxes meet is tested, found through a static bounding-box tree.
 NetCheckReport check_net(const Mesh& mesh, const Net& net, const NetCheckOptions& options = {});
 
 /// check_net for a net of several pieces: the faces with the same `piece[f]` must be a valid

@@ -197,6 +197,24 @@ std::optional<Net> start_tree_net(const Mesh& mesh, std::uint64_t seed) {
   return std::nullopt;
 }
 
+// ProgressiveOptions::complete_first: the tree the uncollapse stopped with, every split it had
+// left applied to it without re-laying anything out, is the Tabu Unfolder's start on the input
+// (unfold_tabu_from, which starts again elsewhere when it stalls). Most of that tree is
+// overlap-free already, but on the CAD parts of bench/800-2000 where QQ stops it needs about as
+// much work as a fresh start: fewer moved-face tests in 7 of 16 runs (docs/performance.md).
+UnfoldResult finish_on_input(State st, ProgressiveMesh& pm, const Mesh& input, std::uint64_t seed,
+                             std::size_t index, const TabuOptions& tabu, Progress& progress) {
+  while (pm.splits_left() > 0) apply_split(st, pm.split(), split_seed(seed, index++));
+  std::vector<int> input_face(st.unfolding.face_count(), -1);
+  for (std::size_t f = 0; f < input.faces.size(); ++f) input_face[st.face[f]] = static_cast<int>(f);
+  std::vector<int> parent(input.faces.size(), -1);
+  for (std::size_t f = 0; f < input.faces.size(); ++f) {
+    const int p = st.unfolding.parent(st.face[f]);
+    parent[f] = p >= 0 ? input_face[p] : -1;
+  }
+  return unfold_tabu_from(input, parent, tabu, progress);
+}
+
 Net net_in_input_ids(const State& st, std::size_t faces) {
   Net net;
   net.parent.assign(faces, -1);
@@ -425,7 +443,9 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     }
   }
 
+  std::optional<State> stuck;  // where the uncollapse stopped, for complete_first
   if (failed && checkpoint) {
+    if (options.complete_first) stuck = st;
     // Back to the last overlap-free state: the checkpoint plus the splits that followed it,
     // replayed with their seeds and iteration counts (deterministic, no time limit).
     relay.quiet = true;
@@ -447,6 +467,27 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     relay.quiet = false;
   }
 
+  if (stuck && (limit <= 0 || remaining() > 0)) {
+    TabuOptions t = options.tabu;
+    t.phase = "uncollapse";
+    t.input_faces = input_faces;
+    if (limit > 0) t.time_limit_seconds = std::max(1e-3, remaining());
+    relay.context.faces = input_faces;
+    UnfoldResult full;
+    try {
+      full = finish_on_input(std::move(*stuck), pm, mesh, options.tabu.seed, index, t, relay);
+    } catch (const InvalidInputException&) {
+      // The input has no net at all (a dual graph that is a tree): keep the approximation.
+    }
+    stuck.reset();
+    result.stats.iterations += full.stats.iterations;
+    result.stats.evaluations += full.stats.evaluations;
+    result.stats.tests += full.stats.tests;
+    if (full.overlap_free) {
+      result.continued = true;
+      return complete_with(std::move(full.net), relay);
+    }
+  }
   result.splits = st.splits;
   result.overlaps = st.unfolding.overlap_count();
   result.overlap_free = result.overlaps == 0;

@@ -40,6 +40,13 @@ struct ProgressiveOptions {
   /// when it fails; 0 means automatic (iterations and moved-face tests growing with its face
   /// count, ended early by a stall: work, not time, so that load does not change the net).
   std::size_t coarse_iterations = 0;
+  /// Complete first (the default strategy, docs/performance.md): when the uncollapse stops short
+  /// of the input (a split whose overlaps stay within the budgets above), keep its last
+  /// overlap-free state as the fallback and spend what is left of the time limit on the input
+  /// itself: the Tabu Unfolder from the tree the uncollapse stopped with, every remaining split
+  /// applied to it (unfold_tabu_from, with its restarts). The result is approximate only when
+  /// that finds no net either.
+  bool complete_first = false;
 };
 
 /// Outcome of progressive unfolding.
@@ -60,7 +67,9 @@ struct ProgressiveResult {
   std::size_t coarse_retries = 0;  ///< further collapses after a coarse mesh failed
   std::size_t splits = 0;          ///< vertex splits the net includes
   std::size_t splits_total = 0;    ///< collapses made
-  TabuStats stats;                 ///< Tabu Unfolder work summed over all runs
+  /// complete_first gave the net: the uncollapse stopped, the Tabu Unfolder finished the input.
+  bool continued = false;
+  TabuStats stats;  ///< Tabu Unfolder work summed over all runs
   double seconds = 0;
 };
 
@@ -72,7 +81,8 @@ struct ProgressiveResult {
 /// local moves (Unfolding::repair_locally) and running the Tabu Unfolder only when those leave
 /// some. When that fails within the budget (the time limit, `split_tests_per_face`, or a split
 /// whose overlaps need more Tabu iterations than everything before it and than 2,000 + 5 per
-/// face), the last overlap-free state is returned (`complete` false).
+/// face), the last overlap-free state is returned (`complete` false), unless `complete_first`
+/// finishes the input from there.
 ///
 /// When the coarse mesh itself cannot be unfolded within a budget that grows with its size (or,
 /// when it may still be collapsed, starts with more than 10 overlapping pairs per face):
@@ -85,7 +95,8 @@ struct ProgressiveResult {
 /// of it) and gives a complete net when it finds one.
 ///
 /// Progress: phases "collapse", "unfold", "uncollapse" in that order, faces never decreasing
-/// during "uncollapse", the last report at the face count of the returned mesh; `intermediate`
+/// during "uncollapse" (complete_first's Tabu run reports the input's), the last report at the
+/// face count of the returned mesh; `intermediate`
 /// receives overlap-free nets of coarser meshes now and then (at most every ~100 ms).
 /// \throw InvalidInputException when the mesh is not a manifold, oriented triangle mesh.
 /// \throw CancelledException when `progress` asks to stop.

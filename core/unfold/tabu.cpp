@@ -174,17 +174,29 @@ bool Unfolding::resolve_overlaps(const TabuOptions& options, Progress& progress,
   return pair_count_ == 0;
 }
 
-UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress) {
-  const Clock::time_point start = Clock::now();
+namespace {
+
+// Work of unfold_tabu_from's attempt from its start tree, per face (TabuStats::tests): the
+// successful ones on the CAD parts of bench/800-2000 needed up to 11,510 (docs/performance.md).
+constexpr std::size_t kStartTestsPerFace = 15'000;
+
+// unfold_tabu's attempts; attempt 0 starts from `start` (a parent per face) when given.
+UnfoldResult tabu_attempts(const Mesh& mesh, const std::vector<int>* start,
+                           const TabuOptions& options, Progress& progress) {
+  const Clock::time_point begin = Clock::now();
   UnfoldResult result;
   std::optional<Unfolding> best;
   std::size_t iterations_left = options.max_iterations;
   for (std::uint64_t attempt = 0;; ++attempt) {
-    // Attempt 0 is the plain run from options.seed; later ones start from other directions.
+    // With a start tree, it is attempt 0 and the plain runs follow; those are numbered k.
+    const bool from_start = start && attempt == 0;
+    const std::uint64_t k = start ? attempt - 1 : attempt;
+    // Plain attempt 0 runs from options.seed; later ones start from other directions.
     const std::uint64_t seed =
-        attempt == 0 ? options.seed : options.seed ^ (attempt * 0x9e3779b97f4a7c15ull);
-    Unfolding unfolding = Unfolding::steepest_edge(mesh, seed);
-    if (attempt == 0) {
+        from_start || k == 0 ? options.seed : options.seed ^ (k * 0x9e3779b97f4a7c15ull);
+    Unfolding unfolding =
+        from_start ? Unfolding(mesh, *start) : Unfolding::steepest_edge(mesh, seed);
+    if (!from_start && k == 0) {
       // The minimum-perimeter tree keeps slivers glued along their long sides: on CAD meshes
       // it starts with far fewer overlaps than steepest edges (5,756-face Twin plate: 273
       // pairs against 22,000-320,000); on organic meshes usually with more.
@@ -199,29 +211,48 @@ UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress&
     TabuOptions rest = options;
     rest.seed = seed;
     rest.max_iterations = iterations_left;
+    if (options.max_tests) rest.max_tests = options.max_tests - result.stats.tests;
     // Allowed stall: generous on the first attempt, growing each restart.
     const std::size_t nf = unfolding.face_count();
-    rest.stall_iterations = std::max<std::size_t>(20'000, 20 * nf)
-                            << std::min<std::uint64_t>(attempt, 20);
+    // A start tree gets a shorter one, and at most kStartTestsPerFace moved-face tests: when it
+    // leads nowhere, the plain attempts follow.
+    rest.stall_iterations = from_start ? std::max<std::size_t>(10'000, 5 * nf)
+                                       : std::max<std::size_t>(20'000, 20 * nf)
+                                             << std::min<std::uint64_t>(k, 20);
+    if (from_start && (rest.max_tests == 0 || rest.max_tests > kStartTestsPerFace * nf))
+      rest.max_tests = kStartTestsPerFace * nf;
     if (options.time_limit_seconds > 0)
-      rest.time_limit_seconds = std::max(1e-3, options.time_limit_seconds - seconds_since(start));
+      rest.time_limit_seconds = std::max(1e-3, options.time_limit_seconds - seconds_since(begin));
     TabuStats st;
     const bool ok = unfolding.resolve_overlaps(rest, progress, &st);
     result.stats.iterations += st.iterations;
     result.stats.evaluations += st.evaluations;
+    result.stats.tests += st.tests;
     if (!best || unfolding.overlap_count() < best->overlap_count()) best = std::move(unfolding);
     if (ok || st.iterations == 0) break;  // 0: no move exists, or the budget is spent
     if (options.max_iterations) {
       iterations_left -= std::min(iterations_left, st.iterations);
       if (iterations_left == 0) break;
     }
-    if (options.time_limit_seconds > 0 && seconds_since(start) >= options.time_limit_seconds) break;
+    if (options.max_tests && result.stats.tests >= options.max_tests) break;
+    if (options.time_limit_seconds > 0 && seconds_since(begin) >= options.time_limit_seconds) break;
   }
   result.overlap_free = best->overlap_count() == 0;
   result.overlaps = best->overlap_count();
-  result.stats.seconds = seconds_since(start);
+  result.stats.seconds = seconds_since(begin);
   result.net = best->net();
   return result;
+}
+
+}  // namespace
+
+UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress) {
+  return tabu_attempts(mesh, nullptr, options, progress);
+}
+
+UnfoldResult unfold_tabu_from(const Mesh& mesh, const std::vector<int>& parent,
+                              const TabuOptions& options, Progress& progress) {
+  return tabu_attempts(mesh, &parent, options, progress);
 }
 
 }  // namespace papernet

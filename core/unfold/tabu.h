@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/mesh/mesh.h"
 #include "core/progress.h"
@@ -65,5 +66,14 @@ struct UnfoldResult {
 /// itself. \throw InvalidInputException when the mesh cannot be unfolded as one piece, and when its
 /// dual graph is a tree (a single edge unfolding exists) whose unfolding overlaps, at once.
 UnfoldResult unfold_tabu(const Mesh& mesh, const TabuOptions& options, Progress& progress);
+
+/// unfold_tabu with one more attempt before its own: from the unfold tree `parent` of `mesh` (the
+/// face each face hangs from, -1 for the root), such as a tree that progressive unfolding nearly
+/// finished, until it stalls for max(10,000, 5 per face) iterations or has made 15,000 moved-face
+/// tests per face; then unfold_tabu's attempts
+/// within what is left of the budget. \throw TopologyException when `parent` is not a spanning tree
+/// of adjacent faces, and as unfold_tabu.
+UnfoldResult unfold_tabu_from(const Mesh& mesh, const std::vector<int>& parent,
+                              const TabuOptions& options, Progress& progress);
 
 }  // namespace papernet

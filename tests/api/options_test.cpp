@@ -28,7 +28,8 @@ std::string error_code(F f, std::string* option = nullptr) {
 
 TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   const JobOptions o = parse_options_query({});
-  EXPECT_EQ(o.strategy, Strategy::QQ);
+  EXPECT_EQ(o.strategy, Strategy::AUTO);
+  EXPECT_EQ(parse_options_query({{"strategy", "auto"}}).strategy, Strategy::AUTO);
   EXPECT_EQ(o.seed, 1u);
   EXPECT_FALSE(o.target_faces);
   EXPECT_FALSE(o.simplify);

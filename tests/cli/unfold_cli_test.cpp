@@ -14,7 +14,7 @@
 namespace papernet::test {
 namespace {
 
-TEST(UnfoldCli, QQIsTheDefaultAndWritesACompleteNet) {
+TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
   const std::string out = ::testing::TempDir() + "papernet_progressive_cli.json";
   std::string said;
   ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/sample.obj -o " + out, &said),
@@ -23,7 +23,7 @@ TEST(UnfoldCli, QQIsTheDefaultAndWritesACompleteNet) {
   std::stringstream text;
   text << std::ifstream(out).rdbuf();
   const auto j = nlohmann::json::parse(text.str());
-  EXPECT_EQ(j["strategy"], "QQ");
+  EXPECT_EQ(j["strategy"], "AUTO");
   EXPECT_EQ(j["result"], "complete");
   EXPECT_EQ(j["mesh"]["faces"].size(), 1000u);
   EXPECT_EQ(j["net"]["faces"].size(), 1000u);

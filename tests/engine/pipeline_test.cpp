@@ -82,6 +82,35 @@ TEST(Pipeline, WritesTheDocumentsAskedForAndCountsThePrint) {
   EXPECT_EQ(nlohmann::json::parse(json_only.documents.net_json)["format"], "papernet.net/2");
 }
 
+// The default strategy (AUTO) on the real meshes of tests/data: every net passes the net
+// checker, and each is complete. On the CAD part where QQ alone gives an approximation (seed 3),
+// AUTO gives a net of the part itself. (No tab-room pass: the nets are what is tested.)
+TEST(Pipeline, TheDefaultStrategyGivesCheckedCompleteNetsOfRealMeshes) {
+  PipelineProgress quiet;
+  JobOptions automatic;
+  automatic.tab_room_budget = 0;
+  for (const char* name : {"sample.obj", "reference.obj", "mirror.ply", "testplate.glb",
+                           "thingi10k_134617.stl", "thingi10k_65004.stl"}) {
+    SCOPED_TRACE(name);
+    const UnfoldOutcome out = run_pipeline(data_file(name), automatic, {}, {}, quiet);
+    expect_checked(out);
+    EXPECT_EQ(out.net.strategy, "AUTO");
+    EXPECT_EQ(out.net.result, "complete");
+  }
+  JobOptions qq = automatic;
+  qq.strategy = Strategy::QQ;
+  qq.seed = automatic.seed = 3;
+  const UnfoldOutcome approximate =
+      run_pipeline(data_file("trimesh_ADIS16480_600.obj"), qq, {}, {}, quiet);
+  expect_checked(approximate);
+  EXPECT_EQ(approximate.net.result, "approximate");
+  const UnfoldOutcome complete =
+      run_pipeline(data_file("trimesh_ADIS16480_600.obj"), automatic, {}, {}, quiet);
+  expect_checked(complete);
+  EXPECT_EQ(complete.net.result, "complete");
+  EXPECT_EQ(complete.net.mesh.faces.size(), 600u);
+}
+
 // Three tetrahedra apart (the third smaller): three parts.
 JobInput three_parts() {
   std::string obj;

@@ -164,7 +164,7 @@ TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
   EXPECT_TRUE(intermediate) << "no intermediate was served while the job ran";
   const json job = wait_final(s, id, 180);  // the job's own limit is 120 s
   ASSERT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
-  EXPECT_EQ(job["options"]["strategy"], "QQ");
+  EXPECT_EQ(job["options"]["strategy"], "AUTO");
   auto net = c.Get("/v1/jobs/" + id + "/net.json");
   ASSERT_EQ(net->status, 200);
   const json doc = json::parse(net->body);

@@ -85,6 +85,28 @@ std::vector<int> saddle_path_tree(int n) {
   return parent;
 }
 
+Mesh platform(int k, double size) {
+  Mesh m;
+  const auto grid = [k](int i, int j) { return i * (k + 1) + j; };
+  for (int i = 0; i <= k; ++i)
+    for (int j = 0; j <= k; ++j) m.vertices.push_back({double(i) / k, double(j) / k, 0});
+  const int a = static_cast<int>(m.vertices.size());  // (size, 0)
+  m.vertices.push_back({size, 0, 0});
+  m.vertices.push_back({size, size, 0});
+  m.vertices.push_back({0, size, 0});
+  const int b = a + 1, c = a + 2;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      m.faces.push_back({grid(i, j), grid(i + 1, j), grid(i + 1, j + 1)});
+      m.faces.push_back({grid(i, j), grid(i + 1, j + 1), grid(i, j + 1)});
+    }
+  for (int j = 0; j < k; ++j) m.faces.push_back({a, grid(k, j + 1), grid(k, j)});
+  for (int i = 0; i < k; ++i) m.faces.push_back({c, grid(i, k), grid(i + 1, k)});
+  m.faces.push_back({grid(k, k), a, b});
+  m.faces.push_back({grid(k, k), b, c});
+  return m;
+}
+
 Net bfs_net(const Mesh& mesh) {
   const int n = static_cast<int>(mesh.faces.size());
   std::map<std::pair<int, int>, std::pair<int, int>> directed;  // (u, w) -> (face, k)

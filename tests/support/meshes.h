@@ -50,6 +50,12 @@ Mesh saddle(int n = 8, double h = 0.3);
 /// its ends overlap; each outer band face pair hangs from its fan face.
 std::vector<int> saddle_path_tree(int n = 8);
 
+/// A flat square platform (z = 0, open, one boundary loop) of side `size` > 1 with a fine k x k
+/// grid on its corner [0, 1]^2 (2k^2 faces), two fans of k slivers each from the grid's top and
+/// right sides to the far corners, and two giant triangles for the rest: 2k^2 + 2k + 2 faces, of
+/// which each giant has about k^2 times the mean area (CAD parts have such faces).
+Mesh platform(int k, double size);
+
 /// A net of `mesh` by breadth-first search over faces from face 0: every child is laid out
 /// across the edge it shares with its parent from the 3D edge lengths.
 Net bfs_net(const Mesh& mesh);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <string>
 
 #include "core/unfold/unfolding.h"
@@ -98,6 +100,62 @@ TEST(NetCheck, RejectsNonCongruentFace) {
   Net net = cube_net();
   net.points[0][0] = net.points[0][0] + Vec2{0.2, 0.1};
   EXPECT_TRUE(mentions(check_net(test::cube(), net), "long in the net"));
+}
+
+// The platform's own layout (it is flat) with a breadth-first tree: a valid net.
+Net flat_net(const Mesh& mesh) {
+  Net net;
+  net.parent = test::bfs_net(mesh).parent;
+  for (const auto& f : mesh.faces) {
+    std::array<Vec2, 3> t;
+    for (int k = 0; k < 3; ++k) t[k] = {mesh.vertices[f[k]].x, mesh.vertices[f[k]].y};
+    net.points.push_back(t);
+  }
+  return net;
+}
+
+double largest_over_mean_area(const Mesh& mesh) {
+  double largest = 0, sum = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    largest = std::max(largest, face_area(mesh, static_cast<int>(f)));
+    sum += face_area(mesh, static_cast<int>(f));
+  }
+  return largest / (sum / static_cast<double>(mesh.faces.size()));
+}
+
+TEST(NetCheck, AcceptsANetWithAFaceTenThousandTimesTheMeanArea) {
+  // Checks used to end with "face N is far larger than an average face in the net" here.
+  const Mesh mesh = test::platform(100, 1000);
+  ASSERT_GE(largest_over_mean_area(mesh), 1e4);
+  const NetCheckReport report = check_net(mesh, flat_net(mesh));
+  EXPECT_TRUE(report.ok()) << report.summary();
+}
+
+TEST(NetCheck, FindsAFaceMovedOntoAGiantFace) {
+  const Mesh mesh = test::platform(100, 1000);
+  Net net = flat_net(mesh);
+  // Face 0, a grid triangle at the origin, moved into the middle of the giant face (1,1) (S,0)
+  // (S,S): it overlaps that face and nothing else.
+  const int giant = static_cast<int>(mesh.faces.size()) - 2;
+  for (Vec2& p : net.points[0]) p = p + Vec2{700, 300};
+  const NetCheckReport report = check_net(mesh, net);
+  EXPECT_EQ(report.overlapping_pairs, 1u) << report.summary();
+  EXPECT_TRUE(mentions(report, "face 0 and face " + std::to_string(giant) + " overlap"))
+      << report.summary();
+}
+
+TEST(NetCheck, AcceptsASliverFlatWithinTheTolerance) {
+  // A sliver whose height is below the length tolerance is congruent to its mirror image within
+  // that tolerance: laid out either way, it passes (a sign test of its area would fail one).
+  Mesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0.5, 1e-9, 0}};
+  mesh.faces = {{0, 1, 2}};
+  Net net{{-1}, {{Vec2{0, 0}, Vec2{1, 0}, Vec2{0.5, -1e-9}}}};
+  EXPECT_TRUE(check_net(mesh, net).ok()) << check_net(mesh, net).summary();
+  // A visible flip still fails.
+  net.points[0][2].y = -0.1;
+  mesh.vertices[2].y = 0.1;
+  EXPECT_TRUE(mentions(check_net(mesh, net), "is flipped")) << check_net(mesh, net).summary();
 }
 
 TEST(NetCheck, RejectsWrongSizes) {

@@ -188,6 +188,70 @@ TEST(Progressive, SplitWorkBudgetEndsWithTheLastOverlapFreeState) {
   EXPECT_EQ(again.net.parent, r.net.parent);
 }
 
+// complete_first (the default strategy): where the uncollapse stops (here: Tabu runs of a single
+// iteration after each split), the Tabu Unfolder finishes the input from the tree it stopped
+// with; a run the uncollapse completes is left exactly as it was.
+TEST(Progressive, CompleteFirstFinishesTheInputWhereTheUncollapseStopped) {
+  const Mesh input = load_test_mesh("sample.obj");
+  bool finished = false, untouched = false;
+  for (std::uint64_t seed = 1; seed <= 12 && !(finished && untouched); ++seed) {
+    SCOPED_TRACE(seed);
+    ProgressiveOptions options;
+    options.tabu.seed = seed;
+    options.split_iterations = 1;
+    const ProgressiveResult plain = unfold_generously(input, options);
+    ASSERT_TRUE(plain.overlap_free);
+    options.complete_first = true;
+    const ProgressiveResult r = unfold_generously(input, options);
+    if (plain.complete) {
+      EXPECT_FALSE(r.continued);
+      EXPECT_EQ(r.net.parent, plain.net.parent);
+      untouched = true;
+      continue;
+    }
+    EXPECT_TRUE(r.continued);
+    expect_net_of_the_input(r, input);
+    const ProgressiveResult again = unfold_generously(input, options);
+    EXPECT_EQ(again.net.parent, r.net.parent);
+    finished = true;
+  }
+  EXPECT_TRUE(finished) << "no seed stopped the uncollapse";
+}
+
+// A real mesh where complete_first matters: QQ with seed 3 stops short of this 600-face CAD part
+// (an approximation, overlap-free and checked), and complete_first finishes it into a net of the
+// part itself. Both stop on work budgets, not the clock.
+TEST(Progressive, CompleteFirstFinishesARealMeshQQOnlyApproximates) {
+  const Mesh input = load_test_mesh("trimesh_ADIS16480_600.obj");
+  ProgressiveOptions options;
+  options.tabu.seed = 3;
+  const ProgressiveResult plain = unfold_generously(input, options);
+  ASSERT_TRUE(plain.overlap_free);
+  EXPECT_FALSE(plain.complete);
+  EXPECT_LT(plain.mesh.faces.size(), input.faces.size());
+  const NetCheckReport approximation = check_net(plain.mesh, plain.net);
+  EXPECT_TRUE(approximation.ok()) << approximation.summary();
+  options.complete_first = true;
+  const ProgressiveResult r = unfold_generously(input, options);
+  EXPECT_TRUE(r.continued);
+  expect_net_of_the_input(r, input);
+}
+
+// A flat CAD-like platform whose two giant faces' boxes cover far more than 4,096 cells of its
+// mean edge: its nets (the default strategy's, and TU's) pass the checker, which used to refuse
+// any net of it ("face N is far larger than an average face in the net").
+TEST(Progressive, PlatformWithGiantFacesGivesCheckedNets) {
+  const Mesh input = test::platform(50, 1000);
+  ProgressiveOptions options;
+  options.complete_first = true;
+  expect_net_of_the_input(unfold_generously(input, options), input);
+  Progress quiet;
+  const UnfoldResult tu = unfold_tabu(input, {}, quiet);
+  ASSERT_TRUE(tu.overlap_free);
+  const NetCheckReport check = check_net(input, tu.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+}
+
 // A coarse mesh that fails within its (here one-iteration) Tabu budget is collapsed further and
 // unfolded again; the net of that coarser start still passes the checker and uncollapses.
 TEST(Progressive, CoarseFailureRetriesOnACoarserMesh) {
