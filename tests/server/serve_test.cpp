@@ -126,8 +126,9 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
                  "invalid_option_value");
 }
 
-// Progressive unfolding (the default, AUTO, starts with QQ): while the job runs, the result URLs serve the latest
-// overlap-free intermediate, said so in a header and in the body; then the complete net.
+// Progressive unfolding (the default, AUTO, starts with QQ): while the job runs, the result URLs
+// serve the latest overlap-free intermediate, said so in a header and in the body; then the
+// complete net.
 TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
   Server s({"--workers", "1"});
   // No tab-room pass: this is about the unfolding's intermediates, and on a loaded machine the
