@@ -549,6 +549,13 @@ RepairResult repair_mesh(const Mesh& mesh, const std::vector<std::array<int, 3>>
   if (!zero_area.empty()) {
     std::reverse(zero_area.begin(), zero_area.end());
     Degenerates(mesh, faces, options.degenerate_area).run(zero_area, degenerates, listed);
+    // A flip among other zero-area faces can make another (coordinates so small that every
+    // face of a cluster has no area): what is still degenerate goes.
+    for (std::size_t f = 0; f < nf; ++f)
+      if (faces[f].alive && degenerate(mesh, faces[f].v, options.degenerate_area)) {
+        faces[f].alive = false;
+        degenerates.add(faces[f].origin, listed);
+      }
   }
   std::sort(degenerates.listed.begin(), degenerates.listed.end());
   report("removed_degenerate_faces", degenerates,

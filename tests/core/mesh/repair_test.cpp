@@ -147,6 +147,16 @@ TEST(Repair, AFlapOfAFaceAndItsReverseGoesWhole) {
   EXPECT_EQ(validate(r.mesh).boundary_loops, 0u);
 }
 
+// Found by fuzz_stl: a cluster of faces with coordinates near 1e-41, where a flip made another
+// zero-area face. Whatever repair leaves, the validator accepts.
+TEST(Repair, ZeroAreaFacesLeftByFlipsInAClusterGoToo) {
+  const LoadedMesh in =
+      load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/fuzz/stl_degenerate_cluster.stl");
+  const RepairResult r = repair_mesh(in.mesh, in.raw_faces);
+  ASSERT_NE(find(r, "removed_degenerate_faces"), nullptr) << codes(r);
+  EXPECT_EQ(blocking(r.mesh), "") << codes(r);
+}
+
 // A T-junction closed by a zero-area face (a cap: vertex 5 on edge 1-3) is flipped away with
 // its neighbour: the square stays closed, with no degenerate face.
 TEST(Repair, ACapIsFlippedAwayWithoutAHole) {
