@@ -120,6 +120,30 @@ bool refuse_unexpected_body(const httplib::Request& req) {
   return req.get_header_value<std::uint64_t>("Content-Length") > (std::uint64_t{64} << 10);
 }
 
+// The methods a path of the API takes ("" for a path that is not the API's). HEAD goes with GET.
+std::string allowed_methods(const std::string& path) {
+  static const std::regex job("^/v1/jobs/[^/]+$");
+  static const std::regex job_get(
+      "^/v1/jobs/[^/]+/(events|net\\.json|net\\.svg|net\\.pdf|mesh\\.glb)$");
+  if (path == "/v1/jobs") return "GET, HEAD, POST";
+  if (std::regex_match(path, job)) return "GET, HEAD, DELETE";
+  if (path == "/healthz" || path == "/readyz" || path == "/metrics" || path == "/v1/openapi.json" ||
+      std::regex_match(path, job_get))
+    return "GET, HEAD";
+  return "";
+}
+
+bool method_allowed(const std::string& allowed, const std::string& method) {
+  std::size_t from = 0;
+  while (from < allowed.size()) {
+    std::size_t to = allowed.find(", ", from);
+    if (to == std::string::npos) to = allowed.size();
+    if (allowed.compare(from, to - from, method) == 0) return true;
+    from = to + 2;
+  }
+  return false;
+}
+
 struct Api {
   Api(JobService& s, const ServerConfig& c, HttpMetrics& m) : service(s), config(c), metrics(m) {}
   JobService& service;
@@ -134,11 +158,13 @@ struct Api {
     limits.max_target_faces = config.max_faces;
     ParsedUpload upload = parse_upload(upload_of(req, reader, config.max_body_bytes), limits);
     const JobRecord job = service.submit(std::move(upload.input), std::move(upload.options));
-    auto view = service.view(job.id);
+    // The job as accepted: queued (with its place) or answered from a stored result. A worker
+    // may have claimed it already; the next poll shows that.
+    JobView accepted{job, {}, 0, false, std::nullopt, job.result_files};
+    if (auto view = service.view(job.id); view && view->record.status == job.status)
+      accepted = *view;
     res.set_header("Location", "/v1/jobs/" + job.id);
-    send_json(
-        res, 202,
-        job_to_json(view ? *view : JobView{job, {}, 0, false, std::nullopt, {}}, now_seconds()));
+    send_json(res, 202, job_to_json(accepted, now_seconds()));
   }
 
   void list(const httplib::Request& req, httplib::Response& res) {
@@ -271,7 +297,24 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
       [&config, declared_too_large](const httplib::Request& req, httplib::Response& res) {
         request_start = Clock::now();
         Problem p;
-        if (declared_too_large(req))
+        const std::string allowed = allowed_methods(req.path);
+        if (!allowed.empty() && !method_allowed(allowed, req.method)) {
+          res.set_header("Allow", allowed);
+          p = make_problem("method_not_allowed", req.method + " is not allowed on " +
+                                                     req.path.substr(0, 128) +
+                                                     " (allowed: " + allowed + ")");
+          // A body we do not read must not be taken for the next request.
+          if (req.has_header("Content-Length") || req.has_header("Transfer-Encoding"))
+            close_connection_after_response();
+          send_problem(res, p, req.path);
+          return httplib::Server::HandlerResponse::Handled;
+        }
+        if (req.method == "POST" && !req.has_header("Content-Length") &&
+            !req.has_header("Transfer-Encoding"))
+          p = make_problem("length_required",
+                           "a POST needs a Content-Length (or a chunked Transfer-Encoding); a "
+                           "body that ends only when the connection closes is not read");
+        else if (declared_too_large(req))
           p = make_problem("payload_too_large", "the upload declares " +
                                                     req.get_header_value("Content-Length") +
                                                     " bytes, more than this server's limit of " +

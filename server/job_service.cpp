@@ -183,7 +183,6 @@ JobView JobService::cancel(const std::string& id) {
     record = store_.find(id);  // it ended in the meantime
     if (!record) throw ApiError("job_not_found", "no job " + id);
   }
-  if (record->status == JobStatus::Cancelled) return *view(id);
   throw ApiError("job_finished", "job " + id + " already " + status_name(record->status));
 }
 

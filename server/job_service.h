@@ -92,7 +92,8 @@ class JobService {
   /// A file of a running job's latest intermediate, wherever it runs.
   std::optional<IntermediateFile> intermediate(const std::string& id, const std::string& name);
   /// Cancels a queued job at once and asks a running one to stop (its node stops it at the
-  /// job's next progress poll, within a second). \throw ApiError job_not_found or job_finished.
+  /// job's next progress poll, within a second). \throw ApiError job_not_found, or job_finished
+  /// for a job that had ended (cancelled included) before this call.
   JobView cancel(const std::string& id);
 
   /// Blocks until something changed after `seen` (or `timeout`); returns the new version.

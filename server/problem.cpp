@@ -33,6 +33,7 @@ constexpr ProblemType kProblemTypes[] = {
     {"result_not_ready", 409, "Result not ready"},
     {"job_finished", 409, "Job already finished"},
     {"job_cancelled", 410, "Job was cancelled"},
+    {"length_required", 411, "Content-Length required"},
     {"payload_too_large", 413, "Upload too large"},
     {"too_many_faces", 413, "Mesh has too many faces"},
     {"uri_too_long", 414, "Request URI too long"},

@@ -1,6 +1,8 @@
 // End-to-end: starts the real `papernet serve` on a free loopback port and speaks HTTP to it.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "api/net_json.h"
 #include "core/unfold/net_check.h"
 #include "tests/support/postgres.h"
@@ -321,6 +323,8 @@ TEST_P(ServeTest, QueueFullCancelAndShutdown) {
 
   EXPECT_EQ(s.client().Delete("/v1/jobs/" + queued)->status, 202);
   EXPECT_EQ(wait_final(s, queued)["status"], "cancelled");
+  // Cancelled is final: a second cancel is a conflict, as for any finished job.
+  expect_problem(s.client().Delete("/v1/jobs/" + queued), 409, "job_finished");
   const auto before = std::chrono::steady_clock::now();
   EXPECT_EQ(s.client().Delete("/v1/jobs/" + first)->status, 202);
   EXPECT_EQ(wait_final(s, first)["status"], "cancelled");
@@ -473,4 +477,35 @@ TEST_P(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsPiecesOrStrictlyTheMeshP
   ASSERT_EQ(largest["status"], "succeeded") << largest.dump();
   EXPECT_EQ(largest["result"]["pieces"].size(), 1u);
   EXPECT_EQ(largest["result"]["repairs"][0]["code"], "dropped_components");
+}
+
+// The 202 shows the job as accepted: queued, phase queued, not started, whether or not a worker
+// claimed it between the insert and the answer; polls then show documented phases only.
+TEST_P(ServeTest, AcceptedJobIsQueuedWithADocumentedPhase) {
+  Server s({"--workers", "2", "--reuse-results", "false"});
+  const std::set<std::string> phases = {
+      "queued", "load", "validate",  "collapse",     "unfold", "uncollapse", "tabs",
+      "write",  "done", "succeeded", "approximated", "failed", "cancelled"};
+  std::vector<std::string> ids;
+  for (int i = 0; i < 6; ++i) {
+    auto res = s.client().Post("/v1/jobs?strategy=TU", kNonManifoldObj, "model/obj");
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 202) << res->body;
+    const json job = body(res);
+    EXPECT_EQ(job["status"], "queued") << job.dump();
+    EXPECT_EQ(job["progress"]["phase"], "queued") << job.dump();
+    EXPECT_TRUE(job["started"].is_null()) << job.dump();
+    ids.push_back(job["id"]);
+  }
+  for (const std::string& id : ids) {
+    for (;;) {
+      const json job = body(s.client().Get("/v1/jobs/" + id));
+      EXPECT_TRUE(phases.count(job["progress"]["phase"].get<std::string>())) << job.dump();
+      if (job["status"] == "running") {
+        EXPECT_FALSE(job["started"].is_null()) << job.dump();
+      }
+      if (job["status"] != "queued" && job["status"] != "running") break;
+      std::this_thread::sleep_for(5ms);
+    }
+  }
 }
