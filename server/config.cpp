@@ -43,6 +43,31 @@ bool yes_no(const std::string& where, const std::string& v) {
   throw ConfigError(where + ": '" + v + "' is not true or false");
 }
 
+// "https://shop.example, http://localhost:5173" -> its origins, each scheme://host[:port].
+std::vector<std::string> origins(const std::string& where, const std::string& v) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  while (from <= v.size()) {
+    std::size_t to = v.find(',', from);
+    if (to == std::string::npos) to = v.size();
+    std::string o = v.substr(from, to - from);
+    o.erase(0, o.find_first_not_of(" \t"));
+    o.erase(o.find_last_not_of(" \t") + 1);
+    from = to + 1;
+    if (o.empty()) continue;
+    if (o.back() == '/') o.pop_back();
+    const auto scheme = o.find("://");
+    const bool web = o.rfind("http://", 0) == 0 || o.rfind("https://", 0) == 0;
+    if (o != "*" && (!web || o.size() == scheme + 3 ||
+                     o.find_first_of("/?#* ", scheme + 3) != std::string::npos))
+      throw ConfigError(where + ": '" + o +
+                        "' is not an origin (scheme://host[:port], e.g. https://shop.example) "
+                        "or *");
+    out.push_back(o);
+  }
+  return out;
+}
+
 const std::vector<Setting>& settings() {
   static const std::vector<Setting> table = {
       {"host", "PAPERNET_HOST", "address to listen on (default 127.0.0.1)",
@@ -138,6 +163,13 @@ const std::vector<Setting>& settings() {
       {"web-root", "PAPERNET_WEB_ROOT",
        "directory of the web demo served at / (the built clients/web bundle; default none)",
        [](ServerConfig& c, const std::string&, const std::string& v) { c.web_root = v; }},
+      {"cors-origins", "PAPERNET_CORS_ORIGINS",
+       "comma-separated origins whose pages may call the API from a browser, e.g. "
+       "https://shop.example (CORS, preflight answered); * = any origin, only without "
+       "--api-keys (default none: same-origin pages only)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.cors_origins = origins(w, v);
+       }},
   };
   return table;
 }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace papernet::server {
 
@@ -33,6 +34,9 @@ struct ServerConfig {
   bool reuse_results = true;        ///< answer identical mesh + options from a stored result
   bool access_log = true;
   std::string web_root;  ///< directory of the web demo served at / ("" = none)
+  /// Origins whose pages may call the API from a browser (CORS), e.g. https://shop.example;
+  /// "*" = any (only without API keys).
+  std::vector<std::string> cors_origins;
 };
 
 class ConfigError : public std::invalid_argument {

@@ -144,6 +144,47 @@ bool method_allowed(const std::string& allowed, const std::string& method) {
   return false;
 }
 
+// CORS (ServerConfig::cors_origins): what Access-Control-Allow-Origin says to this request's
+// Origin ("" = nothing: no Origin, or one not listed).
+std::string cors_origin(const ServerConfig& config, const httplib::Request& req) {
+  const std::string origin = req.get_header_value("Origin");
+  if (origin.empty()) return "";
+  for (const std::string& o : config.cors_origins)
+    if (o == "*" || o == origin) return o;
+  return "";
+}
+
+// Adds the CORS headers of an API answer; true when `req` is a preflight, answered here
+// (204, or 403 origin_not_allowed for an origin not listed).
+bool answer_cors(const ServerConfig& config, const std::string& allowed,
+                 const httplib::Request& req, httplib::Response& res) {
+  if (config.cors_origins.empty()) return false;
+  const std::string origin = cors_origin(config, req);
+  if (origin != "*") res.set_header("Vary", "Origin");  // caches keep one answer per origin
+  if (!origin.empty()) {
+    res.set_header("Access-Control-Allow-Origin", origin);
+    res.set_header("Access-Control-Expose-Headers",
+                   "Location, Retry-After, X-Papernet-Level, Allow");
+  }
+  if (req.method != "OPTIONS" || !req.has_header("Origin") ||
+      !req.has_header("Access-Control-Request-Method"))
+    return false;
+  if (origin.empty()) {
+    send_problem(res,
+                 make_problem("origin_not_allowed",
+                              "the origin " + req.get_header_value("Origin").substr(0, 128) +
+                                  " may not call this API from a browser (see --cors-origins)"),
+                 req.path);
+    return true;
+  }
+  res.status = 204;
+  res.set_header("Access-Control-Allow-Methods", allowed);
+  res.set_header("Access-Control-Allow-Headers",
+                 "Authorization, Content-Type, Idempotency-Key, Last-Event-ID");
+  res.set_header("Access-Control-Max-Age", "600");
+  return true;
+}
+
 struct Api {
   Api(JobService& s, const ServerConfig& c, HttpMetrics& m) : service(s), config(c), metrics(m) {}
   JobService& service;
@@ -298,6 +339,8 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
         request_start = Clock::now();
         Problem p;
         const std::string allowed = allowed_methods(req.path);
+        if (!allowed.empty() && answer_cors(config, allowed, req, res))
+          return httplib::Server::HandlerResponse::Handled;
         if (!allowed.empty() && !method_allowed(allowed, req.method)) {
           res.set_header("Allow", allowed);
           p = make_problem("method_not_allowed", req.method + " is not allowed on " +

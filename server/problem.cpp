@@ -26,6 +26,7 @@ constexpr ProblemType kProblemTypes[] = {
     {"malformed_options", 400, "Malformed options"},
     {"malformed_request", 400, "Malformed request"},
     {"missing_mesh", 400, "No mesh in the request"},
+    {"origin_not_allowed", 403, "Origin not allowed"},
     {"not_found", 404, "No such resource"},
     {"job_not_found", 404, "No such job"},
     {"method_not_allowed", 405, "Method not allowed"},

@@ -95,3 +95,15 @@ TEST(ConfigTest, HelpListsEveryVariable) {
                         "PAPERNET_JOB_TIME_LIMIT"})
     EXPECT_NE(help.find(v), std::string::npos) << v;
 }
+
+TEST(ConfigTest, CorsOriginsAreCheckedOrigins) {
+  EXPECT_TRUE(parse({})->cors_origins.empty());
+  const auto c = *parse({"--cors-origins", " https://shop.example/, http://localhost:5173 "});
+  EXPECT_EQ(c.cors_origins,
+            (std::vector<std::string>{"https://shop.example", "http://localhost:5173"}));
+  EXPECT_EQ(parse({}, {{"PAPERNET_CORS_ORIGINS", "*"}})->cors_origins,
+            std::vector<std::string>{"*"});
+  for (const char* bad :
+       {"shop.example", "https://shop.example/path", "ftp://x", "https://", "https://*.example"})
+    EXPECT_THROW(parse({"--cors-origins", bad}), ConfigError) << bad;
+}

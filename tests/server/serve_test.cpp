@@ -509,3 +509,92 @@ TEST_P(ServeTest, AcceptedJobIsQueuedWithADocumentedPhase) {
     }
   }
 }
+
+// CORS: a page on a listed origin may call every route a browser uses (preflight included) and
+// read the headers it needs; other origins get no CORS headers and a preflight 403.
+TEST_P(ServeTest, CorsForConfiguredOriginsOnEveryBrowserRoute) {
+  Server s({"--workers", "1", "--cors-origins", "https://shop.example, http://localhost:5173/"});
+  auto c = s.client();
+  const httplib::Headers shop = {{"Origin", "https://shop.example"}};
+  const httplib::Headers evil = {{"Origin", "https://evil.example"}};
+
+  auto preflight = c.Options("/v1/jobs", {{"Origin", "http://localhost:5173"},
+                                          {"Access-Control-Request-Method", "POST"},
+                                          {"Access-Control-Request-Headers",
+                                           "authorization, content-type, idempotency-key"}});
+  ASSERT_TRUE(preflight);
+  EXPECT_EQ(preflight->status, 204);
+  EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Origin"), "http://localhost:5173");
+  EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Methods"), "GET, HEAD, POST");
+  const std::string allowed_headers = preflight->get_header_value("Access-Control-Allow-Headers");
+  for (const char* h : {"Authorization", "Content-Type", "Idempotency-Key"})
+    EXPECT_NE(allowed_headers.find(h), std::string::npos) << allowed_headers;
+  auto job_preflight =
+      c.Options("/v1/jobs/0123456789abcdef0123456789abcdef",
+                {{"Origin", "https://shop.example"}, {"Access-Control-Request-Method", "DELETE"}});
+  ASSERT_TRUE(job_preflight);
+  EXPECT_EQ(job_preflight->status, 204);
+  EXPECT_EQ(job_preflight->get_header_value("Access-Control-Allow-Methods"), "GET, HEAD, DELETE");
+  auto refused = c.Options(
+      "/v1/jobs", {{"Origin", "https://evil.example"}, {"Access-Control-Request-Method", "POST"}});
+  expect_problem(refused, 403, "origin_not_allowed");
+  EXPECT_FALSE(refused->has_header("Access-Control-Allow-Origin"));
+  // An OPTIONS that is no preflight is still a method the path does not take.
+  expect_problem(c.Options("/v1/jobs", shop), 405, "method_not_allowed");
+
+  auto posted = c.Post("/v1/jobs?strategy=TU", shop, kNonManifoldObj, "model/obj");
+  ASSERT_TRUE(posted);
+  ASSERT_EQ(posted->status, 202) << posted->body;
+  EXPECT_EQ(posted->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+  EXPECT_EQ(posted->get_header_value("Vary"), "Origin");
+  const std::string exposed = posted->get_header_value("Access-Control-Expose-Headers");
+  for (const char* h : {"Location", "Retry-After", "X-Papernet-Level"})
+    EXPECT_NE(exposed.find(h), std::string::npos) << exposed;
+  const std::string id = body(posted)["id"];
+
+  std::string stream;
+  auto events = c.Get("/v1/jobs/" + id + "/events", shop, [&](const char* data, size_t n) {
+    stream.append(data, n);
+    return true;
+  });
+  ASSERT_TRUE(events);
+  EXPECT_EQ(events->status, 200);
+  EXPECT_EQ(events->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+  EXPECT_NE(stream.find("event: done"), std::string::npos) << stream;
+  for (const std::string& path :
+       std::vector<std::string>{"/v1/jobs/" + id, "/v1/jobs", "/v1/jobs/" + id + "/net.json",
+                                "/v1/jobs/" + id + "/net.svg", "/v1/jobs/" + id + "/net.pdf",
+                                "/v1/jobs/" + id + "/mesh.glb", "/v1/openapi.json"}) {
+    SCOPED_TRACE(path);
+    auto res = c.Get(path, shop);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 200);
+    EXPECT_EQ(res->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+    auto other = c.Get(path, evil);
+    ASSERT_TRUE(other);
+    EXPECT_FALSE(other->has_header("Access-Control-Allow-Origin"));
+  }
+  // Errors carry the headers too, or the page could not read the problem.
+  auto missing = c.Get("/v1/jobs/0123456789abcdef0123456789abcdef", shop);
+  expect_problem(missing, 404, "job_not_found");
+  EXPECT_EQ(missing->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+  auto cancel = c.Delete("/v1/jobs/" + id, shop);
+  expect_problem(cancel, 409, "job_finished");
+  EXPECT_EQ(cancel->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+}
+
+TEST_P(ServeTest, NoCorsUnlessConfiguredAndAnyOriginWithStar) {
+  Server closed({"--workers", "1"});
+  const httplib::Headers shop = {{"Origin", "https://shop.example"}};
+  auto preflight = closed.client().Options(
+      "/v1/jobs", {{"Origin", "https://shop.example"}, {"Access-Control-Request-Method", "POST"}});
+  expect_problem(preflight, 405, "method_not_allowed");
+  EXPECT_FALSE(preflight->has_header("Access-Control-Allow-Origin"));
+  EXPECT_FALSE(closed.client().Get("/v1/jobs", shop)->has_header("Access-Control-Allow-Origin"));
+
+  Server open({"--workers", "1", "--cors-origins", "*"});
+  auto any = open.client().Get("/v1/jobs", shop);
+  ASSERT_TRUE(any);
+  EXPECT_EQ(any->get_header_value("Access-Control-Allow-Origin"), "*");
+  EXPECT_FALSE(any->has_header("Vary"));
+}
