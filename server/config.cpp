@@ -170,6 +170,12 @@ const std::vector<Setting>& settings() {
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.cors_origins = origins(w, v);
        }},
+      {"api-keys", "PAPERNET_API_KEYS",
+       "file of API keys, one a line: TENANT SHA256HEX [rate=N] [share=F] [name=LABEL] (the "
+       "key's SHA-256 in hex; rate: requests a second; share: fraction of the queue); every "
+       "/v1/jobs request then needs Authorization: Bearer KEY and sees its tenant's jobs only. "
+       "Read again on SIGHUP and when the file changes (default none: the API is open)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.api_keys = v; }},
   };
   return table;
 }
@@ -202,6 +208,11 @@ std::optional<ServerConfig> parse_serve_config(
     }
     found->set(config, "flag " + arg, value);
   }
+  for (const std::string& o : config.cors_origins)
+    if (o == "*" && !config.api_keys.empty())
+      throw ConfigError(
+          "--cors-origins '*' is refused with --api-keys: list the origins of the pages that "
+          "may use the keys");
   if (config.workers == 0)
     config.workers = std::max<std::size_t>(1, std::thread::hardware_concurrency());
   if (config.read_timeout <= 0 || config.header_timeout <= 0 || config.request_timeout <= 0)

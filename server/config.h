@@ -37,6 +37,8 @@ struct ServerConfig {
   /// Origins whose pages may call the API from a browser (CORS), e.g. https://shop.example;
   /// "*" = any (only without API keys).
   std::vector<std::string> cors_origins;
+  /// File of API keys (server/api_keys.h); "" = none: the API is open to whoever reaches it.
+  std::string api_keys;
 };
 
 class ConfigError : public std::invalid_argument {

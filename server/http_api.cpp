@@ -3,6 +3,10 @@
 #include <httplib.h>
 
 #include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <regex>
 #include <thread>
 
@@ -19,8 +23,16 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-// Set when a request starts routing; the access logger runs on the same thread afterwards.
+// Set when a request starts routing; the handlers and the access logger run on the same
+// thread afterwards.
 thread_local Clock::time_point request_start;
+// The tenant of the request's API key ("" without keys): it owns what it submits and sees
+// nothing else.
+thread_local std::string request_tenant;
+
+// The longest Authorization header looked at: keys are short; a longer header is refused
+// before it is hashed.
+constexpr std::size_t kMaxAuthorization = 256;
 
 void send_problem(httplib::Response& res, const Problem& p, const std::string& instance) {
   res.status = p.status;
@@ -52,11 +64,74 @@ std::string job_id_of(const httplib::Request& req) {
   return id;
 }
 
+// Another tenant's job is answered exactly like one that does not exist.
 JobView find_job(JobService& service, const httplib::Request& req) {
   const std::string id = job_id_of(req);
   auto view = service.view(id);
-  if (!view) throw ApiError("job_not_found", "no job " + id);
+  if (!view || view->record.tenant != request_tenant)
+    throw ApiError("job_not_found", "no job " + id);
   return *view;
+}
+
+// Requests a second per key (ApiKey::rate): a bucket of max(1, rate) requests, refilled at
+// `rate` a second.
+class RateLimiter {
+ public:
+  /// 0 when the request may go; else the seconds to wait for the next one.
+  int take(const std::string& key, double rate) {
+    if (rate <= 0) return 0;
+    std::lock_guard lock(mutex_);
+    const auto now = Clock::now();
+    auto [it, fresh] = buckets_.try_emplace(key, Bucket{std::max(1.0, rate), now});
+    Bucket& b = it->second;
+    if (!fresh) {
+      const double seconds = std::chrono::duration<double>(now - b.at).count();
+      b.tokens = std::min(std::max(1.0, rate), b.tokens + seconds * rate);
+      b.at = now;
+    }
+    if (b.tokens >= 1) {
+      b.tokens -= 1;
+      return 0;
+    }
+    return static_cast<int>(std::ceil((1 - b.tokens) / rate));
+  }
+
+ private:
+  struct Bucket {
+    double tokens;
+    Clock::time_point at;
+  };
+  std::mutex mutex_;
+  std::map<std::string, Bucket> buckets_;
+};
+
+// Who is asking, with keys configured: sets request_tenant, or returns the problem to answer.
+std::optional<Problem> authenticate(ApiKeyRing& keys, RateLimiter& limiter,
+                                    const httplib::Request& req) {
+  const std::string header = req.get_header_value("Authorization");
+  if (header.empty())
+    return make_problem("missing_api_key",
+                        "this server needs an API key: send Authorization: Bearer <key>");
+  if (header.size() > kMaxAuthorization)
+    return make_problem("invalid_api_key", "the Authorization header is longer than " +
+                                               std::to_string(kMaxAuthorization) +
+                                               " bytes; no papernet key is that long");
+  std::string scheme = header.substr(0, 7);
+  for (char& c : scheme) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string secret = header.size() > 7 ? header.substr(7) : std::string();
+  if (scheme != "bearer " || secret.empty() || secret.find_first_of(" \t") != std::string::npos)
+    return make_problem("invalid_api_key",
+                        "the Authorization header is not of the form Bearer <key>");
+  const std::optional<ApiKey> key = keys.find(secret);
+  if (!key) return make_problem("invalid_api_key", "the API key is unknown or was revoked");
+  request_tenant = key->tenant;
+  if (const int wait = limiter.take(sha256_hex(secret), key->rate); wait > 0) {
+    Problem p = make_problem("rate_limited", "this API key may make " + std::to_string(key->rate) +
+                                                 " requests a second; retry later");
+    p.retry_after = wait;
+    return p;
+  }
+  return std::nullopt;
 }
 
 // Reads the upload's body through `reader`, never more than `max_bytes` of it (after any
@@ -198,7 +273,8 @@ struct Api {
     limits.max_time_limit = config.max_job_time_limit;
     limits.max_target_faces = config.max_faces;
     ParsedUpload upload = parse_upload(upload_of(req, reader, config.max_body_bytes), limits);
-    const JobRecord job = service.submit(std::move(upload.input), std::move(upload.options));
+    const JobRecord job =
+        service.submit(std::move(upload.input), std::move(upload.options), request_tenant);
     // The job as accepted: queued (with its place) or answered from a stored result. A worker
     // may have claimed it already; the next poll shows that.
     JobView accepted{job, {}, 0, false, std::nullopt, job.result_files};
@@ -222,7 +298,7 @@ struct Api {
     json jobs = json::array();
     std::int64_t last = 0;
     std::size_t n = 0;
-    for (const JobRecord& r : service.list(limit, cursor)) {
+    for (const JobRecord& r : service.list(request_tenant, limit, cursor)) {
       if (auto view = service.view(r.id)) jobs.push_back(job_to_json(*view, now_seconds()));
       last = r.seq;
       ++n;
@@ -317,8 +393,9 @@ std::string job_id_in_path(const std::string& path) {
 }  // namespace
 
 void install_routes(httplib::Server& http, JobService& service, const ServerConfig& config,
-                    HttpMetrics& metrics) {
+                    HttpMetrics& metrics, ApiKeyRing* keys) {
   auto api = std::make_shared<Api>(service, config, metrics);
+  auto limiter = std::make_shared<RateLimiter>();
   const std::string job = "/v1/jobs/([^/]+)";
 
   http.set_payload_max_length(config.max_body_bytes);
@@ -334,44 +411,53 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
         res.status = 413;  // the error handler below writes the problem
         return 413;
       });
-  http.set_pre_routing_handler(
-      [&config, declared_too_large](const httplib::Request& req, httplib::Response& res) {
-        request_start = Clock::now();
-        Problem p;
-        const std::string allowed = allowed_methods(req.path);
-        if (!allowed.empty() && answer_cors(config, allowed, req, res))
-          return httplib::Server::HandlerResponse::Handled;
-        if (!allowed.empty() && !method_allowed(allowed, req.method)) {
-          res.set_header("Allow", allowed);
-          p = make_problem("method_not_allowed", req.method + " is not allowed on " +
-                                                     req.path.substr(0, 128) +
-                                                     " (allowed: " + allowed + ")");
-          // A body we do not read must not be taken for the next request.
-          if (req.has_header("Content-Length") || req.has_header("Transfer-Encoding"))
-            close_connection_after_response();
-          send_problem(res, p, req.path);
-          return httplib::Server::HandlerResponse::Handled;
-        }
-        if (req.method == "POST" && !req.has_header("Content-Length") &&
-            !req.has_header("Transfer-Encoding"))
-          p = make_problem("length_required",
-                           "a POST needs a Content-Length (or a chunked Transfer-Encoding); a "
-                           "body that ends only when the connection closes is not read");
-        else if (declared_too_large(req))
-          p = make_problem("payload_too_large", "the upload declares " +
-                                                    req.get_header_value("Content-Length") +
-                                                    " bytes, more than this server's limit of " +
-                                                    std::to_string(config.max_body_bytes));
-        else if (refuse_unexpected_body(req))
-          p = make_problem("payload_too_large", req.method + " " + req.path +
-                                                    " takes no request body (chunked, encoded or "
-                                                    "over 64 KiB bodies are refused)");
-        else
-          return httplib::Server::HandlerResponse::Unhandled;
-        close_connection_after_response();
-        send_problem(res, p, req.path);
+  http.set_pre_routing_handler([&config, declared_too_large, keys, limiter](
+                                   const httplib::Request& req, httplib::Response& res) {
+    request_start = Clock::now();
+    request_tenant.clear();
+    Problem p;
+    const std::string allowed = allowed_methods(req.path);
+    if (!allowed.empty() && answer_cors(config, allowed, req, res))
+      return httplib::Server::HandlerResponse::Handled;
+    if (keys && !allowed.empty() && req.path.rfind("/v1/jobs", 0) == 0)
+      if (std::optional<Problem> refused = authenticate(*keys, *limiter, req)) {
+        if (refused->status == 401) res.set_header("WWW-Authenticate", "Bearer realm=\"papernet\"");
+        if (req.has_header("Content-Length") || req.has_header("Transfer-Encoding"))
+          close_connection_after_response();
+        send_problem(res, *refused, req.path);
         return httplib::Server::HandlerResponse::Handled;
-      });
+      }
+    if (!allowed.empty() && !method_allowed(allowed, req.method)) {
+      res.set_header("Allow", allowed);
+      p = make_problem("method_not_allowed", req.method + " is not allowed on " +
+                                                 req.path.substr(0, 128) + " (allowed: " + allowed +
+                                                 ")");
+      // A body we do not read must not be taken for the next request.
+      if (req.has_header("Content-Length") || req.has_header("Transfer-Encoding"))
+        close_connection_after_response();
+      send_problem(res, p, req.path);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (req.method == "POST" && !req.has_header("Content-Length") &&
+        !req.has_header("Transfer-Encoding"))
+      p = make_problem("length_required",
+                       "a POST needs a Content-Length (or a chunked Transfer-Encoding); a "
+                       "body that ends only when the connection closes is not read");
+    else if (declared_too_large(req))
+      p = make_problem("payload_too_large", "the upload declares " +
+                                                req.get_header_value("Content-Length") +
+                                                " bytes, more than this server's limit of " +
+                                                std::to_string(config.max_body_bytes));
+    else if (refuse_unexpected_body(req))
+      p = make_problem("payload_too_large", req.method + " " + req.path +
+                                                " takes no request body (chunked, encoded or "
+                                                "over 64 KiB bodies are refused)");
+    else
+      return httplib::Server::HandlerResponse::Unhandled;
+    close_connection_after_response();
+    send_problem(res, p, req.path);
+    return httplib::Server::HandlerResponse::Handled;
+  });
   // Answers httplib produced itself (unknown route, body over the limit, unparsable request)
   // get a problem document too.
   http.set_error_handler(httplib::Server::HandlerWithResponse([&config](const httplib::Request& req,
@@ -382,13 +468,19 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
     const RequestReadState state = request_read_state();
     if (state.timed_out) res.status = 408;
     if (state.body_too_large) res.status = 413;
-    if (state.head_too_large) res.status = 431;
+    if (state.head_too_large || state.header_line_too_long) res.status = 431;
     if (res.status == 408)
       p = make_problem("request_timeout",
                        "the request did not arrive in time (read timeout or "
                        "request deadline passed)");
     else if (res.status == 414)
       p = make_problem("uri_too_long", "the request URI is longer than this server accepts");
+    else if (res.status == 431 && state.header_line_too_long)
+      p = make_problem("request_head_too_large",
+                       "a header line is longer than " +
+                           std::to_string(CPPHTTPLIB_HEADER_MAX_LENGTH) +
+                           " bytes (an Authorization header carries a key of at most " +
+                           std::to_string(kMaxAuthorization) + " bytes)");
     else if (res.status == 431)
       p = make_problem("request_head_too_large",
                        "the request line or headers are longer than this server accepts");
@@ -420,8 +512,11 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
     if (id.empty()) id = job_id_in_path(res.get_header_value("Location"));
     char ms[32];
     std::snprintf(ms, sizeof ms, "%.1fms", seconds * 1000);
-    log_line("access " + req.method + " " + req.path + " " + std::to_string(res.status) + " " + ms +
-             (id.empty() ? "" : " job=" + id));
+    std::string line = "access " + req.method + " " + req.path + " " + std::to_string(res.status);
+    line += std::string(" ") + ms;
+    if (!id.empty()) line += " job=" + id;
+    if (!request_tenant.empty()) line += " tenant=" + request_tenant;
+    log_line(line);
   });
 
   http.Get("/healthz", guarded([](const httplib::Request&, httplib::Response& res) {
@@ -457,7 +552,8 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
              send_json(res, 200, job_to_json(find_job(service, req), now_seconds()));
            }));
   http.Delete(job, guarded([&service](const httplib::Request& req, httplib::Response& res) {
-                send_json(res, 202, job_to_json(service.cancel(job_id_of(req)), now_seconds()));
+                const std::string id = find_job(service, req).record.id;
+                send_json(res, 202, job_to_json(service.cancel(id), now_seconds()));
               }));
   http.Get(job + "/events", guarded([api](const httplib::Request& req, httplib::Response& res) {
              api->events(req, res);

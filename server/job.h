@@ -62,6 +62,7 @@ using JobRunner =
 /// A job as the store keeps it. Times are seconds since the Unix epoch (0 = not yet).
 struct JobRecord {
   std::string id;
+  std::string tenant;    ///< the API key's tenant that submitted it ("" without keys)
   std::int64_t seq = 0;  ///< submission order
   JobStatus status = JobStatus::Queued;
   double created = 0;

@@ -70,11 +70,12 @@ JobService::JobService(JobStore& store, JobRunner runner, ServiceSettings settin
 
 JobService::~JobService() { shutdown(std::chrono::milliseconds(0)); }
 
-JobRecord JobService::submit(JobInput input, JobOptions options) {
+JobRecord JobService::submit(JobInput input, JobOptions options, const std::string& tenant) {
   if (!accepting_) throw ApiError("shutting_down", "the server is shutting down; try again");
   if (!options.time_limit) options.time_limit = settings_.default_time_limit;
   JobRecord job;
   job.id = new_job_id();
+  job.tenant = tenant;
   job.created = now_seconds();
   job.options = options_to_json(options);
   job.format = format_name(input.format);
@@ -83,7 +84,7 @@ JobRecord JobService::submit(JobInput input, JobOptions options) {
   job.input_key = job_input_key(input, options);
 
   if (settings_.reuse_results) {
-    if (auto prior = store_.find_reusable(job.input_key, input)) {
+    if (auto prior = store_.find_reusable(tenant, job.input_key, input)) {
       job.status = prior->status;
       job.started = job.finished = job.created;
       job.input_faces = prior->input_faces;

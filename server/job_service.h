@@ -78,12 +78,14 @@ class JobService {
 
   /// Stores the job and queues it, or answers it from an identical finished job.
   /// \throw ApiError queue_full (with Retry-After) or shutting_down; StoreError.
-  JobRecord submit(JobInput input, JobOptions options);
+  /// The job belongs to `tenant` ("" without API keys); only its jobs' results are reused.
+  JobRecord submit(JobInput input, JobOptions options, const std::string& tenant = "");
 
   std::optional<JobView> view(const std::string& id);
-  /// Most recent first; `before_seq` > 0 pages on.
-  std::vector<JobRecord> list(std::size_t limit, std::int64_t before_seq) {
-    return store_.list(limit, before_seq);
+  /// `tenant`'s jobs, most recent first; `before_seq` > 0 pages on.
+  std::vector<JobRecord> list(const std::string& tenant, std::size_t limit,
+                              std::int64_t before_seq) {
+    return store_.list(tenant, limit, before_seq);
   }
   /// A stored result file (of a finished job's `result_job`).
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) {

@@ -79,12 +79,15 @@ class JobStore {
   /// unless `queue_limit` jobs are queued already: then stores nothing and returns false.
   virtual bool insert(JobRecord& job, const JobInput* input, std::size_t queue_limit) = 0;
   virtual std::optional<JobRecord> find(const std::string& id) = 0;
-  /// Most recent first; `before_seq` > 0 pages on (jobs with a smaller seq).
-  virtual std::vector<JobRecord> list(std::size_t limit, std::int64_t before_seq) = 0;
+  /// `tenant`'s jobs, most recent first; `before_seq` > 0 pages on (jobs with a smaller seq).
+  virtual std::vector<JobRecord> list(const std::string& tenant, std::size_t limit,
+                                      std::int64_t before_seq) = 0;
   /// \throw StoreError when the job has no stored input.
   virtual JobInput input(const std::string& id) = 0;
-  /// A finished, successful job with exactly this input and key (for result reuse).
-  virtual std::optional<JobRecord> find_reusable(const std::string& input_key,
+  /// A finished, successful job of `tenant` with exactly this input and key (for result
+  /// reuse, which never crosses tenants).
+  virtual std::optional<JobRecord> find_reusable(const std::string& tenant,
+                                                 const std::string& input_key,
                                                  const JobInput& input) = 0;
   /// Jobs per status name.
   virtual std::map<std::string, std::size_t> count_by_status() = 0;

@@ -53,6 +53,11 @@ DO $$ BEGIN
 EXCEPTION WHEN feature_not_supported THEN NULL;
 END $$;
 )sql",
+    // Tenants (API keys): a job belongs to the tenant that submitted it.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN tenant text NOT NULL DEFAULT '';
+CREATE INDEX jobs_by_tenant ON jobs(tenant, seq);
+)sql",
 };
 
 // Advisory lock keys: one migration at a time, one queue-length check at a time.
@@ -62,8 +67,8 @@ constexpr const char* kColumns =
     "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
     "input_faces, faces, \"overlaps\", result_kind, metrics, error, result_job, attempts, "
     "claimed_by, cancel_requested, progress, intermediate, "
-    "(SELECT string_agg(r.name, '/') FROM results r WHERE r.job_id = result_job)";
-constexpr int kColumnCount = 23;
+    "(SELECT string_agg(r.name, '/') FROM results r WHERE r.job_id = result_job), tenant";
+constexpr int kColumnCount = 24;
 
 // A running job held by a claim: $1 id, $2 node, $3 attempt.
 constexpr const char* kHeld =
@@ -100,6 +105,7 @@ JobRecord read_job(const Result& r, int row) {
   j.progress = nlohmann::json::parse(r.text(row, 20));
   j.intermediate = nlohmann::json::parse(r.text(row, 21));
   j.result_files = split_file_names(r.text(row, 22));
+  j.tenant = r.text(row, 23);
   return j;
 }
 
@@ -167,9 +173,9 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
       Result inserted = c.exec(
           "INSERT INTO jobs(id, status, created, started, finished, options, "
           "format, input_bytes, input_key, input_faces, faces, \"overlaps\", "
-          "result_kind, metrics, error, result_job, attempts) VALUES($1, $2, "
+          "result_kind, metrics, error, result_job, attempts, tenant) VALUES($1, $2, "
           "$3::float8, $4::float8, $5::float8, $6, $7, $8::bigint, $9, $10::bigint, "
-          "$11::bigint, $12::bigint, $13, $14, $15, $16, $17::int) "
+          "$11::bigint, $12::bigint, $13, $14, $15, $16, $17::int, $18) "
           "ON CONFLICT (id) DO NOTHING RETURNING seq",
           Params()
               .text(job.id)
@@ -188,7 +194,8 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
               .text(job.metrics.dump())
               .text(job.error.dump())
               .text(job.result_job)
-              .number(std::int64_t{job.attempts}));
+              .number(std::int64_t{job.attempts})
+              .text(job.tenant));
       if (inserted.rows() == 0) {  // a repetition after a lost connection: the first try stored it
         job.seq = c.exec("SELECT seq FROM jobs WHERE id = $1", Params().text(job.id)).integer(0, 0);
         return true;
@@ -225,13 +232,14 @@ std::optional<JobRecord> PgJobStore::find(const std::string& id) {
   return out;
 }
 
-std::vector<JobRecord> PgJobStore::list(std::size_t limit, std::int64_t before_seq) {
+std::vector<JobRecord> PgJobStore::list(const std::string& tenant, std::size_t limit,
+                                        std::int64_t before_seq) {
   std::vector<JobRecord> out;
   pool_.run([&](Connection& c) {
     Result r = c.exec(std::string("SELECT ") + kColumns +
-                          " FROM jobs WHERE ($1::bigint = 0 OR seq < $1::bigint) "
+                          " FROM jobs WHERE tenant = $3 AND ($1::bigint = 0 OR seq < $1::bigint) "
                           "ORDER BY seq DESC LIMIT $2::bigint",
-                      Params().number(before_seq).number(i64(limit)));
+                      Params().number(before_seq).number(i64(limit)).text(tenant));
     out.clear();
     for (int i = 0; i < r.rows(); ++i) out.push_back(read_job(r, i));
   });
@@ -256,7 +264,8 @@ JobInput PgJobStore::input(const std::string& id) {
   return in;
 }
 
-std::optional<JobRecord> PgJobStore::find_reusable(const std::string& input_key,
+std::optional<JobRecord> PgJobStore::find_reusable(const std::string& tenant,
+                                                   const std::string& input_key,
                                                    const JobInput& input) {
   std::optional<JobRecord> out;
   pool_.run([&](Connection& c) {
@@ -264,8 +273,8 @@ std::optional<JobRecord> PgJobStore::find_reusable(const std::string& input_key,
     Result r = c.exec(std::string("SELECT ") + kColumns +
                           " FROM jobs JOIN inputs ON inputs.job_id = jobs.id WHERE input_key = $1 "
                           "AND status IN ('succeeded', 'approximated') AND inputs.mesh = "
-                          "$2::bytea ORDER BY seq DESC LIMIT 1",
-                      Params().text(input_key).bytes(input.mesh));
+                          "$2::bytea AND tenant = $3 ORDER BY seq DESC LIMIT 1",
+                      Params().text(input_key).bytes(input.mesh).text(tenant));
     if (r.rows() > 0) out = read_job(r, 0);
   });
   return out;

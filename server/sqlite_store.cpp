@@ -44,6 +44,11 @@ ALTER TABLE jobs ADD COLUMN intermediate TEXT NOT NULL DEFAULT 'null';
 CREATE TABLE IF NOT EXISTS intermediates(job_id TEXT NOT NULL, name TEXT NOT NULL,
   content_type TEXT NOT NULL, data BLOB NOT NULL, PRIMARY KEY(job_id, name));
 )sql",
+    // Tenants (API keys): a job belongs to the tenant that submitted it.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN tenant TEXT NOT NULL DEFAULT '';
+CREATE INDEX IF NOT EXISTS jobs_by_tenant ON jobs(tenant, seq);
+)sql",
 };
 
 // The store's clock, in seconds since the epoch, for leases.
@@ -53,7 +58,7 @@ constexpr const char* kColumns =
     "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
     "input_faces, faces, overlaps, result_kind, metrics, error, result_job, attempts, "
     "claimed_by, cancel_requested, progress, intermediate, "
-    "(SELECT group_concat(r.name, '/') FROM results r WHERE r.job_id = result_job)";
+    "(SELECT group_concat(r.name, '/') FROM results r WHERE r.job_id = result_job), tenant";
 
 // A running job held by this claim.
 constexpr const char* kHeld = "id=? AND claimed_by=? AND attempts=? AND status='running'";
@@ -162,6 +167,7 @@ JobRecord read_job(const Statement& s) {
   j.progress = nlohmann::json::parse(s.text(20));
   j.intermediate = nlohmann::json::parse(s.text(21));
   j.result_files = split_file_names(s.text(22));
+  j.tenant = s.text(23);
   return j;
 }
 
@@ -224,7 +230,7 @@ bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t q
   Statement(db_,
             "INSERT INTO jobs(id, status, created, started, finished, options, format, "
             "input_bytes, input_key, input_faces, faces, overlaps, result_kind, metrics, error, "
-            "result_job, attempts) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)")
+            "result_job, attempts, tenant) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)")
       .bind(1, job.id)
       .bind(2, status_name(job.status))
       .bind(3, job.created)
@@ -242,6 +248,7 @@ bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t q
       .bind(15, job.error.dump())
       .bind(16, job.result_job)
       .bind(17, std::int64_t{job.attempts})
+      .bind(18, job.tenant)
       .run();
   job.seq = sqlite3_last_insert_rowid(db_);
   if (input) {
@@ -268,11 +275,12 @@ std::optional<JobRecord> SqliteJobStore::find(const std::string& id) {
   return read_job(s);
 }
 
-std::vector<JobRecord> SqliteJobStore::list(std::size_t limit, std::int64_t before_seq) {
+std::vector<JobRecord> SqliteJobStore::list(const std::string& tenant, std::size_t limit,
+                                            std::int64_t before_seq) {
   std::lock_guard lock(mutex_);
   Statement s(db_, std::string("SELECT ") + kColumns +
-                       " FROM jobs WHERE (?=0 OR seq<?) ORDER BY seq DESC LIMIT ?");
-  s.bind(1, before_seq).bind(2, before_seq).bind(3, i64(limit));
+                       " FROM jobs WHERE tenant=? AND (?=0 OR seq<?) ORDER BY seq DESC LIMIT ?");
+  s.bind(1, tenant).bind(2, before_seq).bind(3, before_seq).bind(4, i64(limit));
   std::vector<JobRecord> out;
   while (s.step()) out.push_back(read_job(s));
   return out;
@@ -294,15 +302,16 @@ JobInput SqliteJobStore::input(const std::string& id) {
   return in;
 }
 
-std::optional<JobRecord> SqliteJobStore::find_reusable(const std::string& input_key,
+std::optional<JobRecord> SqliteJobStore::find_reusable(const std::string& tenant,
+                                                       const std::string& input_key,
                                                        const JobInput& input) {
   std::lock_guard lock(mutex_);
   // The key is a hash; equal bytes make the match certain. External files are in the key.
   Statement s(db_, std::string("SELECT ") + kColumns +
                        " FROM jobs JOIN inputs ON inputs.job_id = jobs.id WHERE input_key=? "
                        "AND status IN ('succeeded','approximated') AND inputs.mesh=? "
-                       "ORDER BY seq DESC LIMIT 1");
-  s.bind(1, input_key).blob(2, input.mesh);
+                       "AND tenant=? ORDER BY seq DESC LIMIT 1");
+  s.bind(1, input_key).blob(2, input.mesh).bind(3, tenant);
   if (!s.step()) return std::nullopt;
   return read_job(s);
 }

@@ -24,9 +24,10 @@ class SqliteJobStore : public JobStore {
   std::string kind() const override { return "sqlite"; }
   bool insert(JobRecord& job, const JobInput* input, std::size_t queue_limit) override;
   std::optional<JobRecord> find(const std::string& id) override;
-  std::vector<JobRecord> list(std::size_t limit, std::int64_t before_seq) override;
+  std::vector<JobRecord> list(const std::string& tenant, std::size_t limit,
+                              std::int64_t before_seq) override;
   JobInput input(const std::string& id) override;
-  std::optional<JobRecord> find_reusable(const std::string& input_key,
+  std::optional<JobRecord> find_reusable(const std::string& tenant, const std::string& input_key,
                                          const JobInput& input) override;
   std::map<std::string, std::size_t> count_by_status() override;
   std::size_t queue_position(std::int64_t seq) override;

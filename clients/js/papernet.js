@@ -175,10 +175,13 @@ export class PapernetClient {
   /**
    * @param baseUrl the server, e.g. "http://127.0.0.1:8080" ("" in a page the server serves)
    * @param options.fetch a fetch implementation (default: the global one)
+   * @param options.apiKey the API key of a server started with --api-keys (sent as
+   *   Authorization: Bearer), or undefined for an open server
    */
-  constructor(baseUrl = "", { fetch: fetchImpl } = {}) {
+  constructor(baseUrl = "", { fetch: fetchImpl, apiKey } = {}) {
     this.baseUrl = String(baseUrl).replace(/\/+$/, "");
     this._fetch = fetchImpl ?? globalThis.fetch.bind(globalThis);
+    this.apiKey = apiKey;
   }
 
   /** Absolute URL of a server path ("/v1/jobs"). */
@@ -188,6 +191,7 @@ export class PapernetClient {
 
   async _request(path, init = {}) {
     const url = this.url(path);
+    if (this.apiKey) init = { ...init, headers: { ...init.headers, Authorization: `Bearer ${this.apiKey}` } };
     let res;
     try {
       res = await this._fetch(url, init);

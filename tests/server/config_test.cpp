@@ -107,3 +107,11 @@ TEST(ConfigTest, CorsOriginsAreCheckedOrigins) {
        {"shop.example", "https://shop.example/path", "ftp://x", "https://", "https://*.example"})
     EXPECT_THROW(parse({"--cors-origins", bad}), ConfigError) << bad;
 }
+
+TEST(ConfigTest, ApiKeysRefuseAnyOrigin) {
+  EXPECT_EQ(parse({"--api-keys", "/etc/papernet/keys"})->api_keys, "/etc/papernet/keys");
+  EXPECT_THROW(parse({"--api-keys", "keys", "--cors-origins", "*"}), ConfigError);
+  EXPECT_EQ(parse({"--api-keys", "keys"}, {{"PAPERNET_CORS_ORIGINS", "https://shop.example"}})
+                ->cors_origins.size(),
+            1u);
+}
