@@ -50,6 +50,27 @@ std::string sha256_hex(const std::string& bytes) {
   return out;
 }
 
+std::string sha256_hex_of_parts(const std::vector<std::string_view>& parts) {
+  std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  bool ok = ctx && EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) == 1;
+  for (std::string_view part : parts) {
+    const std::string length = std::to_string(part.size()) + ":";
+    ok = ok && EVP_DigestUpdate(ctx.get(), length.data(), length.size()) == 1 &&
+         EVP_DigestUpdate(ctx.get(), part.data(), part.size()) == 1;
+  }
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int size = 0;
+  if (!ok || EVP_DigestFinal_ex(ctx.get(), digest, &size) != 1)
+    throw std::runtime_error("SHA-256 failed (OpenSSL)");
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (unsigned int i = 0; i < size; ++i) {
+    out += hex[digest[i] >> 4];
+    out += hex[digest[i] & 15];
+  }
+  return out;
+}
+
 std::map<std::string, ApiKey> parse_api_keys(const std::string& text, const std::string& path) {
   std::map<std::string, ApiKey> keys;
   std::istringstream in(text);

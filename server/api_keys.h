@@ -9,6 +9,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace papernet::server {
 
@@ -28,6 +30,8 @@ class ApiKeyFileError : public std::runtime_error {
 
 /// The lowercase hex SHA-256 of `bytes` (OpenSSL's libcrypto).
 std::string sha256_hex(const std::string& bytes);
+/// The SHA-256 of `parts`, each preceded by its length: different lists, different digests.
+std::string sha256_hex_of_parts(const std::vector<std::string_view>& parts);
 
 /// Keys by the hex SHA-256 of the secret. The file has one key a line,
 /// `TENANT SHA256HEX [name=value ...]` (names: name, rate, share); `#` starts a comment.

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "api/openapi.h"
+#include "server/api_keys.h"
 #include "server/http_server.h"
 #include "server/job_json.h"
 #include "server/job_store.h"
@@ -239,7 +240,7 @@ bool answer_cors(const ServerConfig& config, const std::string& allowed,
   if (!origin.empty()) {
     res.set_header("Access-Control-Allow-Origin", origin);
     res.set_header("Access-Control-Expose-Headers",
-                   "Location, Retry-After, X-Papernet-Level, Allow");
+                   "Location, Retry-After, X-Papernet-Level, Allow, Idempotent-Replayed");
   }
   if (req.method != "OPTIONS" || !req.has_header("Origin") ||
       !req.has_header("Access-Control-Request-Method"))
@@ -260,6 +261,29 @@ bool answer_cors(const ServerConfig& config, const std::string& allowed,
   return true;
 }
 
+// How long an Idempotency-Key stands for its first request.
+constexpr double kIdempotencyWindow = 24 * 3600;
+
+bool valid_idempotency_key(const std::string& key) {
+  if (key.empty() || key.size() > 255) return false;
+  for (char c : key)
+    if (c < 0x21 || c > 0x7e) return false;
+  return true;
+}
+
+// "The same body": the same mesh, files and options, however they were framed (a multipart
+// boundary or the order of query parameters does not count).
+std::string request_hash(const ParsedUpload& upload) {
+  const std::string format = format_name(upload.input.format);
+  const std::string options = options_to_json(upload.options).dump();
+  std::vector<std::string_view> parts = {format, options, upload.input.mesh};
+  for (const auto& [name, data] : upload.input.external_files) {
+    parts.push_back(name);
+    parts.push_back(data);
+  }
+  return sha256_hex_of_parts(parts);
+}
+
 struct Api {
   Api(JobService& s, const ServerConfig& c, HttpMetrics& m) : service(s), config(c), metrics(m) {}
   JobService& service;
@@ -272,9 +296,45 @@ struct Api {
     OptionsLimits limits;
     limits.max_time_limit = config.max_job_time_limit;
     limits.max_target_faces = config.max_faces;
+    const bool idempotent = req.has_header("Idempotency-Key");
+    const std::string key = req.get_header_value("Idempotency-Key");
+    if (idempotent && !valid_idempotency_key(key))
+      throw ApiError("malformed_request",
+                     "an Idempotency-Key is 1 to 255 visible ASCII characters (a UUID will do)");
     ParsedUpload upload = parse_upload(upload_of(req, reader, config.max_body_bytes), limits);
-    const JobRecord job =
-        service.submit(std::move(upload.input), std::move(upload.options), request_tenant);
+    std::string id;
+    if (idempotent) {
+      const std::string hash = request_hash(upload);
+      const double now = now_seconds();
+      id = new_job_id();
+      const IdempotencyRecord stored = service.remember_idempotency(
+          request_tenant, key, {hash, id, now}, now - kIdempotencyWindow);
+      if (stored.job_id != id) {  // a retry: the first request's job
+        if (stored.request_hash != hash)
+          throw ApiError("idempotency_key_reused",
+                         "this Idempotency-Key was used in the last 24 hours for another request "
+                         "(another mesh or options); use a new key for a new request");
+        auto first = service.view(stored.job_id);
+        if (!first || first->record.tenant != request_tenant) {
+          Problem p = make_problem("idempotency_key_in_use",
+                                   "the first request with this Idempotency-Key is still being "
+                                   "stored; retry in a moment");
+          p.retry_after = 1;
+          throw ApiError(p);
+        }
+        res.set_header("Location", "/v1/jobs/" + stored.job_id);
+        res.set_header("Idempotent-Replayed", "true");
+        send_json(res, 200, job_to_json(*first, now_seconds()));
+        return;
+      }
+    }
+    JobRecord job;
+    try {
+      job = service.submit(std::move(upload.input), std::move(upload.options), request_tenant, id);
+    } catch (...) {
+      if (idempotent) service.forget_idempotency(request_tenant, key, id);
+      throw;
+    }
     // The job as accepted: queued (with its place) or answered from a stored result. A worker
     // may have claimed it already; the next poll shows that.
     JobView accepted{job, {}, 0, false, std::nullopt, job.result_files};

@@ -70,11 +70,12 @@ JobService::JobService(JobStore& store, JobRunner runner, ServiceSettings settin
 
 JobService::~JobService() { shutdown(std::chrono::milliseconds(0)); }
 
-JobRecord JobService::submit(JobInput input, JobOptions options, const std::string& tenant) {
+JobRecord JobService::submit(JobInput input, JobOptions options, const std::string& tenant,
+                             const std::string& id) {
   if (!accepting_) throw ApiError("shutting_down", "the server is shutting down; try again");
   if (!options.time_limit) options.time_limit = settings_.default_time_limit;
   JobRecord job;
-  job.id = new_job_id();
+  job.id = id.empty() ? new_job_id() : id;
   job.tenant = tenant;
   job.created = now_seconds();
   job.options = options_to_json(options);

@@ -79,7 +79,18 @@ class JobService {
   /// Stores the job and queues it, or answers it from an identical finished job.
   /// \throw ApiError queue_full (with Retry-After) or shutting_down; StoreError.
   /// The job belongs to `tenant` ("" without API keys); only its jobs' results are reused.
-  JobRecord submit(JobInput input, JobOptions options, const std::string& tenant = "");
+  /// `id` names the new job ("" = a new random id).
+  JobRecord submit(JobInput input, JobOptions options, const std::string& tenant = "",
+                   const std::string& id = "");
+  /// JobStore::remember_idempotency and forget_idempotency (Idempotency-Key).
+  IdempotencyRecord remember_idempotency(const std::string& tenant, const std::string& key,
+                                         const IdempotencyRecord& record, double since) {
+    return store_.remember_idempotency(tenant, key, record, since);
+  }
+  void forget_idempotency(const std::string& tenant, const std::string& key,
+                          const std::string& job_id) {
+    store_.forget_idempotency(tenant, key, job_id);
+  }
 
   std::optional<JobView> view(const std::string& id);
   /// `tenant`'s jobs, most recent first; `before_seq` > 0 pages on.

@@ -60,6 +60,14 @@ struct StoreEvent {
   std::string job_id;  ///< empty for Queued, and for Changed after a reconnect (anything changed)
 };
 
+/// What an Idempotency-Key stands for: the request it came with (a hash of the mesh, files and
+/// options) and the job that request made.
+struct IdempotencyRecord {
+  std::string request_hash;
+  std::string job_id;
+  double created = 0;
+};
+
 /// The store's own counters for /metrics.
 struct StoreStats {
   std::uint64_t reconnects = 0;  ///< connections to the database opened again after a loss
@@ -89,6 +97,14 @@ class JobStore {
   virtual std::optional<JobRecord> find_reusable(const std::string& tenant,
                                                  const std::string& input_key,
                                                  const JobInput& input) = 0;
+  /// Records that `tenant`'s `key` stands for `record`, unless the key already stands for a
+  /// record created at `since` or later: returns the record the key stands for now (`record`,
+  /// or the earlier one). Atomic: of two requests with one key, one wins.
+  virtual IdempotencyRecord remember_idempotency(const std::string& tenant, const std::string& key,
+                                                 const IdempotencyRecord& record, double since) = 0;
+  /// Drops the key's record when it names `job_id` (its job could not be stored).
+  virtual void forget_idempotency(const std::string& tenant, const std::string& key,
+                                  const std::string& job_id) = 0;
   /// Jobs per status name.
   virtual std::map<std::string, std::size_t> count_by_status() = 0;
   /// 1 for the next queued job to run, 2 for the one after, ...

@@ -58,6 +58,12 @@ END $$;
 ALTER TABLE jobs ADD COLUMN tenant text NOT NULL DEFAULT '';
 CREATE INDEX jobs_by_tenant ON jobs(tenant, seq);
 )sql",
+    // Idempotency-Key: per tenant, what a key stood for (24 h).
+    R"sql(
+CREATE TABLE idempotency(tenant text NOT NULL, key text NOT NULL,
+  request_hash text NOT NULL, job_id text NOT NULL, created double precision NOT NULL,
+  PRIMARY KEY(tenant, key));
+)sql",
 };
 
 // Advisory lock keys: one migration at a time, one queue-length check at a time.
@@ -278,6 +284,42 @@ std::optional<JobRecord> PgJobStore::find_reusable(const std::string& tenant,
     if (r.rows() > 0) out = read_job(r, 0);
   });
   return out;
+}
+
+IdempotencyRecord PgJobStore::remember_idempotency(const std::string& tenant,
+                                                   const std::string& key,
+                                                   const IdempotencyRecord& record, double since) {
+  IdempotencyRecord out;
+  pool_.run([&](Connection& c) {
+    // One statement: a fresh record of the key stays (the update's WHERE fails), a stale one is
+    // replaced; then whatever the key stands for is read.
+    Result r = c.exec(
+        "WITH put AS (INSERT INTO idempotency(tenant, key, request_hash, job_id, created) "
+        "VALUES($1, $2, $3, $4, $5::float8) ON CONFLICT (tenant, key) DO UPDATE SET "
+        "request_hash = excluded.request_hash, job_id = excluded.job_id, created = "
+        "excluded.created WHERE idempotency.created < $6::float8 "
+        "RETURNING request_hash, job_id, created) "
+        "SELECT request_hash, job_id, created FROM put UNION ALL "
+        "SELECT request_hash, job_id, created FROM idempotency WHERE tenant = $1 AND key = $2 "
+        "AND NOT EXISTS (SELECT 1 FROM put)",
+        Params()
+            .text(tenant)
+            .text(key)
+            .text(record.request_hash)
+            .text(record.job_id)
+            .number(record.created)
+            .number(since));
+    out = r.rows() > 0 ? IdempotencyRecord{r.text(0, 0), r.text(0, 1), r.real(0, 2)} : record;
+  });
+  return out;
+}
+
+void PgJobStore::forget_idempotency(const std::string& tenant, const std::string& key,
+                                    const std::string& job_id) {
+  pool_.run([&](Connection& c) {
+    c.exec("DELETE FROM idempotency WHERE tenant = $1 AND key = $2 AND job_id = $3",
+           Params().text(tenant).text(key).text(job_id));
+  });
 }
 
 std::map<std::string, std::size_t> PgJobStore::count_by_status() {

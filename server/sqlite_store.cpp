@@ -49,6 +49,12 @@ CREATE TABLE IF NOT EXISTS intermediates(job_id TEXT NOT NULL, name TEXT NOT NUL
 ALTER TABLE jobs ADD COLUMN tenant TEXT NOT NULL DEFAULT '';
 CREATE INDEX IF NOT EXISTS jobs_by_tenant ON jobs(tenant, seq);
 )sql",
+    // Idempotency-Key: per tenant, what a key stood for (24 h).
+    R"sql(
+CREATE TABLE IF NOT EXISTS idempotency(tenant TEXT NOT NULL, key TEXT NOT NULL,
+  request_hash TEXT NOT NULL, job_id TEXT NOT NULL, created REAL NOT NULL,
+  PRIMARY KEY(tenant, key));
+)sql",
 };
 
 // The store's clock, in seconds since the epoch, for leases.
@@ -314,6 +320,40 @@ std::optional<JobRecord> SqliteJobStore::find_reusable(const std::string& tenant
   s.bind(1, input_key).blob(2, input.mesh).bind(3, tenant);
   if (!s.step()) return std::nullopt;
   return read_job(s);
+}
+
+IdempotencyRecord SqliteJobStore::remember_idempotency(const std::string& tenant,
+                                                       const std::string& key,
+                                                       const IdempotencyRecord& record,
+                                                       double since) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  Statement earlier(db_,
+                    "SELECT request_hash, job_id, created FROM idempotency WHERE tenant=? AND "
+                    "key=? AND created>=?");
+  earlier.bind(1, tenant).bind(2, key).bind(3, since);
+  if (earlier.step()) return {earlier.text(0), earlier.text(1), earlier.real(2)};
+  Statement(db_,
+            "INSERT OR REPLACE INTO idempotency(tenant, key, request_hash, job_id, created) "
+            "VALUES(?,?,?,?,?)")
+      .bind(1, tenant)
+      .bind(2, key)
+      .bind(3, record.request_hash)
+      .bind(4, record.job_id)
+      .bind(5, record.created)
+      .run();
+  tx.commit();
+  return record;
+}
+
+void SqliteJobStore::forget_idempotency(const std::string& tenant, const std::string& key,
+                                        const std::string& job_id) {
+  std::lock_guard lock(mutex_);
+  Statement(db_, "DELETE FROM idempotency WHERE tenant=? AND key=? AND job_id=?")
+      .bind(1, tenant)
+      .bind(2, key)
+      .bind(3, job_id)
+      .run();
 }
 
 std::map<std::string, std::size_t> SqliteJobStore::count_by_status() {

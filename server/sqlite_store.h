@@ -29,6 +29,10 @@ class SqliteJobStore : public JobStore {
   JobInput input(const std::string& id) override;
   std::optional<JobRecord> find_reusable(const std::string& tenant, const std::string& input_key,
                                          const JobInput& input) override;
+  IdempotencyRecord remember_idempotency(const std::string& tenant, const std::string& key,
+                                         const IdempotencyRecord& record, double since) override;
+  void forget_idempotency(const std::string& tenant, const std::string& key,
+                          const std::string& job_id) override;
   std::map<std::string, std::size_t> count_by_status() override;
   std::size_t queue_position(std::int64_t seq) override;
 

@@ -150,6 +150,8 @@ export interface SubmitOptions {
   buffers?: Record<string, BinaryLike> | Array<{ name: string; data: BinaryLike }>;
   /** Send multipart/form-data even without buffers. */
   multipart?: boolean;
+  /** Idempotency-Key: retries of one submission with this key resolve to its first job. */
+  idempotencyKey?: string;
   signal?: AbortSignal;
 }
 

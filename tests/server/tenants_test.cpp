@@ -212,3 +212,94 @@ TEST(ServeTenantsKeyFile, TheFormat) {
         std::string("a ") + kHashA + "\nb " + kHashA, std::string("# only")})
     EXPECT_THROW(parse_api_keys(bad, "keys"), ApiKeyFileError) << bad;
 }
+
+// Idempotency-Key: a retried submit (same key, same mesh and options) answers 200 with the
+// first job; the key with another request is 422; each tenant has keys of its own.
+TEST_P(ServeTenants, IdempotencyKeyReturnsTheFirstJobPerTenant) {
+  const fs::path keys = write_keys(std::string("shop-a ") + kHashA + "\nshop-b " + kHashB + "\n");
+  Server s({"--workers", "1", "--api-keys", keys.string()});
+  auto c = s.client();
+  auto with_key = [](const std::string& key, const std::string& idem) {
+    httplib::Headers h = bearer(key);
+    h.emplace("Idempotency-Key", idem);
+    return h;
+  };
+  auto first =
+      c.Post("/v1/jobs?strategy=TU&seed=2", with_key("key-a", "order-1"), kTetraObj, "model/obj");
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->status, 202) << first->body;
+  const std::string id = body(first)["id"];
+  EXPECT_EQ(first->get_header_value("Location"), "/v1/jobs/" + id);
+
+  // The retry, with the options in another order: the same request, the first job.
+  auto retry =
+      c.Post("/v1/jobs?seed=2&strategy=TU", with_key("key-a", "order-1"), kTetraObj, "model/obj");
+  ASSERT_TRUE(retry);
+  EXPECT_EQ(retry->status, 200) << retry->body;
+  EXPECT_EQ(body(retry)["id"], id);
+  EXPECT_EQ(retry->get_header_value("Location"), "/v1/jobs/" + id);
+  EXPECT_EQ(retry->get_header_value("Idempotent-Replayed"), "true");
+  // Multipart with its own boundary, same mesh and options: still the same request.
+  httplib::MultipartFormDataItems items = {
+      {"mesh", kTetraObj, "t.obj", "model/obj"},
+      {"options", R"({"strategy":"TU","seed":2})", "", "application/json"}};
+  auto multipart = c.Post("/v1/jobs", with_key("key-a", "order-1"), items);
+  ASSERT_TRUE(multipart);
+  EXPECT_EQ(multipart->status, 200) << multipart->body;
+  EXPECT_EQ(body(multipart)["id"], id);
+
+  // The key with another body (another seed, another mesh): 422, and no job made.
+  auto other =
+      c.Post("/v1/jobs?strategy=TU&seed=3", with_key("key-a", "order-1"), kTetraObj, "model/obj");
+  expect_problem(other, 422, "idempotency_key_reused");
+  expect_problem(c.Post("/v1/jobs?strategy=TU&seed=2", with_key("key-a", "order-1"),
+                        std::string(kTetraObj) + "\n", "model/obj"),
+                 422, "idempotency_key_reused");
+  EXPECT_EQ(body(c.Get("/v1/jobs", bearer("key-a")))["jobs"].size(), 1u);
+
+  // Another tenant with the same key: a job of its own.
+  auto b =
+      c.Post("/v1/jobs?strategy=TU&seed=2", with_key("key-b", "order-1"), kTetraObj, "model/obj");
+  ASSERT_TRUE(b);
+  EXPECT_EQ(b->status, 202) << b->body;
+  EXPECT_NE(body(b)["id"], id);
+  auto b_retry =
+      c.Post("/v1/jobs?strategy=TU&seed=2", with_key("key-b", "order-1"), kTetraObj, "model/obj");
+  EXPECT_EQ(body(b_retry)["id"], body(b)["id"]);
+  // A new key is a new job; without a key every submit is one.
+  auto second =
+      c.Post("/v1/jobs?strategy=TU&seed=2", with_key("key-a", "order-2"), kTetraObj, "model/obj");
+  EXPECT_EQ(second->status, 202);
+  EXPECT_NE(body(second)["id"], id);
+  // A key that is no key: 400.
+  expect_problem(
+      c.Post("/v1/jobs", with_key("key-a", std::string(300, 'x')), kTetraObj, "model/obj"), 400,
+      "malformed_request");
+  EXPECT_EQ(final_as(s, "key-a", id)["status"], "succeeded");
+  // After the job ended, the retry still answers with it (now finished).
+  auto late =
+      c.Post("/v1/jobs?strategy=TU&seed=2", with_key("key-a", "order-1"), kTetraObj, "model/obj");
+  EXPECT_EQ(late->status, 200);
+  EXPECT_EQ(body(late)["status"], "succeeded");
+  fs::remove(keys);
+}
+
+// Many retries of one request at once (a client's retry storm): one job.
+TEST_P(ServeTenants, ConcurrentRetriesOfOneKeyMakeOneJob) {
+  Server s({"--workers", "1"});
+  std::vector<std::string> ids(8);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    threads.emplace_back([&, i] {
+      for (;;) {
+        auto res = s.client().Post("/v1/jobs?strategy=TU", {{"Idempotency-Key", "storm"}},
+                                   kTetraObj, "model/obj");
+        if (res && res->status == 409) continue;  // idempotency_key_in_use: retry
+        if (res && (res->status == 200 || res->status == 202)) ids[i] = body(res)["id"];
+        return;
+      }
+    });
+  for (auto& t : threads) t.join();
+  for (const std::string& id : ids) EXPECT_EQ(id, ids[0]);
+  EXPECT_EQ(body(s.client().Get("/v1/jobs"))["jobs"].size(), 1u);
+}

@@ -289,6 +289,14 @@ test("apiKey: a server with --api-keys answers the key's tenant; no key is missi
     await assert.rejects(b.job(job.id), (e) => e.code === "job_not_found" && e.status === 404);
     assert.deepEqual((await b.jobs()).jobs, []);
     assert.equal((await a.jobs()).jobs[0].id, job.id);
+    // A retried submit with its Idempotency-Key resolves to the first job.
+    const once = await a.submit(sample("sample.obj"), { filename: "o.obj", options: { seed: 9 }, idempotencyKey: "order-9" });
+    const again = await a.submit(sample("sample.obj"), { filename: "o.obj", options: { seed: 9 }, idempotencyKey: "order-9" });
+    assert.equal(again.id, once.id);
+    await assert.rejects(
+      a.submit(sample("sample.obj"), { filename: "o.obj", options: { seed: 10 }, idempotencyKey: "order-9" }),
+      (e) => e.code === "idempotency_key_reused" && e.status === 422,
+    );
   } finally {
     await keyed.stop();
   }
