@@ -291,25 +291,35 @@ IdempotencyRecord PgJobStore::remember_idempotency(const std::string& tenant,
                                                    const IdempotencyRecord& record, double since) {
   IdempotencyRecord out;
   pool_.run([&](Connection& c) {
-    // One statement: a fresh record of the key stays (the update's WHERE fails), a stale one is
-    // replaced; then whatever the key stands for is read.
-    Result r = c.exec(
-        "WITH put AS (INSERT INTO idempotency(tenant, key, request_hash, job_id, created) "
-        "VALUES($1, $2, $3, $4, $5::float8) ON CONFLICT (tenant, key) DO UPDATE SET "
-        "request_hash = excluded.request_hash, job_id = excluded.job_id, created = "
-        "excluded.created WHERE idempotency.created < $6::float8 "
-        "RETURNING request_hash, job_id, created) "
-        "SELECT request_hash, job_id, created FROM put UNION ALL "
-        "SELECT request_hash, job_id, created FROM idempotency WHERE tenant = $1 AND key = $2 "
-        "AND NOT EXISTS (SELECT 1 FROM put)",
-        Params()
-            .text(tenant)
-            .text(key)
-            .text(record.request_hash)
-            .text(record.job_id)
-            .number(record.created)
-            .number(since));
-    out = r.rows() > 0 ? IdempotencyRecord{r.text(0, 0), r.text(0, 1), r.real(0, 2)} : record;
+    // A fresh record of the key stays (the update's WHERE fails, no row returned), a stale one
+    // is replaced. When another request inserted the key concurrently, this statement waited
+    // for it and returns nothing, and its snapshot predates that row: it is read by a statement
+    // of its own. (A row forgotten in between: try again.)
+    for (;;) {
+      Result put = c.exec(
+          "INSERT INTO idempotency(tenant, key, request_hash, job_id, created) "
+          "VALUES($1, $2, $3, $4, $5::float8) ON CONFLICT (tenant, key) DO UPDATE SET "
+          "request_hash = excluded.request_hash, job_id = excluded.job_id, created = "
+          "excluded.created WHERE idempotency.created < $6::float8 RETURNING job_id",
+          Params()
+              .text(tenant)
+              .text(key)
+              .text(record.request_hash)
+              .text(record.job_id)
+              .number(record.created)
+              .number(since));
+      if (put.rows() > 0) {
+        out = record;
+        return;
+      }
+      Result earlier = c.exec(
+          "SELECT request_hash, job_id, created FROM idempotency WHERE tenant = $1 AND key = $2",
+          Params().text(tenant).text(key));
+      if (earlier.rows() > 0) {
+        out = {earlier.text(0, 0), earlier.text(0, 1), earlier.real(0, 2)};
+        return;
+      }
+    }
   });
   return out;
 }
