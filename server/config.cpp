@@ -37,6 +37,23 @@ double seconds(const std::string& where, const std::string& v) {
   return out;
 }
 
+// "3600", "90m", "12h", "7d" -> seconds (at most ten years).
+double duration(const std::string& where, const std::string& v) {
+  double unit = 1;
+  std::string digits = v;
+  if (!v.empty() && std::string("smhd").find(v.back()) != std::string::npos) {
+    unit = v.back() == 's' ? 1 : v.back() == 'm' ? 60 : v.back() == 'h' ? 3600 : 86400;
+    digits.pop_back();
+  }
+  double out = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), out);
+  if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() ||
+      !std::isfinite(out) || out < 0 || out * unit > 3650 * 86400.0)
+    throw ConfigError(where + ": '" + v +
+                      "' is not a duration (seconds, or a number with s, m, h or d; e.g. 7d)");
+  return out * unit;
+}
+
 bool yes_no(const std::string& where, const std::string& v) {
   if (v == "1" || v == "true" || v == "yes") return true;
   if (v == "0" || v == "false" || v == "no") return false;
@@ -176,6 +193,13 @@ const std::vector<Setting>& settings() {
        "/v1/jobs request then needs Authorization: Bearer KEY and sees its tenant's jobs only. "
        "Read again on SIGHUP and when the file changes (default none: the API is open)",
        [](ServerConfig& c, const std::string&, const std::string& v) { c.api_keys = v; }},
+      {"retention", "PAPERNET_RETENTION",
+       "how long a finished job, its upload and its results are kept: seconds or a number "
+       "with s, m, h or d; afterwards its files are removed and its id answers 410 "
+       "job_expired; 0 = forever (default 7d)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.retention = duration(w, v);
+       }},
   };
   return table;
 }

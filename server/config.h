@@ -39,6 +39,7 @@ struct ServerConfig {
   std::vector<std::string> cors_origins;
   /// File of API keys (server/api_keys.h); "" = none: the API is open to whoever reaches it.
   std::string api_keys;
+  double retention = 7 * 86400;  ///< seconds a finished job and its files are kept (0 = forever)
 };
 
 class ConfigError : public std::invalid_argument {

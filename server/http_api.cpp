@@ -71,6 +71,10 @@ JobView find_job(JobService& service, const httplib::Request& req) {
   auto view = service.view(id);
   if (!view || view->record.tenant != request_tenant)
     throw ApiError("job_not_found", "no job " + id);
+  if (view->record.expired)
+    throw ApiError("job_expired", "job " + id +
+                                      " finished longer ago than this server keeps jobs "
+                                      "(--retention); its upload and results were removed");
   return *view;
 }
 

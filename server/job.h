@@ -85,6 +85,7 @@ struct JobRecord {
   nlohmann::json progress;        ///< a running job's last published progress, or null
   nlohmann::json intermediate;    ///< a running job's published intermediate (level), or null
   std::vector<std::string> result_files;  ///< names of the stored files of `result_job`
+  bool expired = false;  ///< past retention: its input and files are gone, the id answers 410
 };
 
 /// A running job's latest overlap-free intermediate as a client sees it: its level and files.

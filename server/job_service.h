@@ -30,6 +30,9 @@ struct ServiceSettings {
   int max_attempts = 3;       ///< a job claimed again this often (its node died each time) fails
   double lease_seconds = 30;  ///< a running job's lease; renewed five times a second
   std::string node;           ///< this node's name in the store ("" = host, pid and a random tag)
+  /// Seconds a finished job is kept before JobStore::expire removes its files (0 = forever);
+  /// swept every retention/2 seconds, at most every minute.
+  double retention_seconds = 7 * 86400;
 };
 
 /// A job as a client sees it: the stored record plus, while it is queued or running, the live
@@ -128,6 +131,7 @@ class JobService {
   void work();
   void run_one(ClaimedJob claimed);
   void keep_leases();
+  void sweep(std::chrono::steady_clock::time_point& next);
   void on_store_event(const StoreEvent& event);
   bool finish(JobRecord& record, const Claim& claim, JobStatus status, const JobOutput* output,
               const nlohmann::json& error);

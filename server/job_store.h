@@ -105,6 +105,11 @@ class JobStore {
   /// Drops the key's record when it names `job_id` (its job could not be stored).
   virtual void forget_idempotency(const std::string& tenant, const std::string& key,
                                   const std::string& job_id) = 0;
+  /// Retention: every finished job that finished before `finished_before` becomes expired (its
+  /// row stays, small, so its id answers 410): its input, intermediates and result files are
+  /// removed (a result other jobs still reuse stays until they expire too). Idempotency-Key
+  /// records created before `keys_before` go. Returns the jobs that expired now.
+  virtual std::size_t expire(double finished_before, double keys_before) = 0;
   /// Jobs per status name.
   virtual std::map<std::string, std::size_t> count_by_status() = 0;
   /// 1 for the next queued job to run, 2 for the one after, ...

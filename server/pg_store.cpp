@@ -64,6 +64,10 @@ CREATE TABLE idempotency(tenant text NOT NULL, key text NOT NULL,
   request_hash text NOT NULL, job_id text NOT NULL, created double precision NOT NULL,
   PRIMARY KEY(tenant, key));
 )sql",
+    // Retention: an expired job keeps its row (410), not its input or files.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN expired boolean NOT NULL DEFAULT false;
+)sql",
 };
 
 // Advisory lock keys: one migration at a time, one queue-length check at a time.
@@ -73,8 +77,8 @@ constexpr const char* kColumns =
     "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
     "input_faces, faces, \"overlaps\", result_kind, metrics, error, result_job, attempts, "
     "claimed_by, cancel_requested, progress, intermediate, "
-    "(SELECT string_agg(r.name, '/') FROM results r WHERE r.job_id = result_job), tenant";
-constexpr int kColumnCount = 24;
+    "(SELECT string_agg(r.name, '/') FROM results r WHERE r.job_id = result_job), tenant, expired";
+constexpr int kColumnCount = 25;
 
 // A running job held by a claim: $1 id, $2 node, $3 attempt.
 constexpr const char* kHeld =
@@ -112,6 +116,7 @@ JobRecord read_job(const Result& r, int row) {
   j.intermediate = nlohmann::json::parse(r.text(row, 21));
   j.result_files = split_file_names(r.text(row, 22));
   j.tenant = r.text(row, 23);
+  j.expired = r.boolean(row, 24);
   return j;
 }
 
@@ -243,7 +248,8 @@ std::vector<JobRecord> PgJobStore::list(const std::string& tenant, std::size_t l
   std::vector<JobRecord> out;
   pool_.run([&](Connection& c) {
     Result r = c.exec(std::string("SELECT ") + kColumns +
-                          " FROM jobs WHERE tenant = $3 AND ($1::bigint = 0 OR seq < $1::bigint) "
+                          " FROM jobs WHERE tenant = $3 AND NOT expired AND "
+                          "($1::bigint = 0 OR seq < $1::bigint) "
                           "ORDER BY seq DESC LIMIT $2::bigint",
                       Params().number(before_seq).number(i64(limit)).text(tenant));
     out.clear();
@@ -332,10 +338,35 @@ void PgJobStore::forget_idempotency(const std::string& tenant, const std::string
   });
 }
 
+std::size_t PgJobStore::expire(double finished_before, double keys_before) {
+  std::size_t expired = 0;
+  pool_.run([&](Connection& c) {
+    c.transaction([&] {
+      expired = static_cast<std::size_t>(
+          c.exec("WITH gone AS (UPDATE jobs SET expired = true WHERE NOT expired AND finished > 0 "
+                 "AND finished < $1::float8 AND status IN ('succeeded', 'approximated', "
+                 "'failed', 'cancelled') RETURNING 1) SELECT count(*) FROM gone",
+                 Params().number(finished_before))
+              .integer(0, 0));
+      if (expired > 0)
+        for (const char* table : {"inputs", "input_files", "intermediates"})
+          c.exec(std::string("DELETE FROM ") + table +
+                 " t USING jobs j WHERE j.id = t.job_id AND j.expired");
+      // Also after earlier sweeps: a result kept for a job that reused it goes once that expired.
+      c.exec(
+          "DELETE FROM results r USING jobs j WHERE j.id = r.job_id AND j.expired AND NOT EXISTS "
+          "(SELECT 1 FROM jobs k WHERE k.result_job = r.job_id AND NOT k.expired)");
+      c.exec("DELETE FROM idempotency WHERE created < $1::float8", Params().number(keys_before));
+      return true;
+    });
+  });
+  return expired;
+}
+
 std::map<std::string, std::size_t> PgJobStore::count_by_status() {
   std::map<std::string, std::size_t> out;
   pool_.run([&](Connection& c) {
-    Result r = c.exec("SELECT status, count(*) FROM jobs GROUP BY status");
+    Result r = c.exec("SELECT status, count(*) FROM jobs WHERE NOT expired GROUP BY status");
     for (int i = 0; i < r.rows(); ++i)
       out[r.text(i, 0)] = static_cast<std::size_t>(r.integer(i, 1));
   });

@@ -34,6 +34,7 @@ class PgJobStore : public JobStore {
                                          const IdempotencyRecord& record, double since) override;
   void forget_idempotency(const std::string& tenant, const std::string& key,
                           const std::string& job_id) override;
+  std::size_t expire(double finished_before, double keys_before) override;
   std::map<std::string, std::size_t> count_by_status() override;
   std::size_t queue_position(std::int64_t seq) override;
 

@@ -37,6 +37,7 @@ constexpr ProblemType kProblemTypes[] = {
     {"job_finished", 409, "Job already finished"},
     {"idempotency_key_in_use", 409, "Idempotency-Key in use"},
     {"job_cancelled", 410, "Job was cancelled"},
+    {"job_expired", 410, "Job expired"},
     {"length_required", 411, "Content-Length required"},
     {"payload_too_large", 413, "Upload too large"},
     {"too_many_faces", 413, "Mesh has too many faces"},

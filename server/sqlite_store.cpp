@@ -55,6 +55,10 @@ CREATE TABLE IF NOT EXISTS idempotency(tenant TEXT NOT NULL, key TEXT NOT NULL,
   request_hash TEXT NOT NULL, job_id TEXT NOT NULL, created REAL NOT NULL,
   PRIMARY KEY(tenant, key));
 )sql",
+    // Retention: an expired job keeps its row (410), not its input or files.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN expired INTEGER NOT NULL DEFAULT 0;
+)sql",
 };
 
 // The store's clock, in seconds since the epoch, for leases.
@@ -64,7 +68,8 @@ constexpr const char* kColumns =
     "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
     "input_faces, faces, overlaps, result_kind, metrics, error, result_job, attempts, "
     "claimed_by, cancel_requested, progress, intermediate, "
-    "(SELECT group_concat(r.name, '/') FROM results r WHERE r.job_id = result_job), tenant";
+    "(SELECT group_concat(r.name, '/') FROM results r WHERE r.job_id = result_job), tenant, "
+    "expired";
 
 // A running job held by this claim.
 constexpr const char* kHeld = "id=? AND claimed_by=? AND attempts=? AND status='running'";
@@ -174,6 +179,7 @@ JobRecord read_job(const Statement& s) {
   j.intermediate = nlohmann::json::parse(s.text(21));
   j.result_files = split_file_names(s.text(22));
   j.tenant = s.text(23);
+  j.expired = s.integer(24) != 0;
   return j;
 }
 
@@ -285,7 +291,8 @@ std::vector<JobRecord> SqliteJobStore::list(const std::string& tenant, std::size
                                             std::int64_t before_seq) {
   std::lock_guard lock(mutex_);
   Statement s(db_, std::string("SELECT ") + kColumns +
-                       " FROM jobs WHERE tenant=? AND (?=0 OR seq<?) ORDER BY seq DESC LIMIT ?");
+                       " FROM jobs WHERE tenant=? AND expired=0 AND (?=0 OR seq<?) "
+                       "ORDER BY seq DESC LIMIT ?");
   s.bind(1, tenant).bind(2, before_seq).bind(3, before_seq).bind(4, i64(limit));
   std::vector<JobRecord> out;
   while (s.step()) out.push_back(read_job(s));
@@ -356,9 +363,34 @@ void SqliteJobStore::forget_idempotency(const std::string& tenant, const std::st
       .run();
 }
 
+std::size_t SqliteJobStore::expire(double finished_before, double keys_before) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  const int expired =
+      Statement(db_,
+                "UPDATE jobs SET expired=1 WHERE expired=0 AND finished>0 AND finished<? AND "
+                "status IN ('succeeded','approximated','failed','cancelled')")
+          .bind(1, finished_before)
+          .run();
+  if (expired > 0) {
+    for (const char* table : {"inputs", "input_files", "intermediates"})
+      Statement(db_, std::string("DELETE FROM ") + table +
+                         " WHERE job_id IN (SELECT id FROM jobs WHERE expired=1)")
+          .run();
+  }
+  // Also after earlier sweeps: a result kept for a job that reused it goes once that expired.
+  Statement(db_,
+            "DELETE FROM results WHERE job_id IN (SELECT id FROM jobs WHERE expired=1) AND "
+            "job_id NOT IN (SELECT result_job FROM jobs WHERE expired=0)")
+      .run();
+  Statement(db_, "DELETE FROM idempotency WHERE created<?").bind(1, keys_before).run();
+  tx.commit();
+  return static_cast<std::size_t>(expired);
+}
+
 std::map<std::string, std::size_t> SqliteJobStore::count_by_status() {
   std::lock_guard lock(mutex_);
-  Statement s(db_, "SELECT status, COUNT(*) FROM jobs GROUP BY status");
+  Statement s(db_, "SELECT status, COUNT(*) FROM jobs WHERE expired=0 GROUP BY status");
   std::map<std::string, std::size_t> out;
   while (s.step()) out[s.text(0)] = static_cast<std::size_t>(s.integer(1));
   return out;

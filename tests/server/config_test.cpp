@@ -115,3 +115,13 @@ TEST(ConfigTest, ApiKeysRefuseAnyOrigin) {
                 ->cors_origins.size(),
             1u);
 }
+
+TEST(ConfigTest, RetentionIsADuration) {
+  EXPECT_EQ(parse({})->retention, 7 * 86400);
+  EXPECT_EQ(parse({"--retention", "3600"})->retention, 3600);
+  EXPECT_EQ(parse({"--retention", "90m"})->retention, 5400);
+  EXPECT_EQ(parse({}, {{"PAPERNET_RETENTION", "2d"}})->retention, 2 * 86400);
+  EXPECT_EQ(parse({"--retention", "0"})->retention, 0);
+  for (const char* bad : {"", "d", "7w", "-1", "1e9d", "soon"})
+    EXPECT_THROW(parse({"--retention", bad}), ConfigError) << bad;
+}
