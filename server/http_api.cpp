@@ -68,9 +68,8 @@ std::string job_id_of(const httplib::Request& req) {
 // Another tenant's job is answered exactly like one that does not exist.
 JobView find_job(JobService& service, const httplib::Request& req) {
   const std::string id = job_id_of(req);
-  auto view = service.view(id);
-  if (!view || view->record.tenant != request_tenant)
-    throw ApiError("job_not_found", "no job " + id);
+  auto view = service.view(id, &request_tenant);
+  if (!view) throw ApiError("job_not_found", "no job " + id);
   if (view->record.expired)
     throw ApiError("job_expired", "job " + id +
                                       " finished longer ago than this server keeps jobs "

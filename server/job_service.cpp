@@ -119,9 +119,9 @@ JobRecord JobService::submit(JobInput input, JobOptions options, const std::stri
   return job;
 }
 
-std::optional<JobView> JobService::view(const std::string& id) {
+std::optional<JobView> JobService::view(const std::string& id, const std::string* tenant) {
   std::optional<JobRecord> record = store_.find(id);
-  if (!record) return std::nullopt;
+  if (!record || (tenant && record->tenant != *tenant)) return std::nullopt;
   JobView view{std::move(*record), std::nullopt, 0, false, std::nullopt, {}};
   const JobRecord& r = view.record;
   if (is_final(r.status)) {

@@ -95,7 +95,9 @@ class JobService {
     store_.forget_idempotency(tenant, key, job_id);
   }
 
-  std::optional<JobView> view(const std::string& id);
+  /// With `tenant`, another tenant's job is nullopt as soon as its record is read, so that it
+  /// costs what a missing one does (no queue position or live state is looked up).
+  std::optional<JobView> view(const std::string& id, const std::string* tenant = nullptr);
   /// `tenant`'s jobs, most recent first; `before_seq` > 0 pages on.
   std::vector<JobRecord> list(const std::string& tenant, std::size_t limit,
                               std::int64_t before_seq) {
