@@ -30,6 +30,7 @@ thread_local Clock::time_point request_start;
 // The tenant of the request's API key ("" without keys): it owns what it submits and sees
 // nothing else.
 thread_local std::string request_tenant;
+thread_local double request_queue_share = 1;  // the key's share= (1 without keys)
 
 // The longest Authorization header looked at: keys are short; a longer header is refused
 // before it is hashed.
@@ -129,6 +130,7 @@ std::optional<Problem> authenticate(ApiKeyRing& keys, RateLimiter& limiter,
   const std::optional<ApiKey> key = keys.find(secret);
   if (!key) return make_problem("invalid_api_key", "the API key is unknown or was revoked");
   request_tenant = key->tenant;
+  request_queue_share = key->share;
   if (const int wait = limiter.take(sha256_hex(secret), key->rate); wait > 0) {
     Problem p = make_problem("rate_limited", "this API key may make " + std::to_string(key->rate) +
                                                  " requests a second; retry later");
@@ -333,7 +335,8 @@ struct Api {
     }
     JobRecord job;
     try {
-      job = service.submit(std::move(upload.input), std::move(upload.options), request_tenant, id);
+      job = service.submit(std::move(upload.input), std::move(upload.options),
+                           {request_tenant, id, request_queue_share});
     } catch (...) {
       if (idempotent) service.forget_idempotency(request_tenant, key, id);
       throw;
@@ -478,6 +481,7 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
                                    const httplib::Request& req, httplib::Response& res) {
     request_start = Clock::now();
     request_tenant.clear();
+    request_queue_share = 1;
     Problem p;
     const std::string allowed = allowed_methods(req.path);
     if (!allowed.empty() && answer_cors(config, allowed, req, res))

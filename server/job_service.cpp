@@ -70,12 +70,12 @@ JobService::JobService(JobStore& store, JobRunner runner, ServiceSettings settin
 
 JobService::~JobService() { shutdown(std::chrono::milliseconds(0)); }
 
-JobRecord JobService::submit(JobInput input, JobOptions options, const std::string& tenant,
-                             const std::string& id) {
+JobRecord JobService::submit(JobInput input, JobOptions options, const Submitter& by) {
+  const std::string& tenant = by.tenant;
   if (!accepting_) throw ApiError("shutting_down", "the server is shutting down; try again");
   if (!options.time_limit) options.time_limit = settings_.default_time_limit;
   JobRecord job;
-  job.id = id.empty() ? new_job_id() : id;
+  job.id = by.job_id.empty() ? new_job_id() : by.job_id;
   job.tenant = tenant;
   job.created = now_seconds();
   job.options = options_to_json(options);
@@ -98,6 +98,17 @@ JobRecord JobService::submit(JobInput input, JobOptions options, const std::stri
       store_.insert(job, nullptr, 0);
       log_("job " + job.id + " -> " + status_name(job.status) + " (reused " + prior->id + ")");
       return job;
+    }
+  }
+  if (by.queue_share < 1) {
+    const auto share = std::max<std::size_t>(
+        1, static_cast<std::size_t>(by.queue_share * static_cast<double>(settings_.queue_length)));
+    if (store_.queued_count(tenant) >= share) {
+      Problem p = make_problem(
+          "queue_full", "this tenant's share of the queue (" + std::to_string(share) + " of " +
+                            std::to_string(settings_.queue_length) + " jobs) is full; retry later");
+      p.retry_after = static_cast<int>(retry_after_seconds(share));
+      throw ApiError(p);
     }
   }
   if (!store_.insert(job, &input, settings_.queue_length)) {

@@ -35,6 +35,13 @@ struct ServiceSettings {
   double retention_seconds = 7 * 86400;
 };
 
+/// Who submits a job, and on what terms.
+struct Submitter {
+  std::string tenant;      ///< the API key's tenant ("" without keys)
+  std::string job_id;      ///< the new job's id ("" = a new random one)
+  double queue_share = 1;  ///< the most of the queue this tenant's queued jobs may fill
+};
+
 /// A job as a client sees it: the stored record plus, while it is queued or running, the live
 /// state (progress, queue position, latest overlap-free intermediate), from this node's memory
 /// when it runs here and from what its node published to the store otherwise.
@@ -81,10 +88,10 @@ class JobService {
 
   /// Stores the job and queues it, or answers it from an identical finished job.
   /// \throw ApiError queue_full (with Retry-After) or shutting_down; StoreError.
-  /// The job belongs to `tenant` ("" without API keys); only its jobs' results are reused.
-  /// `id` names the new job ("" = a new random id).
-  JobRecord submit(JobInput input, JobOptions options, const std::string& tenant = "",
-                   const std::string& id = "");
+  /// The job belongs to `by.tenant`; only that tenant's results are reused. A tenant whose
+  /// queued jobs fill its `queue_share` of the queue (at least one job) is refused as a full
+  /// queue is.
+  JobRecord submit(JobInput input, JobOptions options, const Submitter& by = {});
   /// JobStore::remember_idempotency and forget_idempotency (Idempotency-Key).
   IdempotencyRecord remember_idempotency(const std::string& tenant, const std::string& key,
                                          const IdempotencyRecord& record, double since) {

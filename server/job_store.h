@@ -110,6 +110,8 @@ class JobStore {
   /// removed (a result other jobs still reuse stays until they expire too). Idempotency-Key
   /// records created before `keys_before` go. Returns the jobs that expired now.
   virtual std::size_t expire(double finished_before, double keys_before) = 0;
+  /// `tenant`'s queued jobs.
+  virtual std::size_t queued_count(const std::string& tenant) = 0;
   /// Jobs per status name.
   virtual std::map<std::string, std::size_t> count_by_status() = 0;
   /// 1 for the next queued job to run, 2 for the one after, ...

@@ -363,6 +363,17 @@ std::size_t PgJobStore::expire(double finished_before, double keys_before) {
   return expired;
 }
 
+std::size_t PgJobStore::queued_count(const std::string& tenant) {
+  std::size_t out = 0;
+  pool_.run([&](Connection& c) {
+    out = static_cast<std::size_t>(
+        c.exec("SELECT count(*) FROM jobs WHERE status = 'queued' AND tenant = $1",
+               Params().text(tenant))
+            .integer(0, 0));
+  });
+  return out;
+}
+
 std::map<std::string, std::size_t> PgJobStore::count_by_status() {
   std::map<std::string, std::size_t> out;
   pool_.run([&](Connection& c) {

@@ -388,6 +388,13 @@ std::size_t SqliteJobStore::expire(double finished_before, double keys_before) {
   return static_cast<std::size_t>(expired);
 }
 
+std::size_t SqliteJobStore::queued_count(const std::string& tenant) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "SELECT COUNT(*) FROM jobs WHERE status='queued' AND tenant=?");
+  s.bind(1, tenant);
+  return s.step() ? static_cast<std::size_t>(s.integer(0)) : 0;
+}
+
 std::map<std::string, std::size_t> SqliteJobStore::count_by_status() {
   std::lock_guard lock(mutex_);
   Statement s(db_, "SELECT status, COUNT(*) FROM jobs WHERE expired=0 GROUP BY status");

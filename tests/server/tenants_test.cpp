@@ -303,3 +303,28 @@ TEST_P(ServeTenants, ConcurrentRetriesOfOneKeyMakeOneJob) {
   for (const std::string& id : ids) EXPECT_EQ(id, ids[0]);
   EXPECT_EQ(body(s.client().Get("/v1/jobs"))["jobs"].size(), 1u);
 }
+
+// share=: a tenant's queued jobs fill at most its part of the queue; others still queue.
+TEST_P(ServeTenants, QueueShareCapsATenantsQueuedJobs) {
+  const fs::path keys =
+      write_keys(std::string("shop-a ") + kHashA + " share=0.25\nshop-b " + kHashB + "\n");
+  Server s({"--workers", "1", "--queue-length", "4", "--api-keys", keys.string()});
+  auto c = s.client();
+  // The one worker is busy with a long job of B's, so what follows stays queued.
+  const std::string busy =
+      submit_as(s, "key-b", test_mesh("reference.obj"), "?strategy=TU&time_limit=60");
+  while (body(c.Get("/v1/jobs/" + busy, bearer("key-b")))["status"] == "queued")
+    std::this_thread::sleep_for(5ms);
+  ASSERT_EQ(body(c.Get("/v1/jobs/" + busy, bearer("key-b")))["status"], "running")
+      << "the test needs a job that runs for a while";
+  const std::string queued = submit_as(s, "key-a", kTetraObj, "?strategy=TU&seed=1");
+  auto over = c.Post("/v1/jobs?strategy=TU&seed=2", bearer("key-a"), kTetraObj, "model/obj");
+  expect_problem(over, 429, "queue_full");
+  EXPECT_NE(over->body.find("share of the queue (1 of 4 jobs)"), std::string::npos) << over->body;
+  EXPECT_FALSE(over->get_header_value("Retry-After").empty());
+  // B, without a share, queues as before.
+  submit_as(s, "key-b", kTetraObj, "?strategy=TU&seed=3");
+  EXPECT_EQ(c.Delete("/v1/jobs/" + busy, bearer("key-b"))->status, 202);
+  EXPECT_EQ(final_as(s, "key-a", queued)["status"], "succeeded");
+  fs::remove(keys);
+}
