@@ -37,10 +37,52 @@ double seconds(const std::string& where, const std::string& v) {
   return out;
 }
 
+// "3600", "90m", "12h", "7d" -> seconds (at most ten years).
+double duration(const std::string& where, const std::string& v) {
+  double unit = 1;
+  std::string digits = v;
+  if (!v.empty() && std::string("smhd").find(v.back()) != std::string::npos) {
+    unit = v.back() == 's' ? 1 : v.back() == 'm' ? 60 : v.back() == 'h' ? 3600 : 86400;
+    digits.pop_back();
+  }
+  double out = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), out);
+  if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() ||
+      !std::isfinite(out) || out < 0 || out * unit > 3650 * 86400.0)
+    throw ConfigError(where + ": '" + v +
+                      "' is not a duration (seconds, or a number with s, m, h or d; e.g. 7d)");
+  return out * unit;
+}
+
 bool yes_no(const std::string& where, const std::string& v) {
   if (v == "1" || v == "true" || v == "yes") return true;
   if (v == "0" || v == "false" || v == "no") return false;
   throw ConfigError(where + ": '" + v + "' is not true or false");
+}
+
+// "https://shop.example, http://localhost:5173" -> its origins, each scheme://host[:port].
+std::vector<std::string> origins(const std::string& where, const std::string& v) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  while (from <= v.size()) {
+    std::size_t to = v.find(',', from);
+    if (to == std::string::npos) to = v.size();
+    std::string o = v.substr(from, to - from);
+    o.erase(0, o.find_first_not_of(" \t"));
+    o.erase(o.find_last_not_of(" \t") + 1);
+    from = to + 1;
+    if (o.empty()) continue;
+    if (o.back() == '/') o.pop_back();
+    const auto scheme = o.find("://");
+    const bool web = o.rfind("http://", 0) == 0 || o.rfind("https://", 0) == 0;
+    if (o != "*" && (!web || o.size() == scheme + 3 ||
+                     o.find_first_of("/?#* ", scheme + 3) != std::string::npos))
+      throw ConfigError(where + ": '" + o +
+                        "' is not an origin (scheme://host[:port], e.g. https://shop.example) "
+                        "or *");
+    out.push_back(o);
+  }
+  return out;
 }
 
 const std::vector<Setting>& settings() {
@@ -138,6 +180,26 @@ const std::vector<Setting>& settings() {
       {"web-root", "PAPERNET_WEB_ROOT",
        "directory of the web demo served at / (the built clients/web bundle; default none)",
        [](ServerConfig& c, const std::string&, const std::string& v) { c.web_root = v; }},
+      {"cors-origins", "PAPERNET_CORS_ORIGINS",
+       "comma-separated origins whose pages may call the API from a browser, e.g. "
+       "https://shop.example (CORS, preflight answered); * = any origin, only without "
+       "--api-keys (default none: same-origin pages only)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.cors_origins = origins(w, v);
+       }},
+      {"api-keys", "PAPERNET_API_KEYS",
+       "file of API keys, one a line: TENANT SHA256HEX [rate=N] [share=F] [name=LABEL] (the "
+       "key's SHA-256 in hex; rate: requests a second; share: fraction of the queue); every "
+       "/v1/jobs request then needs Authorization: Bearer KEY and sees its tenant's jobs only. "
+       "Read again on SIGHUP and when the file changes (default none: the API is open)",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.api_keys = v; }},
+      {"retention", "PAPERNET_RETENTION",
+       "how long a finished job, its upload and its results are kept: seconds or a number "
+       "with s, m, h or d; afterwards its files are removed and its id answers 410 "
+       "job_expired; 0 = forever (default 7d)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.retention = duration(w, v);
+       }},
   };
   return table;
 }
@@ -170,6 +232,11 @@ std::optional<ServerConfig> parse_serve_config(
     }
     found->set(config, "flag " + arg, value);
   }
+  for (const std::string& o : config.cors_origins)
+    if (o == "*" && !config.api_keys.empty())
+      throw ConfigError(
+          "--cors-origins '*' is refused with --api-keys: list the origins of the pages that "
+          "may use the keys");
   if (config.workers == 0)
     config.workers = std::max<std::size_t>(1, std::thread::hardware_concurrency());
   if (config.read_timeout <= 0 || config.header_timeout <= 0 || config.request_timeout <= 0)

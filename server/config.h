@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace papernet::server {
 
@@ -33,6 +34,12 @@ struct ServerConfig {
   bool reuse_results = true;        ///< answer identical mesh + options from a stored result
   bool access_log = true;
   std::string web_root;  ///< directory of the web demo served at / ("" = none)
+  /// Origins whose pages may call the API from a browser (CORS), e.g. https://shop.example;
+  /// "*" = any (only without API keys).
+  std::vector<std::string> cors_origins;
+  /// File of API keys (server/api_keys.h); "" = none: the API is open to whoever reaches it.
+  std::string api_keys;
+  double retention = 7 * 86400;  ///< seconds a finished job and its files are kept (0 = forever)
 };
 
 class ConfigError : public std::invalid_argument {

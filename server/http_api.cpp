@@ -3,10 +3,15 @@
 #include <httplib.h>
 
 #include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <regex>
 #include <thread>
 
 #include "api/openapi.h"
+#include "server/api_keys.h"
 #include "server/http_server.h"
 #include "server/job_json.h"
 #include "server/job_store.h"
@@ -19,8 +24,17 @@ namespace {
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-// Set when a request starts routing; the access logger runs on the same thread afterwards.
+// Set when a request starts routing; the handlers and the access logger run on the same
+// thread afterwards.
 thread_local Clock::time_point request_start;
+// The tenant of the request's API key ("" without keys): it owns what it submits and sees
+// nothing else.
+thread_local std::string request_tenant;
+thread_local double request_queue_share = 1;  // the key's share= (1 without keys)
+
+// The longest Authorization header looked at: keys are short; a longer header is refused
+// before it is hashed.
+constexpr std::size_t kMaxAuthorization = 256;
 
 void send_problem(httplib::Response& res, const Problem& p, const std::string& instance) {
   res.status = p.status;
@@ -52,11 +66,78 @@ std::string job_id_of(const httplib::Request& req) {
   return id;
 }
 
+// Another tenant's job is answered exactly like one that does not exist.
 JobView find_job(JobService& service, const httplib::Request& req) {
   const std::string id = job_id_of(req);
-  auto view = service.view(id);
+  auto view = service.view(id, &request_tenant);
   if (!view) throw ApiError("job_not_found", "no job " + id);
+  if (view->record.expired)
+    throw ApiError("job_expired", "job " + id +
+                                      " finished longer ago than this server keeps jobs "
+                                      "(--retention); its upload and results were removed");
   return *view;
+}
+
+// Requests a second per key (ApiKey::rate): a bucket of max(1, rate) requests, refilled at
+// `rate` a second.
+class RateLimiter {
+ public:
+  /// 0 when the request may go; else the seconds to wait for the next one.
+  int take(const std::string& key, double rate) {
+    if (rate <= 0) return 0;
+    std::lock_guard lock(mutex_);
+    const auto now = Clock::now();
+    auto [it, fresh] = buckets_.try_emplace(key, Bucket{std::max(1.0, rate), now});
+    Bucket& b = it->second;
+    if (!fresh) {
+      const double seconds = std::chrono::duration<double>(now - b.at).count();
+      b.tokens = std::min(std::max(1.0, rate), b.tokens + seconds * rate);
+      b.at = now;
+    }
+    if (b.tokens >= 1) {
+      b.tokens -= 1;
+      return 0;
+    }
+    return static_cast<int>(std::ceil((1 - b.tokens) / rate));
+  }
+
+ private:
+  struct Bucket {
+    double tokens;
+    Clock::time_point at;
+  };
+  std::mutex mutex_;
+  std::map<std::string, Bucket> buckets_;
+};
+
+// Who is asking, with keys configured: sets request_tenant, or returns the problem to answer.
+std::optional<Problem> authenticate(ApiKeyRing& keys, RateLimiter& limiter,
+                                    const httplib::Request& req) {
+  const std::string header = req.get_header_value("Authorization");
+  if (header.empty())
+    return make_problem("missing_api_key",
+                        "this server needs an API key: send Authorization: Bearer <key>");
+  if (header.size() > kMaxAuthorization)
+    return make_problem("invalid_api_key", "the Authorization header is longer than " +
+                                               std::to_string(kMaxAuthorization) +
+                                               " bytes; no papernet key is that long");
+  std::string scheme = header.substr(0, 7);
+  for (char& c : scheme) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string secret = header.size() > 7 ? header.substr(7) : std::string();
+  if (scheme != "bearer " || secret.empty() || secret.find_first_of(" \t") != std::string::npos)
+    return make_problem("invalid_api_key",
+                        "the Authorization header is not of the form Bearer <key>");
+  const std::optional<ApiKey> key = keys.find(secret);
+  if (!key) return make_problem("invalid_api_key", "the API key is unknown or was revoked");
+  request_tenant = key->tenant;
+  request_queue_share = key->share;
+  if (const int wait = limiter.take(sha256_hex(secret), key->rate); wait > 0) {
+    Problem p = make_problem("rate_limited", "this API key may make " + std::to_string(key->rate) +
+                                                 " requests a second; retry later");
+    p.retry_after = wait;
+    return p;
+  }
+  return std::nullopt;
 }
 
 // Reads the upload's body through `reader`, never more than `max_bytes` of it (after any
@@ -120,6 +201,94 @@ bool refuse_unexpected_body(const httplib::Request& req) {
   return req.get_header_value<std::uint64_t>("Content-Length") > (std::uint64_t{64} << 10);
 }
 
+// The methods a path of the API takes ("" for a path that is not the API's). HEAD goes with GET.
+std::string allowed_methods(const std::string& path) {
+  static const std::regex job("^/v1/jobs/[^/]+$");
+  static const std::regex job_get(
+      "^/v1/jobs/[^/]+/(events|net\\.json|net\\.svg|net\\.pdf|mesh\\.glb)$");
+  if (path == "/v1/jobs") return "GET, HEAD, POST";
+  if (std::regex_match(path, job)) return "GET, HEAD, DELETE";
+  if (path == "/healthz" || path == "/readyz" || path == "/metrics" || path == "/v1/openapi.json" ||
+      std::regex_match(path, job_get))
+    return "GET, HEAD";
+  return "";
+}
+
+bool method_allowed(const std::string& allowed, const std::string& method) {
+  std::size_t from = 0;
+  while (from < allowed.size()) {
+    std::size_t to = allowed.find(", ", from);
+    if (to == std::string::npos) to = allowed.size();
+    if (allowed.compare(from, to - from, method) == 0) return true;
+    from = to + 2;
+  }
+  return false;
+}
+
+// CORS (ServerConfig::cors_origins): what Access-Control-Allow-Origin says to this request's
+// Origin ("" = nothing: no Origin, or one not listed).
+std::string cors_origin(const ServerConfig& config, const httplib::Request& req) {
+  const std::string origin = req.get_header_value("Origin");
+  if (origin.empty()) return "";
+  for (const std::string& o : config.cors_origins)
+    if (o == "*" || o == origin) return o;
+  return "";
+}
+
+// Adds the CORS headers of an API answer; true when `req` is a preflight, answered here
+// (204, or 403 origin_not_allowed for an origin not listed).
+bool answer_cors(const ServerConfig& config, const std::string& allowed,
+                 const httplib::Request& req, httplib::Response& res) {
+  if (config.cors_origins.empty()) return false;
+  const std::string origin = cors_origin(config, req);
+  if (origin != "*") res.set_header("Vary", "Origin");  // caches keep one answer per origin
+  if (!origin.empty()) {
+    res.set_header("Access-Control-Allow-Origin", origin);
+    res.set_header("Access-Control-Expose-Headers",
+                   "Location, Retry-After, X-Papernet-Level, Allow, Idempotent-Replayed");
+  }
+  if (req.method != "OPTIONS" || !req.has_header("Origin") ||
+      !req.has_header("Access-Control-Request-Method"))
+    return false;
+  if (origin.empty()) {
+    send_problem(res,
+                 make_problem("origin_not_allowed",
+                              "the origin " + req.get_header_value("Origin").substr(0, 128) +
+                                  " may not call this API from a browser (see --cors-origins)"),
+                 req.path);
+    return true;
+  }
+  res.status = 204;
+  res.set_header("Access-Control-Allow-Methods", allowed);
+  res.set_header("Access-Control-Allow-Headers",
+                 "Authorization, Content-Type, Idempotency-Key, Last-Event-ID");
+  res.set_header("Access-Control-Max-Age", "600");
+  return true;
+}
+
+// How long an Idempotency-Key stands for its first request.
+constexpr double kIdempotencyWindow = 24 * 3600;
+
+bool valid_idempotency_key(const std::string& key) {
+  if (key.empty() || key.size() > 255) return false;
+  for (char c : key)
+    if (c < 0x21 || c > 0x7e) return false;
+  return true;
+}
+
+// "The same body": the same mesh, files and options, however they were framed (a multipart
+// boundary or the order of query parameters does not count).
+std::string request_hash(const ParsedUpload& upload) {
+  const std::string format = format_name(upload.input.format);
+  const std::string options = options_to_json(upload.options).dump();
+  std::vector<std::string_view> parts = {format, options, upload.input.mesh};
+  for (const auto& [name, data] : upload.input.external_files) {
+    parts.push_back(name);
+    parts.push_back(data);
+  }
+  return sha256_hex_of_parts(parts);
+}
+
 struct Api {
   Api(JobService& s, const ServerConfig& c, HttpMetrics& m) : service(s), config(c), metrics(m) {}
   JobService& service;
@@ -132,13 +301,53 @@ struct Api {
     OptionsLimits limits;
     limits.max_time_limit = config.max_job_time_limit;
     limits.max_target_faces = config.max_faces;
+    const bool idempotent = req.has_header("Idempotency-Key");
+    const std::string key = req.get_header_value("Idempotency-Key");
+    if (idempotent && !valid_idempotency_key(key))
+      throw ApiError("malformed_request",
+                     "an Idempotency-Key is 1 to 255 visible ASCII characters (a UUID will do)");
     ParsedUpload upload = parse_upload(upload_of(req, reader, config.max_body_bytes), limits);
-    const JobRecord job = service.submit(std::move(upload.input), std::move(upload.options));
-    auto view = service.view(job.id);
+    std::string id;
+    if (idempotent) {
+      const std::string hash = request_hash(upload);
+      const double now = now_seconds();
+      id = new_job_id();
+      const IdempotencyRecord stored = service.remember_idempotency(
+          request_tenant, key, {hash, id, now}, now - kIdempotencyWindow);
+      if (stored.job_id != id) {  // a retry: the first request's job
+        if (stored.request_hash != hash)
+          throw ApiError("idempotency_key_reused",
+                         "this Idempotency-Key was used in the last 24 hours for another request "
+                         "(another mesh or options); use a new key for a new request");
+        auto first = service.view(stored.job_id);
+        if (!first || first->record.tenant != request_tenant) {
+          Problem p = make_problem("idempotency_key_in_use",
+                                   "the first request with this Idempotency-Key is still being "
+                                   "stored; retry in a moment");
+          p.retry_after = 1;
+          throw ApiError(p);
+        }
+        res.set_header("Location", "/v1/jobs/" + stored.job_id);
+        res.set_header("Idempotent-Replayed", "true");
+        send_json(res, 200, job_to_json(*first, now_seconds()));
+        return;
+      }
+    }
+    JobRecord job;
+    try {
+      job = service.submit(std::move(upload.input), std::move(upload.options),
+                           {request_tenant, id, request_queue_share});
+    } catch (...) {
+      if (idempotent) service.forget_idempotency(request_tenant, key, id);
+      throw;
+    }
+    // The job as accepted: queued (with its place) or answered from a stored result. A worker
+    // may have claimed it already; the next poll shows that.
+    JobView accepted{job, {}, 0, false, std::nullopt, job.result_files};
+    if (auto view = service.view(job.id); view && view->record.status == job.status)
+      accepted = *view;
     res.set_header("Location", "/v1/jobs/" + job.id);
-    send_json(
-        res, 202,
-        job_to_json(view ? *view : JobView{job, {}, 0, false, std::nullopt, {}}, now_seconds()));
+    send_json(res, 202, job_to_json(accepted, now_seconds()));
   }
 
   void list(const httplib::Request& req, httplib::Response& res) {
@@ -155,7 +364,7 @@ struct Api {
     json jobs = json::array();
     std::int64_t last = 0;
     std::size_t n = 0;
-    for (const JobRecord& r : service.list(limit, cursor)) {
+    for (const JobRecord& r : service.list(request_tenant, limit, cursor)) {
       if (auto view = service.view(r.id)) jobs.push_back(job_to_json(*view, now_seconds()));
       last = r.seq;
       ++n;
@@ -250,8 +459,9 @@ std::string job_id_in_path(const std::string& path) {
 }  // namespace
 
 void install_routes(httplib::Server& http, JobService& service, const ServerConfig& config,
-                    HttpMetrics& metrics) {
+                    HttpMetrics& metrics, ApiKeyRing* keys) {
   auto api = std::make_shared<Api>(service, config, metrics);
+  auto limiter = std::make_shared<RateLimiter>();
   const std::string job = "/v1/jobs/([^/]+)";
 
   http.set_payload_max_length(config.max_body_bytes);
@@ -267,25 +477,54 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
         res.status = 413;  // the error handler below writes the problem
         return 413;
       });
-  http.set_pre_routing_handler(
-      [&config, declared_too_large](const httplib::Request& req, httplib::Response& res) {
-        request_start = Clock::now();
-        Problem p;
-        if (declared_too_large(req))
-          p = make_problem("payload_too_large", "the upload declares " +
-                                                    req.get_header_value("Content-Length") +
-                                                    " bytes, more than this server's limit of " +
-                                                    std::to_string(config.max_body_bytes));
-        else if (refuse_unexpected_body(req))
-          p = make_problem("payload_too_large", req.method + " " + req.path +
-                                                    " takes no request body (chunked, encoded or "
-                                                    "over 64 KiB bodies are refused)");
-        else
-          return httplib::Server::HandlerResponse::Unhandled;
-        close_connection_after_response();
-        send_problem(res, p, req.path);
+  http.set_pre_routing_handler([&config, declared_too_large, keys, limiter](
+                                   const httplib::Request& req, httplib::Response& res) {
+    request_start = Clock::now();
+    request_tenant.clear();
+    request_queue_share = 1;
+    Problem p;
+    const std::string allowed = allowed_methods(req.path);
+    if (!allowed.empty() && answer_cors(config, allowed, req, res))
+      return httplib::Server::HandlerResponse::Handled;
+    if (keys && !allowed.empty() && req.path.rfind("/v1/jobs", 0) == 0)
+      if (std::optional<Problem> refused = authenticate(*keys, *limiter, req)) {
+        if (refused->status == 401) res.set_header("WWW-Authenticate", "Bearer realm=\"papernet\"");
+        if (req.has_header("Content-Length") || req.has_header("Transfer-Encoding"))
+          close_connection_after_response();
+        send_problem(res, *refused, req.path);
         return httplib::Server::HandlerResponse::Handled;
-      });
+      }
+    if (!allowed.empty() && !method_allowed(allowed, req.method)) {
+      res.set_header("Allow", allowed);
+      p = make_problem("method_not_allowed", req.method + " is not allowed on " +
+                                                 req.path.substr(0, 128) + " (allowed: " + allowed +
+                                                 ")");
+      // A body we do not read must not be taken for the next request.
+      if (req.has_header("Content-Length") || req.has_header("Transfer-Encoding"))
+        close_connection_after_response();
+      send_problem(res, p, req.path);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (req.method == "POST" && !req.has_header("Content-Length") &&
+        !req.has_header("Transfer-Encoding"))
+      p = make_problem("length_required",
+                       "a POST needs a Content-Length (or a chunked Transfer-Encoding); a "
+                       "body that ends only when the connection closes is not read");
+    else if (declared_too_large(req))
+      p = make_problem("payload_too_large", "the upload declares " +
+                                                req.get_header_value("Content-Length") +
+                                                " bytes, more than this server's limit of " +
+                                                std::to_string(config.max_body_bytes));
+    else if (refuse_unexpected_body(req))
+      p = make_problem("payload_too_large", req.method + " " + req.path +
+                                                " takes no request body (chunked, encoded or "
+                                                "over 64 KiB bodies are refused)");
+    else
+      return httplib::Server::HandlerResponse::Unhandled;
+    close_connection_after_response();
+    send_problem(res, p, req.path);
+    return httplib::Server::HandlerResponse::Handled;
+  });
   // Answers httplib produced itself (unknown route, body over the limit, unparsable request)
   // get a problem document too.
   http.set_error_handler(httplib::Server::HandlerWithResponse([&config](const httplib::Request& req,
@@ -296,13 +535,19 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
     const RequestReadState state = request_read_state();
     if (state.timed_out) res.status = 408;
     if (state.body_too_large) res.status = 413;
-    if (state.head_too_large) res.status = 431;
+    if (state.head_too_large || state.header_line_too_long) res.status = 431;
     if (res.status == 408)
       p = make_problem("request_timeout",
                        "the request did not arrive in time (read timeout or "
                        "request deadline passed)");
     else if (res.status == 414)
       p = make_problem("uri_too_long", "the request URI is longer than this server accepts");
+    else if (res.status == 431 && state.header_line_too_long)
+      p = make_problem("request_head_too_large",
+                       "a header line is longer than " +
+                           std::to_string(CPPHTTPLIB_HEADER_MAX_LENGTH) +
+                           " bytes (an Authorization header carries a key of at most " +
+                           std::to_string(kMaxAuthorization) + " bytes)");
     else if (res.status == 431)
       p = make_problem("request_head_too_large",
                        "the request line or headers are longer than this server accepts");
@@ -334,8 +579,11 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
     if (id.empty()) id = job_id_in_path(res.get_header_value("Location"));
     char ms[32];
     std::snprintf(ms, sizeof ms, "%.1fms", seconds * 1000);
-    log_line("access " + req.method + " " + req.path + " " + std::to_string(res.status) + " " + ms +
-             (id.empty() ? "" : " job=" + id));
+    std::string line = "access " + req.method + " " + req.path + " " + std::to_string(res.status);
+    line += std::string(" ") + ms;
+    if (!id.empty()) line += " job=" + id;
+    if (!request_tenant.empty()) line += " tenant=" + request_tenant;
+    log_line(line);
   });
 
   http.Get("/healthz", guarded([](const httplib::Request&, httplib::Response& res) {
@@ -371,7 +619,8 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
              send_json(res, 200, job_to_json(find_job(service, req), now_seconds()));
            }));
   http.Delete(job, guarded([&service](const httplib::Request& req, httplib::Response& res) {
-                send_json(res, 202, job_to_json(service.cancel(job_id_of(req)), now_seconds()));
+                const std::string id = find_job(service, req).record.id;
+                send_json(res, 202, job_to_json(service.cancel(id), now_seconds()));
               }));
   http.Get(job + "/events", guarded([api](const httplib::Request& req, httplib::Response& res) {
              api->events(req, res);

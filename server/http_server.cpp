@@ -32,6 +32,8 @@ class GuardedStream : public httplib::Stream {
     head_done_ = false;
     head_bytes_ = body_bytes_ = 0;
     tail_ = 0;
+    line_bytes_ = 0;
+    head_lines_ = 0;
     start_ = Clock::now();
   }
   const RequestReadState& state() const { return state_; }
@@ -71,6 +73,12 @@ class GuardedStream : public httplib::Stream {
       for (std::size_t i = 0; i < n && !head_done_; ++i) {
         tail_ = ((tail_ << 8) | static_cast<unsigned char>(ptr[i])) & 0xffffff;
         head_done_ = tail_ == 0x0a0d0a;
+        if (ptr[i] == '\n') {
+          line_bytes_ = 0;
+          ++head_lines_;
+        } else if (++line_bytes_ >= CPPHTTPLIB_HEADER_MAX_LENGTH && head_lines_ > 0) {
+          state_.header_line_too_long = true;  // the request line has its own 414
+        }
       }
     }
     return static_cast<ssize_t>(n);
@@ -187,6 +195,7 @@ class GuardedStream : public httplib::Stream {
   bool closed_ = false;
   std::size_t head_bytes_ = 0, body_bytes_ = 0;
   std::uint32_t tail_ = 0;
+  std::size_t line_bytes_ = 0, head_lines_ = 0;
   Clock::time_point start_ = Clock::now();
   char buffer_[4096];
   std::size_t begin_ = 0, end_ = 0;

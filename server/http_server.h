@@ -27,6 +27,9 @@ struct HttpLimits {
 /// What went wrong while reading the current request on this thread, if anything.
 struct RequestReadState {
   bool head_too_large = false;
+  /// A header line passed cpp-httplib's limit (CPPHTTPLIB_HEADER_MAX_LENGTH), which it answers
+  /// with a bare 400.
+  bool header_line_too_long = false;
   bool body_too_large = false;
   bool timed_out = false;
 };

@@ -62,6 +62,7 @@ using JobRunner =
 /// A job as the store keeps it. Times are seconds since the Unix epoch (0 = not yet).
 struct JobRecord {
   std::string id;
+  std::string tenant;    ///< the API key's tenant that submitted it ("" without keys)
   std::int64_t seq = 0;  ///< submission order
   JobStatus status = JobStatus::Queued;
   double created = 0;
@@ -84,6 +85,7 @@ struct JobRecord {
   nlohmann::json progress;        ///< a running job's last published progress, or null
   nlohmann::json intermediate;    ///< a running job's published intermediate (level), or null
   std::vector<std::string> result_files;  ///< names of the stored files of `result_job`
+  bool expired = false;  ///< past retention: its input and files are gone, the id answers 410
 };
 
 /// A running job's latest overlap-free intermediate as a client sees it: its level and files.

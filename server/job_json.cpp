@@ -44,7 +44,8 @@ json job_to_json(const JobView& view, double now) {
   double elapsed = 0;
   if (r.started > 0) elapsed = (r.finished > 0 ? r.finished : now) - r.started;
   json progress = {
-      {"phase", status_name(r.status)},
+      // A job a worker claimed that has not reported yet is loading its input.
+      {"phase", r.status == JobStatus::Running ? std::string("load") : status_name(r.status)},
       {"faces", nullptr},
       {"input_faces", r.input_faces ? json(r.input_faces) : json(nullptr)},
       {"overlaps", nullptr},

@@ -70,11 +70,13 @@ JobService::JobService(JobStore& store, JobRunner runner, ServiceSettings settin
 
 JobService::~JobService() { shutdown(std::chrono::milliseconds(0)); }
 
-JobRecord JobService::submit(JobInput input, JobOptions options) {
+JobRecord JobService::submit(JobInput input, JobOptions options, const Submitter& by) {
+  const std::string& tenant = by.tenant;
   if (!accepting_) throw ApiError("shutting_down", "the server is shutting down; try again");
   if (!options.time_limit) options.time_limit = settings_.default_time_limit;
   JobRecord job;
-  job.id = new_job_id();
+  job.id = by.job_id.empty() ? new_job_id() : by.job_id;
+  job.tenant = tenant;
   job.created = now_seconds();
   job.options = options_to_json(options);
   job.format = format_name(input.format);
@@ -83,7 +85,7 @@ JobRecord JobService::submit(JobInput input, JobOptions options) {
   job.input_key = job_input_key(input, options);
 
   if (settings_.reuse_results) {
-    if (auto prior = store_.find_reusable(job.input_key, input)) {
+    if (auto prior = store_.find_reusable(tenant, job.input_key, input)) {
       job.status = prior->status;
       job.started = job.finished = job.created;
       job.input_faces = prior->input_faces;
@@ -96,6 +98,17 @@ JobRecord JobService::submit(JobInput input, JobOptions options) {
       store_.insert(job, nullptr, 0);
       log_("job " + job.id + " -> " + status_name(job.status) + " (reused " + prior->id + ")");
       return job;
+    }
+  }
+  if (by.queue_share < 1) {
+    const auto share = std::max<std::size_t>(
+        1, static_cast<std::size_t>(by.queue_share * static_cast<double>(settings_.queue_length)));
+    if (store_.queued_count(tenant) >= share) {
+      Problem p = make_problem(
+          "queue_full", "this tenant's share of the queue (" + std::to_string(share) + " of " +
+                            std::to_string(settings_.queue_length) + " jobs) is full; retry later");
+      p.retry_after = static_cast<int>(retry_after_seconds(share));
+      throw ApiError(p);
     }
   }
   if (!store_.insert(job, &input, settings_.queue_length)) {
@@ -117,9 +130,9 @@ JobRecord JobService::submit(JobInput input, JobOptions options) {
   return job;
 }
 
-std::optional<JobView> JobService::view(const std::string& id) {
+std::optional<JobView> JobService::view(const std::string& id, const std::string* tenant) {
   std::optional<JobRecord> record = store_.find(id);
-  if (!record) return std::nullopt;
+  if (!record || (tenant && record->tenant != *tenant)) return std::nullopt;
   JobView view{std::move(*record), std::nullopt, 0, false, std::nullopt, {}};
   const JobRecord& r = view.record;
   if (is_final(r.status)) {
@@ -183,7 +196,6 @@ JobView JobService::cancel(const std::string& id) {
     record = store_.find(id);  // it ended in the meantime
     if (!record) throw ApiError("job_not_found", "no job " + id);
   }
-  if (record->status == JobStatus::Cancelled) return *view(id);
   throw ApiError("job_finished", "job " + id + " already " + status_name(record->status));
 }
 

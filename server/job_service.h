@@ -30,6 +30,16 @@ struct ServiceSettings {
   int max_attempts = 3;       ///< a job claimed again this often (its node died each time) fails
   double lease_seconds = 30;  ///< a running job's lease; renewed five times a second
   std::string node;           ///< this node's name in the store ("" = host, pid and a random tag)
+  /// Seconds a finished job is kept before JobStore::expire removes its files (0 = forever);
+  /// swept every retention/2 seconds, at most every minute.
+  double retention_seconds = 7 * 86400;
+};
+
+/// Who submits a job, and on what terms.
+struct Submitter {
+  std::string tenant;      ///< the API key's tenant ("" without keys)
+  std::string job_id;      ///< the new job's id ("" = a new random one)
+  double queue_share = 1;  ///< the most of the queue this tenant's queued jobs may fill
 };
 
 /// A job as a client sees it: the stored record plus, while it is queued or running, the live
@@ -78,12 +88,27 @@ class JobService {
 
   /// Stores the job and queues it, or answers it from an identical finished job.
   /// \throw ApiError queue_full (with Retry-After) or shutting_down; StoreError.
-  JobRecord submit(JobInput input, JobOptions options);
+  /// The job belongs to `by.tenant`; only that tenant's results are reused. A tenant whose
+  /// queued jobs fill its `queue_share` of the queue (at least one job) is refused as a full
+  /// queue is.
+  JobRecord submit(JobInput input, JobOptions options, const Submitter& by = {});
+  /// JobStore::remember_idempotency and forget_idempotency (Idempotency-Key).
+  IdempotencyRecord remember_idempotency(const std::string& tenant, const std::string& key,
+                                         const IdempotencyRecord& record, double since) {
+    return store_.remember_idempotency(tenant, key, record, since);
+  }
+  void forget_idempotency(const std::string& tenant, const std::string& key,
+                          const std::string& job_id) {
+    store_.forget_idempotency(tenant, key, job_id);
+  }
 
-  std::optional<JobView> view(const std::string& id);
-  /// Most recent first; `before_seq` > 0 pages on.
-  std::vector<JobRecord> list(std::size_t limit, std::int64_t before_seq) {
-    return store_.list(limit, before_seq);
+  /// With `tenant`, another tenant's job is nullopt as soon as its record is read, so that it
+  /// costs what a missing one does (no queue position or live state is looked up).
+  std::optional<JobView> view(const std::string& id, const std::string* tenant = nullptr);
+  /// `tenant`'s jobs, most recent first; `before_seq` > 0 pages on.
+  std::vector<JobRecord> list(const std::string& tenant, std::size_t limit,
+                              std::int64_t before_seq) {
+    return store_.list(tenant, limit, before_seq);
   }
   /// A stored result file (of a finished job's `result_job`).
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) {
@@ -92,7 +117,8 @@ class JobService {
   /// A file of a running job's latest intermediate, wherever it runs.
   std::optional<IntermediateFile> intermediate(const std::string& id, const std::string& name);
   /// Cancels a queued job at once and asks a running one to stop (its node stops it at the
-  /// job's next progress poll, within a second). \throw ApiError job_not_found or job_finished.
+  /// job's next progress poll, within a second). \throw ApiError job_not_found, or job_finished
+  /// for a job that had ended (cancelled included) before this call.
   JobView cancel(const std::string& id);
 
   /// Blocks until something changed after `seen` (or `timeout`); returns the new version.
@@ -114,6 +140,7 @@ class JobService {
   void work();
   void run_one(ClaimedJob claimed);
   void keep_leases();
+  void sweep(std::chrono::steady_clock::time_point& next);
   void on_store_event(const StoreEvent& event);
   bool finish(JobRecord& record, const Claim& claim, JobStatus status, const JobOutput* output,
               const nlohmann::json& error);

@@ -60,6 +60,14 @@ struct StoreEvent {
   std::string job_id;  ///< empty for Queued, and for Changed after a reconnect (anything changed)
 };
 
+/// What an Idempotency-Key stands for: the request it came with (a hash of the mesh, files and
+/// options) and the job that request made.
+struct IdempotencyRecord {
+  std::string request_hash;
+  std::string job_id;
+  double created = 0;
+};
+
 /// The store's own counters for /metrics.
 struct StoreStats {
   std::uint64_t reconnects = 0;  ///< connections to the database opened again after a loss
@@ -79,13 +87,31 @@ class JobStore {
   /// unless `queue_limit` jobs are queued already: then stores nothing and returns false.
   virtual bool insert(JobRecord& job, const JobInput* input, std::size_t queue_limit) = 0;
   virtual std::optional<JobRecord> find(const std::string& id) = 0;
-  /// Most recent first; `before_seq` > 0 pages on (jobs with a smaller seq).
-  virtual std::vector<JobRecord> list(std::size_t limit, std::int64_t before_seq) = 0;
+  /// `tenant`'s jobs, most recent first; `before_seq` > 0 pages on (jobs with a smaller seq).
+  virtual std::vector<JobRecord> list(const std::string& tenant, std::size_t limit,
+                                      std::int64_t before_seq) = 0;
   /// \throw StoreError when the job has no stored input.
   virtual JobInput input(const std::string& id) = 0;
-  /// A finished, successful job with exactly this input and key (for result reuse).
-  virtual std::optional<JobRecord> find_reusable(const std::string& input_key,
+  /// A finished, successful job of `tenant` with exactly this input and key (for result
+  /// reuse, which never crosses tenants).
+  virtual std::optional<JobRecord> find_reusable(const std::string& tenant,
+                                                 const std::string& input_key,
                                                  const JobInput& input) = 0;
+  /// Records that `tenant`'s `key` stands for `record`, unless the key already stands for a
+  /// record created at `since` or later: returns the record the key stands for now (`record`,
+  /// or the earlier one). Atomic: of two requests with one key, one wins.
+  virtual IdempotencyRecord remember_idempotency(const std::string& tenant, const std::string& key,
+                                                 const IdempotencyRecord& record, double since) = 0;
+  /// Drops the key's record when it names `job_id` (its job could not be stored).
+  virtual void forget_idempotency(const std::string& tenant, const std::string& key,
+                                  const std::string& job_id) = 0;
+  /// Retention: every finished job that finished before `finished_before` becomes expired (its
+  /// row stays, small, so its id answers 410): its input, intermediates and result files are
+  /// removed (a result other jobs still reuse stays until they expire too). Idempotency-Key
+  /// records created before `keys_before` go. Returns the jobs that expired now.
+  virtual std::size_t expire(double finished_before, double keys_before) = 0;
+  /// `tenant`'s queued jobs.
+  virtual std::size_t queued_count(const std::string& tenant) = 0;
   /// Jobs per status name.
   virtual std::map<std::string, std::size_t> count_by_status() = 0;
   /// 1 for the next queued job to run, 2 for the one after, ...

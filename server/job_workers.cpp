@@ -297,6 +297,23 @@ bool JobService::finish(JobRecord& record, const Claim& claim, JobStatus status,
   return true;
 }
 
+// Retention, on the lease keeper's thread: every node sweeps (JobStore::expire is idempotent).
+void JobService::sweep(std::chrono::steady_clock::time_point& next) {
+  const auto now = std::chrono::steady_clock::now();
+  if (settings_.retention_seconds <= 0 || now < next) return;
+  const double every = std::clamp(settings_.retention_seconds / 2, 0.2, 60.0);
+  next = now + std::chrono::milliseconds(static_cast<long>(every * 1000));
+  const double wall = now_seconds();
+  try {
+    const std::size_t expired =
+        store_.expire(wall - settings_.retention_seconds, wall - 24 * 3600.0);
+    if (expired > 0)
+      log_("retention: " + std::to_string(expired) + " finished jobs expired; their files removed");
+  } catch (const std::exception& e) {
+    log_(std::string("retention: ") + e.what());
+  }
+}
+
 void JobService::keep_leases() {
   struct Beat {
     std::string id;
@@ -305,6 +322,7 @@ void JobService::keep_leases() {
     std::shared_ptr<const JobOutput> intermediate;
   };
   bool failing = false;
+  auto next_sweep = std::chrono::steady_clock::now();
   std::unique_lock lock(mutex_);
   while (!keeper_cv_.wait_for(lock, kLeaseTick, [&] { return keeper_stop_; })) {
     std::vector<Beat> beats;
@@ -317,6 +335,7 @@ void JobService::keep_leases() {
       beats.push_back(std::move(beat));
     }
     lock.unlock();
+    sweep(next_sweep);
     for (const Beat& beat : beats) {
       const Claim& claim = beat.live->claim;
       try {

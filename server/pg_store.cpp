@@ -53,6 +53,21 @@ DO $$ BEGIN
 EXCEPTION WHEN feature_not_supported THEN NULL;
 END $$;
 )sql",
+    // Tenants (API keys): a job belongs to the tenant that submitted it.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN tenant text NOT NULL DEFAULT '';
+CREATE INDEX jobs_by_tenant ON jobs(tenant, seq);
+)sql",
+    // Idempotency-Key: per tenant, what a key stood for (24 h).
+    R"sql(
+CREATE TABLE idempotency(tenant text NOT NULL, key text NOT NULL,
+  request_hash text NOT NULL, job_id text NOT NULL, created double precision NOT NULL,
+  PRIMARY KEY(tenant, key));
+)sql",
+    // Retention: an expired job keeps its row (410), not its input or files.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN expired boolean NOT NULL DEFAULT false;
+)sql",
 };
 
 // Advisory lock keys: one migration at a time, one queue-length check at a time.
@@ -62,8 +77,8 @@ constexpr const char* kColumns =
     "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
     "input_faces, faces, \"overlaps\", result_kind, metrics, error, result_job, attempts, "
     "claimed_by, cancel_requested, progress, intermediate, "
-    "(SELECT string_agg(r.name, '/') FROM results r WHERE r.job_id = result_job)";
-constexpr int kColumnCount = 23;
+    "(SELECT string_agg(r.name, '/') FROM results r WHERE r.job_id = result_job), tenant, expired";
+constexpr int kColumnCount = 25;
 
 // A running job held by a claim: $1 id, $2 node, $3 attempt.
 constexpr const char* kHeld =
@@ -100,6 +115,8 @@ JobRecord read_job(const Result& r, int row) {
   j.progress = nlohmann::json::parse(r.text(row, 20));
   j.intermediate = nlohmann::json::parse(r.text(row, 21));
   j.result_files = split_file_names(r.text(row, 22));
+  j.tenant = r.text(row, 23);
+  j.expired = r.boolean(row, 24);
   return j;
 }
 
@@ -167,9 +184,9 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
       Result inserted = c.exec(
           "INSERT INTO jobs(id, status, created, started, finished, options, "
           "format, input_bytes, input_key, input_faces, faces, \"overlaps\", "
-          "result_kind, metrics, error, result_job, attempts) VALUES($1, $2, "
+          "result_kind, metrics, error, result_job, attempts, tenant) VALUES($1, $2, "
           "$3::float8, $4::float8, $5::float8, $6, $7, $8::bigint, $9, $10::bigint, "
-          "$11::bigint, $12::bigint, $13, $14, $15, $16, $17::int) "
+          "$11::bigint, $12::bigint, $13, $14, $15, $16, $17::int, $18) "
           "ON CONFLICT (id) DO NOTHING RETURNING seq",
           Params()
               .text(job.id)
@@ -188,7 +205,8 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
               .text(job.metrics.dump())
               .text(job.error.dump())
               .text(job.result_job)
-              .number(std::int64_t{job.attempts}));
+              .number(std::int64_t{job.attempts})
+              .text(job.tenant));
       if (inserted.rows() == 0) {  // a repetition after a lost connection: the first try stored it
         job.seq = c.exec("SELECT seq FROM jobs WHERE id = $1", Params().text(job.id)).integer(0, 0);
         return true;
@@ -225,13 +243,15 @@ std::optional<JobRecord> PgJobStore::find(const std::string& id) {
   return out;
 }
 
-std::vector<JobRecord> PgJobStore::list(std::size_t limit, std::int64_t before_seq) {
+std::vector<JobRecord> PgJobStore::list(const std::string& tenant, std::size_t limit,
+                                        std::int64_t before_seq) {
   std::vector<JobRecord> out;
   pool_.run([&](Connection& c) {
     Result r = c.exec(std::string("SELECT ") + kColumns +
-                          " FROM jobs WHERE ($1::bigint = 0 OR seq < $1::bigint) "
+                          " FROM jobs WHERE tenant = $3 AND NOT expired AND "
+                          "($1::bigint = 0 OR seq < $1::bigint) "
                           "ORDER BY seq DESC LIMIT $2::bigint",
-                      Params().number(before_seq).number(i64(limit)));
+                      Params().number(before_seq).number(i64(limit)).text(tenant));
     out.clear();
     for (int i = 0; i < r.rows(); ++i) out.push_back(read_job(r, i));
   });
@@ -256,7 +276,8 @@ JobInput PgJobStore::input(const std::string& id) {
   return in;
 }
 
-std::optional<JobRecord> PgJobStore::find_reusable(const std::string& input_key,
+std::optional<JobRecord> PgJobStore::find_reusable(const std::string& tenant,
+                                                   const std::string& input_key,
                                                    const JobInput& input) {
   std::optional<JobRecord> out;
   pool_.run([&](Connection& c) {
@@ -264,9 +285,91 @@ std::optional<JobRecord> PgJobStore::find_reusable(const std::string& input_key,
     Result r = c.exec(std::string("SELECT ") + kColumns +
                           " FROM jobs JOIN inputs ON inputs.job_id = jobs.id WHERE input_key = $1 "
                           "AND status IN ('succeeded', 'approximated') AND inputs.mesh = "
-                          "$2::bytea ORDER BY seq DESC LIMIT 1",
-                      Params().text(input_key).bytes(input.mesh));
+                          "$2::bytea AND tenant = $3 ORDER BY seq DESC LIMIT 1",
+                      Params().text(input_key).bytes(input.mesh).text(tenant));
     if (r.rows() > 0) out = read_job(r, 0);
+  });
+  return out;
+}
+
+IdempotencyRecord PgJobStore::remember_idempotency(const std::string& tenant,
+                                                   const std::string& key,
+                                                   const IdempotencyRecord& record, double since) {
+  IdempotencyRecord out;
+  pool_.run([&](Connection& c) {
+    // A fresh record of the key stays (the update's WHERE fails, no row returned), a stale one
+    // is replaced. When another request inserted the key concurrently, this statement waited
+    // for it and returns nothing, and its snapshot predates that row: it is read by a statement
+    // of its own. (A row forgotten in between: try again.)
+    for (;;) {
+      Result put = c.exec(
+          "INSERT INTO idempotency(tenant, key, request_hash, job_id, created) "
+          "VALUES($1, $2, $3, $4, $5::float8) ON CONFLICT (tenant, key) DO UPDATE SET "
+          "request_hash = excluded.request_hash, job_id = excluded.job_id, created = "
+          "excluded.created WHERE idempotency.created < $6::float8 RETURNING job_id",
+          Params()
+              .text(tenant)
+              .text(key)
+              .text(record.request_hash)
+              .text(record.job_id)
+              .number(record.created)
+              .number(since));
+      if (put.rows() > 0) {
+        out = record;
+        return;
+      }
+      Result earlier = c.exec(
+          "SELECT request_hash, job_id, created FROM idempotency WHERE tenant = $1 AND key = $2",
+          Params().text(tenant).text(key));
+      if (earlier.rows() > 0) {
+        out = {earlier.text(0, 0), earlier.text(0, 1), earlier.real(0, 2)};
+        return;
+      }
+    }
+  });
+  return out;
+}
+
+void PgJobStore::forget_idempotency(const std::string& tenant, const std::string& key,
+                                    const std::string& job_id) {
+  pool_.run([&](Connection& c) {
+    c.exec("DELETE FROM idempotency WHERE tenant = $1 AND key = $2 AND job_id = $3",
+           Params().text(tenant).text(key).text(job_id));
+  });
+}
+
+std::size_t PgJobStore::expire(double finished_before, double keys_before) {
+  std::size_t expired = 0;
+  pool_.run([&](Connection& c) {
+    c.transaction([&] {
+      expired = static_cast<std::size_t>(
+          c.exec("WITH gone AS (UPDATE jobs SET expired = true WHERE NOT expired AND finished > 0 "
+                 "AND finished < $1::float8 AND status IN ('succeeded', 'approximated', "
+                 "'failed', 'cancelled') RETURNING 1) SELECT count(*) FROM gone",
+                 Params().number(finished_before))
+              .integer(0, 0));
+      if (expired > 0)
+        for (const char* table : {"inputs", "input_files", "intermediates"})
+          c.exec(std::string("DELETE FROM ") + table +
+                 " t USING jobs j WHERE j.id = t.job_id AND j.expired");
+      // Also after earlier sweeps: a result kept for a job that reused it goes once that expired.
+      c.exec(
+          "DELETE FROM results r USING jobs j WHERE j.id = r.job_id AND j.expired AND NOT EXISTS "
+          "(SELECT 1 FROM jobs k WHERE k.result_job = r.job_id AND NOT k.expired)");
+      c.exec("DELETE FROM idempotency WHERE created < $1::float8", Params().number(keys_before));
+      return true;
+    });
+  });
+  return expired;
+}
+
+std::size_t PgJobStore::queued_count(const std::string& tenant) {
+  std::size_t out = 0;
+  pool_.run([&](Connection& c) {
+    out = static_cast<std::size_t>(
+        c.exec("SELECT count(*) FROM jobs WHERE status = 'queued' AND tenant = $1",
+               Params().text(tenant))
+            .integer(0, 0));
   });
   return out;
 }
@@ -274,7 +377,7 @@ std::optional<JobRecord> PgJobStore::find_reusable(const std::string& input_key,
 std::map<std::string, std::size_t> PgJobStore::count_by_status() {
   std::map<std::string, std::size_t> out;
   pool_.run([&](Connection& c) {
-    Result r = c.exec("SELECT status, count(*) FROM jobs GROUP BY status");
+    Result r = c.exec("SELECT status, count(*) FROM jobs WHERE NOT expired GROUP BY status");
     for (int i = 0; i < r.rows(); ++i)
       out[r.text(i, 0)] = static_cast<std::size_t>(r.integer(i, 1));
   });

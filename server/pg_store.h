@@ -25,10 +25,17 @@ class PgJobStore : public JobStore {
   std::string kind() const override { return "postgres"; }
   bool insert(JobRecord& job, const JobInput* input, std::size_t queue_limit) override;
   std::optional<JobRecord> find(const std::string& id) override;
-  std::vector<JobRecord> list(std::size_t limit, std::int64_t before_seq) override;
+  std::vector<JobRecord> list(const std::string& tenant, std::size_t limit,
+                              std::int64_t before_seq) override;
   JobInput input(const std::string& id) override;
-  std::optional<JobRecord> find_reusable(const std::string& input_key,
+  std::optional<JobRecord> find_reusable(const std::string& tenant, const std::string& input_key,
                                          const JobInput& input) override;
+  IdempotencyRecord remember_idempotency(const std::string& tenant, const std::string& key,
+                                         const IdempotencyRecord& record, double since) override;
+  void forget_idempotency(const std::string& tenant, const std::string& key,
+                          const std::string& job_id) override;
+  std::size_t expire(double finished_before, double keys_before) override;
+  std::size_t queued_count(const std::string& tenant) override;
   std::map<std::string, std::size_t> count_by_status() override;
   std::size_t queue_position(std::int64_t seq) override;
 

@@ -1,6 +1,6 @@
-// The HTTP job service as a program: wires config, store, workers and routes; handles
+// The HTTP job service as a program: wires config, keys, store, workers and routes; handles
 // SIGINT/SIGTERM by draining (no new jobs, running ones get a grace period), persisting and
-// stopping.
+// stopping, and SIGHUP by reading the API keys again.
 #include "server/run_service.h"
 
 #include <httplib.h>
@@ -9,6 +9,7 @@
 #include <iostream>
 #include <thread>
 
+#include "server/api_keys.h"
 #include "server/http_api.h"
 #include "server/http_server.h"
 #include "server/job_service.h"
@@ -25,8 +26,20 @@ int run_service(const ServerConfig& config) {
   sigemptyset(&signals);
   sigaddset(&signals, SIGINT);
   sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   signal(SIGPIPE, SIG_IGN);
+
+  std::unique_ptr<ApiKeyRing> keys;
+  if (!config.api_keys.empty()) {
+    try {
+      keys = std::make_unique<ApiKeyRing>(config.api_keys,
+                                          [](const std::string& line) { log_line(line); });
+    } catch (const std::exception& e) {
+      std::cerr << "papernet serve: --api-keys " << e.what() << "\n";
+      return 2;
+    }
+  }
 
   // Every worker and HTTP thread may use a database connection at once, and the lease keeper.
   std::unique_ptr<JobStore> store;
@@ -46,6 +59,7 @@ int run_service(const ServerConfig& config) {
   settings.reuse_results = config.reuse_results;
   settings.max_attempts = config.max_attempts;
   settings.lease_seconds = config.lease;
+  settings.retention_seconds = config.retention;
   JobService service(
       *store,
       make_pipeline_runner({config.max_body_bytes, config.max_faces, config.job_time_limit}),
@@ -60,7 +74,7 @@ int run_service(const ServerConfig& config) {
   http_limits.keep_alive_timeout = config.read_timeout;
   GuardedHttpServer http(http_limits, config.http_threads);
   http.set_tcp_nodelay(true);  // small JSON answers must not wait for delayed ACKs
-  install_routes(http, service, config, metrics);
+  install_routes(http, service, config, metrics, keys.get());
   const std::string& web_root = config.web_root;
   try {
     mount_web_root(http, web_root);
@@ -83,7 +97,15 @@ int run_service(const ServerConfig& config) {
 
   std::thread signal_thread([&] {
     int sig = 0;
-    sigwait(&signals, &sig);
+    for (;;) {
+      sig = 0;
+      sigwait(&signals, &sig);
+      if (sig != SIGHUP) break;
+      if (keys)
+        keys->reload();
+      else
+        log_line("SIGHUP: no --api-keys file to read");
+    }
     if (sig == 0) return;
     log_line(std::string("received ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
              ": no new jobs; running ones get " +
@@ -98,6 +120,12 @@ int run_service(const ServerConfig& config) {
            where + ", " + std::to_string(config.workers) + " workers, queue " +
            std::to_string(config.queue_length) + ")" +
            (web_root.empty() ? "" : "; web demo from " + web_root));
+  if (keys)
+    log_line("api keys: " + std::to_string(keys->size()) + " keys from " + config.api_keys +
+             "; /v1/jobs needs Authorization: Bearer <key>");
+  else
+    log_line("no --api-keys: the API is open to anyone who can reach " + config.host + ":" +
+             std::to_string(port) + " (every caller sees every job)");
   std::cout << "papernet listening on http://" << config.host << ":" << port << std::endl;
   const bool ok = http.listen_after_bind();
   if (!ok || http.is_running()) {

@@ -44,6 +44,21 @@ ALTER TABLE jobs ADD COLUMN intermediate TEXT NOT NULL DEFAULT 'null';
 CREATE TABLE IF NOT EXISTS intermediates(job_id TEXT NOT NULL, name TEXT NOT NULL,
   content_type TEXT NOT NULL, data BLOB NOT NULL, PRIMARY KEY(job_id, name));
 )sql",
+    // Tenants (API keys): a job belongs to the tenant that submitted it.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN tenant TEXT NOT NULL DEFAULT '';
+CREATE INDEX IF NOT EXISTS jobs_by_tenant ON jobs(tenant, seq);
+)sql",
+    // Idempotency-Key: per tenant, what a key stood for (24 h).
+    R"sql(
+CREATE TABLE IF NOT EXISTS idempotency(tenant TEXT NOT NULL, key TEXT NOT NULL,
+  request_hash TEXT NOT NULL, job_id TEXT NOT NULL, created REAL NOT NULL,
+  PRIMARY KEY(tenant, key));
+)sql",
+    // Retention: an expired job keeps its row (410), not its input or files.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN expired INTEGER NOT NULL DEFAULT 0;
+)sql",
 };
 
 // The store's clock, in seconds since the epoch, for leases.
@@ -53,7 +68,8 @@ constexpr const char* kColumns =
     "seq, id, status, created, started, finished, options, format, input_bytes, input_key, "
     "input_faces, faces, overlaps, result_kind, metrics, error, result_job, attempts, "
     "claimed_by, cancel_requested, progress, intermediate, "
-    "(SELECT group_concat(r.name, '/') FROM results r WHERE r.job_id = result_job)";
+    "(SELECT group_concat(r.name, '/') FROM results r WHERE r.job_id = result_job), tenant, "
+    "expired";
 
 // A running job held by this claim.
 constexpr const char* kHeld = "id=? AND claimed_by=? AND attempts=? AND status='running'";
@@ -162,6 +178,8 @@ JobRecord read_job(const Statement& s) {
   j.progress = nlohmann::json::parse(s.text(20));
   j.intermediate = nlohmann::json::parse(s.text(21));
   j.result_files = split_file_names(s.text(22));
+  j.tenant = s.text(23);
+  j.expired = s.integer(24) != 0;
   return j;
 }
 
@@ -224,7 +242,7 @@ bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t q
   Statement(db_,
             "INSERT INTO jobs(id, status, created, started, finished, options, format, "
             "input_bytes, input_key, input_faces, faces, overlaps, result_kind, metrics, error, "
-            "result_job, attempts) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)")
+            "result_job, attempts, tenant) VALUES(?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)")
       .bind(1, job.id)
       .bind(2, status_name(job.status))
       .bind(3, job.created)
@@ -242,6 +260,7 @@ bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t q
       .bind(15, job.error.dump())
       .bind(16, job.result_job)
       .bind(17, std::int64_t{job.attempts})
+      .bind(18, job.tenant)
       .run();
   job.seq = sqlite3_last_insert_rowid(db_);
   if (input) {
@@ -268,11 +287,13 @@ std::optional<JobRecord> SqliteJobStore::find(const std::string& id) {
   return read_job(s);
 }
 
-std::vector<JobRecord> SqliteJobStore::list(std::size_t limit, std::int64_t before_seq) {
+std::vector<JobRecord> SqliteJobStore::list(const std::string& tenant, std::size_t limit,
+                                            std::int64_t before_seq) {
   std::lock_guard lock(mutex_);
   Statement s(db_, std::string("SELECT ") + kColumns +
-                       " FROM jobs WHERE (?=0 OR seq<?) ORDER BY seq DESC LIMIT ?");
-  s.bind(1, before_seq).bind(2, before_seq).bind(3, i64(limit));
+                       " FROM jobs WHERE tenant=? AND expired=0 AND (?=0 OR seq<?) "
+                       "ORDER BY seq DESC LIMIT ?");
+  s.bind(1, tenant).bind(2, before_seq).bind(3, before_seq).bind(4, i64(limit));
   std::vector<JobRecord> out;
   while (s.step()) out.push_back(read_job(s));
   return out;
@@ -294,22 +315,89 @@ JobInput SqliteJobStore::input(const std::string& id) {
   return in;
 }
 
-std::optional<JobRecord> SqliteJobStore::find_reusable(const std::string& input_key,
+std::optional<JobRecord> SqliteJobStore::find_reusable(const std::string& tenant,
+                                                       const std::string& input_key,
                                                        const JobInput& input) {
   std::lock_guard lock(mutex_);
   // The key is a hash; equal bytes make the match certain. External files are in the key.
   Statement s(db_, std::string("SELECT ") + kColumns +
                        " FROM jobs JOIN inputs ON inputs.job_id = jobs.id WHERE input_key=? "
                        "AND status IN ('succeeded','approximated') AND inputs.mesh=? "
-                       "ORDER BY seq DESC LIMIT 1");
-  s.bind(1, input_key).blob(2, input.mesh);
+                       "AND tenant=? ORDER BY seq DESC LIMIT 1");
+  s.bind(1, input_key).blob(2, input.mesh).bind(3, tenant);
   if (!s.step()) return std::nullopt;
   return read_job(s);
 }
 
+IdempotencyRecord SqliteJobStore::remember_idempotency(const std::string& tenant,
+                                                       const std::string& key,
+                                                       const IdempotencyRecord& record,
+                                                       double since) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  Statement earlier(db_,
+                    "SELECT request_hash, job_id, created FROM idempotency WHERE tenant=? AND "
+                    "key=? AND created>=?");
+  earlier.bind(1, tenant).bind(2, key).bind(3, since);
+  if (earlier.step()) return {earlier.text(0), earlier.text(1), earlier.real(2)};
+  Statement(db_,
+            "INSERT OR REPLACE INTO idempotency(tenant, key, request_hash, job_id, created) "
+            "VALUES(?,?,?,?,?)")
+      .bind(1, tenant)
+      .bind(2, key)
+      .bind(3, record.request_hash)
+      .bind(4, record.job_id)
+      .bind(5, record.created)
+      .run();
+  tx.commit();
+  return record;
+}
+
+void SqliteJobStore::forget_idempotency(const std::string& tenant, const std::string& key,
+                                        const std::string& job_id) {
+  std::lock_guard lock(mutex_);
+  Statement(db_, "DELETE FROM idempotency WHERE tenant=? AND key=? AND job_id=?")
+      .bind(1, tenant)
+      .bind(2, key)
+      .bind(3, job_id)
+      .run();
+}
+
+std::size_t SqliteJobStore::expire(double finished_before, double keys_before) {
+  std::lock_guard lock(mutex_);
+  Transaction tx(db_);
+  const int expired =
+      Statement(db_,
+                "UPDATE jobs SET expired=1 WHERE expired=0 AND finished>0 AND finished<? AND "
+                "status IN ('succeeded','approximated','failed','cancelled')")
+          .bind(1, finished_before)
+          .run();
+  if (expired > 0) {
+    for (const char* table : {"inputs", "input_files", "intermediates"})
+      Statement(db_, std::string("DELETE FROM ") + table +
+                         " WHERE job_id IN (SELECT id FROM jobs WHERE expired=1)")
+          .run();
+  }
+  // Also after earlier sweeps: a result kept for a job that reused it goes once that expired.
+  Statement(db_,
+            "DELETE FROM results WHERE job_id IN (SELECT id FROM jobs WHERE expired=1) AND "
+            "job_id NOT IN (SELECT result_job FROM jobs WHERE expired=0)")
+      .run();
+  Statement(db_, "DELETE FROM idempotency WHERE created<?").bind(1, keys_before).run();
+  tx.commit();
+  return static_cast<std::size_t>(expired);
+}
+
+std::size_t SqliteJobStore::queued_count(const std::string& tenant) {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "SELECT COUNT(*) FROM jobs WHERE status='queued' AND tenant=?");
+  s.bind(1, tenant);
+  return s.step() ? static_cast<std::size_t>(s.integer(0)) : 0;
+}
+
 std::map<std::string, std::size_t> SqliteJobStore::count_by_status() {
   std::lock_guard lock(mutex_);
-  Statement s(db_, "SELECT status, COUNT(*) FROM jobs GROUP BY status");
+  Statement s(db_, "SELECT status, COUNT(*) FROM jobs WHERE expired=0 GROUP BY status");
   std::map<std::string, std::size_t> out;
   while (s.step()) out[s.text(0)] = static_cast<std::size_t>(s.integer(1));
   return out;

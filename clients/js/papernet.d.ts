@@ -150,6 +150,8 @@ export interface SubmitOptions {
   buffers?: Record<string, BinaryLike> | Array<{ name: string; data: BinaryLike }>;
   /** Send multipart/form-data even without buffers. */
   multipart?: boolean;
+  /** Idempotency-Key: retries of one submission with this key resolve to its first job. */
+  idempotencyKey?: string;
   signal?: AbortSignal;
 }
 
@@ -182,8 +184,10 @@ export class PapernetError extends Error {
 
 export class PapernetClient {
   /** `baseUrl` e.g. "http://127.0.0.1:8080"; "" for the page the server serves. */
-  constructor(baseUrl?: string, init?: { fetch?: typeof fetch });
+  /** `apiKey`: the key of a server started with --api-keys (sent as Authorization: Bearer). */
+  constructor(baseUrl?: string, init?: { fetch?: typeof fetch; apiKey?: string });
   readonly baseUrl: string;
+  apiKey: string | undefined;
   url(path: string): string;
   submit(mesh: BinaryLike, init?: SubmitOptions): Promise<Job>;
   job(id: string, init?: RequestOptions): Promise<Job>;

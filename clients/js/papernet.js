@@ -175,10 +175,13 @@ export class PapernetClient {
   /**
    * @param baseUrl the server, e.g. "http://127.0.0.1:8080" ("" in a page the server serves)
    * @param options.fetch a fetch implementation (default: the global one)
+   * @param options.apiKey the API key of a server started with --api-keys (sent as
+   *   Authorization: Bearer), or undefined for an open server
    */
-  constructor(baseUrl = "", { fetch: fetchImpl } = {}) {
+  constructor(baseUrl = "", { fetch: fetchImpl, apiKey } = {}) {
     this.baseUrl = String(baseUrl).replace(/\/+$/, "");
     this._fetch = fetchImpl ?? globalThis.fetch.bind(globalThis);
+    this.apiKey = apiKey;
   }
 
   /** Absolute URL of a server path ("/v1/jobs"). */
@@ -188,6 +191,7 @@ export class PapernetClient {
 
   async _request(path, init = {}) {
     const url = this.url(path);
+    if (this.apiKey) init = { ...init, headers: { ...init.headers, Authorization: `Bearer ${this.apiKey}` } };
     let res;
     try {
       res = await this._fetch(url, init);
@@ -210,9 +214,12 @@ export class PapernetClient {
    *   `format`, else the file name's extension, else the server sniffs it.
    * - With `buffers` (the external files of a .gltf, `{name: data}` or `[{name, data}]`):
    *   multipart/form-data with `mesh`, one `buffers` part per file and an `options` JSON part.
-   * `multipart: true` forces multipart. Resolves to the job (202).
+   * `multipart: true` forces multipart. `idempotencyKey` (e.g. crypto.randomUUID(), kept for
+   * the retries of one submission): a retry resolves to the first job instead of a new one.
+   * Resolves to the job (202, or 200 for a retry).
    */
-  async submit(mesh, { options = {}, filename, format, buffers, multipart, signal } = {}) {
+  async submit(mesh, { options = {}, filename, format, buffers, multipart, idempotencyKey, signal } = {}) {
+    const idem = idempotencyKey ? { "Idempotency-Key": String(idempotencyKey) } : {};
     filename ??= typeof mesh?.name === "string" ? mesh.name : undefined;
     format ??= formatOfFileName(filename);
     const bufferList = Array.isArray(buffers)
@@ -226,11 +233,11 @@ export class PapernetClient {
         { name: "options", filename: "options.json", type: "application/json", data: JSON.stringify(options) },
       ];
       const { headers, body } = encodeMultipart(parts);
-      return this._json("/v1/jobs", { method: "POST", headers, body, signal });
+      return this._json("/v1/jobs", { method: "POST", headers: { ...headers, ...idem }, body, signal });
     }
     const q = optionsQuery(options);
     const query = q.toString();
-    const headers = { "Content-Type": (format && FORMAT_TYPES[format]) || "application/octet-stream" };
+    const headers = { "Content-Type": (format && FORMAT_TYPES[format]) || "application/octet-stream", ...idem };
     return this._json(`/v1/jobs${query ? `?${query}` : ""}`, {
       method: "POST",
       headers,

@@ -95,3 +95,33 @@ TEST(ConfigTest, HelpListsEveryVariable) {
                         "PAPERNET_JOB_TIME_LIMIT"})
     EXPECT_NE(help.find(v), std::string::npos) << v;
 }
+
+TEST(ConfigTest, CorsOriginsAreCheckedOrigins) {
+  EXPECT_TRUE(parse({})->cors_origins.empty());
+  const auto c = *parse({"--cors-origins", " https://shop.example/, http://localhost:5173 "});
+  EXPECT_EQ(c.cors_origins,
+            (std::vector<std::string>{"https://shop.example", "http://localhost:5173"}));
+  EXPECT_EQ(parse({}, {{"PAPERNET_CORS_ORIGINS", "*"}})->cors_origins,
+            std::vector<std::string>{"*"});
+  for (const char* bad :
+       {"shop.example", "https://shop.example/path", "ftp://x", "https://", "https://*.example"})
+    EXPECT_THROW(parse({"--cors-origins", bad}), ConfigError) << bad;
+}
+
+TEST(ConfigTest, ApiKeysRefuseAnyOrigin) {
+  EXPECT_EQ(parse({"--api-keys", "/etc/papernet/keys"})->api_keys, "/etc/papernet/keys");
+  EXPECT_THROW(parse({"--api-keys", "keys", "--cors-origins", "*"}), ConfigError);
+  EXPECT_EQ(parse({"--api-keys", "keys"}, {{"PAPERNET_CORS_ORIGINS", "https://shop.example"}})
+                ->cors_origins.size(),
+            1u);
+}
+
+TEST(ConfigTest, RetentionIsADuration) {
+  EXPECT_EQ(parse({})->retention, 7 * 86400);
+  EXPECT_EQ(parse({"--retention", "3600"})->retention, 3600);
+  EXPECT_EQ(parse({"--retention", "90m"})->retention, 5400);
+  EXPECT_EQ(parse({}, {{"PAPERNET_RETENTION", "2d"}})->retention, 2 * 86400);
+  EXPECT_EQ(parse({"--retention", "0"})->retention, 0);
+  for (const char* bad : {"", "d", "7w", "-1", "1e9d", "soon"})
+    EXPECT_THROW(parse({"--retention", bad}), ConfigError) << bad;
+}

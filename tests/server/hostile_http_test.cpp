@@ -232,8 +232,9 @@ TEST_P(HostileHttp, OversizedBodiesAreRefusedWithoutBeingBuffered) {
   };
   const auto [chunked, chunked_sent] = stream(post_head("Transfer-Encoding: chunked\r\n"), true);
   expect_raw_problem(chunked, 413, "payload_too_large", "200000");
+  // A body that would end only when the connection closes is not read at all.
   const auto [no_length, no_length_sent] = stream(post_head("Connection: close\r\n"), false);
-  expect_raw_problem(no_length, 413, "payload_too_large", "200000");
+  expect_raw_problem(no_length, 411, "length_required", "Content-Length");
   std::cout << "[ figures  ] chunked: " << chunked_sent
             << " bytes offered; no length: " << no_length_sent << " bytes offered\n";
 
@@ -549,4 +550,42 @@ TEST_P(HostileHttp, DeeplyNestedJsonIsRefused) {
   std::cout << "[ figures  ] server peak RSS " << peak_before << " kB before, " << peak_after
             << " kB after\n";
   expect_memory_growth_below(peak_before, peak_after, 64 * 1024, "peak memory");
+}
+
+// The HTTP edges: a POST without a length, methods a route does not take, a second cancel.
+TEST_P(HostileHttp, LengthlessPostIs411AndOtherMethodsAre405WithAllow) {
+  Server s({"--workers", "1"});
+  {  // No Content-Length, no chunking: 411 at once (not a read timeout's 408).
+    RawConnection c(s.port());
+    ASSERT_TRUE(c.send(post_head("")));
+    expect_raw_problem(c.read_response(), 411, "length_required", "Content-Length");
+  }
+  struct Case {
+    std::string method, path, allow;
+  };
+  const std::string job = "/v1/jobs/0123456789abcdef0123456789abcdef";
+  const Case cases[] = {
+      {"PUT", "/v1/jobs", "GET, HEAD, POST"},     {"DELETE", "/v1/jobs", "GET, HEAD, POST"},
+      {"OPTIONS", "/v1/jobs", "GET, HEAD, POST"}, {"PATCH", "/v1/jobs", "GET, HEAD, POST"},
+      {"POST", job, "GET, HEAD, DELETE"},         {"PUT", job, "GET, HEAD, DELETE"},
+      {"DELETE", job + "/net.json", "GET, HEAD"}, {"POST", job + "/events", "GET, HEAD"},
+      {"POST", "/metrics", "GET, HEAD"}};
+  for (const Case& k : cases) {
+    SCOPED_TRACE(k.method + " " + k.path);
+    RawConnection c(s.port());
+    ASSERT_TRUE(
+        c.send(k.method + " " + k.path + " HTTP/1.1\r\nHost: x\r\nContent-Length: 4\r\n\r\nv 0\n"));
+    const RawResponse res = c.read_response();
+    expect_raw_problem(res, 405, "method_not_allowed", k.method);
+    EXPECT_EQ(res.headers.count("allow") ? res.headers.at("allow") : "", k.allow);
+  }
+  // Unknown paths stay 404 whatever the method.
+  expect_problem(s.client().Put("/v1/nothing", "x", "text/plain"), 404, "not_found");
+
+  // A job cancelled once is finished: cancelling it again is 409, as for any finished job.
+  const std::string id = submit(s, kTetraObj, "model/obj", "?strategy=TU");
+  const json done = wait_final(s, id);
+  ASSERT_EQ(done["status"], "succeeded") << done.dump();
+  expect_problem(s.client().Delete("/v1/jobs/" + id), 409, "job_finished");
+  expect_normal_job_completes(s);
 }

@@ -1,6 +1,8 @@
 // End-to-end: starts the real `papernet serve` on a free loopback port and speaks HTTP to it.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "api/net_json.h"
 #include "core/unfold/net_check.h"
 #include "tests/support/postgres.h"
@@ -325,6 +327,8 @@ TEST_P(ServeTest, QueueFullCancelAndShutdown) {
 
   EXPECT_EQ(s.client().Delete("/v1/jobs/" + queued)->status, 202);
   EXPECT_EQ(wait_final(s, queued)["status"], "cancelled");
+  // Cancelled is final: a second cancel is a conflict, as for any finished job.
+  expect_problem(s.client().Delete("/v1/jobs/" + queued), 409, "job_finished");
   const auto before = std::chrono::steady_clock::now();
   EXPECT_EQ(s.client().Delete("/v1/jobs/" + first)->status, 202);
   EXPECT_EQ(wait_final(s, first)["status"], "cancelled");
@@ -477,4 +481,146 @@ TEST_P(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsPiecesOrStrictlyTheMeshP
   ASSERT_EQ(largest["status"], "succeeded") << largest.dump();
   EXPECT_EQ(largest["result"]["pieces"].size(), 1u);
   EXPECT_EQ(largest["result"]["repairs"][0]["code"], "dropped_components");
+}
+
+// The 202 shows the job as accepted: queued, phase queued, not started, whether or not a worker
+// claimed it between the insert and the answer; polls then show documented phases only.
+TEST_P(ServeTest, AcceptedJobIsQueuedWithADocumentedPhase) {
+  Server s({"--workers", "2", "--reuse-results", "false"});
+  const std::set<std::string> phases = {
+      "queued", "load", "validate",  "collapse",     "unfold", "uncollapse", "tabs",
+      "write",  "done", "succeeded", "approximated", "failed", "cancelled"};
+  std::vector<std::string> ids;
+  for (int i = 0; i < 6; ++i) {
+    auto res = s.client().Post("/v1/jobs?strategy=TU", kNonManifoldObj, "model/obj");
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 202) << res->body;
+    const json job = body(res);
+    EXPECT_EQ(job["status"], "queued") << job.dump();
+    EXPECT_EQ(job["progress"]["phase"], "queued") << job.dump();
+    EXPECT_TRUE(job["started"].is_null()) << job.dump();
+    ids.push_back(job["id"]);
+  }
+  for (const std::string& id : ids) {
+    for (;;) {
+      const json job = body(s.client().Get("/v1/jobs/" + id));
+      EXPECT_TRUE(phases.count(job["progress"]["phase"].get<std::string>())) << job.dump();
+      if (job["status"] == "running") {
+        EXPECT_FALSE(job["started"].is_null()) << job.dump();
+      }
+      if (job["status"] != "queued" && job["status"] != "running") break;
+      std::this_thread::sleep_for(5ms);
+    }
+  }
+}
+
+// CORS: a page on a listed origin may call every route a browser uses (preflight included) and
+// read the headers it needs; other origins get no CORS headers and a preflight 403.
+TEST_P(ServeTest, CorsForConfiguredOriginsOnEveryBrowserRoute) {
+  Server s({"--workers", "1", "--cors-origins", "https://shop.example, http://localhost:5173/"});
+  auto c = s.client();
+  const httplib::Headers shop = {{"Origin", "https://shop.example"}};
+  const httplib::Headers evil = {{"Origin", "https://evil.example"}};
+
+  auto preflight = c.Options("/v1/jobs", {{"Origin", "http://localhost:5173"},
+                                          {"Access-Control-Request-Method", "POST"},
+                                          {"Access-Control-Request-Headers",
+                                           "authorization, content-type, idempotency-key"}});
+  ASSERT_TRUE(preflight);
+  EXPECT_EQ(preflight->status, 204);
+  EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Origin"), "http://localhost:5173");
+  EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Methods"), "GET, HEAD, POST");
+  const std::string allowed_headers = preflight->get_header_value("Access-Control-Allow-Headers");
+  for (const char* h : {"Authorization", "Content-Type", "Idempotency-Key"})
+    EXPECT_NE(allowed_headers.find(h), std::string::npos) << allowed_headers;
+  auto job_preflight =
+      c.Options("/v1/jobs/0123456789abcdef0123456789abcdef",
+                {{"Origin", "https://shop.example"}, {"Access-Control-Request-Method", "DELETE"}});
+  ASSERT_TRUE(job_preflight);
+  EXPECT_EQ(job_preflight->status, 204);
+  EXPECT_EQ(job_preflight->get_header_value("Access-Control-Allow-Methods"), "GET, HEAD, DELETE");
+  auto refused = c.Options(
+      "/v1/jobs", {{"Origin", "https://evil.example"}, {"Access-Control-Request-Method", "POST"}});
+  expect_problem(refused, 403, "origin_not_allowed");
+  EXPECT_FALSE(refused->has_header("Access-Control-Allow-Origin"));
+  // An OPTIONS that is no preflight is still a method the path does not take.
+  expect_problem(c.Options("/v1/jobs", shop), 405, "method_not_allowed");
+
+  auto posted = c.Post("/v1/jobs?strategy=TU", shop, kNonManifoldObj, "model/obj");
+  ASSERT_TRUE(posted);
+  ASSERT_EQ(posted->status, 202) << posted->body;
+  EXPECT_EQ(posted->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+  EXPECT_EQ(posted->get_header_value("Vary"), "Origin");
+  const std::string exposed = posted->get_header_value("Access-Control-Expose-Headers");
+  for (const char* h : {"Location", "Retry-After", "X-Papernet-Level"})
+    EXPECT_NE(exposed.find(h), std::string::npos) << exposed;
+  const std::string id = body(posted)["id"];
+
+  std::string stream;
+  auto events = c.Get("/v1/jobs/" + id + "/events", shop, [&](const char* data, size_t n) {
+    stream.append(data, n);
+    return true;
+  });
+  ASSERT_TRUE(events);
+  EXPECT_EQ(events->status, 200);
+  EXPECT_EQ(events->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+  EXPECT_NE(stream.find("event: done"), std::string::npos) << stream;
+  for (const std::string& path :
+       std::vector<std::string>{"/v1/jobs/" + id, "/v1/jobs", "/v1/jobs/" + id + "/net.json",
+                                "/v1/jobs/" + id + "/net.svg", "/v1/jobs/" + id + "/net.pdf",
+                                "/v1/jobs/" + id + "/mesh.glb", "/v1/openapi.json"}) {
+    SCOPED_TRACE(path);
+    auto res = c.Get(path, shop);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 200);
+    EXPECT_EQ(res->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+    auto other = c.Get(path, evil);
+    ASSERT_TRUE(other);
+    EXPECT_FALSE(other->has_header("Access-Control-Allow-Origin"));
+  }
+  // Errors carry the headers too, or the page could not read the problem.
+  auto missing = c.Get("/v1/jobs/0123456789abcdef0123456789abcdef", shop);
+  expect_problem(missing, 404, "job_not_found");
+  EXPECT_EQ(missing->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+  auto cancel = c.Delete("/v1/jobs/" + id, shop);
+  expect_problem(cancel, 409, "job_finished");
+  EXPECT_EQ(cancel->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+}
+
+TEST_P(ServeTest, NoCorsUnlessConfiguredAndAnyOriginWithStar) {
+  Server closed({"--workers", "1"});
+  const httplib::Headers shop = {{"Origin", "https://shop.example"}};
+  auto preflight = closed.client().Options(
+      "/v1/jobs", {{"Origin", "https://shop.example"}, {"Access-Control-Request-Method", "POST"}});
+  expect_problem(preflight, 405, "method_not_allowed");
+  EXPECT_FALSE(preflight->has_header("Access-Control-Allow-Origin"));
+  EXPECT_FALSE(closed.client().Get("/v1/jobs", shop)->has_header("Access-Control-Allow-Origin"));
+
+  Server open({"--workers", "1", "--cors-origins", "*"});
+  auto any = open.client().Get("/v1/jobs", shop);
+  ASSERT_TRUE(any);
+  EXPECT_EQ(any->get_header_value("Access-Control-Allow-Origin"), "*");
+  EXPECT_FALSE(any->has_header("Vary"));
+}
+
+// Retention: a finished job past --retention loses its upload and files and answers 410
+// job_expired; it leaves the list; a job that is not finished is kept.
+TEST_P(ServeTest, FinishedJobsExpireAfterRetentionWith410) {
+  Server s({"--workers", "1", "--retention", "1"});
+  auto c = s.client();
+  const std::string id = submit(s, kNonManifoldObj, "model/obj", "?strategy=TU");
+  ASSERT_EQ(wait_final(s, id)["status"], "succeeded");
+  // Expiry comes within a sweep or two of the second passing: wait for it, then look.
+  while (c.Get("/v1/jobs/" + id)->status == 200) std::this_thread::sleep_for(50ms);
+  expect_problem(c.Get("/v1/jobs/" + id), 410, "job_expired");
+  for (const char* name : {"/net.json", "/net.svg", "/net.pdf", "/mesh.glb", "/events"})
+    expect_problem(c.Get("/v1/jobs/" + id + name), 410, "job_expired");
+  expect_problem(c.Delete("/v1/jobs/" + id), 410, "job_expired");
+  EXPECT_EQ(body(c.Get("/v1/jobs"))["jobs"].size(), 0u);
+  EXPECT_NE(s.log().find("retention: 1 finished jobs expired"), std::string::npos) << s.log();
+  // The same mesh again is a new job that runs (nothing is reused from an expired one).
+  const std::string again = submit(s, kNonManifoldObj, "model/obj", "?strategy=TU");
+  const json job = body(c.Get("/v1/jobs/" + again));
+  EXPECT_FALSE(job["result"].is_object() && job["result"]["metrics"].contains("reused_from"))
+      << job.dump();
 }

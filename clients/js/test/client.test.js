@@ -266,3 +266,38 @@ test("multipart bodies are encoded in full: Content-Length, closing boundary wit
   assert.match(text, /name="options"; filename="options.json"\r\nContent-Type: application\/json\r\n\r\n\{"seed":4\}\r\n/);
   assert.equal(sent.url, "http://papernet.invalid/v1/jobs");
 });
+
+test("apiKey: a server with --api-keys answers the key's tenant; no key is missing_api_key", async (t) => {
+  const { mkdtempSync, writeFileSync } = await import("node:fs");
+  const { createHash } = await import("node:crypto");
+  const { tmpdir } = await import("node:os");
+  const { join } = await import("node:path");
+  if (process.env.PAPERNET_URL) return t.skip("needs a server of its own (PAPERNET_URL is set)");
+  const dir = mkdtempSync(join(tmpdir(), "papernet-keys-"));
+  const keys = join(dir, "keys.txt");
+  const hash = (key) => createHash("sha256").update(key).digest("hex");
+  writeFileSync(keys, `shop-a ${hash("key-a")}\nshop-b ${hash("key-b")}\n`);
+  const keyed = await startServer(["--workers", "1", "--access-log", "false", "--api-keys", keys]);
+  try {
+    const a = new PapernetClient(keyed.url, { apiKey: "key-a" });
+    const b = new PapernetClient(keyed.url, { apiKey: "key-b" });
+    await assert.rejects(new PapernetClient(keyed.url).jobs(), (e) => e.code === "missing_api_key" && e.status === 401);
+    await assert.rejects(new PapernetClient(keyed.url, { apiKey: "nope" }).jobs(), (e) => e.code === "invalid_api_key");
+    const job = await a.submit(sample("sample.obj"), { filename: "a.obj", options: { strategy: "TU" } });
+    assert.equal((await a.wait(job.id)).status, "succeeded");
+    checkNet(await a.netJson(job.id));
+    await assert.rejects(b.job(job.id), (e) => e.code === "job_not_found" && e.status === 404);
+    assert.deepEqual((await b.jobs()).jobs, []);
+    assert.equal((await a.jobs()).jobs[0].id, job.id);
+    // A retried submit with its Idempotency-Key resolves to the first job.
+    const once = await a.submit(sample("sample.obj"), { filename: "o.obj", options: { seed: 9 }, idempotencyKey: "order-9" });
+    const again = await a.submit(sample("sample.obj"), { filename: "o.obj", options: { seed: 9 }, idempotencyKey: "order-9" });
+    assert.equal(again.id, once.id);
+    await assert.rejects(
+      a.submit(sample("sample.obj"), { filename: "o.obj", options: { seed: 10 }, idempotencyKey: "order-9" }),
+      (e) => e.code === "idempotency_key_reused" && e.status === 422,
+    );
+  } finally {
+    await keyed.stop();
+  }
+});
