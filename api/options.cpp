@@ -173,6 +173,20 @@ constexpr Spec kOptions[] = {
      [](JobOptions& o, const std::string& n, const json& v) { o.margin_mm = number(n, v); }},
     {"overlap_mm", "LEN", "overlap of the tiles of a net larger than a page, mm",
      [](JobOptions& o, const std::string& n, const json& v) { o.overlap_mm = number(n, v); }},
+    {"layout", "fit|tile",
+     "fit: pieces larger than a page are cut along folds and every piece is nested whole onto "
+     "the fewest sheets (a face larger than a sheet is an error); tile: each part one piece, "
+     "tiled across pages to tape together (unset: fit, or tile when a face is larger than a "
+     "sheet)",
+     [](JobOptions& o, const std::string& n, const json& v) {
+       const std::string s = lower(text(n, v));
+       if (s == "fit")
+         o.layout = PageLayoutMode::Fit;
+       else if (s == "tile")
+         o.layout = PageLayoutMode::Tile;
+       else
+         bad_value(n, v, "fit or tile");
+     }},
     {"tabs", "MODE",
      "auto: a glue tab where one fits, else a separate glue strip; strips: strips only; none: "
      "no glue",
@@ -413,6 +427,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"paper", o.paper},
               {"margin_mm", o.margin_mm},
               {"overlap_mm", o.overlap_mm},
+              {"layout", o.layout ? json(page_layout_name(*o.layout)) : json(nullptr)},
               {"tabs", tab_mode_name(o.tabs)},
               {"tab_height_mm", o.tab_height_mm},
               {"min_tab_height_mm", o.min_tab_height_mm},

@@ -47,8 +47,13 @@ struct JobOptions {
   /// "A4", "A3", "Letter", "WxHmm" or "none" (the SVG sized to the net; the PDF on A4).
   std::string paper = PageOptions{}.paper.name;
   double margin_mm = PageOptions{}.margin_mm;
-  /// Shared strip between neighbouring tiles of a net larger than a page.
+  /// Shared strip between neighbouring tiles of a net larger than a page (layout tile).
   double overlap_mm = PageOptions{}.overlap_mm;
+  /// Pages: fit (pieces larger than a page cut along folds, every piece nested whole onto the
+  /// fewest sheets; a face larger than a sheet is an error) or tile (each part one piece, tiled
+  /// across pages to tape together). Unset: fit, or tile when a face is larger than a sheet
+  /// (the result says so).
+  std::optional<PageLayoutMode> layout;
   /// Glue: auto (tabs on the net where they fit, after making room for them; strips for the
   /// rest), strips (only strips) or none.
   TabMode tabs = PrintOptions{}.tabs;

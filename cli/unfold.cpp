@@ -237,10 +237,14 @@ int unfold(int argc, char** argv) {
       return 1;
     }
     const std::string ext = extension(output);
-    if (out.print && (ext == "svg" || ext == "pdf"))
-      std::cerr << "papernet unfold: " << output << ": " << out.print->pages << " page(s), "
+    if (out.print && (ext == "svg" || ext == "pdf")) {
+      std::cerr << "papernet unfold: " << output << ": " << out.print->pages << " page(s) ("
+                << out.print->layout << "), " << out.print->pieces << " piece(s), "
                 << out.print->tabs << " glue tabs, " << out.print->strips << " glue strips, "
                 << out.print->tabs_omitted << " cut edges without glue\n";
+      if (!out.print->layout_note.empty())
+        std::cerr << "papernet unfold: " << output << ": " << out.print->layout_note << "\n";
+    }
   }
   return 0;
 }

@@ -5,6 +5,8 @@
 #include "core/unfold/net_metrics.h"
 #include "engine/internal/steps.h"
 #include "print/arrange.h"
+#include "print/fit.h"
+#include "print/nest.h"
 #include "print/pages.h"
 #include "print/pdf.h"
 #include "print/svg.h"
@@ -14,6 +16,9 @@ namespace {
 
 // Millimetres between pieces set side by side: room for a glue tab on each, and a cut between.
 double piece_gap_mm(const JobOptions& options) { return 2 * options.tab_height_mm + 4; }
+
+// Paper left between nested pieces (with their tabs) on a sheet, to cut along.
+constexpr double kCutSpacingMm = 2;
 
 }  // namespace
 
@@ -60,10 +65,39 @@ void write_documents(const JobOptions& options, const DocumentRequest& request,
   if (request.obj) docs.obj = write_obj(mesh);
   if (!request.print()) return;
   const PrintOptions print = print_options(options);
-  const double gap = piece_gap_mm(options) / print_scale(mesh, print);
-  PrintLayout layout =
-      layout_net(mesh, arrange_pieces(outcome.net.net, outcome.net.piece, gap), print);
+  const double scale = print_scale(mesh, print);
+  const double gap = piece_gap_mm(options) / scale;
   const PageOptions page = page_options(options);
+  // The print path (docs/print.md): pieces, cut to fit a sheet with room for their tabs; tabs,
+  // strips and labels; then nesting onto sheets (fit) or tiling (tile); then drawing.
+  bool fit = has_paper(options) && options.layout != PageLayoutMode::Tile;
+  FitPieces pieces{outcome.net.net, outcome.net.piece, 0, 0};
+  std::string layout_note;
+  if (fit) {
+    page.validate();
+    // Tabs stick out by up to their height on each side; then the paper to cut along, and a
+    // millimetre to spare so that a piece at the limit still slides into place.
+    const double tab_room = 2 * std::max(0.0, options.tab_height_mm) + kCutSpacingMm + 1;
+    const Vec2 room{page.paper.width - 2 * page.margin_mm - tab_room,
+                    page.paper.height - 2 * page.margin_mm - tab_room};
+    if (!(room.x > 0 && room.y > 0))
+      throw InvalidOptionException("option_out_of_range", "margin_mm",
+                                   "the margins and tabs leave no room on the paper");
+    Box3 box = Box3::empty();
+    for (const Vec3& v : mesh.vertices) box.add(v);
+    const Vec3 extent = box.size();
+    const double model_mm = scale * std::max({extent.x, extent.y, extent.z});
+    try {
+      pieces =
+          cut_to_fit(outcome.net.net, outcome.net.piece, scale, room, page.paper.name, model_mm);
+    } catch (const InvalidOptionException& e) {
+      // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
+      if (options.layout || e.code() != "face_too_large") throw;
+      fit = false;
+      layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
+    }
+  }
+  PrintLayout layout = layout_net(mesh, arrange_pieces(pieces.net, pieces.piece, gap), print);
   PrintSummary& summary = outcome.print.emplace();
   summary.cut_edges = static_cast<std::size_t>(layout.cut_edges);
   summary.tabs = layout.tabs.size();
@@ -72,8 +106,13 @@ void write_documents(const JobOptions& options, const DocumentRequest& request,
   // Without paper, the SVG is the net as laid out; paginating may turn it and move strips.
   if (request.svg_pages && !has_paper(options))
     docs.svg_pages = {write_net_svg(layout, page.margin_mm)};
-  const PageLayout pages = paginate(layout, page);
+  const PageLayout pages =
+      fit ? nest_pages(layout, pieces.piece, page, kCutSpacingMm) : paginate(layout, page);
   summary.pages = static_cast<int>(pages.pages.size());
+  summary.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));
+  summary.pieces = fit ? pieces.pieces : static_cast<int>(outcome.net.pieces.size());
+  summary.cut_links = pieces.cut_links;
+  summary.layout_note = std::move(layout_note);
   if (request.pdf) docs.pdf = write_pdf(layout, pages);
   if (request.svg_pages && has_paper(options)) docs.svg_pages = write_page_svgs(layout, pages);
   if (request.svg)

@@ -53,6 +53,11 @@ struct Documents {
 /// The print's figures, from its layout.
 struct PrintSummary {
   int pages = 0;
+  std::string layout;  ///< "fit" or "tile" (page_layout_name)
+  int pieces = 0;      ///< pieces printed: with layout fit, after cutting them to fit a sheet
+  int cut_links = 0;   ///< folds cut so that every piece fits a sheet (layout fit)
+  /// Why the layout is not the one asked for (a face larger than a sheet: tiled), or empty.
+  std::string layout_note;
   std::size_t cut_edges = 0;     ///< interior cut edges (each gets one tab or one strip)
   std::size_t tabs = 0;          ///< glue tabs on the net
   std::size_t strips = 0;        ///< separate glue strips (cut edges without room for a tab)

@@ -200,7 +200,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   std::vector<int> tab_of(out.edges.size(), -1);
   for (int t = 0; t < static_cast<int>(out.tabs.size()); ++t) tab_of[out.tabs[t].edge] = t;
   auto side_segment = [&](EdgeSide s) {
-    return Segment{out.faces[s.face][s.k], out.faces[s.face][(s.k + 1) % 3]};
+    return Segment{out.faces[s.face][s.k], out.faces[s.face][(s.k + 1) % 3], s.face};
   };
   for (int e = 0; e < static_cast<int>(out.edges.size()); ++e) {
     const NetEdge& edge = out.edges[e];
@@ -217,12 +217,12 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
         const auto& c = out.tabs[t].corners;
         const Segment edge_line = side_segment(s);
         // A tab on part of the edge: the rest of the edge is still cut.
-        if (norm(c[1] - edge_line.a) > 0) out.cut.push_back({edge_line.a, c[1]});
-        if (norm(edge_line.b - c[0]) > 0) out.cut.push_back({c[0], edge_line.b});
-        out.mountain.push_back({c[1], c[0]});
-        out.cut.push_back({c[1], c[2]});
-        out.cut.push_back({c[2], c[3]});
-        out.cut.push_back({c[3], c[0]});
+        if (norm(c[1] - edge_line.a) > 0) out.cut.push_back({edge_line.a, c[1], s.face});
+        if (norm(edge_line.b - c[0]) > 0) out.cut.push_back({c[0], edge_line.b, s.face});
+        out.mountain.push_back({c[1], c[0], s.face});
+        out.cut.push_back({c[1], c[2], s.face});
+        out.cut.push_back({c[2], c[3], s.face});
+        out.cut.push_back({c[3], c[0], s.face});
       } else {
         out.cut.push_back(side_segment(s));
       }
@@ -251,7 +251,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   for (GlueStrip& t : out.strips)
     for (Vec2& p : t.corners) p = p + shift;
   for (auto* list : {&out.cut, &out.mountain, &out.valley})
-    for (Segment& s : *list) s = {s.a + shift, s.b + shift};
+    for (Segment& s : *list) s = {s.a + shift, s.b + shift, s.face};
   for (Label& l : out.labels) l.at = l.at + shift;
   out.size = box.size();
   return out;

@@ -47,6 +47,7 @@ struct PrintOptions {
 
 struct Segment {
   Vec2 a, b;
+  int face = -1;  ///< the face whose side or tab it outlines (-1: none), so it moves with it
 };
 
 /// A number printed inside a face next to one side of a cut edge; its twin carries the same

@@ -192,7 +192,9 @@ PageLayout tile(PrintLayout& layout, double pw, double ph, const PageOptions& op
   auto tiles = [ov](double content, double room) {
     return content <= room ? 1 : static_cast<int>(std::ceil((content - ov) / (room - ov)));
   };
-  PageLayout out{pw, ph, m, ov, false, tiles(layout.size.y, h), tiles(layout.size.x, w), {}};
+  PageLayout out;
+  out.width = pw, out.height = ph, out.margin = m, out.overlap = ov;
+  out.rows = tiles(layout.size.y, h), out.cols = tiles(layout.size.x, w);
   // The tiles together cover (cols * (w - ov) + ov) x (rows * (h - ov) + ov); centre the net.
   const double tw = out.cols * (w - ov) + ov, th = out.rows * (h - ov) + ov;
   const Vec2 off{0.5 * (tw - layout.size.x), 0.5 * (th - layout.size.y)};
@@ -218,6 +220,10 @@ PageLayout tile(PrintLayout& layout, double pw, double ph, const PageOptions& op
 }
 
 }  // namespace
+
+std::string_view page_layout_name(PageLayoutMode mode) {
+  return mode == PageLayoutMode::Fit ? "fit" : "tile";
+}
 
 PageLayout paginate(PrintLayout& layout, const PageOptions& options) {
   options.validate();
@@ -303,13 +309,16 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
   const double ov = pages.overlap, x1 = pages.width - m, y1 = pages.height - m;
   // Overlap marks: where the neighbouring tile's window begins, with ticks in the margin so the
   // sheets can be aligned after cutting the margins.
-  if (page.col + 1 < pages.cols) mark({x1 - ov, m - 0.8 * m}, {x1 - ov, y1 + 0.8 * m});
-  if (page.col > 0) mark({m + ov, m - 0.8 * m}, {m + ov, y1 + 0.8 * m});
-  if (page.row + 1 < pages.rows) mark({m - 0.8 * m, y1 - ov}, {x1 + 0.8 * m, y1 - ov});
-  if (page.row > 0) mark({m - 0.8 * m, m + ov}, {x1 + 0.8 * m, m + ov});
+  if (!pages.fitted && page.col + 1 < pages.cols)
+    mark({x1 - ov, m - 0.8 * m}, {x1 - ov, y1 + 0.8 * m});
+  if (!pages.fitted && page.col > 0) mark({m + ov, m - 0.8 * m}, {m + ov, y1 + 0.8 * m});
+  if (!pages.fitted && page.row + 1 < pages.rows)
+    mark({m - 0.8 * m, y1 - ov}, {x1 + 0.8 * m, y1 - ov});
+  if (!pages.fitted && page.row > 0) mark({m - 0.8 * m, m + ov}, {x1 + 0.8 * m, m + ov});
   const double fs = std::clamp(0.4 * m, 1.5, 3.5);
-  std::string name = "page " + std::to_string(index + 1) + "/" + std::to_string(pages.pages.size());
-  if (pages.pages.size() > 1)
+  std::string name =
+      "page " + std::to_string(index + 1) + " of " + std::to_string(pages.pages.size());
+  if (!pages.fitted && pages.pages.size() > 1)
     name +=
         " (row " + std::to_string(page.row + 1) + ", column " + std::to_string(page.col + 1) + ")";
   d.shapes.push_back(

@@ -22,6 +22,12 @@ Paper parse_paper(std::string_view text);
 /// \throw InvalidOptionException when it is not a positive finite length.
 double parse_length_mm(std::string_view text);
 
+/// How a net goes onto pages: cut into pieces that each fit a sheet and nested (docs/print.md,
+/// "Fit layout"), or each part whole, tiled across sheets with overlap marks.
+enum class PageLayoutMode { Fit, Tile };
+
+std::string_view page_layout_name(PageLayoutMode mode);
+
 struct PageOptions {
   Paper paper;
   double margin_mm = 10;   ///< unprinted border on each side
@@ -42,6 +48,9 @@ struct PageLayout {
   double width = 0, height = 0;  ///< page size as printed (landscape when width > height)
   double margin = 0, overlap = 0;
   bool quarter_turn = false;  ///< the layout was turned by 90 degrees (see turn_quarter)
+  /// Pages of a fit layout (print/nest.h): each a whole sheet, nothing shared between pages, so
+  /// no overlap marks; false: tiles of one net.
+  bool fitted = false;
   int rows = 1, cols = 1;
   std::vector<Page> pages;  ///< row by row, left to right; empty tiles left out
 };

@@ -18,6 +18,10 @@ JobOutput job_output(const UnfoldOutcome& outcome) {
     out.metrics["cut_edges"] = outcome.print->cut_edges;
     out.metrics["glue_tabs"] = outcome.print->tabs;
     out.metrics["glue_strips"] = outcome.print->strips;
+    out.metrics["layout"] = outcome.print->layout;
+    out.metrics["print_pieces"] = outcome.print->pieces;
+    if (!outcome.print->layout_note.empty())
+      out.metrics["layout_note"] = outcome.print->layout_note;
   }
   // Stored with the metrics (server/job.h); job_json shows them beside them.
   nlohmann::json repairs = nlohmann::json::array(), pieces = nlohmann::json::array();

@@ -47,6 +47,7 @@ constexpr ProblemType kProblemTypes[] = {
     {"unreadable_mesh", 422, "Mesh cannot be read"},
     {"invalid_mesh", 422, "Mesh cannot be unfolded"},
     {"unfold_failed", 422, "No overlap-free net found"},
+    {"face_too_large", 422, "A face is larger than a sheet"},
     {"time_limit_exceeded", 422, "Job ran out of time"},
     {"interrupted_too_often", 422, "Job interrupted too often"},
     {"queue_full", 429, "Queue full"},

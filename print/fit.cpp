@@ -1,0 +1,146 @@
+#include "print/fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/errors.h"
+#include "core/unfold/net_metrics.h"
+
+namespace papernet {
+namespace {
+
+// Width and height of the hull's box along its edge from hull[i] to hull[i + 1].
+Vec2 box_along(const std::vector<Vec2>& hull, std::size_t i) {
+  const Vec2 d = hull[(i + 1) % hull.size()] - hull[i];
+  const double len = norm(d);
+  if (!(len > 0)) return {0, 0};
+  const Vec2 u = (1 / len) * d, n{-u.y, u.x};
+  double lo_u = 0, hi_u = 0, lo_n = 0, hi_n = 0;
+  for (std::size_t k = 0; k < hull.size(); ++k) {
+    const Vec2 p = hull[k] - hull[i];
+    const double a = dot(p, u), b = dot(p, n);
+    lo_u = std::min(lo_u, a), hi_u = std::max(hi_u, a);
+    lo_n = std::min(lo_n, b), hi_n = std::max(hi_n, b);
+  }
+  return {hi_u - lo_u, hi_n - lo_n};
+}
+
+/// The largest factor by which the hull can grow and still fit `room` at some edge's turn.
+double growth_that_fits(const std::vector<Vec2>& hull, Vec2 room) {
+  double best = 0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Vec2 b = box_along(hull, i);
+    if (!(b.x > 0 && b.y > 0)) continue;
+    best = std::max(
+        {best, std::min(room.x / b.x, room.y / b.y), std::min(room.y / b.x, room.x / b.y)});
+  }
+  return best;
+}
+
+bool hull_fits(const std::vector<Vec2>& hull, Vec2 room) {
+  if (hull.size() < 3) {
+    double extent = 0;
+    for (Vec2 p : hull)
+      for (Vec2 q : hull) extent = std::max(extent, norm(p - q));
+    return extent <= std::max(room.x, room.y);
+  }
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Vec2 b = box_along(hull, i);
+    if ((b.x <= room.x && b.y <= room.y) || (b.x <= room.y && b.y <= room.x)) return true;
+  }
+  return false;
+}
+
+double hull_area(const std::vector<Vec2>& hull) {
+  double a = 0;
+  for (std::size_t i = 0; i < hull.size(); ++i) a += cross(hull[i], hull[(i + 1) % hull.size()]);
+  return 0.5 * std::abs(a);
+}
+
+std::string mm(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f", v);
+  return buf;
+}
+
+}  // namespace
+
+bool fits_room(const std::vector<Vec2>& points, Vec2 room) {
+  return hull_fits(convex_hull(points), room);
+}
+
+FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
+                     const std::string& paper_name, double model_mm) {
+  const auto n = static_cast<int>(net.parent.size());
+  FitPieces out{net, piece, 0, 0};
+  for (int p : piece) out.pieces = std::max(out.pieces, p + 1);
+  std::vector<std::vector<Vec2>> face_hull(n);
+  int too_large = -1;
+  double growth = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < n; ++f) {
+    std::vector<Vec2> pts;
+    for (Vec2 p : net.points[f]) pts.push_back(scale * p);
+    face_hull[f] = convex_hull(pts);
+    const double g = growth_that_fits(face_hull[f], room);
+    if (g < growth) growth = g;
+    if (too_large < 0 && !hull_fits(face_hull[f], room)) too_large = f;
+  }
+  if (too_large >= 0) {
+    const OrientedBox box = min_area_box(face_hull[too_large]);
+    throw InvalidOptionException(
+        "face_too_large", "size_mm",
+        "face " + std::to_string(too_large) + " prints " + mm(std::max(box.width(), box.height())) +
+            " x " + mm(std::min(box.width(), box.height())) + " mm, larger than " + paper_name +
+            " paper holds (" + mm(std::max(room.x, room.y)) + " x " + mm(std::min(room.x, room.y)) +
+            " mm with margins and room for tabs): at most " + mm(std::floor(model_mm * growth)) +
+            " mm (size_mm) prints on " + paper_name + ", or choose larger paper");
+  }
+  std::vector<std::vector<int>> children(n);
+  std::vector<int> order;  // roots first, then breadth-first: parents before children
+  for (int f = 0; f < n; ++f) {
+    if (net.parent[f] >= 0)
+      children[net.parent[f]].push_back(f);
+    else
+      order.push_back(f);
+  }
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (int c : children[order[i]]) order.push_back(c);
+
+  // hull[f]: the convex hull (mm) of what remains of f's subtree after the cuts below it.
+  std::vector<std::vector<Vec2>> hull(n);
+  std::vector<char> cut(n, 0);
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    const int f = *it;
+    const std::vector<Vec2>& own = face_hull[f];
+    std::vector<int> kept = children[f];
+    // Largest first: cutting off the largest subtree frees the most room.
+    std::sort(kept.begin(), kept.end(),
+              [&](int a, int b) { return hull_area(hull[a]) < hull_area(hull[b]); });
+    for (;;) {
+      std::vector<Vec2> pts = own;
+      for (int c : kept) pts.insert(pts.end(), hull[c].begin(), hull[c].end());
+      std::vector<Vec2> h = convex_hull(pts);
+      if (hull_fits(h, room) || kept.empty()) {
+        hull[f] = std::move(h);
+        break;
+      }
+      cut[kept.back()] = 1;
+      kept.pop_back();
+    }
+  }
+  // The cut subtrees become pieces, numbered after the input's.
+  for (int f : order) {
+    if (!cut[f]) {
+      if (out.net.parent[f] >= 0) out.piece[f] = out.piece[out.net.parent[f]];
+      continue;
+    }
+    out.net.parent[f] = -1;
+    out.piece[f] = out.pieces++;
+    ++out.cut_links;
+  }
+  return out;
+}
+
+}  // namespace papernet

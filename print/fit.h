@@ -1,0 +1,37 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/unfold/net.h"
+#include "core/vec.h"
+
+namespace papernet {
+
+/// The pieces of a net cut so that each fits a sheet (docs/print.md, "Fit layout": the first step
+/// of the print path, pieces → tabs and strips → nesting → pages → drawing).
+struct FitPieces {
+  Net net;                 ///< the net with the links that were cut made roots (parent -1)
+  std::vector<int> piece;  ///< piece of each face: the input's pieces, then the new ones
+  int pieces = 0;
+  int cut_links = 0;  ///< unfold-tree links cut (each a new piece and a new glued edge)
+};
+
+/// Cuts the pieces of `net` (each face's piece in `piece`, each piece one tree of `parent`
+/// links, in its own 2D frame) along unfold-tree links until every piece, at `scale` millimetres
+/// per unit, fits a `room` (width x height, mm) box in some orientation: a piece fits when the
+/// box of its convex hull along one of the hull's edges fits `room` either way round. Greedy from
+/// the leaves: a face keeps its children's remaining subtrees while they fit together and cuts
+/// off the largest ones (by hull area) when they do not, so a piece that fits is never cut and
+/// the pieces cut off are as large as the room allows.
+/// \throw InvalidOptionException ("face_too_large", option "size_mm") naming a face that fits
+///        no room, its size, and the largest model size (`model_mm` is the model's size at
+///        `scale`) at which every face fits.
+FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
+                     const std::string& paper_name, double model_mm);
+
+/// True when points (mm), turned to lie along one of their hull's edges, fit a `room` box
+/// either way round.
+bool fits_room(const std::vector<Vec2>& points, Vec2 room);
+
+}  // namespace papernet

@@ -1,0 +1,176 @@
+#include "print/nest.h"
+
+#include <polyclipping/clipper.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "core/errors.h"
+#include "core/unfold/net_metrics.h"
+#include "print/internal/nest_outlines.h"
+
+namespace papernet {
+namespace {
+
+// Clipper and libnest2d work in integer coordinates: micrometres.
+constexpr double kUnitsPerMm = 1000;
+
+ClipperLib::IntPoint to_int(Vec2 p) {
+  return {static_cast<ClipperLib::cInt>(std::llround(p.x * kUnitsPerMm)),
+          static_cast<ClipperLib::cInt>(std::llround(p.y * kUnitsPerMm))};
+}
+
+/// What is nested: the shapes of one piece (its faces and their tabs) or one glue strip, turned
+/// by `turn` about the origin before libnest2d moves it.
+struct Part {
+  std::vector<std::vector<Vec2>> shapes;
+  double turn = 0;
+};
+
+/// The outline of a part: the union of its shapes grown by `grow` mm; the largest contour (the
+/// shapes of a piece are joined along its folds, and the growth closes rounding cracks).
+ClipperLib::Path outline_of(const std::vector<std::vector<Vec2>>& shapes, double turn,
+                            double grow) {
+  ClipperLib::Paths paths;
+  for (const auto& s : shapes) {
+    ClipperLib::Path path;
+    for (Vec2 p : s) path.push_back(to_int(rotate(p, turn)));
+    if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);
+    paths.push_back(std::move(path));
+  }
+  ClipperLib::Clipper clipper;
+  clipper.AddPaths(paths, ClipperLib::ptSubject, true);
+  ClipperLib::Paths joined;
+  clipper.Execute(ClipperLib::ctUnion, joined, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  ClipperLib::ClipperOffset offset;
+  offset.AddPaths(joined, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
+  ClipperLib::Paths grown;
+  offset.Execute(grown, grow * kUnitsPerMm);
+  ClipperLib::Path best;
+  double best_area = 0;
+  for (auto& p : grown) {
+    const double a = ClipperLib::Area(p);
+    if (a > best_area) best_area = a, best = std::move(p);
+  }
+  ClipperLib::CleanPolygon(best);
+  if (ClipperLib::Orientation(best)) ClipperLib::ReversePath(best);
+  if (!best.empty()) best.push_back(best.front());
+  return best;
+}
+
+/// A turn (radians, counter-clockwise) that puts the points in a `room` box: of the turns that
+/// lay one of their hull's edges along x or y and fit, the one with the smallest box; none
+/// fitting, the minimum-area box's with its long side along y.
+double fitting_turn(const std::vector<Vec2>& points, Vec2 room) {
+  const std::vector<Vec2> hull = convex_hull(points);
+  double best = 0, best_area = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Vec2 d = hull[(i + 1) % hull.size()] - hull[i];
+    for (const double quarter : {0.0, 0.5 * std::numbers::pi}) {
+      const double turn = quarter - std::atan2(d.y, d.x);
+      Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+      Vec2 hi = -1 * lo;
+      for (Vec2 p : hull) {
+        const Vec2 q = rotate(p, turn);
+        lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)},
+        hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+      }
+      const Vec2 size = hi - lo;
+      const double area = size.x * size.y;
+      if (size.x <= room.x && size.y <= room.y && area < best_area) best = turn, best_area = area;
+    }
+  }
+  if (best_area < std::numeric_limits<double>::infinity()) return best;
+  const OrientedBox box = min_area_box(points);
+  return box.angle + (box.width() > box.height() ? 0.5 * std::numbers::pi : 0.0);
+}
+
+}  // namespace
+
+PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
+                      const PageOptions& options, double spacing_mm) {
+  options.validate();
+  const double w = options.paper.width - 2 * options.margin_mm;
+  const double h = options.paper.height - 2 * options.margin_mm;
+  int pieces = 0;
+  for (int p : piece) pieces = std::max(pieces, p + 1);
+
+  // Parts: the pieces, then the strips.
+  std::vector<Part> parts(static_cast<std::size_t>(pieces) + layout.strips.size());
+  for (std::size_t f = 0; f < layout.faces.size(); ++f)
+    parts[piece[f]].shapes.push_back({layout.faces[f].begin(), layout.faces[f].end()});
+  for (const Tab& t : layout.tabs)
+    parts[piece[t.side.face]].shapes.push_back({t.corners.begin(), t.corners.end()});
+  for (std::size_t s = 0; s < layout.strips.size(); ++s)
+    parts[pieces + s].shapes.push_back(
+        {layout.strips[s].corners.begin(), layout.strips[s].corners.end()});
+
+  std::vector<std::vector<print_detail::IntPoint>> outlines;
+  for (Part& part : parts) {
+    std::vector<Vec2> all;
+    for (const auto& s : part.shapes) all.insert(all.end(), s.begin(), s.end());
+    // The turn is chosen on the outline itself (grown, with its mitred corners), a few
+    // micrometres of rounding to spare.
+    std::vector<Vec2> grown;
+    for (const ClipperLib::IntPoint& p : outline_of(part.shapes, 0, 0.5 * spacing_mm))
+      grown.push_back((1 / kUnitsPerMm) * Vec2{static_cast<double>(p.X), static_cast<double>(p.Y)});
+    part.turn = fitting_turn(grown.empty() ? all : grown, {w - 0.01, h - 0.01});
+    std::vector<print_detail::IntPoint>& outline = outlines.emplace_back();
+    for (const ClipperLib::IntPoint& p : outline_of(part.shapes, part.turn, 0.5 * spacing_mm))
+      outline.push_back({p.X, p.Y});
+  }
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(outlines, static_cast<std::int64_t>(std::floor(w * kUnitsPerMm)),
+                                  static_cast<std::int64_t>(std::floor(h * kUnitsPerMm)));
+  int sheets = 0;
+  for (const auto& p : placed) sheets = std::max(sheets, p.sheet + 1);
+
+  // Where each part goes: its turn, libnest2d's turn and shift, then its sheet's window.
+  constexpr double kSheetGap = 20;
+  std::vector<double> angle(parts.size());
+  std::vector<Vec2> shift(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (placed[i].sheet < 0)
+      throw InvalidOptionException(
+          "face_too_large", "size_mm",
+          "a piece does not fit the printable area of a " + options.paper.name + " sheet");
+    angle[i] = parts[i].turn + placed[i].angle;
+    shift[i] = Vec2{static_cast<double>(placed[i].dx) / kUnitsPerMm,
+                    static_cast<double>(placed[i].dy) / kUnitsPerMm} +
+               Vec2{placed[i].sheet * (w + kSheetGap), 0};
+  }
+  auto move = [&](std::size_t part, Vec2 p) { return rotate(p, angle[part]) + shift[part]; };
+  for (std::size_t f = 0; f < layout.faces.size(); ++f)
+    for (Vec2& p : layout.faces[f]) p = move(piece[f], p);
+  for (Tab& t : layout.tabs)
+    for (Vec2& p : t.corners) p = move(piece[t.side.face], p);
+  for (std::size_t s = 0; s < layout.strips.size(); ++s)
+    for (Vec2& p : layout.strips[s].corners) p = move(pieces + s, p);
+  for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
+    for (Segment& s : *list)
+      if (s.face >= 0) s.a = move(piece[s.face], s.a), s.b = move(piece[s.face], s.b);
+  for (Label& l : layout.labels) {
+    const auto part = static_cast<std::size_t>(piece[l.side.face]);
+    l.at = move(part, l.at);
+    l.angle = std::remainder(l.angle + angle[part], 2 * std::numbers::pi);
+    // Upright on the page: a label turned past a quarter turn reads better turned half round.
+    if (std::cos(l.angle) < -1e-9) l.angle += std::numbers::pi;
+  }
+  layout.size = {sheets * (w + kSheetGap) - kSheetGap, h};
+
+  PageLayout out;
+  out.width = options.paper.width;
+  out.height = options.paper.height;
+  out.margin = options.margin_mm;
+  out.overlap = 0;
+  out.fitted = true;
+  out.rows = 1;
+  out.cols = sheets;
+  for (int k = 0; k < sheets; ++k)
+    out.pages.push_back({0, k, {k * (w + kSheetGap), 0}, {k * (w + kSheetGap) + w, h}});
+  return out;
+}
+
+}  // namespace papernet

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <vector>
+
+#include "print/layout.h"
+#include "print/pages.h"
+
+namespace papernet {
+
+/// Nests the pieces of a laid-out net onto the fewest sheets (docs/print.md, "Fit layout"): each
+/// piece with its glue tabs, and each glue strip, is an outline (their union grown by half of
+/// `spacing_mm`, so pieces keep that much paper between them to cut along), turned to lie along
+/// its minimum-area box and placed by libnest2d's bottom-left placer (first fit, largest first,
+/// quarter turns allowed), which slides outlines against each other polygon by polygon, not by
+/// their boxes. Pieces must already fit a page's printable area with their tabs (cut_to_fit).
+///
+/// `piece` gives each face's piece. Moves everything in `layout` (faces, tabs, strips, lines,
+/// labels) rigidly to its sheet: sheet k is the window [k * (w + gap), (k + 1) * w + k * gap] x
+/// [0, h] of the layout, w x h the printable area, and the PageLayout returned has one page per
+/// sheet, `fitted` set. Labels are turned to read upright after the move.
+/// \throw InvalidOptionException ("face_too_large", "size_mm") when a piece does not fit a page.
+PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
+                      const PageOptions& options, double spacing_mm);
+
+}  // namespace papernet

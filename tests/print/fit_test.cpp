@@ -1,0 +1,199 @@
+// The fit layout (docs/print.md): pieces cut along folds until each fits a sheet, then nested
+// onto sheets. Checked from the drawn pages, not from the layout's own data.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "core/errors.h"
+#include "core/unfold/net_check.h"
+#include "core/unfold/unfolding.h"
+#include "print/arrange.h"
+#include "print/fit.h"
+#include "print/nest.h"
+#include "print/svg.h"
+#include "tests/support/meshes.h"
+#include "tests/support/polygons.h"
+
+namespace papernet {
+namespace {
+
+struct Unfolded {
+  Mesh mesh;
+  Net net;
+};
+
+Unfolded tabu_net(const std::string& file) {
+  for (auto& [name, mesh] : test::test_data_meshes()) {
+    if (name != file) continue;
+    Progress quiet;
+    TabuOptions options;
+    options.time_limit_seconds = 30;
+    return {mesh, unfold_tabu(mesh, options, quiet).net};
+  }
+  ADD_FAILURE() << "tests/data has no " << file;
+  return {};
+}
+
+/// Whether the points fit a room box at some turn: every quarter degree tried, with `slack` mm
+/// for the turns between.
+bool fits_at_some_turn(const std::vector<Vec2>& points, Vec2 room, double slack) {
+  for (int step = 0; step < 4 * 180; ++step) {
+    const double a = step * std::numbers::pi / (4 * 180);
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (Vec2 p : points) {
+      const double x = std::cos(a) * p.x - std::sin(a) * p.y;
+      const double y = std::sin(a) * p.x + std::cos(a) * p.y;
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    if (x1 - x0 <= room.x + slack && y1 - y0 <= room.y + slack) return true;
+  }
+  return false;
+}
+
+// A4 with 10 mm margins, less room for 6 mm tabs and 2 mm to cut along.
+constexpr Vec2 kRoom{210 - 20 - 14, 297 - 20 - 14};
+
+TEST(Fit, CutsALargeNetIntoTreesThatEachFitTheSheet) {
+  const Unfolded u = tabu_net("sample.obj");
+  ASSERT_FALSE(u.mesh.faces.empty());
+  const double scale = print_scale(u.mesh, {});  // 200 mm
+  const std::vector<int> one(u.mesh.faces.size(), 0);
+  const FitPieces fit = cut_to_fit(u.net, one, scale, kRoom, "A4", 200);
+  ASSERT_GT(fit.pieces, 1) << "sample.obj at 200 mm is larger than a sheet";
+  EXPECT_EQ(fit.cut_links, fit.pieces - 1);
+  // Only links were cut: every face keeps its place, each piece is one tree of the old links.
+  EXPECT_EQ(fit.net.points, u.net.points);
+  std::vector<int> roots(fit.pieces, 0);
+  std::vector<std::vector<Vec2>> points(fit.pieces);
+  for (std::size_t f = 0; f < u.mesh.faces.size(); ++f) {
+    const int p = fit.piece[f];
+    ASSERT_GE(p, 0);
+    ASSERT_LT(p, fit.pieces);
+    if (fit.net.parent[f] < 0) {
+      ++roots[p];
+    } else {
+      EXPECT_EQ(fit.net.parent[f], u.net.parent[f]);
+      EXPECT_EQ(fit.piece[fit.net.parent[f]], p) << "face " << f << " hangs from another piece";
+    }
+    for (Vec2 q : u.net.points[f]) points[p].push_back(scale * q);
+  }
+  for (int p = 0; p < fit.pieces; ++p) {
+    EXPECT_EQ(roots[p], 1) << "piece " << p;
+    EXPECT_TRUE(fits_at_some_turn(points[p], kRoom, 1.0)) << "piece " << p;
+  }
+  const NetCheckReport check = check_pieces(u.mesh, fit.net, fit.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  // The whole net does not fit, so the cut was needed; a net that fits is left alone.
+  std::vector<Vec2> all;
+  for (const auto& ps : points) all.insert(all.end(), ps.begin(), ps.end());
+  EXPECT_FALSE(fits_at_some_turn(all, kRoom, 0));
+  const FitPieces small = cut_to_fit(u.net, one, 0.2 * scale, kRoom, "A4", 40);  // 40 mm
+  EXPECT_EQ(small.pieces, 1);
+  EXPECT_EQ(small.cut_links, 0);
+  EXPECT_EQ(small.net.parent, u.net.parent);
+}
+
+TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
+  const Mesh mesh = test::tetrahedron();
+  const Net net = test::bfs_net(mesh);
+  const std::vector<int> one(mesh.faces.size(), 0);
+  try {
+    cut_to_fit(net, one, 1000, kRoom, "A4", 1000);
+    ADD_FAILURE() << "a face of about a metre fitted an A4 sheet";
+  } catch (const InvalidOptionException& e) {
+    EXPECT_EQ(e.code(), "face_too_large");
+    EXPECT_EQ(e.option(), "size_mm");
+    const std::string message = e.what();
+    EXPECT_TRUE(std::regex_search(message, std::regex("^face [0-3] prints [0-9]+ x [0-9]+ mm")))
+        << message;
+    EXPECT_NE(message.find("A4"), std::string::npos) << message;
+    EXPECT_NE(message.find("263 x 176 mm"), std::string::npos) << message;
+    // The largest size it names prints; a little more does not.
+    std::smatch at_most;
+    ASSERT_TRUE(std::regex_search(message, at_most, std::regex("at most ([0-9]+) mm"))) << message;
+    const double largest = std::stod(at_most[1].str());
+    EXPECT_GT(largest, 50);
+    EXPECT_NO_THROW(cut_to_fit(net, one, largest, kRoom, "A4", largest));
+    EXPECT_THROW(cut_to_fit(net, one, largest + 2, kRoom, "A4", largest + 2),
+                 InvalidOptionException);
+  }
+}
+
+std::string group(const std::string& svg, const std::string& id) {
+  const auto start = svg.find("<g id=\"" + id + "\"");
+  if (start == std::string::npos) return {};
+  return svg.substr(start, svg.find("</g>", start) - start);
+}
+
+std::vector<std::vector<Vec2>> polygons(const std::string& svg_group) {
+  std::vector<std::vector<Vec2>> out;
+  static const std::regex polygon("<polygon points=\"([^\"]*)\"");
+  for (auto it = std::sregex_iterator(svg_group.begin(), svg_group.end(), polygon);
+       it != std::sregex_iterator(); ++it) {
+    std::istringstream in((*it)[1].str());
+    std::vector<Vec2> poly;
+    double x = 0, y = 0;
+    char comma = 0;
+    while (in >> x >> comma >> y) poly.push_back({x, y});
+    out.push_back(std::move(poly));
+  }
+  return out;
+}
+
+// The whole path of a print: a dense net is cut to fit, laid out with tabs and strips, nested,
+// drawn. Each page, as drawn in its SVG, holds its faces, tabs and strips inside the printable
+// area, none overlapping another; every face is drawn once (no tiles), and every page says which
+// it is.
+TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
+  const Unfolded u = tabu_net("sample.obj");
+  ASSERT_FALSE(u.mesh.faces.empty());
+  const PrintOptions print;
+  const double scale = print_scale(u.mesh, print);
+  const std::vector<int> one(u.mesh.faces.size(), 0);
+  const FitPieces fit = cut_to_fit(u.net, one, scale, kRoom, "A4", 200);
+  PrintLayout layout = layout_net(u.mesh, arrange_pieces(fit.net, fit.piece, 20 / scale), print);
+  ASSERT_GT(layout.tabs.size(), 0u);
+  const PageOptions page;  // A4, 10 mm margins
+  const PageLayout pages = nest_pages(layout, fit.piece, page, 2);
+  EXPECT_TRUE(pages.fitted);
+  const std::vector<std::string> svgs = write_page_svgs(layout, pages);
+  ASSERT_EQ(svgs.size(), pages.pages.size());
+  EXPECT_LE(static_cast<int>(svgs.size()), fit.pieces + 1);
+  std::size_t faces = 0, tabs = 0, strips = 0;
+  for (std::size_t k = 0; k < svgs.size(); ++k) {
+    const std::string& svg = svgs[k];
+    const std::string name = "page " + std::to_string(k + 1) + " of " + std::to_string(svgs.size());
+    EXPECT_NE(svg.find(name), std::string::npos) << name;
+    std::vector<std::vector<Vec2>> shapes = polygons(group(svg, "faces"));
+    faces += shapes.size();
+    const auto tab_shapes = polygons(group(svg, "tabs"));
+    tabs += tab_shapes.size();
+    shapes.insert(shapes.end(), tab_shapes.begin(), tab_shapes.end());
+    const auto strip_shapes = polygons(group(svg, "strips"));
+    strips += strip_shapes.size();
+    shapes.insert(shapes.end(), strip_shapes.begin(), strip_shapes.end());
+    for (const auto& s : shapes)
+      for (Vec2 p : s) {
+        // SVG numbers are rounded to 1 µm.
+        EXPECT_GE(p.x, page.margin_mm - 1e-3) << name;
+        EXPECT_GE(p.y, page.margin_mm - 1e-3) << name;
+        EXPECT_LE(p.x, page.paper.width - page.margin_mm + 1e-3) << name;
+        EXPECT_LE(p.y, page.paper.height - page.margin_mm + 1e-3) << name;
+      }
+    std::size_t overlaps = 0;
+    for (std::size_t i = 0; i < shapes.size(); ++i)
+      for (std::size_t j = i + 1; j < shapes.size(); ++j)
+        if (test::overlap_thickness(shapes[i], shapes[j]) > 1e-3) ++overlaps;
+    EXPECT_EQ(overlaps, 0u) << name;
+  }
+  EXPECT_EQ(faces, u.mesh.faces.size());
+  EXPECT_EQ(tabs, layout.tabs.size());
+  EXPECT_EQ(strips, layout.strips.size());
+}
+
+}  // namespace
+}  // namespace papernet
