@@ -17,6 +17,7 @@
 #include "server/job_store.h"
 #include "server/problem.h"
 #include "server/upload.h"
+#include "server/webhooks.h"
 
 namespace papernet::server {
 namespace {
@@ -307,6 +308,11 @@ struct Api {
       throw ApiError("malformed_request",
                      "an Idempotency-Key is 1 to 255 visible ASCII characters (a UUID will do)");
     ParsedUpload upload = parse_upload(upload_of(req, reader, config.max_body_bytes), limits);
+    // Refused here, before a job exists, so that the caller learns of it (422 naming the
+    // option); the sender checks the host again at every attempt.
+    if (upload.options.callback_url)
+      callback_addresses(parse_callback_url(*upload.options.callback_url),
+                         webhook_settings(config));
     std::string id;
     if (idempotent) {
       const std::string hash = request_hash(upload);
@@ -343,7 +349,7 @@ struct Api {
     }
     // The job as accepted: queued (with its place) or answered from a stored result. A worker
     // may have claimed it already; the next poll shows that.
-    JobView accepted{job, {}, 0, false, std::nullopt, job.result_files};
+    JobView accepted{job, {}, 0, false, std::nullopt, job.result_files, std::nullopt};
     if (auto view = service.view(job.id); view && view->record.status == job.status)
       accepted = *view;
     res.set_header("Location", "/v1/jobs/" + job.id);

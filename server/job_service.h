@@ -51,7 +51,8 @@ struct JobView {
   std::size_t queue_position = 0;  ///< 1 = next; 0 = not queued
   bool cancel_requested = false;
   std::optional<IntermediateLevel> intermediate;
-  std::vector<std::string> result_files;  ///< stored result files of a finished job
+  std::vector<std::string> result_files;    ///< stored result files of a finished job
+  std::optional<WebhookDelivery> callback;  ///< its callback's delivery, with a callback_url
 };
 
 /// Counters for /metrics.

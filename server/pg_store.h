@@ -55,6 +55,12 @@ class PgJobStore : public JobStore {
 
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) override;
 
+  // pg_webhooks.cpp
+  std::optional<WebhookDelivery> webhook(const std::string& id) override;
+  std::optional<WebhookDelivery> claim_webhook(const std::string& node, double now,
+                                               double lease_seconds) override;
+  bool update_webhook(const WebhookDelivery& delivery, const std::string& node) override;
+
   void listen(std::function<void(const StoreEvent&)> on_event) override;
   void ping() override;
   StoreStats stats() override;

@@ -65,6 +65,14 @@ CREATE TABLE IF NOT EXISTS idempotency(tenant TEXT NOT NULL, key TEXT NOT NULL,
     R"sql(
 ALTER TABLE jobs ADD COLUMN expired INTEGER NOT NULL DEFAULT 0;
 )sql",
+    // Webhooks: a job's callback delivery, kept until it is done so that a restart resumes it.
+    R"sql(
+CREATE TABLE IF NOT EXISTS webhooks(job_id TEXT PRIMARY KEY, url TEXT NOT NULL,
+  state TEXT NOT NULL DEFAULT 'pending', attempts TEXT NOT NULL DEFAULT '[]',
+  next_at REAL NOT NULL DEFAULT 0, claimed_by TEXT NOT NULL DEFAULT '',
+  lease_until REAL NOT NULL DEFAULT 0);
+CREATE INDEX IF NOT EXISTS webhooks_pending ON webhooks(next_at) WHERE state='pending';
+)sql",
 };
 
 // The store's clock, in seconds since the epoch, for leases.
@@ -202,6 +210,12 @@ bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t q
           .blob(3, data)
           .run();
   }
+  if (const auto url = job.options.find("callback_url");
+      url != job.options.end() && url->is_string())
+    Statement(db_, "INSERT INTO webhooks(job_id, url) VALUES(?,?)")
+        .bind(1, job.id)
+        .bind(2, url->get<std::string>())
+        .run();
   tx.commit();
   return true;
 }
@@ -311,6 +325,9 @@ std::size_t SqliteJobStore::expire(double finished_before, double keys_before) {
             "job_id NOT IN (SELECT result_job FROM jobs WHERE expired=0)")
       .run();
   Statement(db_, "DELETE FROM idempotency WHERE created<?").bind(1, keys_before).run();
+  if (expired > 0)
+    Statement(db_, "DELETE FROM webhooks WHERE job_id IN (SELECT id FROM jobs WHERE expired=1)")
+        .run();
   tx.commit();
   return static_cast<std::size_t>(expired);
 }

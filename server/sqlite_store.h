@@ -53,6 +53,12 @@ class SqliteJobStore : public JobStore {
                        double finished) override;
 
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) override;
+
+  // sqlite_webhooks.cpp
+  std::optional<WebhookDelivery> webhook(const std::string& id) override;
+  std::optional<WebhookDelivery> claim_webhook(const std::string& node, double now,
+                                               double lease_seconds) override;
+  bool update_webhook(const WebhookDelivery& delivery, const std::string& node) override;
   void ping() override {}
 
  private:
