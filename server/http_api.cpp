@@ -28,6 +28,8 @@ using Clock = std::chrono::steady_clock;
 // Set when a request starts routing; the handlers and the access logger run on the same
 // thread afterwards.
 thread_local Clock::time_point request_start;
+// The problem code of the answer being sent ("" for none), for /metrics.
+thread_local std::string request_problem;
 // The tenant of the request's API key ("" without keys): it owns what it submits and sees
 // nothing else.
 thread_local std::string request_tenant;
@@ -39,6 +41,7 @@ constexpr std::size_t kMaxAuthorization = 256;
 
 void send_problem(httplib::Response& res, const Problem& p, const std::string& instance) {
   res.status = p.status;
+  request_problem = p.code;
   // The path is the client's: echo no more of it than a job's result path needs.
   res.set_content(problem_json(p, instance.substr(0, 128)).dump(), "application/problem+json");
   if (p.retry_after) res.set_header("Retry-After", std::to_string(*p.retry_after));
@@ -295,7 +298,7 @@ struct Api {
   JobService& service;
   const ServerConfig& config;
   HttpMetrics& metrics;
-  std::atomic<int> streams{0};
+  std::atomic<int>& streams = metrics.open_streams;
 
   void submit(const httplib::Request& req, httplib::Response& res,
               const httplib::ContentReader& reader) {
@@ -486,6 +489,7 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
   http.set_pre_routing_handler([&config, declared_too_large, keys, limiter](
                                    const httplib::Request& req, httplib::Response& res) {
     request_start = Clock::now();
+    request_problem.clear();
     request_tenant.clear();
     request_queue_share = 1;
     Problem p;
@@ -579,7 +583,7 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
       });
   http.set_logger([&config, &metrics](const httplib::Request& req, const httplib::Response& res) {
     const double seconds = std::chrono::duration<double>(Clock::now() - request_start).count();
-    metrics.count(res.status, seconds);
+    metrics.count(route_of(req.method, req.path), res.status, request_problem, seconds);
     if (!config.access_log) return;
     std::string id = job_id_in_path(req.path);
     if (id.empty()) id = job_id_in_path(res.get_header_value("Location"));

@@ -245,6 +245,7 @@ ServiceStats JobService::stats() {
   s.store_kind = store_.kind();
   try {
     s.jobs_by_status = store_.count_by_status();
+    s.queued_by_tenant = store_.queued_by_tenant();
   } catch (const StoreError&) {
     s.store_up = false;
   }

@@ -123,6 +123,8 @@ class JobStore {
   virtual std::size_t expire(double finished_before, double keys_before) = 0;
   /// `tenant`'s queued jobs.
   virtual std::size_t queued_count(const std::string& tenant) = 0;
+  /// Queued jobs per tenant (tenants with none left out), for /metrics.
+  virtual std::map<std::string, std::size_t> queued_by_tenant() = 0;
   /// Jobs per status name.
   virtual std::map<std::string, std::size_t> count_by_status() = 0;
   /// 1 for the next queued job to run, 2 for the one after, ...

@@ -388,6 +388,17 @@ std::size_t PgJobStore::queued_count(const std::string& tenant) {
   return out;
 }
 
+std::map<std::string, std::size_t> PgJobStore::queued_by_tenant() {
+  std::map<std::string, std::size_t> out;
+  pool_.run([&](Connection& c) {
+    Result r = c.exec("SELECT tenant, count(*) FROM jobs WHERE status = 'queued' GROUP BY tenant");
+    out.clear();
+    for (int i = 0; i < r.rows(); ++i)
+      out[r.text(i, 0)] = static_cast<std::size_t>(r.integer(i, 1));
+  });
+  return out;
+}
+
 std::map<std::string, std::size_t> PgJobStore::count_by_status() {
   std::map<std::string, std::size_t> out;
   pool_.run([&](Connection& c) {

@@ -339,6 +339,14 @@ std::size_t SqliteJobStore::queued_count(const std::string& tenant) {
   return s.step() ? static_cast<std::size_t>(s.integer(0)) : 0;
 }
 
+std::map<std::string, std::size_t> SqliteJobStore::queued_by_tenant() {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "SELECT tenant, COUNT(*) FROM jobs WHERE status='queued' GROUP BY tenant");
+  std::map<std::string, std::size_t> out;
+  while (s.step()) out[s.text(0)] = static_cast<std::size_t>(s.integer(1));
+  return out;
+}
+
 std::map<std::string, std::size_t> SqliteJobStore::count_by_status() {
   std::lock_guard lock(mutex_);
   Statement s(db_, "SELECT status, COUNT(*) FROM jobs WHERE expired=0 GROUP BY status");

@@ -35,6 +35,7 @@ class SqliteJobStore : public JobStore {
                           const std::string& job_id) override;
   std::size_t expire(double finished_before, double keys_before) override;
   std::size_t queued_count(const std::string& tenant) override;
+  std::map<std::string, std::size_t> queued_by_tenant() override;
   std::map<std::string, std::size_t> count_by_status() override;
   std::size_t queue_position(std::int64_t seq) override;
 
