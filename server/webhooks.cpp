@@ -19,9 +19,8 @@
 namespace papernet::server {
 namespace {
 
-[[noreturn]] void refuse(const std::string& why) {
-  throw InvalidOptionException("callback_url_refused", "callback_url",
-                               "option 'callback_url': " + why);
+[[noreturn]] void refuse(const std::string& why, bool transient = false) {
+  throw CallbackRefused("option 'callback_url': " + why, transient);
 }
 
 bool listed(const std::string& host, const std::vector<std::string>& hosts) {
@@ -123,7 +122,7 @@ std::vector<std::string> callback_addresses(const CallbackUrl& url,
   hints.ai_socktype = SOCK_STREAM;
   addrinfo* found = nullptr;
   if (getaddrinfo(url.host.c_str(), nullptr, &hints, &found) != 0 || !found)
-    refuse("host '" + url.host + "' does not resolve");
+    refuse("host '" + url.host + "' does not resolve", true);
   std::unique_ptr<addrinfo, void (*)(addrinfo*)> owned(found, freeaddrinfo);
   std::vector<std::string> out;
   for (const addrinfo* a = found; a; a = a->ai_next) {
@@ -142,7 +141,7 @@ std::vector<std::string> callback_addresses(const CallbackUrl& url,
              "--webhook-hosts may");
     if (std::find(out.begin(), out.end(), text) == out.end()) out.push_back(text);
   }
-  if (out.empty()) refuse("host '" + url.host + "' does not resolve");
+  if (out.empty()) refuse("host '" + url.host + "' does not resolve", true);
   return out;
 }
 
@@ -176,14 +175,17 @@ void WebhookSender::run() {
   // An attempt takes at most a connect, a send and a receive timeout; the lease outlasts that,
   // so no other node (or thread) attempts the same delivery meanwhile.
   const double lease = 3 * settings_.timeout + 10;
+  bool store_failing = false;  // logged once a failure, not twice a second
   std::unique_lock lock(mutex_);
   while (!stop_) {
     lock.unlock();
     std::optional<WebhookDelivery> due;
     try {
       due = store_.claim_webhook(node_, now_seconds(), lease);
+      store_failing = false;
     } catch (const std::exception& e) {
-      log_(std::string("webhooks: cannot read the store: ") + e.what());
+      if (!store_failing) log_(std::string("webhooks: cannot read the store: ") + e.what());
+      store_failing = true;
     }
     if (due) attempt(std::move(*due));
     lock.lock();
@@ -200,35 +202,41 @@ void WebhookSender::attempt(WebhookDelivery d) {
     // Checked again at every attempt: what a name resolves to may have changed since submit.
     const std::vector<std::string> addresses = callback_addresses(url, settings_);
     const std::string body = status_json_(d.job_id);
-    if (body.empty()) throw std::runtime_error("the job is gone");
-    httplib::Client client(url.host, url.port);
-    // Connect to the address checked above, not to whatever a second lookup returns.
-    client.set_hostname_addr_map({{url.host, addresses.front()}});
-    const auto timeout = std::chrono::milliseconds(static_cast<long>(settings_.timeout * 1000));
-    client.set_connection_timeout(timeout);
-    client.set_read_timeout(timeout);
-    client.set_write_timeout(timeout);
-    client.set_follow_location(false);  // a redirect could lead anywhere, internal included
-    client.set_keep_alive(false);
-    const auto t = static_cast<std::int64_t>(std::floor(now_seconds()));
-    const httplib::Headers headers = {
-        {"X-Papernet-Signature", webhook_signature(settings_.secret, t, body)},
-        {"X-Papernet-Job", d.job_id},
-        {"User-Agent", "papernet-webhook/1"}};
-    auto res = client.Post(url.target.c_str(), headers, body, "application/json");
-    if (!res) {
-      entry["error"] = httplib::to_string(res.error());
+    if (body.empty()) {
+      entry["error"] = "the job is gone";
+      hopeless = true;
     } else {
-      entry["status"] = res->status;
-      delivered = res->status >= 200 && res->status < 300;
-      if (res->status >= 300 && res->status < 400) entry["error"] = "redirect not followed";
+      httplib::Client client(url.host, url.port);
+      // Connect to the address checked above, not to whatever a second lookup returns.
+      client.set_hostname_addr_map({{url.host, addresses.front()}});
+      const auto timeout = std::chrono::milliseconds(static_cast<long>(settings_.timeout * 1000));
+      client.set_connection_timeout(timeout);
+      client.set_read_timeout(timeout);
+      client.set_write_timeout(timeout);
+      client.set_follow_location(false);  // a redirect could lead anywhere, internal included
+      client.set_keep_alive(false);
+      const auto t = static_cast<std::int64_t>(std::floor(now_seconds()));
+      const httplib::Headers headers = {
+          {"X-Papernet-Signature", webhook_signature(settings_.secret, t, body)},
+          {"X-Papernet-Job", d.job_id},
+          {"User-Agent", "papernet-webhook/1"}};
+      auto res = client.Post(url.target.c_str(), headers, body, "application/json");
+      if (!res) {
+        entry["error"] = httplib::to_string(res.error());
+      } else {
+        entry["status"] = res->status;
+        delivered = res->status >= 200 && res->status < 300;
+        if (res->status >= 300 && res->status < 400) entry["error"] = "redirect not followed";
+      }
     }
-  } catch (const InvalidOptionException& e) {
+  } catch (const CallbackRefused& e) {
     entry["error"] = e.what();
-    hopeless = true;  // refused by policy: the same again would be refused again
+    hopeless = !e.transient();  // refused by the rules: the same again would be refused again
+  } catch (const InvalidOptionException& e) {
+    entry["error"] = e.what();  // a stored URL that no longer parses
+    hopeless = true;
   } catch (const std::exception& e) {
     entry["error"] = e.what();
-    hopeless = std::string(e.what()) == "the job is gone";
   }
   d.attempts.push_back(entry);
   const std::size_t n = d.attempts.size();
@@ -240,7 +248,11 @@ void WebhookSender::attempt(WebhookDelivery d) {
   if (entry.contains("status")) {
     what = "HTTP ";
     what += std::to_string(entry["status"].get<int>());
-    if (entry.contains("error")) what += " (" + entry["error"].get<std::string>() + ")";
+    if (entry.contains("error")) {
+      what += " (";
+      what += entry["error"].get<std::string>();
+      what += ")";
+    }
   } else {
     what = entry["error"].get<std::string>();
   }
@@ -256,8 +268,10 @@ void WebhookSender::attempt(WebhookDelivery d) {
     what += " s";
   }
   std::string line = "webhook job " + d.job_id;
-  line += " attempt " + std::to_string(n);
-  line += ": " + what;
+  line += " attempt ";
+  line += std::to_string(n);
+  line += ": ";
+  line += what;
   log_(line);
   try {
     if (!store_.update_webhook(d, node_))

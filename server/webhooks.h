@@ -27,6 +27,19 @@ struct WebhookSettings {
   std::size_t threads = 2;  ///< delivery threads: a receiver that hangs holds one of them
 };
 
+/// A callback_url the rules refuse (422 callback_url_refused naming callback_url). `transient`:
+/// the host did not resolve, which a later attempt may see otherwise.
+class CallbackRefused : public InvalidOptionException {
+ public:
+  CallbackRefused(const std::string& message, bool transient)
+      : InvalidOptionException("callback_url_refused", "callback_url", message),
+        transient_(transient) {}
+  bool transient() const { return transient_; }
+
+ private:
+  bool transient_;
+};
+
 /// The webhook part of the service's configuration.
 WebhookSettings webhook_settings(const ServerConfig& config);
 
@@ -38,9 +51,8 @@ std::string webhook_signature(const std::string& secret, std::int64_t t, const s
 bool is_internal_address(const std::string& address);
 
 /// The addresses a callback to `url` may connect to: `url`'s host resolved, every address
-/// checked against `settings`. \throw InvalidOptionException callback_url_refused (naming
-/// callback_url) saying why: callbacks are off, the host is not listed, does not resolve, or
-/// resolves to an internal address without being listed.
+/// checked against `settings`. \throw CallbackRefused saying why: callbacks are off, the host is
+/// not listed, does not resolve, or resolves to an internal address without being listed.
 std::vector<std::string> callback_addresses(const CallbackUrl& url,
                                             const WebhookSettings& settings);
 
