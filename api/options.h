@@ -73,7 +73,21 @@ struct JobOptions {
   /// Refuse what repair would fix (non-manifold edges, pinches, degenerate or flipped faces,
   /// several parts unless `components` is largest) instead of repairing it.
   bool strict = false;
+  /// The service POSTs the job's final status here when the job ends (docs/security.md
+  /// "Webhooks"): http://HOST[:PORT][/PATH]. The command line refuses it.
+  std::optional<std::string> callback_url;
 };
+
+/// A callback_url's parts.
+struct CallbackUrl {
+  std::string host;  ///< lower case; an IPv6 address without its brackets
+  int port = 80;
+  std::string target = "/";  ///< path and query
+};
+
+/// Splits http://HOST[:PORT][/PATH][?QUERY] (at most 2048 bytes, no user, no fragment).
+/// \throw InvalidOptionException invalid_option_value naming callback_url.
+CallbackUrl parse_callback_url(std::string_view url);
 
 /// Limits a front end puts on options (the service's from its configuration).
 struct OptionsLimits {

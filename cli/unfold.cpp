@@ -97,6 +97,8 @@ std::optional<Command> parse(int argc, char** argv) {
   if (c.file.empty()) throw std::invalid_argument("no input file");
   if (c.outputs.empty()) throw std::invalid_argument("no output (-o FILE)");
   validate_options(c.options, {1e9, kLimits.max_faces});
+  if (c.options.callback_url)
+    throw std::invalid_argument("--callback-url is an option of the service (papernet serve)");
   return c;
 }
 

@@ -1,5 +1,6 @@
 #include "server/config.h"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -81,6 +82,30 @@ std::vector<std::string> origins(const std::string& where, const std::string& v)
                         "' is not an origin (scheme://host[:port], e.g. https://shop.example) "
                         "or *");
     out.push_back(o);
+  }
+  return out;
+}
+
+// "hooks.shop.example, 10.0.0.7, *.shop.example" -> lower-case host names and addresses.
+std::vector<std::string> hosts(const std::string& where, const std::string& v) {
+  std::vector<std::string> out;
+  std::size_t from = 0;
+  while (from <= v.size()) {
+    std::size_t to = v.find(',', from);
+    if (to == std::string::npos) to = v.size();
+    std::string h = v.substr(from, to - from);
+    from = to + 1;
+    h.erase(0, h.find_first_not_of(" \t"));
+    h.erase(h.find_last_not_of(" \t") + 1);
+    if (h.empty()) continue;
+    if (h.size() > 2 && h.front() == '[' && h.back() == ']') h = h.substr(1, h.size() - 2);
+    for (char& c : h) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::size_t wild = h.starts_with("*.") ? 2 : 0;
+    if (h.size() == wild ||
+        h.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789.-:", wild) != std::string::npos)
+      throw ConfigError(where + ": '" + h +
+                        "' is not a host name, an address or *.domain (no scheme, no port)");
+    out.push_back(h);
   }
   return out;
 }
@@ -199,6 +224,32 @@ const std::vector<Setting>& settings() {
        "job_expired; 0 = forever (default 7d)",
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.retention = duration(w, v);
+       }},
+      {"webhook-hosts", "PAPERNET_WEBHOOK_HOSTS",
+       "comma-separated hosts a job's callback_url may name (hooks.shop.example, 10.0.0.7, "
+       "*.shop.example); only listed hosts may resolve to loopback or private addresses "
+       "(default none: any host whose addresses are all public)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.webhook_hosts = hosts(w, v);
+       }},
+      {"webhook-secret", "PAPERNET_WEBHOOK_SECRET",
+       "key of the HMAC-SHA256 signature in each callback's X-Papernet-Signature header; "
+       "without it callback_url is refused (default none); prefer the variable to the flag, "
+       "which other users see in ps",
+       [](ServerConfig& c, const std::string&, const std::string& v) { c.webhook_secret = v; }},
+      {"webhook-timeout", "PAPERNET_WEBHOOK_TIMEOUT",
+       "seconds a callback attempt may take to connect, and each to send and to receive "
+       "(default 5)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.webhook_timeout = seconds(w, v);
+         if (c.webhook_timeout <= 0 || c.webhook_timeout > 60)
+           throw ConfigError(w + ": a callback timeout is more than 0 and at most 60 seconds");
+       }},
+      {"webhook-retry-for", "PAPERNET_WEBHOOK_RETRY_FOR",
+       "how long a callback is retried (backoff 1, 2, 4 ... at most 300 s apart) after its "
+       "first attempt: seconds or a number with s, m, h or d (default 1h)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.webhook_retry_for = duration(w, v);
        }},
   };
   return table;

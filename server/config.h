@@ -40,6 +40,11 @@ struct ServerConfig {
   /// File of API keys (server/api_keys.h); "" = none: the API is open to whoever reaches it.
   std::string api_keys;
   double retention = 7 * 86400;  ///< seconds a finished job and its files are kept (0 = forever)
+  /// Hosts a job's callback_url may name (server/webhooks.h); empty = any public host.
+  std::vector<std::string> webhook_hosts;
+  std::string webhook_secret;       ///< signs callbacks; "" = callback_url refused
+  double webhook_timeout = 5;       ///< seconds to connect, send and receive, per attempt
+  double webhook_retry_for = 3600;  ///< seconds after a callback's first attempt to keep trying
 };
 
 class ConfigError : public std::invalid_argument {

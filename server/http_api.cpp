@@ -17,6 +17,7 @@
 #include "server/job_store.h"
 #include "server/problem.h"
 #include "server/upload.h"
+#include "server/webhooks.h"
 
 namespace papernet::server {
 namespace {
@@ -27,6 +28,8 @@ using Clock = std::chrono::steady_clock;
 // Set when a request starts routing; the handlers and the access logger run on the same
 // thread afterwards.
 thread_local Clock::time_point request_start;
+// The problem code of the answer being sent ("" for none), for /metrics.
+thread_local std::string request_problem;
 // The tenant of the request's API key ("" without keys): it owns what it submits and sees
 // nothing else.
 thread_local std::string request_tenant;
@@ -38,6 +41,7 @@ constexpr std::size_t kMaxAuthorization = 256;
 
 void send_problem(httplib::Response& res, const Problem& p, const std::string& instance) {
   res.status = p.status;
+  request_problem = p.code;
   // The path is the client's: echo no more of it than a job's result path needs.
   res.set_content(problem_json(p, instance.substr(0, 128)).dump(), "application/problem+json");
   if (p.retry_after) res.set_header("Retry-After", std::to_string(*p.retry_after));
@@ -294,7 +298,7 @@ struct Api {
   JobService& service;
   const ServerConfig& config;
   HttpMetrics& metrics;
-  std::atomic<int> streams{0};
+  std::atomic<int>& streams = metrics.open_streams;
 
   void submit(const httplib::Request& req, httplib::Response& res,
               const httplib::ContentReader& reader) {
@@ -307,6 +311,11 @@ struct Api {
       throw ApiError("malformed_request",
                      "an Idempotency-Key is 1 to 255 visible ASCII characters (a UUID will do)");
     ParsedUpload upload = parse_upload(upload_of(req, reader, config.max_body_bytes), limits);
+    // Refused here, before a job exists, so that the caller learns of it (422 naming the
+    // option); the sender checks the host again at every attempt.
+    if (upload.options.callback_url)
+      callback_addresses(parse_callback_url(*upload.options.callback_url),
+                         webhook_settings(config));
     std::string id;
     if (idempotent) {
       const std::string hash = request_hash(upload);
@@ -343,7 +352,7 @@ struct Api {
     }
     // The job as accepted: queued (with its place) or answered from a stored result. A worker
     // may have claimed it already; the next poll shows that.
-    JobView accepted{job, {}, 0, false, std::nullopt, job.result_files};
+    JobView accepted{job, {}, 0, false, std::nullopt, job.result_files, std::nullopt};
     if (auto view = service.view(job.id); view && view->record.status == job.status)
       accepted = *view;
     res.set_header("Location", "/v1/jobs/" + job.id);
@@ -480,6 +489,7 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
   http.set_pre_routing_handler([&config, declared_too_large, keys, limiter](
                                    const httplib::Request& req, httplib::Response& res) {
     request_start = Clock::now();
+    request_problem.clear();
     request_tenant.clear();
     request_queue_share = 1;
     Problem p;
@@ -573,7 +583,7 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
       });
   http.set_logger([&config, &metrics](const httplib::Request& req, const httplib::Response& res) {
     const double seconds = std::chrono::duration<double>(Clock::now() - request_start).count();
-    metrics.count(res.status, seconds);
+    metrics.count(route_of(req.method, req.path), res.status, request_problem, seconds);
     if (!config.access_log) return;
     std::string id = job_id_in_path(req.path);
     if (id.empty()) id = job_id_in_path(res.get_header_value("Location"));

@@ -95,6 +95,22 @@ json job_to_json(const JobView& view, double now) {
     for (const std::string& name : view.intermediate->files) links[name] = self + "/" + name;
   }
   doc["error"] = r.error.is_object() ? r.error : json(nullptr);
+  if (view.callback) {
+    json attempts = json::array();
+    for (const json& a : view.callback->attempts) {
+      json shown = a;
+      shown["at"] = iso_time(a.value("at", 0.0));
+      attempts.push_back(std::move(shown));
+    }
+    doc["callback"] = {
+        {"url", view.callback->url},
+        {"state", view.callback->state},
+        {"delivered", view.callback->state == "delivered"},
+        {"attempts", std::move(attempts)},
+        {"next_attempt", view.callback->state == "pending" && view.callback->next_at > 0
+                             ? iso_time(view.callback->next_at)
+                             : json(nullptr)}};
+  }
   doc["links"] = links;
   return doc;
 }

@@ -51,7 +51,11 @@ std::string job_input_key(const JobInput& input, const JobOptions& options) {
     feed(name);
     feed(data);
   }
-  feed(options_to_json(options).dump());
+  // Where the result is announced is no part of what the result is: jobs that differ only in
+  // their callback_url share results.
+  nlohmann::json canonical = options_to_json(options);
+  canonical.erase("callback_url");
+  feed(canonical.dump());
   char text[33];
   std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(a),
                 static_cast<unsigned long long>(b));
@@ -133,8 +137,10 @@ JobRecord JobService::submit(JobInput input, JobOptions options, const Submitter
 std::optional<JobView> JobService::view(const std::string& id, const std::string* tenant) {
   std::optional<JobRecord> record = store_.find(id);
   if (!record || (tenant && record->tenant != *tenant)) return std::nullopt;
-  JobView view{std::move(*record), std::nullopt, 0, false, std::nullopt, {}};
+  JobView view{std::move(*record), std::nullopt, 0, false, std::nullopt, {}, std::nullopt};
   const JobRecord& r = view.record;
+  if (const auto url = r.options.find("callback_url"); url != r.options.end() && url->is_string())
+    view.callback = store_.webhook(id);
   if (is_final(r.status)) {
     view.result_files = r.result_files;
     return view;
@@ -239,6 +245,7 @@ ServiceStats JobService::stats() {
   s.store_kind = store_.kind();
   try {
     s.jobs_by_status = store_.count_by_status();
+    s.queued_by_tenant = store_.queued_by_tenant();
   } catch (const StoreError&) {
     s.store_up = false;
   }

@@ -51,7 +51,8 @@ struct JobView {
   std::size_t queue_position = 0;  ///< 1 = next; 0 = not queued
   bool cancel_requested = false;
   std::optional<IntermediateLevel> intermediate;
-  std::vector<std::string> result_files;  ///< stored result files of a finished job
+  std::vector<std::string> result_files;    ///< stored result files of a finished job
+  std::optional<WebhookDelivery> callback;  ///< its callback's delivery, with a callback_url
 };
 
 /// Counters for /metrics.
@@ -59,8 +60,9 @@ struct ServiceStats {
   std::size_t queued = 0;   ///< in the store: every node's queue
   std::size_t running = 0;  ///< on this node
   std::map<std::string, std::size_t> jobs_by_status;
-  std::vector<double> duration_buckets;        ///< upper bounds in seconds
-  std::vector<std::uint64_t> duration_counts;  ///< cumulative, one per bucket, then +Inf
+  std::map<std::string, std::size_t> queued_by_tenant;  ///< in the store, by tenant
+  std::vector<double> duration_buckets;                 ///< upper bounds in seconds
+  std::vector<std::uint64_t> duration_counts;           ///< cumulative, one per bucket, then +Inf
   double duration_sum = 0;
   std::uint64_t duration_count = 0;
   std::string store_kind;

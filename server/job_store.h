@@ -68,6 +68,17 @@ struct IdempotencyRecord {
   double created = 0;
 };
 
+/// A job's callback (webhook) delivery as the store keeps it (docs/security.md "Webhooks"):
+/// made with the job when it names a callback_url, due once the job is final.
+struct WebhookDelivery {
+  std::string job_id;
+  std::string url;
+  std::string state = "pending";  ///< pending, delivered, or failed (gave up)
+  /// Every attempt so far: {"at": seconds, "status": HTTP status} or {"at", "error": text}.
+  nlohmann::json attempts = nlohmann::json::array();
+  double next_at = 0;  ///< earliest time of the next attempt (seconds since the epoch)
+};
+
 /// The store's own counters for /metrics.
 struct StoreStats {
   std::uint64_t reconnects = 0;  ///< connections to the database opened again after a loss
@@ -112,6 +123,8 @@ class JobStore {
   virtual std::size_t expire(double finished_before, double keys_before) = 0;
   /// `tenant`'s queued jobs.
   virtual std::size_t queued_count(const std::string& tenant) = 0;
+  /// Queued jobs per tenant (tenants with none left out), for /metrics.
+  virtual std::map<std::string, std::size_t> queued_by_tenant() = 0;
   /// Jobs per status name.
   virtual std::map<std::string, std::size_t> count_by_status() = 0;
   /// 1 for the next queued job to run, 2 for the one after, ...
@@ -146,6 +159,16 @@ class JobStore {
   /// A file of a finished job's result.
   virtual std::optional<Artifact> artifact(const std::string& result_job,
                                            const std::string& name) = 0;
+
+  /// The callback delivery of job `id`, if it named a callback_url.
+  virtual std::optional<WebhookDelivery> webhook(const std::string& id) = 0;
+  /// Claims, for `node`, the pending delivery of a finished job that is due at `now` and no
+  /// other node holds: it is this node's to attempt for `lease_seconds`.
+  virtual std::optional<WebhookDelivery> claim_webhook(const std::string& node, double now,
+                                                       double lease_seconds) = 0;
+  /// Stores an attempt's outcome (state, attempts, next_at) and ends `node`'s claim; false when
+  /// the claim passed to another node meanwhile (nothing is stored then).
+  virtual bool update_webhook(const WebhookDelivery& delivery, const std::string& node) = 0;
 
   /// Calls `on_event` (from a thread of the store's own) for what other nodes do; an empty
   /// function stops that. A store with one node (SQLite) has nothing to tell and never calls.

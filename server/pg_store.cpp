@@ -68,6 +68,14 @@ CREATE TABLE idempotency(tenant text NOT NULL, key text NOT NULL,
     R"sql(
 ALTER TABLE jobs ADD COLUMN expired boolean NOT NULL DEFAULT false;
 )sql",
+    // Webhooks: a job's callback delivery, kept until it is done so that a restart resumes it.
+    R"sql(
+CREATE TABLE webhooks(job_id text PRIMARY KEY REFERENCES jobs(id) ON DELETE CASCADE,
+  url text NOT NULL, state text NOT NULL DEFAULT 'pending', attempts text NOT NULL DEFAULT '[]',
+  next_at double precision NOT NULL DEFAULT 0, claimed_by text NOT NULL DEFAULT '',
+  lease_until double precision NOT NULL DEFAULT 0);
+CREATE INDEX webhooks_pending ON webhooks(next_at) WHERE state = 'pending';
+)sql",
 };
 
 // Advisory lock keys: one migration at a time, one queue-length check at a time.
@@ -219,6 +227,10 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
           c.exec("INSERT INTO input_files(job_id, name, data) VALUES($1, $2, $3::bytea)",
                  Params().text(job.id).text(name).bytes(data));
       }
+      if (const auto url = job.options.find("callback_url");
+          url != job.options.end() && url->is_string())
+        c.exec("INSERT INTO webhooks(job_id, url) VALUES($1, $2)",
+               Params().text(job.id).text(url->get<std::string>()));
       if (job.status != JobStatus::Queued) return true;
       // Nodes submitting at once count the queue one after the other, each with its own job
       // (the upload is stored by then, so the lock is held only for the count and the commit).
@@ -357,6 +369,8 @@ std::size_t PgJobStore::expire(double finished_before, double keys_before) {
           "DELETE FROM results r USING jobs j WHERE j.id = r.job_id AND j.expired AND NOT EXISTS "
           "(SELECT 1 FROM jobs k WHERE k.result_job = r.job_id AND NOT k.expired)");
       c.exec("DELETE FROM idempotency WHERE created < $1::float8", Params().number(keys_before));
+      if (expired > 0)
+        c.exec("DELETE FROM webhooks w USING jobs j WHERE j.id = w.job_id AND j.expired");
       return true;
     });
   });
@@ -370,6 +384,17 @@ std::size_t PgJobStore::queued_count(const std::string& tenant) {
         c.exec("SELECT count(*) FROM jobs WHERE status = 'queued' AND tenant = $1",
                Params().text(tenant))
             .integer(0, 0));
+  });
+  return out;
+}
+
+std::map<std::string, std::size_t> PgJobStore::queued_by_tenant() {
+  std::map<std::string, std::size_t> out;
+  pool_.run([&](Connection& c) {
+    Result r = c.exec("SELECT tenant, count(*) FROM jobs WHERE status = 'queued' GROUP BY tenant");
+    out.clear();
+    for (int i = 0; i < r.rows(); ++i)
+      out[r.text(i, 0)] = static_cast<std::size_t>(r.integer(i, 1));
   });
   return out;
 }

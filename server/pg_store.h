@@ -36,6 +36,7 @@ class PgJobStore : public JobStore {
                           const std::string& job_id) override;
   std::size_t expire(double finished_before, double keys_before) override;
   std::size_t queued_count(const std::string& tenant) override;
+  std::map<std::string, std::size_t> queued_by_tenant() override;
   std::map<std::string, std::size_t> count_by_status() override;
   std::size_t queue_position(std::int64_t seq) override;
 
@@ -54,6 +55,12 @@ class PgJobStore : public JobStore {
                        double finished) override;
 
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) override;
+
+  // pg_webhooks.cpp
+  std::optional<WebhookDelivery> webhook(const std::string& id) override;
+  std::optional<WebhookDelivery> claim_webhook(const std::string& node, double now,
+                                               double lease_seconds) override;
+  bool update_webhook(const WebhookDelivery& delivery, const std::string& node) override;
 
   void listen(std::function<void(const StoreEvent&)> on_event) override;
   void ping() override;

@@ -44,6 +44,7 @@ constexpr ProblemType kProblemTypes[] = {
     {"uri_too_long", 414, "Request URI too long"},
     {"unsupported_format", 415, "Unsupported mesh format"},
     {"idempotency_key_reused", 422, "Idempotency-Key used for another request"},
+    {"callback_url_refused", 422, "Callback URL refused"},
     {"unreadable_mesh", 422, "Mesh cannot be read"},
     {"invalid_mesh", 422, "Mesh cannot be unfolded"},
     {"unfold_failed", 422, "No overlap-free net found"},

@@ -12,11 +12,13 @@
 #include "server/api_keys.h"
 #include "server/http_api.h"
 #include "server/http_server.h"
+#include "server/job_json.h"
 #include "server/job_service.h"
 #include "server/job_store.h"
 #include "server/metrics.h"
 #include "server/pipeline_runner.h"
 #include "server/static_files.h"
+#include "server/webhooks.h"
 
 namespace papernet::server {
 
@@ -41,10 +43,11 @@ int run_service(const ServerConfig& config) {
     }
   }
 
-  // Every worker and HTTP thread may use a database connection at once, and the lease keeper.
+  // Every worker and HTTP thread may use a database connection at once, and the lease keeper
+  // and the two webhook threads.
   std::unique_ptr<JobStore> store;
   try {
-    store = open_job_store(config.store, config.data_dir, config.workers + config.http_threads + 1);
+    store = open_job_store(config.store, config.data_dir, config.workers + config.http_threads + 3);
   } catch (const std::exception& e) {
     std::cerr << "papernet serve: " << e.what() << "\n";
     return 1;
@@ -64,6 +67,19 @@ int run_service(const ServerConfig& config) {
       *store,
       make_pipeline_runner({config.max_body_bytes, config.max_faces, config.job_time_limit}),
       settings, [](const std::string& line) { log_line(line); });
+
+  // Callbacks of finished jobs, from threads of their own: a receiver that never answers holds
+  // one of them, never an HTTP thread.
+  WebhookSender webhooks(
+      *store, webhook_settings(config), service.node(),
+      [&service](const std::string& id) {
+        const std::optional<JobView> view = service.view(id);
+        if (!view) return std::string();
+        nlohmann::json doc = job_to_json(*view, now_seconds());
+        doc.erase("callback");  // the delivery's own state changes with every attempt
+        return doc.dump();
+      },
+      [](const std::string& line) { log_line(line); });
 
   HttpMetrics metrics;
   HttpLimits http_limits;
@@ -94,6 +110,7 @@ int run_service(const ServerConfig& config) {
     return 1;
   }
   service.start();
+  webhooks.start();
 
   std::thread signal_thread([&] {
     int sig = 0;
@@ -111,6 +128,7 @@ int run_service(const ServerConfig& config) {
              ": no new jobs; running ones get " +
              std::to_string(static_cast<int>(config.shutdown_grace)) + " s");
     service.shutdown(std::chrono::milliseconds(static_cast<long>(config.shutdown_grace * 1000)));
+    webhooks.stop();
     http.stop();
   });
 

@@ -2,8 +2,14 @@
 
 #include <sqlite3.h>
 
+#include "server/internal/sqlite_statement.h"
+
 namespace papernet::server {
 namespace {
+
+using sqlite::fail;
+using sqlite::Statement;
+using sqlite::Transaction;
 
 constexpr const char* kPragmas = R"sql(
 PRAGMA journal_mode=WAL;
@@ -59,6 +65,14 @@ CREATE TABLE IF NOT EXISTS idempotency(tenant TEXT NOT NULL, key TEXT NOT NULL,
     R"sql(
 ALTER TABLE jobs ADD COLUMN expired INTEGER NOT NULL DEFAULT 0;
 )sql",
+    // Webhooks: a job's callback delivery, kept until it is done so that a restart resumes it.
+    R"sql(
+CREATE TABLE IF NOT EXISTS webhooks(job_id TEXT PRIMARY KEY, url TEXT NOT NULL,
+  state TEXT NOT NULL DEFAULT 'pending', attempts TEXT NOT NULL DEFAULT '[]',
+  next_at REAL NOT NULL DEFAULT 0, claimed_by TEXT NOT NULL DEFAULT '',
+  lease_until REAL NOT NULL DEFAULT 0);
+CREATE INDEX IF NOT EXISTS webhooks_pending ON webhooks(next_at) WHERE state='pending';
+)sql",
 };
 
 // The store's clock, in seconds since the epoch, for leases.
@@ -73,85 +87,6 @@ constexpr const char* kColumns =
 
 // A running job held by this claim.
 constexpr const char* kHeld = "id=? AND claimed_by=? AND attempts=? AND status='running'";
-
-[[noreturn]] void fail(sqlite3* db, const std::string& what) {
-  throw StoreError("job store: " + what + ": " + sqlite3_errmsg(db));
-}
-
-// One prepared statement; binds by position (1-based), finalised on scope exit.
-class Statement {
- public:
-  Statement(sqlite3* db, const std::string& sql) : db_(db) {
-    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK) fail(db, "prepare");
-  }
-  ~Statement() { sqlite3_finalize(stmt_); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-
-  Statement& bind(int i, const std::string& text) {
-    sqlite3_bind_text(stmt_, i, text.data(), static_cast<int>(text.size()), SQLITE_TRANSIENT);
-    return *this;
-  }
-  Statement& blob(int i, const std::string& data) {
-    sqlite3_bind_blob64(stmt_, i, data.data(), data.size(), SQLITE_STATIC);
-    return *this;
-  }
-  Statement& bind(int i, double v) {
-    sqlite3_bind_double(stmt_, i, v);
-    return *this;
-  }
-  Statement& bind(int i, std::int64_t v) {
-    sqlite3_bind_int64(stmt_, i, v);
-    return *this;
-  }
-  // The three parameters of kHeld, from `first` on.
-  Statement& held(int first, const std::string& id, const Claim& claim) {
-    return bind(first, id).bind(first + 1, claim.node).bind(first + 2, std::int64_t{claim.attempt});
-  }
-  /// True while there is a row.
-  bool step() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc != SQLITE_DONE) fail(db_, "step");
-    return false;
-  }
-  /// Runs a statement without rows; returns the rows it changed.
-  int run() {
-    step();
-    return sqlite3_changes(db_);
-  }
-  std::string text(int col) const {
-    const auto* p = static_cast<const char*>(sqlite3_column_blob(stmt_, col));
-    return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, col)))
-             : std::string();
-  }
-  double real(int col) const { return sqlite3_column_double(stmt_, col); }
-  std::int64_t integer(int col) const { return sqlite3_column_int64(stmt_, col); }
-
- private:
-  sqlite3* db_;
-  sqlite3_stmt* stmt_ = nullptr;
-};
-
-// BEGIN IMMEDIATE .. COMMIT, rolled back when an exception or an early return leaves the scope.
-class Transaction {
- public:
-  explicit Transaction(sqlite3* db) : db_(db) { exec("BEGIN IMMEDIATE"); }
-  ~Transaction() {
-    if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-  }
-  void commit() {
-    exec("COMMIT");
-    done_ = true;
-  }
-
- private:
-  void exec(const char* sql) {
-    if (sqlite3_exec(db_, sql, nullptr, nullptr, nullptr) != SQLITE_OK) fail(db_, sql);
-  }
-  sqlite3* db_;
-  bool done_ = false;
-};
 
 JobRecord read_job(const Statement& s) {
   JobRecord j;
@@ -275,6 +210,12 @@ bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t q
           .blob(3, data)
           .run();
   }
+  if (const auto url = job.options.find("callback_url");
+      url != job.options.end() && url->is_string())
+    Statement(db_, "INSERT INTO webhooks(job_id, url) VALUES(?,?)")
+        .bind(1, job.id)
+        .bind(2, url->get<std::string>())
+        .run();
   tx.commit();
   return true;
 }
@@ -384,6 +325,9 @@ std::size_t SqliteJobStore::expire(double finished_before, double keys_before) {
             "job_id NOT IN (SELECT result_job FROM jobs WHERE expired=0)")
       .run();
   Statement(db_, "DELETE FROM idempotency WHERE created<?").bind(1, keys_before).run();
+  if (expired > 0)
+    Statement(db_, "DELETE FROM webhooks WHERE job_id IN (SELECT id FROM jobs WHERE expired=1)")
+        .run();
   tx.commit();
   return static_cast<std::size_t>(expired);
 }
@@ -393,6 +337,14 @@ std::size_t SqliteJobStore::queued_count(const std::string& tenant) {
   Statement s(db_, "SELECT COUNT(*) FROM jobs WHERE status='queued' AND tenant=?");
   s.bind(1, tenant);
   return s.step() ? static_cast<std::size_t>(s.integer(0)) : 0;
+}
+
+std::map<std::string, std::size_t> SqliteJobStore::queued_by_tenant() {
+  std::lock_guard lock(mutex_);
+  Statement s(db_, "SELECT tenant, COUNT(*) FROM jobs WHERE status='queued' GROUP BY tenant");
+  std::map<std::string, std::size_t> out;
+  while (s.step()) out[s.text(0)] = static_cast<std::size_t>(s.integer(1));
+  return out;
 }
 
 std::map<std::string, std::size_t> SqliteJobStore::count_by_status() {

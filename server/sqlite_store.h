@@ -35,6 +35,7 @@ class SqliteJobStore : public JobStore {
                           const std::string& job_id) override;
   std::size_t expire(double finished_before, double keys_before) override;
   std::size_t queued_count(const std::string& tenant) override;
+  std::map<std::string, std::size_t> queued_by_tenant() override;
   std::map<std::string, std::size_t> count_by_status() override;
   std::size_t queue_position(std::int64_t seq) override;
 
@@ -53,6 +54,12 @@ class SqliteJobStore : public JobStore {
                        double finished) override;
 
   std::optional<Artifact> artifact(const std::string& result_job, const std::string& name) override;
+
+  // sqlite_webhooks.cpp
+  std::optional<WebhookDelivery> webhook(const std::string& id) override;
+  std::optional<WebhookDelivery> claim_webhook(const std::string& node, double now,
+                                               double lease_seconds) override;
+  bool update_webhook(const WebhookDelivery& delivery, const std::string& node) override;
   void ping() override {}
 
  private:

@@ -38,6 +38,18 @@ export interface Options {
   components?: "all" | "largest";
   /** Refuse a mesh that needs repair instead of repairing it (default false). */
   strict?: boolean;
+  /** Service only: POST the job's final status, signed, to this http:// URL when it ends. */
+  callback_url?: string | null;
+}
+
+/** A job's callback delivery (README "Webhooks"). */
+export interface Callback {
+  url: string;
+  state: "pending" | "delivered" | "failed";
+  delivered: boolean;
+  /** Every attempt: the receiver's HTTP status, or why it failed. */
+  attempts: Array<{ at: string; status?: number; error?: string }>;
+  next_attempt: string | null;
 }
 
 /** RFC 9457 problem details with papernet's stable code. */
@@ -91,6 +103,8 @@ export interface Job {
   } | null;
   intermediate?: { faces: number; input_faces: number; overlaps: number };
   error?: Problem | null;
+  /** Only for a job with a callback_url. */
+  callback?: Callback;
   links: Record<string, string>;
 }
 
@@ -152,6 +166,8 @@ export interface SubmitOptions {
   multipart?: boolean;
   /** Idempotency-Key: retries of one submission with this key resolve to its first job. */
   idempotencyKey?: string;
+  /** Sets the option callback_url: where the server POSTs the job's final status, signed. */
+  callbackUrl?: string;
   signal?: AbortSignal;
 }
 

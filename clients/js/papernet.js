@@ -216,9 +216,15 @@ export class PapernetClient {
    *   multipart/form-data with `mesh`, one `buffers` part per file and an `options` JSON part.
    * `multipart: true` forces multipart. `idempotencyKey` (e.g. crypto.randomUUID(), kept for
    * the retries of one submission): a retry resolves to the first job instead of a new one.
+   * `callbackUrl` (the option callback_url): the server POSTs the job's final status there,
+   * signed, when the job ends (README "Webhooks"); the job's `callback` shows the attempts.
    * Resolves to the job (202, or 200 for a retry).
    */
-  async submit(mesh, { options = {}, filename, format, buffers, multipart, idempotencyKey, signal } = {}) {
+  async submit(
+    mesh,
+    { options = {}, filename, format, buffers, multipart, idempotencyKey, callbackUrl, signal } = {},
+  ) {
+    if (callbackUrl !== undefined && callbackUrl !== null) options = { ...options, callback_url: String(callbackUrl) };
     const idem = idempotencyKey ? { "Idempotency-Key": String(idempotencyKey) } : {};
     filename ??= typeof mesh?.name === "string" ? mesh.name : undefined;
     format ??= formatOfFileName(filename);

@@ -192,3 +192,61 @@ TEST(SqliteStoreMigrations, AFileFromBeforeVersioningIsMigrated) {
   EXPECT_EQ(again.find("0123456789abcdef0123456789abcdef")->node, "node");
   std::filesystem::remove_all(dir);
 }
+
+// A callback is due once its job ended, goes to one node at a time, waits for its next_at, and
+// a node whose claim passed on cannot overwrite it.
+TEST_P(JobStoreTest, ACallbackIsDueWhenItsJobEndsAndOneNodeHoldsItAtATime) {
+  const auto store = open_store();
+  const auto other = postgres() ? open_store() : nullptr;
+  JobStore& second = other ? *other : *store;
+  JobOptions options;
+  options.callback_url = "http://hooks.example/papernet";
+  JobRecord job;
+  job.id = new_job_id();
+  job.created = now_seconds();
+  job.options = options_to_json(options);
+  job.format = "obj";
+  job.input_key = "hooked";
+  JobInput input;
+  input.mesh = "v 0 0 0\n";
+  ASSERT_TRUE(store->insert(job, &input, 1000));
+  const std::string plain = add_job(*store, 1);
+  EXPECT_FALSE(store->webhook(plain)) << "no callback_url, no delivery";
+  const std::optional<WebhookDelivery> made = store->webhook(job.id);
+  ASSERT_TRUE(made);
+  EXPECT_EQ(made->url, "http://hooks.example/papernet");
+  EXPECT_EQ(made->state, "pending");
+  EXPECT_TRUE(made->attempts.empty());
+  const double now = now_seconds();
+  EXPECT_FALSE(store->claim_webhook("a", now, 30)) << "its job has not ended";
+
+  auto running = store->claim("worker", 30, now);
+  ASSERT_TRUE(running);
+  ASSERT_EQ(running->record.id, job.id);
+  JobRecord ended = running->record;
+  ended.status = JobStatus::Failed;
+  ended.finished = now_seconds();
+  ended.error = {{"code", "unfold_failed"}};
+  ASSERT_TRUE(store->finish(ended, {"worker", running->record.attempts}, nullptr));
+
+  std::optional<WebhookDelivery> held = store->claim_webhook("a", now_seconds(), 30);
+  ASSERT_TRUE(held);
+  EXPECT_EQ(held->job_id, job.id);
+  EXPECT_FALSE(second.claim_webhook("b", now_seconds(), 30)) << "node a holds it";
+  WebhookDelivery tried = *held;
+  tried.attempts.push_back({{"at", now_seconds()}, {"status", 500}});
+  tried.next_at = now_seconds() + 100;
+  EXPECT_FALSE(second.update_webhook(tried, "b")) << "b never held it";
+  EXPECT_TRUE(store->update_webhook(tried, "a"));
+  EXPECT_FALSE(second.claim_webhook("b", now_seconds(), 30)) << "not due before next_at";
+  held = second.claim_webhook("b", now_seconds() + 101, 30);
+  ASSERT_TRUE(held);
+  EXPECT_EQ(held->attempts.size(), 1u);
+  EXPECT_EQ(held->attempts[0]["status"], 500);
+  held->state = "delivered";
+  held->attempts.push_back({{"at", now_seconds()}, {"status", 200}});
+  EXPECT_TRUE(second.update_webhook(*held, "b"));
+  EXPECT_FALSE(store->claim_webhook("a", now_seconds() + 1e6, 30)) << "delivered is done";
+  EXPECT_EQ(store->webhook(job.id)->state, "delivered");
+  EXPECT_EQ(store->webhook(job.id)->attempts.size(), 2u);
+}

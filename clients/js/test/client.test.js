@@ -301,3 +301,55 @@ test("apiKey: a server with --api-keys answers the key's tenant; no key is missi
     await keyed.stop();
   }
 });
+
+test("callbackUrl: a signed POST of the final status reaches a receiver the server allows", async (t) => {
+  const { createServer } = await import("node:http");
+  const { createHmac, timingSafeEqual } = await import("node:crypto");
+  if (process.env.PAPERNET_URL) return t.skip("needs a server of its own (PAPERNET_URL is set)");
+  const secret = "whsec-js-test";
+  let got;
+  const arrived = new Promise((resolveCall) => {
+    got = resolveCall;
+  });
+  const receiver = createServer((req, res) => {
+    let body = "";
+    req.setEncoding("utf8");
+    req.on("data", (c) => (body += c));
+    req.on("end", () => {
+      res.end("ok");
+      got({ signature: req.headers["x-papernet-signature"], body });
+    });
+  });
+  await new Promise((r) => receiver.listen(0, "127.0.0.1", r));
+  const hooked = await startServer([
+    "--workers", "1", "--access-log", "false", "--webhook-hosts", "127.0.0.1", "--webhook-secret", secret,
+  ]);
+  try {
+    const c = new PapernetClient(hooked.url);
+    const hook = `http://127.0.0.1:${receiver.address().port}/hook`;
+    const job = await c.submit(sample("sample.obj"), { filename: "w.obj", options: { strategy: "TU" }, callbackUrl: hook });
+    assert.equal(job.options.callback_url, hook);
+    const call = await arrived;
+    // The documented check: HMAC-SHA256 of "<t>.<body>" under the secret, in hex.
+    const [, t, v1] = /^t=(\d+),v1=([0-9a-f]{64})$/.exec(call.signature);
+    const mac = createHmac("sha256", secret).update(`${t}.${call.body}`).digest("hex");
+    assert.ok(timingSafeEqual(Buffer.from(mac), Buffer.from(v1)));
+    assert.ok(Math.abs(Date.now() / 1000 - Number(t)) < 300);
+    assert.equal(JSON.parse(call.body).id, job.id);
+    let status = await c.job(job.id);
+    for (let i = 0; i < 100 && status.callback?.state === "pending"; ++i) {
+      await new Promise((r) => setTimeout(r, 50));
+      status = await c.job(job.id);
+    }
+    assert.equal(status.callback.state, "delivered");
+    assert.equal(status.callback.attempts[0].status, 200);
+    // A loopback host the server does not list is refused, naming the option.
+    await assert.rejects(
+      c.submit(sample("sample.obj"), { filename: "w.obj", callbackUrl: "http://localhost:1/hook" }),
+      (e) => e.code === "callback_url_refused" && e.status === 422 && e.problem.option === "callback_url",
+    );
+  } finally {
+    await hooked.stop();
+    receiver.close();
+  }
+});

@@ -21,3 +21,10 @@ async function example(bytes: Uint8Array): Promise<NetDocument | null> {
 void example;
 // @ts-expect-error: unknown strategies are refused by the types too
 void new PapernetClient().submit("", { options: { strategy: "XYZ" } });
+
+async function withCallback(client: PapernetClient): Promise<boolean> {
+  const job = await client.submit("", { callbackUrl: "http://hooks.shop.example/papernet" });
+  const seen = await client.job(job.id);
+  return seen.callback?.state === "delivered" && seen.callback.attempts.every((a) => a.at.length > 0);
+}
+void withCallback;
