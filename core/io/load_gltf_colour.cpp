@@ -114,13 +114,15 @@ const tinygltf::Material* material_of(const tinygltf::Model& model,
 void read_gltf_materials(const tinygltf::Model& model, const GltfImageBytes& images,
                          const LoadOptions& options, MeshColour& colour,
                          std::vector<std::string>& notes) {
-  std::map<int, int> texture_of;  // glTF texture -> our texture (-1 when unusable)
+  // (image, sampler) -> our texture (-1 when unusable): glTF textures that repeat an image with
+  // the same sampler are one texture.
+  std::map<std::pair<int, int>, int> texture_of;
   const auto texture = [&](int index) -> int {
     if (index < 0 || std::size_t(index) >= model.textures.size()) return -1;
-    const auto known = texture_of.find(index);
-    if (known != texture_of.end()) return known->second;
-    int& ours = texture_of[index] = -1;
     const tinygltf::Texture& t = model.textures[index];
+    const auto known = texture_of.find({t.source, t.sampler});
+    if (known != texture_of.end()) return known->second;
+    int& ours = texture_of[{t.source, t.sampler}] = -1;
     const std::string which = std::string("texture ") + std::to_string(index);
     if (t.source < 0 || std::size_t(t.source) >= model.images.size()) {
       notes.push_back(which + " names no image; its material is printed without it");
