@@ -229,6 +229,53 @@ TEST_P(ServeTest, SubmitGlbDracoAndMultipartGltf) {
       << failed.dump();
 }
 
+TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
+  Server s({"--workers", "1"});
+  auto c = s.client();
+  const std::string box =
+      submit(s, test_mesh("BoxTextured.glb"), "model/gltf-binary", "?strategy=TU");
+  // A .gltf with its buffer and its image uploaded as parts, and once without the image.
+  const std::string truck = "CesiumMilkTruck/CesiumMilkTruck";
+  httplib::MultipartFormDataItems items = {
+      {"mesh", test_mesh(truck + ".gltf"), "CesiumMilkTruck.gltf", "model/gltf+json"},
+      {"buffers", test_mesh(truck + "0.bin"), "CesiumMilkTruck0.bin", "application/octet-stream"},
+      {"buffers", test_mesh(truck + ".png"), "CesiumMilkTruck.png", "image/png"},
+      {"options", R"({"strategy":"TU","tab_room_budget":0})", "", "application/json"}};
+  const std::string with_image = body(c.Post("/v1/jobs", items))["id"];
+  items.erase(items.begin() + 2);
+  const std::string without_image = body(c.Post("/v1/jobs", items))["id"];
+
+  const json job = wait_final(s, box);
+  ASSERT_EQ(job["status"], "succeeded") << job.dump();
+  EXPECT_EQ(job["links"]["textures"], json::array({"/v1/jobs/" + box + "/textures/0"}));
+  auto net = c.Get("/v1/jobs/" + box + "/net.json");
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["mesh"]["uvs"].size(), doc["mesh"]["faces"].size());
+  ASSERT_EQ(doc["textures"].size(), 1u);
+  const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
+  EXPECT_TRUE(papernet::check_net(net_doc.mesh, net_doc.net).ok());
+  auto texture = c.Get("/v1/jobs/" + box + "/textures/0");
+  ASSERT_EQ(texture->status, 200);
+  EXPECT_EQ(texture->get_header_value("Content-Type"), "image/png");
+  EXPECT_EQ(texture->body.substr(0, 8), "\x89PNG\r\n\x1a\n");
+  expect_problem(c.Get("/v1/jobs/" + box + "/textures/1"), 404, "not_found");
+
+  const json truck_job = wait_final(s, with_image, 180);
+  ASSERT_EQ(truck_job["status"], "succeeded") << truck_job.dump();
+  auto truck_texture = c.Get("/v1/jobs/" + with_image + "/textures/0");
+  ASSERT_EQ(truck_texture->status, 200);
+  EXPECT_EQ(truck_texture->body, test_mesh(truck + ".png"));
+  // Without its image the model still unfolds; the result says the texture was not used.
+  const json bare = wait_final(s, without_image, 180);
+  ASSERT_EQ(bare["status"], "succeeded") << bare.dump();
+  bool said = false;
+  for (const json& r : bare["result"]["repairs"]) said |= r["code"] == "texture_not_used";
+  EXPECT_TRUE(said) << bare["result"]["repairs"].dump();
+  EXPECT_FALSE(bare["links"].contains("textures"));
+  expect_problem(c.Get("/v1/jobs/" + without_image + "/textures/0"), 404, "not_found");
+}
+
 TEST_P(ServeTest, EventStreamEndsWithTheFinalState) {
   Server s({"--workers", "1"});
   const std::string id = submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU");
