@@ -23,9 +23,10 @@ NetInput counts_of(const ValidationReport& report) {
 }
 
 // A loader's note ("3 line elements were skipped") as a repair entry: its leading number is
-// the count. A texture that cannot be used has its own code.
+// the count. A texture or an OBJ material library that cannot be used has its own code.
 NetRepair skipped(const std::string& note) {
   if (note.starts_with("texture")) return {"texture_not_used", 1, note};
+  if (note.starts_with("material library")) return {"material_library_not_used", 1, note};
   std::size_t count = 0, i = 0;
   while (i < note.size() && std::isdigit(static_cast<unsigned char>(note[i])))
     count = 10 * count + static_cast<std::size_t>(note[i++] - '0');
