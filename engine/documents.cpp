@@ -84,10 +84,13 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
     doc.metrics.hausdorff = std::max(doc.metrics.hausdorff, piece.hausdorff);
   }
   if (uncoloured > 0)
-    doc.repairs.push_back({"approximate_pieces_uncoloured", uncoloured,
-                           std::to_string(uncoloured) +
+    doc.repairs.push_back(
+        {"approximate_pieces_uncoloured", uncoloured,
+         uncoloured == 1 ? std::string("1 approximate piece folds into a coarser mesh whose faces "
+                                       "carry no texture coordinates or colours (null in mesh.uvs)")
+                         : std::to_string(uncoloured) +
                                " approximate pieces fold into coarser meshes whose faces carry no "
-                               "texture coordinates or colours (mesh.uvs null there)"});
+                               "texture coordinates or colours (null in mesh.uvs)"});
   // Coverage and aspect ratio of the pieces as the print sets them side by side.
   const double gap = piece_gap_mm(options) / print_scale(doc.mesh, print_options(options));
   const NetBoxMetrics box = net_metrics(doc.mesh, arrange_pieces(doc.net, doc.piece, gap));
