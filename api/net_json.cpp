@@ -1,5 +1,7 @@
 #include "api/net_json.h"
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/errors.h"
@@ -18,6 +20,123 @@ const nlohmann::json& field(const nlohmann::json& j, const char* name, const std
   if (!j.is_object() || !j.contains(name))
     throw IOException("net JSON: " + where + " has no field '" + name + "'");
   return j.at(name);
+}
+
+// A face's corners as [[..], [..], [..]], or null when any value is not finite (no data).
+template <std::size_t N>
+nlohmann::json corners_json(const std::array<std::array<double, N>, 3>& corners) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& c : corners) {
+    nlohmann::json values = nlohmann::json::array();
+    for (double x : c) {
+      if (!std::isfinite(x)) return nullptr;
+      values.push_back(x);
+    }
+    out.push_back(std::move(values));
+  }
+  return out;
+}
+
+template <std::size_t N>
+std::array<std::array<double, N>, 3> corners_from(const nlohmann::json& j) {
+  std::array<std::array<double, N>, 3> out;
+  for (auto& c : out) c.fill(std::numeric_limits<double>::quiet_NaN());
+  if (j.is_null()) return out;
+  if (!j.is_array() || j.size() != 3) throw IOException("net JSON: a face needs three corners");
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (!j[k].is_array() || j[k].size() != N)
+      throw IOException(std::string("net JSON: a corner needs ") + std::to_string(N) + " numbers");
+    for (std::size_t i = 0; i < N; ++i) out[k][i] = j[k][i].get<double>();
+  }
+  return out;
+}
+
+// `mesh.uvs`, `mesh.colors`, `mesh.face_materials`, `materials` and `textures`, written only
+// when the document has colour (docs/colour.md).
+void colour_to_json(const MeshColour& c, nlohmann::json& out) {
+  using nlohmann::json;
+  if (c.empty() && c.materials.empty()) return;
+  json& mesh = out["mesh"];
+  if (!c.uvs.empty()) {
+    json uvs = json::array();
+    for (const auto& f : c.uvs) uvs.push_back(corners_json(f));
+    mesh["uvs"] = std::move(uvs);
+  }
+  if (!c.colours.empty()) {
+    json colours = json::array();
+    for (const auto& f : c.colours) colours.push_back(corners_json(f));
+    mesh["colors"] = std::move(colours);
+  }
+  if (!c.face_materials.empty()) mesh["face_materials"] = c.face_materials;
+  json materials = json::array(), textures = json::array();
+  for (const Material& m : c.materials)
+    materials.push_back({{"name", m.name},
+                         {"base_color", m.base_color},
+                         {"texture", m.texture >= 0 ? json(m.texture) : json(nullptr)}});
+  for (const Texture& t : c.textures)
+    textures.push_back({{"name", t.name},
+                        {"mime_type", t.mime_type},
+                        {"width", t.width},
+                        {"height", t.height},
+                        {"sampler",
+                         {{"wrap_s", t.sampler.wrap_s},
+                          {"wrap_t", t.sampler.wrap_t},
+                          {"mag_filter", t.sampler.mag_filter},
+                          {"min_filter", t.sampler.min_filter}}}});
+  out["materials"] = std::move(materials);
+  out["textures"] = std::move(textures);
+}
+
+void colour_from_json(const nlohmann::json& j, const nlohmann::json& mesh, std::size_t faces,
+                      MeshColour& c) {
+  const auto count = [faces](const nlohmann::json& a, const char* name) {
+    if (!a.is_array() || a.size() != faces)
+      throw IOException(std::string("net JSON: mesh.") + name +
+                        " does not have one entry per face");
+  };
+  if (mesh.contains("uvs")) {
+    count(mesh["uvs"], "uvs");
+    for (const auto& f : mesh["uvs"]) c.uvs.push_back(corners_from<2>(f));
+  }
+  if (mesh.contains("colors")) {
+    count(mesh["colors"], "colors");
+    for (const auto& f : mesh["colors"]) c.colours.push_back(corners_from<4>(f));
+  }
+  if (mesh.contains("face_materials")) {
+    count(mesh["face_materials"], "face_materials");
+    c.face_materials = mesh["face_materials"].get<std::vector<int>>();
+  }
+  if (j.contains("textures"))
+    for (const auto& t : j["textures"]) {
+      Texture texture;
+      texture.name = field(t, "name", "a texture").get<std::string>();
+      texture.mime_type = field(t, "mime_type", "a texture").get<std::string>();
+      texture.width = field(t, "width", "a texture").get<int>();
+      texture.height = field(t, "height", "a texture").get<int>();
+      if (t.contains("sampler")) {
+        const auto& s = t["sampler"];
+        texture.sampler = {s.value("wrap_s", 10497), s.value("wrap_t", 10497),
+                           s.value("mag_filter", 0), s.value("min_filter", 0)};
+      }
+      c.textures.push_back(std::move(texture));
+    }
+  if (j.contains("materials"))
+    for (const auto& m : j["materials"]) {
+      Material material;
+      material.name = field(m, "name", "a material").get<std::string>();
+      material.base_color = field(m, "base_color", "a material").get<RGBA>();
+      const auto& t = field(m, "texture", "a material");
+      material.texture = t.is_null() ? -1 : t.get<int>();
+      if (material.texture >= int(c.textures.size()) || material.texture < -1)
+        throw IOException(std::string("net JSON: a material names texture ") +
+                          std::to_string(material.texture) + " of " +
+                          std::to_string(c.textures.size()));
+      c.materials.push_back(std::move(material));
+    }
+  for (int m : c.face_materials)
+    if (m < -1 || m >= int(c.materials.size()))
+      throw IOException(std::string("net JSON: a face names material ") + std::to_string(m) +
+                        " of " + std::to_string(c.materials.size()));
 }
 
 }  // namespace
@@ -65,6 +184,7 @@ nlohmann::json net_to_json(const NetDocument& doc) {
         {"overlaps", doc.metrics.overlaps},
         {"seconds", doc.metrics.seconds}}},
   };
+  colour_to_json(doc.colour, out);
   if (doc.intermediate)
     out["level"] = {{"kind", "intermediate"},
                     {"faces", doc.mesh.faces.size()},
@@ -121,6 +241,7 @@ NetDocument read_net_json(std::string_view text) {
     if (doc.net.points.size() != doc.mesh.faces.size())
       throw IOException("net JSON: " + std::to_string(doc.net.points.size()) + " net faces for " +
                         std::to_string(doc.mesh.faces.size()) + " mesh faces");
+    colour_from_json(j, mesh, doc.mesh.faces.size(), doc.colour);
     const auto& m = field(j, "metrics", "the document");
     doc.metrics.faces = field(m, "faces", "metrics").get<std::size_t>();
     if (!field(m, "coverage", "metrics").is_null())

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/mesh/colour.h"
 #include "core/mesh/mesh.h"
 #include "core/unfold/net.h"
 
@@ -55,6 +56,10 @@ struct NetDocument {
   NetInput input;
   std::vector<NetRepair> repairs;
   Mesh mesh;
+  /// The mesh's colour (docs/colour.md): `mesh.uvs`, `mesh.colors`, `mesh.face_materials`,
+  /// `materials` and `textures` in the JSON, present when the input has colour. The textures'
+  /// bytes are not written into the document (they are served beside it).
+  MeshColour colour;
   Net net;
   std::vector<int> piece;  ///< the piece of each face
   std::vector<NetPiece> pieces;

@@ -43,18 +43,38 @@ std::vector<std::string> named_files(const JobInput& input) {
   return names;
 }
 
-/// Reads the files beside `path` that the model names, so that they come "with the upload".
+/// The images an MTL file names (map_Kd: options first, the file name last).
+std::vector<std::string> mtl_images(const std::string& mtl) {
+  std::vector<std::string> names;
+  std::istringstream lines(mtl);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string keyword, word, last;
+    if (!(words >> keyword) || keyword != "map_Kd") continue;
+    while (words >> word) last = word;
+    if (!last.empty()) names.push_back(last);
+  }
+  return names;
+}
+
+/// Reads the files beside `path` that the model names, so that they come "with the upload";
+/// for an OBJ, then the images its MTL files name.
 void add_siblings(const std::string& path, std::size_t max_bytes, JobInput& input) {
   const auto dir = std::filesystem::path(path).parent_path();
-  for (const std::string& name : named_files(input)) {
+  std::vector<std::string> names = named_files(input);
+  const std::size_t libraries = names.size();  // an OBJ's MTL files come first
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string name = names[i];
     if (!safe_relative_name(name)) continue;  // never supplied: loading names it as missing
     const auto sibling = dir / name;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(sibling, ec)) continue;
     if (std::filesystem::file_size(sibling, ec) > max_bytes) continue;
     std::ifstream s(sibling, std::ios::binary);
-    input.external_files[name].assign(std::istreambuf_iterator<char>(s),
-                                      std::istreambuf_iterator<char>());
+    std::string& bytes = input.external_files[name];
+    bytes.assign(std::istreambuf_iterator<char>(s), std::istreambuf_iterator<char>());
+    if (input.format == MeshFormat::Obj && i < libraries && names.size() < 256)
+      for (std::string& image : mtl_images(bytes)) names.push_back(std::move(image));
   }
 }
 

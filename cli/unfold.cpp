@@ -20,7 +20,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: papernet unfold FILE -o OUT [-o OUT]... [options]\n"
     "OUT is chosen by extension: .json (papernet.net/2), .svg (one page, or OUT-1.svg ... per\n"
-    "page), .pdf (one page per sheet), .glb / .obj (the mesh the net folds into).\n"
+    "page), .pdf (one page per sheet), .glb / .obj (the mesh the net folds into). Beside a\n"
+    ".json: the model's textures, OUT.texture-K.png (or .jpg), K as in its \"textures\".\n"
     "Exit codes: 0 net written (also an approximate one: a net of a coarser mesh, said on\n"
     "stderr and in the JSON), 2 input cannot be unfolded, 3 no overlap-free net within the\n"
     "time limit, 1 other errors. Prints one summary line (key=value) on stdout.\n"
@@ -127,6 +128,17 @@ std::vector<std::string> write_output(const std::string& path, const UnfoldOutco
   const Documents& d = outcome.documents;
   if (ext == "json") {
     write_file(path, d.net_json + "\n");
+    // The textures beside it (docs/colour.md): OUT.json -> OUT.texture-K.png / .jpg.
+    std::vector<std::string> files{path};
+    const std::vector<Texture>& textures = outcome.net.colour.textures;
+    for (std::size_t k = 0; k < textures.size(); ++k) {
+      files.push_back(path.substr(0, path.size() - 5));
+      files.back() += ".texture-";
+      files.back() += std::to_string(k);
+      files.back() += textures[k].mime_type == "image/jpeg" ? ".jpg" : ".png";
+      write_file(files.back(), textures[k].bytes);
+    }
+    return files;
   } else if (ext == "pdf" || ext == "glb" || ext == "obj") {
     write_file(path, ext == "pdf" ? d.pdf : ext == "glb" ? d.glb : d.obj);
   } else if (d.svg_pages.size() == 1) {

@@ -17,7 +17,7 @@ class IOException : public std::runtime_error {
 /// that size is allocated. A service answers it with "too large" rather than "unreadable".
 class LimitExceededException : public IOException {
  public:
-  enum class Limit { Bytes, Faces, Vertices };
+  enum class Limit { Bytes, Faces, Vertices, Pixels };
   LimitExceededException(Limit limit, const std::string& message)
       : IOException(message), limit_(limit) {}
   Limit limit() const { return limit_; }

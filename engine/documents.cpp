@@ -1,5 +1,7 @@
 // The pipeline's last steps: the pieces as one net document, and the documents made from it.
 #include <algorithm>
+#include <map>
+#include <optional>
 
 #include "core/io/write_mesh.h"
 #include "core/unfold/net_metrics.h"
@@ -20,6 +22,31 @@ double piece_gap_mm(const JobOptions& options) { return 2 * options.tab_height_m
 // Paper left between nested pieces (with their tabs) on a sheet, to cut along.
 constexpr double kCutSpacingMm = 2;
 
+// A piece's colour: its part's, when the piece folds into the part's own faces (possibly in
+// another order: each face is found by its vertices in the same turn). A coarser mesh has
+// faces of its own, without colour data; std::nullopt then.
+std::optional<MeshColour> piece_colour(const Piece& piece, const Mesh& part,
+                                       const MeshColour& colour) {
+  if (piece.mesh.faces == part.faces && piece.mesh.vertices.size() == part.vertices.size())
+    return colour;
+  if (piece.mesh.faces.size() != part.faces.size() || piece.mesh.vertices != part.vertices)
+    return std::nullopt;
+  std::map<std::array<int, 3>, int> corner_of;  // a face's vertices from each corner -> corner
+  for (std::size_t f = 0; f < part.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto& t = part.faces[f];
+      corner_of[{t[k], t[(k + 1) % 3], t[(k + 2) % 3]}] = 3 * int(f) + k;
+    }
+  std::vector<std::array<int, 3>> corners(piece.mesh.faces.size());
+  for (std::size_t f = 0; f < corners.size(); ++f) {
+    const auto it = corner_of.find(piece.mesh.faces[f]);
+    if (it == corner_of.end()) return std::nullopt;
+    const int face = it->second / 3, k = it->second % 3;
+    corners[f] = {3 * face + k, 3 * face + (k + 1) % 3, 3 * face + (k + 2) % 3};
+  }
+  return remap_corners(colour, corners);
+}
+
 }  // namespace
 
 NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
@@ -28,8 +55,22 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
   doc.strategy = strategy_name(options.strategy);
   doc.input = input.input;
   doc.repairs = input.repairs;
+  doc.colour.materials = input.colour.materials;
+  doc.colour.textures = input.colour.textures;
+  std::size_t uncoloured = 0;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const Piece& piece = pieces[p];
+    if (p < input.part_colours.size()) {
+      const std::optional<MeshColour> colour =
+          piece_colour(piece, input.parts[p], input.part_colours[p]);
+      uncoloured += !colour;
+      // Without: the same kinds of data, all NaN / -1 (no corner of the input maps there).
+      const std::vector<std::array<int, 3>> none(piece.mesh.faces.size(),
+                                                 {kNoCorner, kNoCorner, kNoCorner});
+      append_faces(doc.colour, doc.mesh.faces.size(),
+                   colour ? *colour : remap_corners(input.part_colours[p], none),
+                   piece.mesh.faces.size());
+    }
     const int vertex_base = static_cast<int>(doc.mesh.vertices.size());
     const int face_base = static_cast<int>(doc.mesh.faces.size());
     doc.mesh.vertices.insert(doc.mesh.vertices.end(), piece.mesh.vertices.begin(),
@@ -47,6 +88,14 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
     if (!piece.complete) doc.result = "approximate";
     doc.metrics.hausdorff = std::max(doc.metrics.hausdorff, piece.hausdorff);
   }
+  if (uncoloured > 0)
+    doc.repairs.push_back(
+        {"approximate_pieces_uncoloured", uncoloured,
+         uncoloured == 1 ? std::string("1 approximate piece folds into a coarser mesh whose faces "
+                                       "carry no texture coordinates or colours (null in mesh.uvs)")
+                         : std::to_string(uncoloured) +
+                               " approximate pieces fold into coarser meshes whose faces carry no "
+                               "texture coordinates or colours (null in mesh.uvs)"});
   // Coverage and aspect ratio of the pieces as the print sets them side by side.
   const double gap = piece_gap_mm(options) / print_scale(doc.mesh, print_options(options));
   const NetBoxMetrics box = net_metrics(doc.mesh, arrange_pieces(doc.net, doc.piece, gap));

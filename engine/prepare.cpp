@@ -23,8 +23,10 @@ NetInput counts_of(const ValidationReport& report) {
 }
 
 // A loader's note ("3 line elements were skipped") as a repair entry: its leading number is
-// the count.
+// the count. A texture or an OBJ material library that cannot be used has its own code.
 NetRepair skipped(const std::string& note) {
+  if (note.starts_with("texture")) return {"texture_not_used", 1, note};
+  if (note.starts_with("material library")) return {"material_library_not_used", 1, note};
   std::size_t count = 0, i = 0;
   while (i < note.size() && std::isdigit(static_cast<unsigned char>(note[i])))
     count = 10 * count + static_cast<std::size_t>(note[i++] - '0');
@@ -68,6 +70,7 @@ Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progres
   for (const std::string& note : loaded.notes) out.repairs.push_back(skipped(note));
   const bool largest = options.components == Components::Largest;
   Mesh mesh;
+  MeshColour colour;
   if (options.strict) {
     // Today's judgement: any fault refused, several parts too unless only the largest is asked
     // for (then only it is judged).
@@ -76,12 +79,14 @@ Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progres
     ValidationReport report = validate(loaded, validate_options);
     if (!report.unfoldable()) throw InvalidMeshException(std::move(report));
     mesh = std::move(loaded.mesh);
+    colour = std::move(loaded.colour);
   } else {
     refuse_unrepairable(loaded);
     RepairResult repaired = repair_mesh(loaded.mesh, loaded.raw_faces);
     for (MeshRepair& r : repaired.repairs)
       out.repairs.push_back({std::move(r.code), r.count, std::move(r.message)});
     mesh = std::move(repaired.mesh);
+    colour = remap_corners(loaded.colour, repaired.corners);
   }
   if (progress.cancelled()) throw CancelledException();
   ValidationReport report = validate(mesh);
@@ -90,7 +95,16 @@ Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progres
       if (p.blocking && p.code != "several_components")  // repair leaves none: a bug if it did
         throw InvalidMeshException(std::move(report));
   out.input = counts_of(report);
-  out.parts = split_components(mesh);
+  std::vector<std::vector<int>> faces_of;
+  out.parts = split_components(mesh, &faces_of);
+  if (!colour.empty())
+    for (const std::vector<int>& faces : faces_of) {
+      out.part_colours.push_back(select_faces(colour, faces));
+      out.part_colours.back().materials.clear();
+      out.part_colours.back().textures.clear();
+    }
+  out.colour.materials = std::move(colour.materials);
+  out.colour.textures = std::move(colour.textures);
   if (largest && out.parts.size() > 1) {
     std::size_t dropped = 0;
     for (std::size_t p = 1; p < out.parts.size(); ++p) dropped += out.parts[p].faces.size();
@@ -101,6 +115,7 @@ Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progres
                                std::to_string(out.parts.size() - 1) + " parts, " +
                                std::to_string(dropped) + " faces"});
     out.parts.resize(1);
+    if (!out.part_colours.empty()) out.part_colours.resize(1);
   }
   return out;
 }

@@ -11,7 +11,7 @@ shared="${2:-$root/../shared/data/meshes}"
 data="$root/tests/data"
 seeds="$root/fuzz/seeds"
 max_bytes=262144
-targets=(glb gltf gltf_external draco obj off ply stl options upload)
+targets=(glb gltf gltf_external draco obj off ply stl image options upload)
 
 rm -rf "$out"
 for t in "${targets[@]}"; do mkdir -p "$out/$t"; done
@@ -79,6 +79,7 @@ add off "$seeds"/*.off
 add ply "$data"/*.ply "$seeds"/*.ply
 add stl "$data"/*.stl "$seeds"/*.stl
 add options "$seeds"/options*
+add image "$data"/CesiumMilkTruck/*.png "$data"/*.jpg
 upload_seed raw_obj "strategy=TU&seed=2" model/obj "$seeds/cube_quads.obj"
 upload_seed sniffed_ply "" application/octet-stream "$data/mirror.ply"
 upload_seed draco_glb "format=glb" "" "$data/Box_Draco.glb"
@@ -95,6 +96,8 @@ if [ -d "$shared" ]; then
     gltf_external_seed "${dir%/}"
   done
   add draco "$shared"/draco/*.drc
+  add image "$shared"/gltf/*/*.png "$shared"/gltf/*/*.jpg "$shared"/draco/*/*.png \
+    "$shared"/draco/*/*.jpg
   add obj "$shared"/bad/*.obj
   add off "$shared"/bad/*.off
   add ply "$shared"/bad/*.ply

@@ -14,7 +14,7 @@ seconds="${2:?usage: $0 BUILD SECONDS [TARGET...]}"
 shift 2
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] ||
-  targets=(glb gltf gltf_external draco obj off ply stl options upload)
+  targets=(glb gltf gltf_external draco obj off ply stl image options upload)
 
 seeds="$build/fuzz-corpus/seeds"
 "$root/fuzz/make_corpus.sh" "$seeds"

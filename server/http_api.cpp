@@ -384,9 +384,10 @@ struct Api {
     send_json(res, 200, doc);
   }
 
-  void result(const httplib::Request& req, httplib::Response& res) {
+  // A result file: `name`, else the one the path names (net.json, ...).
+  void result(const httplib::Request& req, httplib::Response& res, std::string name = {}) {
     const JobView view = find_job(service, req);
-    const std::string name = req.matches[2];
+    if (name.empty()) name = req.matches[2];
     const JobRecord& r = view.record;
     if (r.status == JobStatus::Failed) {
       send_problem(res, problem_from_json(r.error), req.path);
@@ -638,6 +639,10 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
   http.Get(job + "/(net\\.json|net\\.svg|net\\.pdf|mesh\\.glb)",
            guarded([api](const httplib::Request& req, httplib::Response& res) {
              api->result(req, res);
+           }));
+  http.Get(job + "/textures/([0-9]{1,6})",
+           guarded([api](const httplib::Request& req, httplib::Response& res) {
+             api->result(req, res, texture_file_name(std::stoul(req.matches[2].str())));
            }));
 }
 

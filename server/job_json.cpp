@@ -15,6 +15,33 @@ const std::vector<std::string>& result_file_names() {
   return names;
 }
 
+std::string texture_file_name(std::size_t index) {
+  std::string name = "texture-";
+  name += std::to_string(index);
+  return name;
+}
+
+namespace {
+
+// A result file's link: its name, or for a texture ("texture-k") entry k of "textures", served
+// at /v1/jobs/{id}/textures/{k}.
+void add_link(json& links, const std::string& self, const std::string& name) {
+  if (!name.starts_with("texture-")) {
+    links[name] = self + "/" + name;
+    return;
+  }
+  const std::size_t k = std::stoul(name.substr(8));
+  json& textures = links["textures"];
+  if (!textures.is_array()) textures = json::array();
+  while (textures.size() <= k) textures.push_back(nullptr);
+  std::string link = self;
+  link += "/textures/";
+  link += name.substr(8);
+  textures[k] = std::move(link);
+}
+
+}  // namespace
+
 json iso_time(double seconds) {
   if (seconds <= 0) return nullptr;
   const auto whole = static_cast<std::time_t>(std::floor(seconds));
@@ -84,7 +111,7 @@ json job_to_json(const JobView& view, double now) {
                      {"input_faces", r.input_faces}, {"overlaps", r.overlaps},
                      {"pieces", std::move(pieces)},  {"repairs", std::move(repairs)},
                      {"metrics", std::move(metrics)}};
-    for (const std::string& name : view.result_files) links[name] = self + "/" + name;
+    for (const std::string& name : view.result_files) add_link(links, self, name);
   } else {
     doc["result"] = nullptr;
   }
@@ -92,7 +119,7 @@ json job_to_json(const JobView& view, double now) {
     doc["intermediate"] = {{"faces", view.intermediate->faces},
                            {"input_faces", view.intermediate->input_faces},
                            {"overlaps", view.intermediate->overlaps}};
-    for (const std::string& name : view.intermediate->files) links[name] = self + "/" + name;
+    for (const std::string& name : view.intermediate->files) add_link(links, self, name);
   }
   doc["error"] = r.error.is_object() ? r.error : json(nullptr);
   if (view.callback) {

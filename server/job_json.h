@@ -10,6 +10,10 @@ namespace papernet::server {
 /// The names of result files a job can have, in the order the API lists them.
 const std::vector<std::string>& result_file_names();
 
+/// The result file of texture k of the net JSON's `textures` ("texture-k"), served at
+/// /v1/jobs/{id}/textures/{k} and listed under the job's `links.textures`.
+std::string texture_file_name(std::size_t index);
+
 /// A job as GET /v1/jobs/{id} shows it: status, progress, result summary, error, links.
 /// `now` (seconds since the epoch) fills elapsed times.
 nlohmann::json job_to_json(const JobView& view, double now);

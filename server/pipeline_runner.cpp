@@ -1,5 +1,7 @@
 #include "server/pipeline_runner.h"
 
+#include "server/job_json.h"
+
 namespace papernet::server {
 namespace {
 
@@ -48,6 +50,9 @@ JobOutput job_output(const UnfoldOutcome& outcome) {
   out.files["net.svg"] = {"image/svg+xml", docs.svg};
   out.files["net.pdf"] = {"application/pdf", docs.pdf};
   out.files["mesh.glb"] = {"model/gltf-binary", docs.glb};
+  const std::vector<Texture>& textures = outcome.net.colour.textures;
+  for (std::size_t k = 0; k < textures.size(); ++k)
+    out.files[texture_file_name(k)] = {textures[k].mime_type, textures[k].bytes};
   return out;
 }
 

@@ -41,6 +41,7 @@ constexpr ProblemType kProblemTypes[] = {
     {"length_required", 411, "Content-Length required"},
     {"payload_too_large", 413, "Upload too large"},
     {"too_many_faces", 413, "Mesh has too many faces"},
+    {"image_too_large", 413, "Texture image has too many pixels"},
     {"uri_too_long", 414, "Request URI too long"},
     {"unsupported_format", 415, "Unsupported mesh format"},
     {"idempotency_key_reused", 422, "Idempotency-Key used for another request"},
@@ -108,9 +109,11 @@ Problem problem_from_exception(std::exception_ptr error) {
     if (!e.option().empty()) extra["option"] = e.option();
     return make_problem(e.code(), e.what(), extra);
   } catch (const LimitExceededException& e) {
-    return make_problem(
-        e.limit() == LimitExceededException::Limit::Bytes ? "payload_too_large" : "too_many_faces",
-        e.what());
+    const auto limit = e.limit();
+    return make_problem(limit == LimitExceededException::Limit::Bytes    ? "payload_too_large"
+                        : limit == LimitExceededException::Limit::Pixels ? "image_too_large"
+                                                                         : "too_many_faces",
+                        e.what());
   } catch (const InvalidMeshException& e) {
     return invalid_mesh(e.report());
   } catch (const InvalidInputException& e) {

@@ -138,7 +138,25 @@ export interface NetDocument {
   input?: { vertices: number; faces: number; components: number; genus?: number; boundaries?: number };
   repairs: Repair[];
   pieces: Piece[];
-  mesh: { vertices: Array<[number, number, number]>; faces: Array<[number, number, number]> };
+  mesh: {
+    vertices: Array<[number, number, number]>;
+    faces: Array<[number, number, number]>;
+    /** Per face, its corners' texture coordinates (glTF convention: origin top left); null without. */
+    uvs?: Array<Array<[number, number]> | null>;
+    /** Per face, its corners' vertex colours [r, g, b, a]; null without. */
+    colors?: Array<Array<[number, number, number, number]> | null>;
+    /** Per face, an index into `materials` (-1: none). */
+    face_materials?: number[];
+  };
+  materials?: Array<{ name: string; base_color: [number, number, number, number]; texture: number | null }>;
+  /** The images are served beside the document: PapernetClient.texture(id, k). */
+  textures?: Array<{
+    name: string;
+    mime_type: string;
+    width: number;
+    height: number;
+    sampler?: { wrap_s: number; wrap_t: number; mag_filter: number; min_filter: number };
+  }>;
   /** One tree per piece: `parent` is -1 for its root, else a face of the same piece. */
   net: { faces: Array<{ piece: number; parent: number; points: Array<[number, number]> }> };
   metrics?: Record<string, number>;
@@ -222,6 +240,8 @@ export class PapernetClient {
   netSvg(id: string, init?: RequestOptions): Promise<string>;
   netPdf(id: string, init?: RequestOptions): Promise<Uint8Array>;
   meshGlb(id: string, init?: RequestOptions): Promise<Uint8Array>;
+  /** Texture k of the net's `textures`: GET /v1/jobs/{id}/textures/{k}. */
+  texture(id: string, k: number, init?: RequestOptions): Promise<{ contentType: string | null; bytes: Uint8Array }>;
   /** GET /readyz answers 200. */
   ready(init?: RequestOptions): Promise<boolean>;
 }

@@ -370,6 +370,13 @@ export class PapernetClient {
     return new Uint8Array(await (await this.result(id, "mesh.glb", opts)).arrayBuffer());
   }
 
+  /** Texture k of the net JSON's `textures` (its image bytes and content type). */
+  async texture(id, k, { signal } = {}) {
+    if (!Number.isInteger(k) || k < 0) throw new TypeError(`bad texture index ${k}`);
+    const res = await this._request(`/v1/jobs/${encodeURIComponent(id)}/textures/${k}`, { signal });
+    return { contentType: res.headers.get("Content-Type"), bytes: new Uint8Array(await res.arrayBuffer()) };
+  }
+
   /** GET /healthz and /readyz: true when the server answers 200. */
   async ready({ signal } = {}) {
     try {

@@ -51,6 +51,25 @@ void add_polygon(RawMesh& out, const std::vector<long long>& poly, const LoadOpt
     out.faces.push_back({int(poly[0]), int(poly[k]), int(poly[k + 1])});
 }
 
+bool make_texture(std::string name, std::string bytes, const LoadOptions& options,
+                  const std::string& what, Texture& out, std::vector<std::string>& notes) {
+  out.name = std::move(name);
+  try {
+    const Image decoded = decode_image(bytes, options.max_image_pixels);
+    out.width = decoded.width;
+    out.height = decoded.height;
+  } catch (const LimitExceededException&) {
+    throw;
+  } catch (const IOException& e) {
+    notes.push_back("texture image '" + out.name + "' cannot be used (" + e.what() + "); " + what +
+                    " is printed without it");
+    return false;
+  }
+  out.mime_type = image_mime_type(sniff_image(bytes));
+  out.bytes = std::move(bytes);
+  return true;
+}
+
 }  // namespace detail
 
 namespace {
@@ -111,6 +130,7 @@ LoadedMesh weld(detail::RawMesh raw, MeshFormat format) {
   out.raw_vertices = raw.vertices.size();
   out.triangulated = raw.triangulated;
   out.notes = std::move(raw.notes);
+  out.colour = std::move(raw.colour);
   std::vector<char> used(raw.vertices.size(), 0);
   for (const auto& f : raw.faces)
     for (int v : f) used[v] = 1;

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/io/image.h"
+#include "core/mesh/colour.h"
 #include "core/mesh/mesh.h"
 
 namespace papernet {
@@ -28,7 +30,10 @@ struct LoadOptions {
   std::size_t max_bytes = std::size_t{256} << 20;  ///< size of the mesh file itself
   std::size_t max_faces = 2'000'000;               ///< faces after triangulation
   std::size_t max_vertices = 6'000'000;            ///< positions read, before welding
-  /// Files that came with a .gltf (its external buffers), by the relative URI the glTF uses.
+  /// Pixels of one texture image, checked from its header before it is decoded.
+  std::uint64_t max_image_pixels = kDefaultMaxImagePixels;
+  /// Files that came with a .gltf (its external buffers and images) or an OBJ (its MTL files
+  /// and their images), by the relative name the model uses.
   /// A .gltf never reads anything from disk by itself: a URI not found here is an error.
   std::map<std::string, std::string> external_files;
 };
@@ -43,6 +48,9 @@ struct LoadedMesh {
   std::vector<std::array<int, 3>> raw_faces;
   bool triangulated = false;       ///< polygons (or strips/fans) were split into triangles
   std::vector<std::string> notes;  ///< what else loading did (skipped lines, points, primitives)
+  /// Texture coordinates, vertex colours and materials per face, as mesh.faces; welding merges
+  /// positions only, so each corner keeps its own (docs/colour.md).
+  MeshColour colour;
 };
 
 /// Loads a mesh from bytes in memory. `format` may be Unknown: it is then sniffed from content.
@@ -52,10 +60,10 @@ struct LoadedMesh {
 /// \throw IOException naming the fault (unreadable, unsupported, truncated, over a limit).
 LoadedMesh load_mesh(std::string_view bytes, MeshFormat format, const LoadOptions& options = {});
 
-/// URIs of the external buffers a .gltf names (URL-decoded, data URIs left out): the keys the
-/// loader will look up in `LoadOptions::external_files`. The caller decides which to supply
-/// (the command-line tool only relative names inside the file's folder, never "..").
-/// \throw IOException when the text is not glTF JSON.
+/// URIs of the external buffers and images a .gltf names (URL-decoded, data URIs left out): the
+/// keys the loader will look up in `LoadOptions::external_files`. The caller decides which to
+/// supply (the command-line tool only relative names inside the file's folder, never ".."). \throw
+/// IOException when the text is not glTF JSON.
 std::vector<std::string> gltf_external_uris(std::string_view gltf_json);
 
 /// The bytes of a file, refused when it has more than `max_bytes`.

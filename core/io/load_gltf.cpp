@@ -9,6 +9,7 @@
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
+#undef TINYGLTF_IMPLEMENTATION  // the colour reader's header includes it again, for declarations
 
 #include <array>
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include <unordered_set>
 
 #include "core/errors.h"
+#include "core/io/internal/gltf_colour.h"
 #include "core/io/internal/load_formats.h"
 
 namespace papernet {
@@ -248,6 +250,8 @@ struct Collector {
     for (const Vec3& p : positions) out.vertices.push_back(transform(world, p));
     // A mirroring transform turns counter-clockwise faces clockwise: swap two corners back.
     const bool flip = determinant3(world) < 0;
+    const std::size_t faces_before = out.faces.size();
+    std::vector<std::array<std::uint32_t, 3>> corners;  // of this primitive's faces
     auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, bool strip) {
       if (strip && (a == b || b == c || a == c)) {
         ++strip_degenerates;  // strips use repeated indices to restart; no face is meant
@@ -255,6 +259,7 @@ struct Collector {
       }
       if (flip) std::swap(b, c);
       out.faces.push_back({base + int(a), base + int(b), base + int(c)});
+      corners.push_back({a, b, c});
     };
     if (mode != TINYGLTF_MODE_TRIANGLES) out.triangulated = true;
     for (std::size_t i = 0; i < triangles; ++i) {
@@ -265,6 +270,8 @@ struct Collector {
       else
         add(indices[i + 1], indices[i + 2], indices[0], true);
     }
+    const MeshColour colour = read_gltf_primitive_colour(model, prim, corners, positions.size());
+    append_faces(out.colour, faces_before, colour, corners.size());
   }
 
   /// Every node under `root`, depth first in file order. A loop with its own stack: a hostile
@@ -311,9 +318,14 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
   *err = "writing is disabled";
   return false;
 }
-bool ignore_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                  const unsigned char*, int, void*) {
-  return true;  // textures play no part in a paper net
+// Keeps the bytes of an image that comes from a buffer view or a data URI; they are decoded
+// (and checked) by read_gltf_materials, which knows the limits.
+bool keep_image(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+                const unsigned char* bytes, int size, void* user) {
+  auto& images = *static_cast<GltfImageBytes*>(user);
+  if (bytes && size > 0)
+    images[index].assign(reinterpret_cast<const char*>(bytes), std::size_t(size));
+  return true;
 }
 
 /// Checks the GLB container before tinygltf parses it, so that its lengths are trusted.
@@ -352,7 +364,8 @@ RawMesh read_gltf(std::string_view bytes, bool binary, const LoadOptions& option
       &fs_file_exists, &fs_expand, &fs_read, &fs_write,
       const_cast<std::map<std::string, std::string>*>(&options.external_files)};
   parser.SetFsCallbacks(fs);
-  parser.SetImageLoader(&ignore_image, nullptr);
+  GltfImageBytes images;
+  parser.SetImageLoader(&keep_image, &images);
   tinygltf::Model model;
   std::string err, warn;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -377,6 +390,7 @@ RawMesh read_gltf(std::string_view bytes, bool binary, const LoadOptions& option
       throw IOException("gltf: required extension " + ext + " is not supported");
 
   Collector c{model, options, draco, {}, {}, 0, 0};
+  read_gltf_materials(model, images, options, c.out.colour, c.out.notes);
   std::unordered_set<int> seen;
   if (!model.scenes.empty()) {
     const int scene =
@@ -406,6 +420,7 @@ RawMesh read_gltf(std::string_view bytes, bool binary, const LoadOptions& option
 
 std::string url_decode(const std::string& uri) { return tinygltf::dlib::urldecode(uri); }
 bool is_data_uri(const std::string& uri) { return tinygltf::IsDataURI(uri); }
+std::string decode_base64(const std::string& text) { return tinygltf::base64_decode(text); }
 bool decode_data_uri(const std::string& uri, std::vector<unsigned char>& out) {
   std::string mime;
   return tinygltf::DecodeDataURI(&out, mime, uri, 0, false);
@@ -424,6 +439,16 @@ std::vector<std::string> gltf_external_uris(std::string_view gltf_json) {
     const auto u = b.find("uri");
     if (u == b.end() || !u->is_string()) continue;
     // Decoded the way tinygltf decodes it before asking for the file.
+    const std::string uri = tinygltf::dlib::urldecode(u->get<std::string>());
+    if (!tinygltf::IsDataURI(uri)) uris.push_back(uri);
+  }
+  // Images (textures) too: a missing one only costs its material's texture.
+  const auto images = doc.find("images");
+  if (images == doc.end() || !images->is_array()) return uris;
+  for (const auto& i : *images) {
+    if (!i.is_object()) continue;
+    const auto u = i.find("uri");
+    if (u == i.end() || !u->is_string()) continue;
     const std::string uri = tinygltf::dlib::urldecode(u->get<std::string>());
     if (!tinygltf::IsDataURI(uri)) uris.push_back(uri);
   }

@@ -217,6 +217,7 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
   RawMesh out;
   std::size_t short_faces = 0;
   std::vector<long long> poly;
+  std::vector<RGBA> vertex_colours;  // per vertex, when the vertices have red, green and blue
   for (const Element& e : elements) {
     // Declared counts are checked against the bytes left before anything is reserved: a record
     // takes at least one byte per value in binary and two characters per value in ascii.
@@ -232,11 +233,17 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
     const bool is_strips = e.name == "tristrips";
     const bool is_face = e.name == "face" || is_strips;
     int ix = -1, iy = -1, iz = -1, ilist = -1;
+    int icolour[4] = {-1, -1, -1, -1};  // red, green, blue, alpha
+    static constexpr std::string_view kChannels[] = {"red", "green", "blue", "alpha"};
     for (std::size_t k = 0; k < e.properties.size(); ++k) {
       const Property& p = e.properties[k];
       if (is_vertex && !p.list && p.name == "x") ix = int(k);
       if (is_vertex && !p.list && p.name == "y") iy = int(k);
       if (is_vertex && !p.list && p.name == "z") iz = int(k);
+      for (int c = 0; c < 4; ++c)
+        if (is_vertex && !p.list &&
+            (p.name == kChannels[c] || p.name == std::string("diffuse_").append(kChannels[c])))
+          icolour[c] = int(k);
       if (is_face && p.list && (p.name == "vertex_indices" || p.name == "vertex_index"))
         ilist = int(k);
     }
@@ -246,8 +253,10 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
     if (is_vertex) check_vertices(out.vertices.size() + e.count, options, "ply header");
     if (is_vertex) out.vertices.reserve(e.count);
     if (is_face) check_declared_faces(e.count, options, "ply header");
+    const bool coloured = is_vertex && icolour[0] >= 0 && icolour[1] >= 0 && icolour[2] >= 0;
     for (std::uint64_t r = 0; r < e.count; ++r) {
       Vec3 v;
+      RGBA colour{1, 1, 1, 1};
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
         if (!p.list) {
@@ -255,6 +264,11 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
           if (int(k) == ix) v.x = value;
           if (int(k) == iy) v.y = value;
           if (int(k) == iz) v.z = value;
+          for (int c = 0; c < 4; ++c)
+            if (int(k) == icolour[c])  // integers are 0..max of their type; floats 0..1
+              colour[c] = p.type == Type::UChar    ? value / 255
+                          : p.type == Type::UShort ? value / 65535
+                                                   : value;
           continue;
         }
         // Each listed value takes room in the data that is left: a longer list is refused
@@ -275,6 +289,10 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
       }
       in.end_record();
       if (is_vertex) out.vertices.push_back(v);
+      if (coloured) {
+        vertex_colours.resize(out.vertices.size(), RGBA{1, 1, 1, 1});
+        vertex_colours.back() = colour;
+      }
       if (is_strips && ilist >= 0) {
         add_strips(out, poly, options);
       } else if (is_face && ilist >= 0) {
@@ -282,6 +300,12 @@ RawMesh read_ply(std::string_view bytes, const LoadOptions& options) {
         add_polygon(out, poly, options, "ply face " + std::to_string(r));
       }
     }
+  }
+  if (!vertex_colours.empty()) {
+    vertex_colours.resize(out.vertices.size(), RGBA{1, 1, 1, 1});
+    out.colour.colours.resize(out.faces.size());
+    for (std::size_t f = 0; f < out.faces.size(); ++f)
+      for (int k = 0; k < 3; ++k) out.colour.colours[f][k] = vertex_colours[out.faces[f][k]];
   }
   if (short_faces)
     out.notes.push_back(std::to_string(short_faces) +

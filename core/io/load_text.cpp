@@ -1,9 +1,12 @@
 // OBJ, OFF and STL readers. Written by hand rather than through OpenMesh's readers: those build a
 // halfedge mesh and silently drop faces that would make it non-manifold, which would hide from
 // validation exactly the faults it must report. Here every face of the file is kept.
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
 
 #include "core/errors.h"
 #include "core/io/internal/load_formats.h"
@@ -54,12 +57,87 @@ std::string at_line(std::string_view format, std::size_t line) {
   return std::string(format) + " line " + std::to_string(line);
 }
 
+/// An OBJ's materials as its MTL files define them (newmtl, Kd, d / Tr, map_Kd), by name.
+class ObjMaterials {
+ public:
+  ObjMaterials(const LoadOptions& options, MeshColour& colour, std::vector<std::string>& notes)
+      : options_(options), colour_(colour), notes_(notes) {}
+
+  /// Reads an MTL file named by `mtllib`, from the files supplied with the model.
+  void library(const std::string& name) {
+    const auto file = options_.external_files.find(name);
+    if (file == options_.external_files.end()) {
+      notes_.push_back("material library '" + name + "' was not supplied with the model");
+      return;
+    }
+    int current = -1;
+    for_each_line(file->second, [&](std::string_view line, std::size_t) {
+      while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
+      line = line.substr(0, line.find('#'));
+      const std::string_view keyword = next_token(line);
+      if (keyword == "newmtl") {
+        current = material(std::string(next_token(line)));
+        return;
+      }
+      if (current < 0) return;
+      Material& m = colour_.materials[std::size_t(current)];
+      double x = 0;
+      if (keyword == "Kd") {
+        for (int k = 0; k < 3; ++k)
+          if (parse_double(next_token(line), x)) m.base_color[std::size_t(k)] = x;
+      } else if (keyword == "d" && parse_double(next_token(line), x)) {
+        m.base_color[3] = x;
+      } else if (keyword == "Tr" && parse_double(next_token(line), x)) {
+        m.base_color[3] = 1 - x;
+      } else if (keyword == "map_Kd") {
+        std::string_view image;  // options (-s, -o, ...) come first: the name is the last word
+        for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line))
+          image = tok;
+        m.texture = texture(std::string(image));
+      }
+    });
+  }
+
+  /// The index of material `name`, made (white, untextured) when no MTL defined it.
+  int material(const std::string& name) {
+    const auto [it, fresh] = index_.try_emplace(name, int(colour_.materials.size()));
+    if (fresh) colour_.materials.push_back({name, {1, 1, 1, 1}, -1});
+    return it->second;
+  }
+
+ private:
+  int texture(const std::string& name) {
+    const auto known = textures_.find(name);
+    if (known != textures_.end()) return known->second;
+    int& ours = textures_[name] = -1;
+    const auto file = options_.external_files.find(name);
+    if (file == options_.external_files.end()) {
+      notes_.push_back("texture image '" + name +
+                       "' was not supplied with the model; its material is printed without it");
+      return -1;
+    }
+    Texture t;
+    if (!make_texture(name, file->second, options_, "its material", t, notes_)) return -1;
+    ours = int(colour_.textures.size());
+    colour_.textures.push_back(std::move(t));
+    return ours;
+  }
+
+  const LoadOptions& options_;
+  MeshColour& colour_;
+  std::vector<std::string>& notes_;
+  std::map<std::string, int> index_, textures_;
+};
+
 }  // namespace
 
 RawMesh read_obj(std::string_view bytes, const LoadOptions& options) {
   RawMesh out;
   std::size_t short_faces = 0, lines = 0, points = 0;
-  std::vector<long long> poly;
+  std::vector<long long> poly, poly_uvs;
+  std::vector<UV> uvs;  // vt, v flipped: glTF's convention (docs/colour.md)
+  ObjMaterials materials(options, out.colour, out.notes);
+  int material = -1;   // usemtl
   std::string joined;  // a statement continued over lines with a trailing backslash
   std::size_t joined_from = 0;
   auto statement = [&](std::string_view line, std::size_t number) {
@@ -73,17 +151,60 @@ RawMesh read_obj(std::string_view bytes, const LoadOptions& options) {
         throw IOException(at_line("obj", number) + ": a vertex needs three numbers");
       check_vertices(out.vertices.size() + 1, options, "obj");
       out.vertices.push_back(p);
+    } else if (keyword == "vt") {
+      UV uv{0, 0};
+      if (!parse_double(next_token(line), uv[0])) uv[0] = std::nan("");
+      std::string_view v = next_token(line);
+      if (!v.empty() && !parse_double(v, uv[1])) uv[1] = std::nan("");
+      check_vertices(uvs.size() + 1, options, "obj texture coordinates");
+      uvs.push_back({uv[0], 1 - uv[1]});
+    } else if (keyword == "mtllib") {
+      for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line))
+        materials.library(std::string(tok));
+    } else if (keyword == "usemtl") {
+      material = materials.material(std::string(next_token(line)));
     } else if (keyword == "f") {
       poly.clear();
+      poly_uvs.clear();
       const long long n = static_cast<long long>(out.vertices.size());
       for (std::string_view tok = next_token(line); !tok.empty(); tok = next_token(line)) {
         long long index = 0;
         if (!parse_int(tok.substr(0, tok.find('/')), index) || index == 0)
           throw IOException(at_line("obj", number) + ": bad face index '" + std::string(tok) + "'");
         poly.push_back(index > 0 ? index - 1 : n + index);  // negative: relative to the end
+        // v/vt/vn: a texture coordinate out of range is no error, only no colour there.
+        const std::size_t slash = tok.find('/');
+        long long vt = 0;
+        const long long nt = static_cast<long long>(uvs.size());
+        if (slash != std::string_view::npos &&
+            parse_int(tok.substr(slash + 1, tok.find('/', slash + 1) - slash - 1), vt) && vt != 0)
+          vt = vt > 0 ? vt - 1 : nt + vt;
+        else
+          vt = -1;
+        poly_uvs.push_back(vt >= 0 && vt < nt ? vt : -1);
       }
       if (poly.size() < 3) ++short_faces;
+      const std::size_t before = out.faces.size();
       add_polygon(out, poly, options, at_line("obj", number));
+      const std::size_t added = out.faces.size() - before;
+      const bool textured = std::count(poly_uvs.begin(), poly_uvs.end(), -1) == 0;
+      if (textured || !out.colour.uvs.empty()) {
+        const double nan = std::nan("");
+        out.colour.uvs.resize(before, {UV{nan, nan}, UV{nan, nan}, UV{nan, nan}});
+        for (std::size_t k = 0; k < added; ++k) {  // the fans add_polygon made
+          if (!textured) {
+            out.colour.uvs.push_back({UV{nan, nan}, UV{nan, nan}, UV{nan, nan}});
+            continue;
+          }
+          out.colour.uvs.push_back({uvs[std::size_t(poly_uvs[0])],
+                                    uvs[std::size_t(poly_uvs[k + 1])],
+                                    uvs[std::size_t(poly_uvs[k + 2])]});
+        }
+      }
+      if (material >= 0 || !out.colour.face_materials.empty()) {
+        out.colour.face_materials.resize(before, -1);
+        out.colour.face_materials.resize(before + added, material);
+      }
     } else if (keyword == "l") {
       ++lines;
     } else if (keyword == "p") {
@@ -106,6 +227,11 @@ RawMesh read_obj(std::string_view bytes, const LoadOptions& options) {
     statement(line, number);
   });
   if (!joined.empty()) statement(joined, joined_from);
+  if (!out.colour.uvs.empty()) {
+    const double nan = std::nan("");
+    out.colour.uvs.resize(out.faces.size(), {UV{nan, nan}, UV{nan, nan}, UV{nan, nan}});
+  }
+  if (!out.colour.face_materials.empty()) out.colour.face_materials.resize(out.faces.size(), -1);
   if (short_faces)
     out.notes.push_back(std::to_string(short_faces) +
                         " faces with fewer than 3 vertices were skipped");

@@ -27,12 +27,14 @@ std::uint64_t edge_key(int a, int b) {
 }
 
 // A face while it is repaired: its corners, the loader's vertex of each corner, the input face
-// it comes from, and whether it is still there.
+// it comes from, whether it is still there, and the input corner (3 * face + k) whose texture
+// coordinates and colour each corner carries.
 struct Face {
   std::array<int, 3> v;
   std::array<int, 3> raw;
   int origin = 0;
   bool alive = true;
+  std::array<int, 3> corner{};
 };
 
 // Collects the first few elements of one kind of repair.
@@ -132,10 +134,14 @@ class Degenerates {
     if (degenerate(m_, a, eps_) || degenerate(m_, b, eps_)) return false;
     const int rw = face.raw[(k + 2) % 3], ru = face.raw[k];
     const int rd = other.raw[cd], rv = other.raw[cv];
+    const int kw = face.corner[(k + 2) % 3], ku = face.corner[k];
+    const int kd = other.corner[cd], kv = other.corner[cv];
     face.v = a;
     face.raw = {ru, rd, rw};
+    face.corner = {ku, kd, kw};
     other.v = b;
     other.raw = {rd, rv, rw};
+    other.corner = {kd, kv, kw};
     vertex_faces_[d].push_back(f);
     vertex_faces_[w].push_back(g);
     return true;
@@ -444,11 +450,14 @@ void finish_repair(const Mesh& mesh, const std::vector<Face>& faces, const Repai
       }
       t[c] = id;
     }
+    std::array<int, 3> corner = faces[f].corner;
     if (flip[f] ^ invert[part[f]]) {
       std::swap(t[1], t[2]);
+      std::swap(corner[1], corner[2]);  // a corner's texture coordinates turn with it
       reoriented.add(faces[f].origin, listed);
     }
     m.faces.push_back(t);
+    out.corners.push_back(corner);
   }
   const auto add = [&](const char* code, const Tally& t, const std::string& message) {
     if (t.count) out.repairs.push_back({code, t.count, message, t.listed});
@@ -477,7 +486,11 @@ RepairResult repair_mesh(const Mesh& mesh, const std::vector<std::array<int, 3>>
   const std::size_t nf = mesh.faces.size(), listed = options.max_listed;
   std::vector<Face> faces(nf);
   for (std::size_t f = 0; f < nf; ++f)
-    faces[f] = {mesh.faces[f], raw_corners.size() == nf ? raw_corners[f] : mesh.faces[f], int(f)};
+    faces[f] = {mesh.faces[f],
+                raw_corners.size() == nf ? raw_corners[f] : mesh.faces[f],
+                int(f),
+                true,
+                {3 * int(f), 3 * int(f) + 1, 3 * int(f) + 2}};
   RepairResult out;
   const auto report = [&](const char* code, const Tally& t, const std::string& what,
                           const std::string& where) {
@@ -570,7 +583,7 @@ RepairResult repair_mesh(const Mesh& mesh, const std::vector<std::array<int, 3>>
   return out;
 }
 
-std::vector<Mesh> split_components(const Mesh& mesh) {
+std::vector<Mesh> split_components(const Mesh& mesh, std::vector<std::vector<int>>* faces_of) {
   const std::size_t nf = mesh.faces.size();
   UnionFind parts(nf);
   std::vector<int> vertex_face(mesh.vertices.size(), -1);
@@ -609,6 +622,10 @@ std::vector<Mesh> split_components(const Mesh& mesh) {
       t[c] = r;
     }
     part.faces.push_back(t);
+    if (faces_of) {
+      faces_of->resize(out.size());
+      (*faces_of)[slot[index[parts.find(int(f))]]].push_back(int(f));
+    }
   }
   return out;
 }

@@ -29,6 +29,10 @@ struct RepairOptions {
 struct RepairResult {
   Mesh mesh;  ///< manifold, consistently oriented, without degenerate or duplicate faces
   std::vector<MeshRepair> repairs;  ///< one entry per kind of repair made, none when none was
+  /// For each face of `mesh`, the input corner (3 * input face + k) each of its corners comes
+  /// from: what carries texture coordinates and colours through repair (remap_corners in
+  /// core/mesh/colour.h). A face turned to agree with its neighbours has its corners turned too.
+  std::vector<std::array<int, 3>> corners;
 };
 
 /// Repairs what can be repaired without changing the shape (docs/inputs.md):
@@ -50,7 +54,9 @@ RepairResult repair_mesh(const Mesh& mesh, const std::vector<std::array<int, 3>>
                          const RepairOptions& options = {});
 
 /// The connected parts of `mesh` (faces joined by shared vertices), largest first (ties in face
-/// order), each with vertices of its own.
-std::vector<Mesh> split_components(const Mesh& mesh);
+/// order), each with vertices of its own. `faces_of`, when given, receives each part's faces
+/// (indices into `mesh.faces`, in the part's face order).
+std::vector<Mesh> split_components(const Mesh& mesh,
+                                   std::vector<std::vector<int>>* faces_of = nullptr);
 
 }  // namespace papernet

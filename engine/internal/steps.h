@@ -9,6 +9,7 @@
 #include "api/net_json.h"
 #include "api/options.h"
 #include "core/io/load.h"
+#include "core/mesh/colour.h"
 #include "core/mesh/mesh.h"
 #include "core/progress.h"
 #include "core/unfold/net.h"
@@ -22,6 +23,10 @@ struct Prepared {
   std::vector<Mesh> parts;  ///< largest first
   NetInput input;           ///< of the repaired mesh, every part counted
   std::vector<NetRepair> repairs;
+  /// Each part's colour, per face as its mesh (empty without colour); materials and textures
+  /// are those of `colour`, shared by every part.
+  std::vector<MeshColour> part_colours;
+  MeshColour colour;  ///< the materials and textures (its per-face vectors left empty)
 };
 
 /// Loads `job` within `limits` (engine/prepare.cpp).

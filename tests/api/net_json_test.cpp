@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/errors.h"
 #include "core/unfold/unfolding.h"
 #include "tests/support/meshes.h"
@@ -86,6 +88,91 @@ TEST(NetJson, RefusesOtherDocuments) {
   EXPECT_THROW(read_net_json(j.dump()), IOException);
   j = net_to_json(cube_document());
   j["format"] = "papernet.net/1";  // the old format is not read
+  EXPECT_THROW(read_net_json(j.dump()), IOException);
+}
+
+// The cube with colour: per-corner UVs (one face without), vertex colours, two materials (one
+// textured), one texture.
+NetDocument coloured_cube() {
+  NetDocument doc = cube_document();
+  MeshColour& c = doc.colour;
+  for (std::size_t f = 0; f < 12; ++f) {
+    const double x = double(f) / 12;
+    c.uvs.push_back({UV{x, 0}, UV{x + 0.05, 0.25}, UV{x, 1.0 / 3}});
+    c.colours.push_back({RGBA{1, 0, 0, 1}, RGBA{0, 1, 0, 0.5}, RGBA{0, 0, x, 1}});
+    c.face_materials.push_back(f < 6 ? 0 : f < 11 ? 1 : -1);
+  }
+  const double nan = std::nan("");
+  c.uvs[11] = {UV{nan, nan}, UV{nan, nan}, UV{nan, nan}};
+  c.materials = {{"logo", {1, 1, 1, 1}, 0}, {"paint", {0.8, 0.1, 0.1, 1}, -1}};
+  Texture t;
+  t.name = "logo.png";
+  t.mime_type = "image/png";
+  t.width = 256;
+  t.height = 128;
+  t.sampler = {33071, 10497, 9729, 9987};
+  t.bytes = "not written into the document";
+  c.textures = {t};
+  return doc;
+}
+
+TEST(NetJson, ColourIsWrittenPerDesign) {
+  const nlohmann::json j = net_to_json(coloured_cube());
+  ASSERT_EQ(j["mesh"]["uvs"].size(), 12u);
+  ASSERT_EQ(j["mesh"]["uvs"][1].size(), 3u);
+  EXPECT_EQ(j["mesh"]["uvs"][1][1][1], 0.25);
+  EXPECT_EQ(j["mesh"]["uvs"][1][0][0], 1.0 / 12);
+  EXPECT_TRUE(j["mesh"]["uvs"][11].is_null());
+  EXPECT_EQ(j["mesh"]["colors"][0][1], nlohmann::json::parse("[0, 1, 0, 0.5]"));
+  EXPECT_EQ(j["mesh"]["face_materials"][11], -1);
+  EXPECT_EQ(j["materials"][0]["texture"], 0);
+  EXPECT_TRUE(j["materials"][1]["texture"].is_null());
+  EXPECT_EQ(j["materials"][1]["base_color"], nlohmann::json::parse("[0.8, 0.1, 0.1, 1]"));
+  EXPECT_EQ(j["textures"][0]["mime_type"], "image/png");
+  EXPECT_EQ(j["textures"][0]["width"], 256);
+  EXPECT_EQ(j["textures"][0]["sampler"]["wrap_s"], 33071);
+  EXPECT_EQ(j.dump().find("not written"), std::string::npos);
+  // Without colour, none of it.
+  const nlohmann::json plain = net_to_json(cube_document());
+  EXPECT_FALSE(plain["mesh"].contains("uvs"));
+  EXPECT_FALSE(plain.contains("materials"));
+  EXPECT_FALSE(plain.contains("textures"));
+}
+
+TEST(NetJson, ColourRoundTrips) {
+  const NetDocument doc = coloured_cube();
+  const std::string text = write_net_json(doc);
+  const NetDocument back = read_net_json(text);
+  ASSERT_EQ(back.colour.uvs.size(), 12u);
+  for (std::size_t f = 0; f < 11; ++f) EXPECT_EQ(back.colour.uvs[f], doc.colour.uvs[f]);
+  for (const UV& uv : back.colour.uvs[11]) EXPECT_TRUE(std::isnan(uv[0]) && std::isnan(uv[1]));
+  EXPECT_EQ(back.colour.colours, doc.colour.colours);
+  EXPECT_EQ(back.colour.face_materials, doc.colour.face_materials);
+  ASSERT_EQ(back.colour.materials.size(), 2u);
+  EXPECT_EQ(back.colour.materials[1].name, "paint");
+  EXPECT_EQ(back.colour.materials[1].base_color, doc.colour.materials[1].base_color);
+  EXPECT_EQ(back.colour.materials[0].texture, 0);
+  EXPECT_EQ(back.colour.materials[1].texture, -1);
+  ASSERT_EQ(back.colour.textures.size(), 1u);
+  EXPECT_EQ(back.colour.textures[0].name, "logo.png");
+  EXPECT_EQ(back.colour.textures[0].height, 128);
+  EXPECT_EQ(back.colour.textures[0].sampler.min_filter, 9987);
+  EXPECT_TRUE(back.colour.textures[0].bytes.empty());  // served beside the document
+  EXPECT_EQ(write_net_json(back), text);
+}
+
+TEST(NetJson, RefusesColourThatDoesNotFit) {
+  nlohmann::json j = net_to_json(coloured_cube());
+  j["mesh"]["uvs"].erase(0);  // not one per face
+  EXPECT_THROW(read_net_json(j.dump()), IOException);
+  j = net_to_json(coloured_cube());
+  j["mesh"]["face_materials"][0] = 2;  // no such material
+  EXPECT_THROW(read_net_json(j.dump()), IOException);
+  j = net_to_json(coloured_cube());
+  j["materials"][1]["texture"] = 1;  // no such texture
+  EXPECT_THROW(read_net_json(j.dump()), IOException);
+  j = net_to_json(coloured_cube());
+  j["mesh"]["uvs"][0][1] = {0.5};  // a corner of one number
   EXPECT_THROW(read_net_json(j.dump()), IOException);
 }
 

@@ -193,5 +193,50 @@ TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
   std::remove(out.c_str());
 }
 
+// The textures of a local model: a .gltf's image and an OBJ's map_Kd are read from beside the
+// model and written beside the net JSON (OUT.texture-K.png).
+TEST(UnfoldCli, WritesTheTexturesBesideTheJson) {
+  const std::filesystem::path dir = ::testing::TempDir() + "papernet_textures_cli";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string data = PAPERNET_TEST_DATA;
+  const auto read = [](const std::filesystem::path& p) {
+    std::stringstream s;
+    s << std::ifstream(p, std::ios::binary).rdbuf();
+    return s.str();
+  };
+  std::string said;
+  const std::filesystem::path out = dir / "truck.json";
+  ASSERT_EQ(papernet("unfold " + data + "/CesiumMilkTruck/CesiumMilkTruck.gltf --strategy TU " +
+                         "--tab-room-budget 0 -o " + out.string(),
+                     &said),
+            0)
+      << said;
+  const auto j = nlohmann::json::parse(read(out));
+  // Its two glTF textures repeat one image with one sampler: one texture.
+  ASSERT_EQ(j["textures"].size(), 1u);
+  EXPECT_EQ(j["mesh"]["uvs"].size(), j["mesh"]["faces"].size());
+  EXPECT_EQ(read(dir / "truck.texture-0.png"), read(data + "/CesiumMilkTruck/CesiumMilkTruck.png"));
+
+  // An OBJ (the fuze, which has texture coordinates) with an MTL whose map_Kd is that PNG.
+  std::filesystem::copy_file(data + "/sample.obj", dir / "fuze.obj");
+  std::filesystem::copy_file(data + "/CesiumMilkTruck/CesiumMilkTruck.png", dir / "paint.png");
+  std::ofstream(dir / "fuze.mtl") << "newmtl paint\nKd 0.8 0.2 0.1\nmap_Kd paint.png\n";
+  std::string fuze = read(dir / "fuze.obj");
+  fuze.replace(fuze.find("mtllib ./fuze.obj.mtl"), 21, "mtllib fuze.mtl");
+  fuze.replace(fuze.find("usemtl a-super-duper-material"), 29, "usemtl paint");
+  std::ofstream(dir / "fuze.obj", std::ios::binary) << fuze;
+  ASSERT_EQ(papernet("unfold " + (dir / "fuze.obj").string() + " --strategy TU -o " +
+                         (dir / "fuze.json").string(),
+                     &said),
+            0)
+      << said;
+  const auto k = nlohmann::json::parse(read(dir / "fuze.json"));
+  ASSERT_EQ(k["materials"].size(), 1u);
+  EXPECT_EQ(k["materials"][0]["texture"], 0);
+  EXPECT_EQ(read(dir / "fuze.texture-0.png"), read(dir / "paint.png"));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace papernet::test

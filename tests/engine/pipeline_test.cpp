@@ -5,7 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -109,6 +113,107 @@ TEST(Pipeline, TheDefaultStrategyGivesCheckedCompleteNetsOfRealMeshes) {
   expect_checked(complete);
   EXPECT_EQ(complete.net.result, "complete");
   EXPECT_EQ(complete.net.mesh.faces.size(), 600u);
+}
+
+// Colour (docs/colour.md): per-corner UVs and the textures come through repair and unfolding
+// into the document; an approximate piece says it has none; a texture that cannot be used
+// leaves a net and a note.
+using CornerKey = std::array<double, 9>;  // a face's corner positions, from a given corner
+
+CornerKey corner_key(const Mesh& mesh, const std::array<int, 3>& face, int from) {
+  CornerKey key;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 p = mesh.vertices[face[(from + k) % 3]];
+    key[3 * k] = p.x;
+    key[3 * k + 1] = p.y;
+    key[3 * k + 2] = p.z;
+  }
+  return key;
+}
+
+TEST(Pipeline, TheNetCarriesEachCornersUvsAndTheTextures) {
+  PipelineProgress quiet;
+  const JobInput input = data_file("BoxTextured.glb");
+  const LoadedMesh loaded = load_mesh(input.mesh, input.format);
+  std::map<CornerKey, UV> uv_of;  // a corner (with the rest of its face) -> its UV
+  for (std::size_t f = 0; f < loaded.mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      uv_of[corner_key(loaded.mesh, loaded.mesh.faces[f], k)] = loaded.colour.uvs[f][k];
+  for (const JobOptions& options : {tu(), JobOptions{}}) {
+    const UnfoldOutcome out = run_pipeline(input, options, {}, {}, quiet);
+    expect_checked(out);
+    const MeshColour& c = out.net.colour;
+    ASSERT_EQ(c.uvs.size(), out.net.mesh.faces.size());
+    for (std::size_t f = 0; f < c.uvs.size(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const auto it = uv_of.find(corner_key(out.net.mesh, out.net.mesh.faces[f], k));
+        ASSERT_NE(it, uv_of.end()) << "face " << f;
+        EXPECT_EQ(c.uvs[f][k], it->second) << "face " << f << " corner " << k;
+      }
+    EXPECT_EQ(c.face_materials, std::vector<int>(c.uvs.size(), 0));
+    ASSERT_EQ(c.textures.size(), 1u);
+    EXPECT_EQ(c.textures[0].bytes, loaded.colour.textures[0].bytes);
+    const nlohmann::json j = nlohmann::json::parse(out.documents.net_json);
+    EXPECT_EQ(j["mesh"]["uvs"].size(), c.uvs.size());
+    EXPECT_EQ(j["textures"][0]["mime_type"], "image/png");
+    EXPECT_EQ(read_net_json(out.documents.net_json).colour.uvs, c.uvs);
+  }
+}
+
+TEST(Pipeline, AnApproximatePieceSaysItHasNoUvs) {
+  // The 600-face part QQ stops short of (seed 3), with one texture coordinate on every corner.
+  JobInput input = data_file("trimesh_ADIS16480_600.obj");
+  std::string obj = "vt 0.25 0.75\n";
+  std::istringstream lines(input.mesh);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("f ", 0) == 0) {
+      std::istringstream words(line.substr(2));
+      std::string out = "f";
+      for (std::string v; words >> v;) {
+        out += ' ';
+        out += v;
+        out += "/1";
+      }
+      line = out;
+    }
+    obj += line + "\n";
+  }
+  input.mesh = obj;
+  JobOptions qq;
+  qq.strategy = Strategy::QQ;
+  qq.seed = 3;
+  qq.tab_room_budget = 0;
+  PipelineProgress quiet;
+  const UnfoldOutcome out = run_pipeline(input, qq, {}, {}, quiet);
+  expect_checked(out);
+  ASSERT_EQ(out.net.result, "approximate");
+  ASSERT_EQ(out.net.colour.uvs.size(), out.net.mesh.faces.size());
+  for (const auto& f : out.net.colour.uvs) EXPECT_TRUE(std::isnan(f[0][0]));
+  bool said = false;
+  for (const NetRepair& r : out.net.repairs) said |= r.code == "approximate_pieces_uncoloured";
+  EXPECT_TRUE(said);
+}
+
+TEST(Pipeline, ATextureThatCannotBeUsedGivesANetAndANote) {
+  // BoxTextured with its PNG cut short: the GLB's image buffer view keeps its length, the
+  // bytes after the PNG's first 100 are zeros.
+  JobInput input = data_file("BoxTextured.glb");
+  std::uint32_t json_length = 0;
+  std::memcpy(&json_length, input.mesh.data() + 12, 4);
+  const nlohmann::json gltf = nlohmann::json::parse(input.mesh.substr(20, json_length));
+  const nlohmann::json& view = gltf["bufferViews"][gltf["images"][0]["bufferView"].get<int>()];
+  const std::size_t at = 20 + json_length + 8 + view.value("byteOffset", 0u);
+  std::fill(input.mesh.begin() + long(at + 100),
+            input.mesh.begin() + long(at + view["byteLength"].get<std::size_t>()), '\0');
+  PipelineProgress quiet;
+  const UnfoldOutcome out = run_pipeline(input, tu(), {}, {}, quiet);
+  expect_checked(out);
+  EXPECT_TRUE(out.net.colour.textures.empty());
+  EXPECT_EQ(out.net.colour.materials.at(0).texture, -1);
+  EXPECT_EQ(out.net.colour.uvs.size(), 12u);
+  bool said = false;
+  for (const NetRepair& r : out.net.repairs) said |= r.code == "texture_not_used";
+  EXPECT_TRUE(said);
 }
 
 // Three tetrahedra apart (the third smaller): three parts.

@@ -34,6 +34,8 @@ TEST(ProblemTest, EveryFailureMapsToItsStatusAndCode) {
   EXPECT_EQ(mapped(LimitExceededException(Limit::Faces, "1e9 faces")).code, "too_many_faces");
   EXPECT_EQ(mapped(LimitExceededException(Limit::Vertices, "1e9 points")).status, 413);
   EXPECT_EQ(mapped(LimitExceededException(Limit::Bytes, "1 TB")).code, "payload_too_large");
+  EXPECT_EQ(mapped(LimitExceededException(Limit::Pixels, "1e9 pixels")).code, "image_too_large");
+  EXPECT_EQ(mapped(LimitExceededException(Limit::Pixels, "1e9 pixels")).status, 413);
   EXPECT_EQ(mapped(ApiError("queue_full", "full")).status, 429);
   EXPECT_EQ(mapped(ApiError("shutting_down", "bye")).status, 503);
   EXPECT_EQ(mapped(std::runtime_error("boom")).status, 500);

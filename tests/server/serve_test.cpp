@@ -1,6 +1,7 @@
 // End-to-end: starts the real `papernet serve` on a free loopback port and speaks HTTP to it.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <set>
 
 #include "api/net_json.h"
@@ -227,6 +228,140 @@ TEST_P(ServeTest, SubmitGlbDracoAndMultipartGltf) {
   EXPECT_EQ(failed["error"]["code"], "unreadable_mesh") << failed.dump();
   EXPECT_NE(failed["error"]["detail"].get<std::string>().find("Box0.bin"), std::string::npos)
       << failed.dump();
+}
+
+TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
+  Server s({"--workers", "1"});
+  auto c = s.client();
+  const std::string box =
+      submit(s, test_mesh("BoxTextured.glb"), "model/gltf-binary", "?strategy=TU");
+  // A .gltf with its buffer and its image uploaded as parts, and once without the image.
+  const std::string truck = "CesiumMilkTruck/CesiumMilkTruck";
+  httplib::MultipartFormDataItems items = {
+      {"mesh", test_mesh(truck + ".gltf"), "CesiumMilkTruck.gltf", "model/gltf+json"},
+      {"buffers", test_mesh(truck + "0.bin"), "CesiumMilkTruck0.bin", "application/octet-stream"},
+      {"buffers", test_mesh(truck + ".png"), "CesiumMilkTruck.png", "image/png"},
+      {"options", R"({"strategy":"TU","tab_room_budget":0})", "", "application/json"}};
+  const std::string with_image = body(c.Post("/v1/jobs", items))["id"];
+  items.erase(items.begin() + 2);
+  const std::string without_image = body(c.Post("/v1/jobs", items))["id"];
+
+  const json job = wait_final(s, box);
+  ASSERT_EQ(job["status"], "succeeded") << job.dump();
+  EXPECT_EQ(job["links"]["textures"], json::array({"/v1/jobs/" + box + "/textures/0"}));
+  auto net = c.Get("/v1/jobs/" + box + "/net.json");
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["mesh"]["uvs"].size(), doc["mesh"]["faces"].size());
+  ASSERT_EQ(doc["textures"].size(), 1u);
+  const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
+  EXPECT_TRUE(papernet::check_net(net_doc.mesh, net_doc.net).ok());
+  auto texture = c.Get("/v1/jobs/" + box + "/textures/0");
+  ASSERT_EQ(texture->status, 200);
+  EXPECT_EQ(texture->get_header_value("Content-Type"), "image/png");
+  EXPECT_EQ(texture->body.substr(0, 8), "\x89PNG\r\n\x1a\n");
+  expect_problem(c.Get("/v1/jobs/" + box + "/textures/1"), 404, "not_found");
+
+  const json truck_job = wait_final(s, with_image, 180);
+  ASSERT_EQ(truck_job["status"], "succeeded") << truck_job.dump();
+  auto truck_texture = c.Get("/v1/jobs/" + with_image + "/textures/0");
+  ASSERT_EQ(truck_texture->status, 200);
+  EXPECT_EQ(truck_texture->body, test_mesh(truck + ".png"));
+  // Without its image the model still unfolds; the result says the texture was not used.
+  const json bare = wait_final(s, without_image, 180);
+  ASSERT_EQ(bare["status"], "succeeded") << bare.dump();
+  bool said = false;
+  for (const json& r : bare["result"]["repairs"]) said |= r["code"] == "texture_not_used";
+  EXPECT_TRUE(said) << bare["result"]["repairs"].dump();
+  EXPECT_FALSE(bare["links"].contains("textures"));
+  expect_problem(c.Get("/v1/jobs/" + without_image + "/textures/0"), 404, "not_found");
+}
+
+namespace {
+
+std::string base64(const std::string& in) {
+  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < in.size(); i += 3) {
+    std::uint32_t n = std::uint32_t(std::uint8_t(in[i])) << 16;
+    if (i + 1 < in.size()) n |= std::uint32_t(std::uint8_t(in[i + 1])) << 8;
+    if (i + 2 < in.size()) n |= std::uint8_t(in[i + 2]);
+    out += t[(n >> 18) & 63];
+    out += t[(n >> 12) & 63];
+    out += i + 1 < in.size() ? t[(n >> 6) & 63] : '=';
+    out += i + 2 < in.size() ? t[n & 63] : '=';
+  }
+  return out;
+}
+
+// A PNG chunk: length, type, data, CRC (computed here).
+std::string png_chunk(const std::string& type, const std::string& data) {
+  const std::string body = type + data;
+  std::uint32_t crc = 0xffffffff;
+  for (char c : body) {
+    crc ^= std::uint8_t(c);
+    for (int b = 0; b < 8; ++b) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1)));
+  }
+  crc ^= 0xffffffff;
+  std::string out;
+  for (int shift = 24; shift >= 0; shift -= 8) out += char((data.size() >> shift) & 0xff);
+  out += body;
+  for (int shift = 24; shift >= 0; shift -= 8) out += char((crc >> shift) & 0xff);
+  return out;
+}
+
+// A PNG that declares `side` x `side` pixels (8-bit RGBA) and holds no image data.
+std::string png_header(std::uint32_t side) {
+  std::string ihdr;
+  for (int k = 0; k < 2; ++k)
+    for (int shift = 24; shift >= 0; shift -= 8) ihdr += char((side >> shift) & 0xff);
+  ihdr += std::string("\x08\x06\x00\x00\x00", 5);
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += png_chunk("IHDR", ihdr);
+  png += png_chunk("IDAT", "");
+  return png;
+}
+
+// A textured triangle (.gltf, data URIs only) whose image is `png`.
+std::string textured_triangle(const std::string& png) {
+  const float data[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+  const std::string buffer(reinterpret_cast<const char*>(data), sizeof data);
+  return json{
+      {"asset", {{"version", "2.0"}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}}}}}}},
+      {"materials", {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}}},
+      {"textures", {{{"source", 0}}}},
+      {"images", {{{"uri", "data:image/png;base64," + base64(png)}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 36}},
+        {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}}}},
+      {"buffers",
+       {{{"uri", "data:application/octet-stream;base64," + base64(buffer)}, {"byteLength", 60}}}}}
+      .dump();
+}
+
+}  // namespace
+
+TEST_P(ServeTest, AnImageOverThePixelLimitIs413) {
+  Server s({"--workers", "1"});
+  const std::string big =
+      submit(s, textured_triangle(png_header(20000)), "model/gltf+json", "?strategy=TU");
+  const json job = wait_final(s, big);
+  EXPECT_EQ(job["status"], "failed") << job.dump();
+  EXPECT_EQ(job["error"]["code"], "image_too_large") << job.dump();
+  expect_problem(s.client().Get("/v1/jobs/" + big + "/net.json"), 413, "image_too_large");
+  // A header alone, under the limit, is no image: the net comes with texture_not_used.
+  const json small = wait_final(
+      s, submit(s, textured_triangle(png_header(64)), "model/gltf+json", "?strategy=TU"));
+  ASSERT_EQ(small["status"], "succeeded") << small.dump();
+  bool said = false;
+  for (const json& r : small["result"]["repairs"]) said |= r["code"] == "texture_not_used";
+  EXPECT_TRUE(said) << small.dump();
 }
 
 TEST_P(ServeTest, EventStreamEndsWithTheFinalState) {

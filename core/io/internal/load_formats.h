@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/io/load.h"
+#include "core/mesh/colour.h"
 #include "core/vec.h"
 
 namespace papernet::detail {
@@ -20,12 +21,19 @@ struct RawMesh {
   std::vector<std::array<int, 3>> faces;
   bool triangulated = false;
   std::vector<std::string> notes;
+  MeshColour colour;  ///< per face, as `faces` (docs/colour.md)
 };
 
 /// Adds triangle fans of `poly` to `out`, checking indices and the face limit.
 /// \throw IOException when an index is out of range or the limit is passed.
 void add_polygon(RawMesh& out, const std::vector<long long>& poly, const LoadOptions& options,
                  std::string_view where);
+
+/// A texture from an image's bytes: decoded to check it (and learn its size), its bytes kept.
+/// An image that is not PNG/JPEG or does not decode gives false and a note saying that `what`
+/// is printed without it. \throw LimitExceededException over `options.max_image_pixels`.
+bool make_texture(std::string name, std::string bytes, const LoadOptions& options,
+                  const std::string& what, Texture& out, std::vector<std::string>& notes);
 
 /// Throws IOException when `count` declared faces exceed the limit.
 void check_declared_faces(std::size_t count, const LoadOptions& options, std::string_view what);
@@ -61,6 +69,7 @@ using DracoPrimitives = std::map<std::pair<int, int>, RawMesh>;
 /// tinygltf's URI helpers (defined next to its implementation, in load_gltf.cpp).
 std::string url_decode(const std::string& uri);
 bool is_data_uri(const std::string& uri);
+std::string decode_base64(const std::string& text);
 bool decode_data_uri(const std::string& uri, std::vector<unsigned char>& out);
 
 /// Parses glTF JSON into a DOM, refusing (IOException) more than `max_values` values or nesting
