@@ -12,6 +12,7 @@
 #undef TINYGLTF_IMPLEMENTATION  // the colour reader's header includes it again, for declarations
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <unordered_set>
@@ -139,25 +140,7 @@ View accessor_view(const tinygltf::Model& model, int index, std::size_t element_
   return v;
 }
 
-double read_component(const unsigned char* p, int type, bool normalized) {
-  auto get = [p](auto v) {
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  };
-  switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return get(float{});
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return normalized ? std::max(get(std::int8_t{}) / 127.0, -1.0) : get(std::int8_t{});
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return normalized ? get(std::uint8_t{}) / 255.0 : get(std::uint8_t{});
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return normalized ? std::max(get(std::int16_t{}) / 32767.0, -1.0) : get(std::int16_t{});
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return normalized ? get(std::uint16_t{}) / 65535.0 : get(std::uint16_t{});
-  }
-  throw IOException("gltf: unsupported position component type " + std::to_string(type));
-}
+constexpr unsigned char kZeros[4] = {};  // a component of any type, to ask for its type
 
 std::vector<Vec3> read_positions(const tinygltf::Model& model, int index) {
   if (index < 0 || std::size_t(index) >= model.accessors.size())
@@ -166,13 +149,16 @@ std::vector<Vec3> read_positions(const tinygltf::Model& model, int index) {
   if (a.type != TINYGLTF_TYPE_VEC3) throw IOException("gltf: POSITION is not a VEC3 accessor");
   const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
   if (size <= 0 || size > 4) throw IOException("gltf: bad POSITION component type");
+  if (std::isnan(gltf_component(kZeros, a.componentType, false)))
+    throw IOException("gltf: unsupported position component type " +
+                      std::to_string(a.componentType));
   const View v = accessor_view(model, index, 3 * std::size_t(size), "POSITION");
   std::vector<Vec3> out(v.count);
   for (std::size_t i = 0; i < v.count; ++i) {
     const unsigned char* p = v.data + i * v.stride;
-    out[i] = {read_component(p, a.componentType, a.normalized),
-              read_component(p + size, a.componentType, a.normalized),
-              read_component(p + 2 * size, a.componentType, a.normalized)};
+    out[i] = {gltf_component(p, a.componentType, a.normalized),
+              gltf_component(p + size, a.componentType, a.normalized),
+              gltf_component(p + 2 * size, a.componentType, a.normalized)};
   }
   return out;
 }

@@ -2,6 +2,7 @@
 // baseColorTexture with its sampler and KHR_texture_transform) and their images. What cannot be
 // used (an image missing, not PNG/JPEG, malformed) becomes a note, never a refusal: the net is
 // still made, without that texture.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -11,9 +12,8 @@
 #include "core/io/internal/load_formats.h"
 
 namespace papernet::detail {
-namespace {
 
-double component(const unsigned char* p, int type, bool normalized) {
+double gltf_component(const unsigned char* p, int type, bool normalized) {
   auto get = [p](auto v) {
     std::memcpy(&v, p, sizeof v);
     return v;
@@ -21,13 +21,19 @@ double component(const unsigned char* p, int type, bool normalized) {
   switch (type) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT:
       return get(float{});
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return normalized ? std::max(get(std::int8_t{}) / 127.0, -1.0) : get(std::int8_t{});
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
       return normalized ? get(std::uint8_t{}) / 255.0 : get(std::uint8_t{});
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return normalized ? std::max(get(std::int16_t{}) / 32767.0, -1.0) : get(std::int16_t{});
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
       return normalized ? get(std::uint16_t{}) / 65535.0 : get(std::uint16_t{});
   }
   return std::nan("");
 }
+
+namespace {
 
 /// An accessor of 2 to 4 float / unsigned normalized components, checked against its buffer,
 /// as `count` rows of `width` doubles (the missing fourth colour component is 1). Empty when the
@@ -61,7 +67,7 @@ std::vector<double> read_floats(const tinygltf::Model& model, int index, std::si
   for (std::size_t i = 0; i < count; ++i)
     for (int k = 0; k < n; ++k)
       out[i * std::size_t(width) + std::size_t(k)] =
-          component(data + i * stride + std::size_t(k * size), a.componentType, a.normalized);
+          gltf_component(data + i * stride + std::size_t(k * size), a.componentType, a.normalized);
   return out;
 }
 

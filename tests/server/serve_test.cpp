@@ -6,6 +6,7 @@
 
 #include "api/net_json.h"
 #include "core/unfold/net_check.h"
+#include "tests/support/meshes.h"
 #include "tests/support/postgres.h"
 #include "tests/support/serve_process.h"
 
@@ -279,20 +280,7 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
 
 namespace {
 
-std::string base64(const std::string& in) {
-  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < in.size(); i += 3) {
-    std::uint32_t n = std::uint32_t(std::uint8_t(in[i])) << 16;
-    if (i + 1 < in.size()) n |= std::uint32_t(std::uint8_t(in[i + 1])) << 8;
-    if (i + 2 < in.size()) n |= std::uint8_t(in[i + 2]);
-    out += t[(n >> 18) & 63];
-    out += t[(n >> 12) & 63];
-    out += i + 1 < in.size() ? t[(n >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? t[n & 63] : '=';
-  }
-  return out;
-}
+using papernet::test::base64;
 
 // A PNG chunk: length, type, data, CRC (computed here).
 std::string png_chunk(const std::string& type, const std::string& data) {

@@ -63,4 +63,7 @@ Net bfs_net(const Mesh& mesh);
 /// Every mesh file of tests/data (all formats the loader reads), by file name.
 std::vector<std::pair<std::string, Mesh>> test_data_meshes();
 
+/// Standard base64 (RFC 4648, with padding) of bytes: glTF data URIs in the tests.
+std::string base64(const std::string& bytes);
+
 }  // namespace papernet::test

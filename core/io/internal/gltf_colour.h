@@ -17,6 +17,11 @@
 
 namespace papernet::detail {
 
+/// One component of a glTF accessor's element at `p`: float, or a (normalized) integer of 8 or
+/// 16 bits (glTF 2.0 §3.11). NaN for another component type; the caller says what that means
+/// (positions refuse it, colour data are dropped).
+double gltf_component(const unsigned char* p, int type, bool normalized);
+
 /// Image bytes tinygltf handed to its image loader (from a buffer view or a data URI), by image.
 using GltfImageBytes = std::map<int, std::string>;
 

@@ -17,6 +17,7 @@
 #include "core/io/load.h"
 #include "core/mesh/colour.h"
 #include "core/mesh/repair.h"
+#include "tests/support/meshes.h"
 
 namespace papernet {
 namespace {
@@ -129,20 +130,7 @@ TEST(LoadColour, DuckHasATextureAndUvsOnEveryFace) {
   EXPECT_EQ(duck.colour.materials.at(0).texture, 0);
 }
 
-std::string base64(const std::string& in) {
-  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < in.size(); i += 3) {
-    std::uint32_t n = std::uint32_t(std::uint8_t(in[i])) << 16;
-    if (i + 1 < in.size()) n |= std::uint32_t(std::uint8_t(in[i + 1])) << 8;
-    if (i + 2 < in.size()) n |= std::uint8_t(in[i + 2]);
-    out += t[(n >> 18) & 63];
-    out += t[(n >> 12) & 63];
-    out += i + 1 < in.size() ? t[(n >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? t[n & 63] : '=';
-  }
-  return out;
-}
+using test::base64;
 
 /// A unit square (2 triangles) with TEXCOORD_0 = position, a material sampling `image` (a data
 /// URI, or a file name) through `texture_info`, all in one .gltf with a data-URI buffer.

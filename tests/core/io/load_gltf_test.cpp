@@ -11,26 +11,14 @@
 #include "core/errors.h"
 #include "core/io/load.h"
 #include "tests/support/hostile_bytes.h"
+#include "tests/support/meshes.h"
 
 namespace papernet {
 namespace {
 
 using nlohmann::json;
 
-std::string base64(const std::string& in) {
-  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < in.size(); i += 3) {
-    std::uint32_t n = std::uint8_t(in[i]) << 16;
-    if (i + 1 < in.size()) n |= std::uint8_t(in[i + 1]) << 8;
-    if (i + 2 < in.size()) n |= std::uint8_t(in[i + 2]);
-    out += t[(n >> 18) & 63];
-    out += t[(n >> 12) & 63];
-    out += i + 1 < in.size() ? t[(n >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? t[n & 63] : '=';
-  }
-  return out;
-}
+using test::base64;
 
 /// A unit square in z=0 (4 positions, 2 triangles, counter-clockwise seen from +z).
 std::string square_buffer() {
