@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 
 #include "core/errors.h"
 #include "core/unfold/net_metrics.h"
 #include "print/internal/nest_outlines.h"
+#include "print/strips.h"
 
 namespace papernet {
 namespace {
@@ -89,6 +91,59 @@ double fitting_turn(const std::vector<Vec2>& points, Vec2 room) {
 
 }  // namespace
 
+namespace {
+
+/// Nests parts onto sheets numbered from `first_sheet`: each part turned to fit, its outline
+/// nested by libnest2d (print/internal/nest_outlines.h). Returns each part's turn and shift in
+/// layout coordinates (sheet k is the window at x = k * (w + kSheetGap)) and the sheets used.
+constexpr double kSheetGap = 20;
+
+struct Placement {
+  std::vector<double> angle;
+  std::vector<Vec2> shift;
+  int sheets = 0;
+};
+
+Placement nest_parts(std::vector<Part>& parts, double w, double h, double spacing_mm,
+                     int first_sheet, const std::string& paper) {
+  std::vector<std::vector<print_detail::IntPoint>> outlines;
+  for (Part& part : parts) {
+    // The turn is chosen on the outline itself (grown, with its mitred corners), a few
+    // micrometres of rounding to spare.
+    std::vector<Vec2> grown;
+    for (const ClipperLib::IntPoint& p : outline_of(part.shapes, 0, 0.5 * spacing_mm))
+      grown.push_back((1 / kUnitsPerMm) * Vec2{static_cast<double>(p.X), static_cast<double>(p.Y)});
+    part.turn = fitting_turn(grown, {w - 0.01, h - 0.01});
+    std::vector<print_detail::IntPoint>& outline = outlines.emplace_back();
+    for (const ClipperLib::IntPoint& p : outline_of(part.shapes, part.turn, 0.5 * spacing_mm))
+      outline.push_back({p.X, p.Y});
+  }
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(outlines, static_cast<std::int64_t>(std::floor(w * kUnitsPerMm)),
+                                  static_cast<std::int64_t>(std::floor(h * kUnitsPerMm)));
+  Placement out;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (placed[i].sheet < 0)
+      throw InvalidOptionException(
+          "face_too_large", "size_mm",
+          "a piece does not fit the printable area of " + paper + " paper");
+    out.sheets = std::max(out.sheets, placed[i].sheet + 1);
+    out.angle.push_back(parts[i].turn + placed[i].angle);
+    out.shift.push_back(Vec2{static_cast<double>(placed[i].dx) / kUnitsPerMm,
+                             static_cast<double>(placed[i].dy) / kUnitsPerMm} +
+                        Vec2{(first_sheet + placed[i].sheet) * (w + kSheetGap), 0});
+  }
+  return out;
+}
+
+bool inside(const GlueStrip& strip, Vec2 lo, Vec2 hi) {
+  for (Vec2 p : strip.corners)
+    if (p.x < lo.x || p.x > hi.x || p.y < lo.y || p.y > hi.y) return false;
+  return true;
+}
+
+}  // namespace
+
 PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
                       const PageOptions& options, double spacing_mm) {
   options.validate();
@@ -97,66 +152,70 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
   int pieces = 0;
   for (int p : piece) pieces = std::max(pieces, p + 1);
 
-  // Parts: the pieces, then the strips.
-  std::vector<Part> parts(static_cast<std::size_t>(pieces) + layout.strips.size());
+  // The pieces, each with its tabs, nested.
+  std::vector<Part> parts(static_cast<std::size_t>(pieces));
   for (std::size_t f = 0; f < layout.faces.size(); ++f)
     parts[piece[f]].shapes.push_back({layout.faces[f].begin(), layout.faces[f].end()});
   for (const Tab& t : layout.tabs)
     parts[piece[t.side.face]].shapes.push_back({t.corners.begin(), t.corners.end()});
-  for (std::size_t s = 0; s < layout.strips.size(); ++s)
-    parts[pieces + s].shapes.push_back(
-        {layout.strips[s].corners.begin(), layout.strips[s].corners.end()});
-
-  std::vector<std::vector<print_detail::IntPoint>> outlines;
-  for (Part& part : parts) {
-    std::vector<Vec2> all;
-    for (const auto& s : part.shapes) all.insert(all.end(), s.begin(), s.end());
-    // The turn is chosen on the outline itself (grown, with its mitred corners), a few
-    // micrometres of rounding to spare.
-    std::vector<Vec2> grown;
-    for (const ClipperLib::IntPoint& p : outline_of(part.shapes, 0, 0.5 * spacing_mm))
-      grown.push_back((1 / kUnitsPerMm) * Vec2{static_cast<double>(p.X), static_cast<double>(p.Y)});
-    part.turn = fitting_turn(grown.empty() ? all : grown, {w - 0.01, h - 0.01});
-    std::vector<print_detail::IntPoint>& outline = outlines.emplace_back();
-    for (const ClipperLib::IntPoint& p : outline_of(part.shapes, part.turn, 0.5 * spacing_mm))
-      outline.push_back({p.X, p.Y});
-  }
-  const std::vector<print_detail::NestedOutline> placed =
-      print_detail::nest_outlines(outlines, static_cast<std::int64_t>(std::floor(w * kUnitsPerMm)),
-                                  static_cast<std::int64_t>(std::floor(h * kUnitsPerMm)));
-  int sheets = 0;
-  for (const auto& p : placed) sheets = std::max(sheets, p.sheet + 1);
-
-  // Where each part goes: its turn, libnest2d's turn and shift, then its sheet's window.
-  constexpr double kSheetGap = 20;
-  std::vector<double> angle(parts.size());
-  std::vector<Vec2> shift(parts.size());
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    if (placed[i].sheet < 0)
-      throw InvalidOptionException(
-          "face_too_large", "size_mm",
-          "a piece does not fit the printable area of a " + options.paper.name + " sheet");
-    angle[i] = parts[i].turn + placed[i].angle;
-    shift[i] = Vec2{static_cast<double>(placed[i].dx) / kUnitsPerMm,
-                    static_cast<double>(placed[i].dy) / kUnitsPerMm} +
-               Vec2{placed[i].sheet * (w + kSheetGap), 0};
-  }
-  auto move = [&](std::size_t part, Vec2 p) { return rotate(p, angle[part]) + shift[part]; };
+  const Placement placed = nest_parts(parts, w, h, spacing_mm, 0, options.paper.name);
+  auto move = [&](std::size_t part, Vec2 p) {
+    return rotate(p, placed.angle[part]) + placed.shift[part];
+  };
   for (std::size_t f = 0; f < layout.faces.size(); ++f)
     for (Vec2& p : layout.faces[f]) p = move(piece[f], p);
   for (Tab& t : layout.tabs)
     for (Vec2& p : t.corners) p = move(piece[t.side.face], p);
-  for (std::size_t s = 0; s < layout.strips.size(); ++s)
-    for (Vec2& p : layout.strips[s].corners) p = move(pieces + s, p);
   for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
     for (Segment& s : *list)
       if (s.face >= 0) s.a = move(piece[s.face], s.a), s.b = move(piece[s.face], s.b);
   for (Label& l : layout.labels) {
     const auto part = static_cast<std::size_t>(piece[l.side.face]);
     l.at = move(part, l.at);
-    l.angle = std::remainder(l.angle + angle[part], 2 * std::numbers::pi);
+    l.angle = std::remainder(l.angle + placed.angle[part], 2 * std::numbers::pi);
     // Upright on the page: a label turned past a quarter turn reads better turned half round.
     if (std::cos(l.angle) < -1e-9) l.angle += std::numbers::pi;
+  }
+  int sheets = placed.sheets;
+  auto window = [&](int k) {
+    return std::pair{Vec2{k * (w + kSheetGap), 0}, Vec2{k * (w + kSheetGap) + w, h}};
+  };
+
+  // Glue strips beside their edge, in free paper of the sheets (print/strips.h); those that
+  // find none are nested onto sheets of their own.
+  if (!layout.strips.empty()) {
+    std::vector<StripRequest> requests;
+    for (const GlueStrip& g : layout.strips) {
+      const EdgeSide a = layout.edges[g.edge].a;
+      requests.push_back({g.edge, norm(g.corners[1] - g.corners[0]),
+                          norm(g.corners[3] - g.corners[0]),
+                          0.5 * (layout.faces[a.face][a.k] + layout.faces[a.face][(a.k + 1) % 3])});
+    }
+    StripOptions strip_options;
+    strip_options.gap = 0.5 * spacing_mm;
+    for (int k = 0; k < sheets; ++k) strip_options.within.push_back(window(k));
+    std::vector<GlueStrip> moved =
+        place_strips(layout.faces, layout.tabs, requests, {}, strip_options);
+    std::vector<Part> left;
+    std::vector<std::size_t> left_index;
+    std::map<int, const GlueStrip*> by_edge;  // the label each strip carries
+    for (const GlueStrip& g : layout.strips) by_edge[g.edge] = &g;
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      moved[i].text = by_edge.at(moved[i].edge)->text;
+      moved[i].text_size = by_edge.at(moved[i].edge)->text_size;
+      bool held = false;
+      for (const auto& [lo, hi] : strip_options.within) held = held || inside(moved[i], lo, hi);
+      if (held) continue;
+      left.push_back({{{moved[i].corners.begin(), moved[i].corners.end()}}, 0});
+      left_index.push_back(i);
+    }
+    if (!left.empty()) {
+      const Placement more = nest_parts(left, w, h, spacing_mm, sheets, options.paper.name);
+      for (std::size_t j = 0; j < left.size(); ++j)
+        for (Vec2& p : moved[left_index[j]].corners) p = rotate(p, more.angle[j]) + more.shift[j];
+      sheets += more.sheets;
+    }
+    layout.strips = std::move(moved);
   }
   layout.size = {sheets * (w + kSheetGap) - kSheetGap, h};
 
@@ -168,8 +227,7 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
   out.fitted = true;
   out.rows = 1;
   out.cols = sheets;
-  for (int k = 0; k < sheets; ++k)
-    out.pages.push_back({0, k, {k * (w + kSheetGap), 0}, {k * (w + kSheetGap) + w, h}});
+  for (int k = 0; k < sheets; ++k) out.pages.push_back({0, k, window(k).first, window(k).second});
   return out;
 }
 
