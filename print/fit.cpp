@@ -67,10 +67,6 @@ std::string mm(double v) {
 
 }  // namespace
 
-bool fits_room(const std::vector<Vec2>& points, Vec2 room) {
-  return hull_fits(convex_hull(points), room);
-}
-
 FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
                      const std::string& paper_name, double model_mm) {
   const auto n = static_cast<int>(net.parent.size());
@@ -84,7 +80,7 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
     for (Vec2 p : net.points[f]) pts.push_back(scale * p);
     face_hull[f] = convex_hull(pts);
     const double g = growth_that_fits(face_hull[f], room);
-    if (g < growth) growth = g;
+    if (g > 0 && g < growth) growth = g;  // a face without area fits at any size
     if (too_large < 0 && !hull_fits(face_hull[f], room)) too_large = f;
   }
   if (too_large >= 0) {

@@ -30,8 +30,4 @@ struct FitPieces {
 FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
                      const std::string& paper_name, double model_mm);
 
-/// True when points (mm), turned to lie along one of their hull's edges, fit a `room` box
-/// either way round.
-bool fits_room(const std::vector<Vec2>& points, Vec2 room);
-
 }  // namespace papernet
