@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "core/io/write_mesh.h"
+#include "core/mesh/mesh.h"
 #include "core/unfold/net_metrics.h"
 #include "engine/internal/steps.h"
 #include "print/arrange.h"
@@ -132,9 +133,7 @@ void write_documents(const JobOptions& options, const DocumentRequest& request,
     if (!(room.x > 0 && room.y > 0))
       throw InvalidOptionException("option_out_of_range", "margin_mm",
                                    "the margins and tabs leave no room on the paper");
-    Box3 box = Box3::empty();
-    for (const Vec3& v : mesh.vertices) box.add(v);
-    const Vec3 extent = box.size();
+    const Vec3 extent = bounding_box(mesh).size();
     const double model_mm = scale * std::max({extent.x, extent.y, extent.z});
     try {
       pieces =
