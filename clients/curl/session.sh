@@ -100,6 +100,10 @@ grep -q '"status":"succeeded"' done.txt || fail "the .gltf job did not succeed: 
 echo "job $id2 succeeded"
 
 # 7. Recent jobs and the Prometheus metrics.
-show curl -fsS "$url/v1/jobs?limit=10" | grep -q "$id2" || fail "the job list lacks $id2"
-show curl -fsS "$url/metrics" | grep -m1 '^papernet_' || fail "no papernet_ metrics"
+# (Each answer goes to a file first: grep stops reading at its first match, and under pipefail a
+# curl still writing into the closed pipe would fail the step.)
+show curl -fsS -o jobs.json "$url/v1/jobs?limit=10"
+grep -q "$id2" jobs.json || fail "the job list lacks $id2"
+show curl -fsS -o metrics.txt "$url/metrics"
+grep -m1 '^papernet_' metrics.txt || fail "no papernet_ metrics"
 echo "curl session OK"
