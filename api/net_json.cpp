@@ -154,9 +154,11 @@ nlohmann::json net_to_json(const NetDocument& doc) {
                          {"parent", i < doc.net.parent.size() ? doc.net.parent[i] : -1},
                          {"points", std::move(points)}});
   }
-  json repairs = json::array(), pieces = json::array();
+  json repairs = json::array(), warnings = json::array(), pieces = json::array();
   for (const NetRepair& r : doc.repairs)
     repairs.push_back({{"code", r.code}, {"count", r.count}, {"message", r.message}});
+  for (const NetRepair& r : doc.warnings)
+    warnings.push_back({{"code", r.code}, {"count", r.count}, {"message", r.message}});
   for (const NetPiece& p : doc.pieces)
     pieces.push_back({{"component", p.component},
                       {"result", p.result},
@@ -173,6 +175,8 @@ nlohmann::json net_to_json(const NetDocument& doc) {
         {"genus", doc.input.genus},
         {"boundaries", doc.input.boundaries}}},
       {"repairs", std::move(repairs)},
+      {"detail", {{"mode", doc.detail.mode}, {"faces", doc.detail.faces}}},
+      {"warnings", std::move(warnings)},
       {"pieces", std::move(pieces)},
       {"mesh", {{"vertices", std::move(vertices)}, {"faces", std::move(faces)}}},
       {"net", {{"faces", std::move(net_faces)}}},
@@ -221,6 +225,15 @@ NetDocument read_net_json(std::string_view text) {
       doc.repairs.push_back({field(r, "code", "a repair").get<std::string>(),
                              field(r, "count", "a repair").get<std::size_t>(),
                              field(r, "message", "a repair").get<std::string>()});
+    if (const auto d = j.find("detail"); d != j.end() && d->is_object()) {
+      doc.detail.mode = field(*d, "mode", "detail").get<std::string>();
+      doc.detail.faces = field(*d, "faces", "detail").get<std::size_t>();
+    }
+    if (const auto w = j.find("warnings"); w != j.end())
+      for (const auto& r : *w)
+        doc.warnings.push_back({field(r, "code", "a warning").get<std::string>(),
+                                field(r, "count", "a warning").get<std::size_t>(),
+                                field(r, "message", "a warning").get<std::string>()});
     for (const auto& p : field(j, "pieces", "the document"))
       doc.pieces.push_back({field(p, "component", "a piece").get<std::size_t>(),
                             field(p, "result", "a piece").get<std::string>(),

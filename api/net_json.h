@@ -50,11 +50,22 @@ struct NetMetrics {
 /// A `papernet.net/2` document (README.md "The net"): the pieces and the mesh they fold into.
 /// `net.points[i]` and `piece[i]` belong to `mesh.faces[i]`; each piece's faces form one tree
 /// (its root's parent is -1) in the piece's own 2D frame.
+/// The detail the net was made at (JobOptions::detail): "auto", "full" or "faces", and the faces
+/// it folds into.
+struct NetDetail {
+  std::string mode = "full";
+  std::size_t faces = 0;
+};
+
 struct NetDocument {
   std::string result = "complete";  ///< "approximate" when any piece is
   std::string strategy;             ///< "AUTO", "TU", "QQ", "SEMP", "SEQ"
   NetInput input;
   std::vector<NetRepair> repairs;
+  NetDetail detail;
+  /// What a user should know before printing the result (code, count, message as repairs):
+  /// "detail_unbuildable".
+  std::vector<NetRepair> warnings;
   Mesh mesh;
   /// The mesh's colour (docs/colour.md): `mesh.uvs`, `mesh.colors`, `mesh.face_materials`,
   /// `materials` and `textures` in the JSON, present when the input has colour. The textures'

@@ -125,6 +125,21 @@ TabMode tab_mode(const std::string& name, const json& value) {
   bad_value(name, value, "one of auto, strips, none (or true, false)");
 }
 
+Detail detail(const std::string& name, const json& value) {
+  if (value.is_string()) {
+    const std::string s = lower(value.get<std::string>());
+    if (s == "auto") return {DetailMode::Auto, 0};
+    if (s == "full") return {DetailMode::Full, 0};
+  }
+  if (value.is_number_unsigned() || value.is_string()) {
+    try {
+      return {DetailMode::Faces, whole(name, value)};
+    } catch (const InvalidOptionException&) {
+    }
+  }
+  bad_value(name, value, "auto, full or a face count");
+}
+
 std::string paper(const std::string& name, const json& value) {
   const std::string s = text(name, value);
   if (lower(s) == "none") return "none";
@@ -156,10 +171,15 @@ constexpr Spec kOptions[] = {
      "faces of the coarse mesh progressive unfolding starts from (unset: F/10 + "
      "sqrt(F)(1+genus))",
      [](JobOptions& o, const std::string& n, const json& v) { o.target_faces = whole(n, v); }},
-    {"simplify", "N",
-     "unfold and print a low-poly version, collapsed to N faces first (fewer, larger faces "
-     "leave room for more glue tabs); the net is then approximate",
-     [](JobOptions& o, const std::string& n, const json& v) { o.simplify = whole(n, v); }},
+    {"detail", "auto|full|N",
+     "faces printed: auto collapses a model denser than a person can build at its size (edges "
+     "under about 18 mm) to fewer, larger faces; full keeps every face; N collapses to N faces. "
+     "A collapsed net is approximate (the result says how far from the model)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.detail = detail(n, v); }},
+    {"simplify", "N", "older name of detail N",
+     [](JobOptions& o, const std::string& n, const json& v) {
+       o.detail = {DetailMode::Faces, whole(n, v)};
+     }},
     {"time_limit", "S",
      "seconds the whole job may take (unset: 60 on the command line, the server's setting there)",
      [](JobOptions& o, const std::string& n, const json& v) { o.time_limit = number(n, v); }},
@@ -262,6 +282,18 @@ bool within(double v, double lo, double hi) { return std::isfinite(v) && v >= lo
 
 }  // namespace
 
+std::string detail_name(const Detail& detail) {
+  switch (detail.mode) {
+    case DetailMode::Auto:
+      return "auto";
+    case DetailMode::Full:
+      return "full";
+    case DetailMode::Faces:
+      break;
+  }
+  return std::to_string(detail.faces);
+}
+
 std::string strategy_name(Strategy strategy) {
   switch (strategy) {
     case Strategy::QQ:
@@ -327,7 +359,8 @@ std::string options_help() {
     left.resize(kColumn, ' ');
     // The help and the default, wrapped at 100 columns, continued under itself.
     std::string help = s.help;
-    if (const json& d = defaults.at(s.name); !d.is_null()) {
+    const auto found = defaults.find(s.name);  // older names have no value of their own
+    if (const json& d = found != defaults.end() ? *found : json(nullptr); !d.is_null()) {
       char number[32];
       if (d.is_number_float()) std::snprintf(number, sizeof number, "%g", d.get<double>());
       help += "; default " + (d.is_boolean()        ? std::string(d.get<bool>() ? "yes" : "no")
@@ -354,9 +387,9 @@ void validate_options(const JobOptions& o, const OptionsLimits& limits) {
   if (o.target_faces)
     range(*o.target_faces >= 4 && *o.target_faces <= limits.max_target_faces, "target_faces",
           "must be between 4 and " + std::to_string(limits.max_target_faces));
-  if (o.simplify)
-    range(*o.simplify >= 4 && *o.simplify <= limits.max_target_faces, "simplify",
-          "must be between 4 and " + std::to_string(limits.max_target_faces));
+  if (o.detail.mode == DetailMode::Faces)
+    range(o.detail.faces >= 4 && o.detail.faces <= limits.max_target_faces, "detail",
+          "must be auto, full, or between 4 and " + std::to_string(limits.max_target_faces));
   if (o.time_limit)
     range(
         std::isfinite(*o.time_limit) && *o.time_limit > 0 && *o.time_limit <= limits.max_time_limit,
@@ -427,7 +460,8 @@ nlohmann::json options_to_json(const JobOptions& o) {
   return json{{"strategy", strategy_name(o.strategy)},
               {"seed", o.seed},
               {"target_faces", opt(o.target_faces)},
-              {"simplify", opt(o.simplify)},
+              {"detail", o.detail.mode == DetailMode::Faces ? json(o.detail.faces)
+                                                            : json(detail_name(o.detail))},
               {"time_limit", opt(o.time_limit)},
               {"size_mm", opt(o.size_mm)},
               {"scale", opt(o.scale)},

@@ -25,6 +25,19 @@ std::string strategy_name(Strategy strategy);
 /// Which connected parts of a mesh become pieces: every one, or only the largest.
 enum class Components { All, Largest };
 
+/// How many faces the net folds into (docs/print.md, "Detail"): `auto` collapses a part denser
+/// than a person can build at the print size to the faces they can (engine: buildable_faces);
+/// `full` keeps every face; `faces` collapses to that many first (each part its share).
+enum class DetailMode { Auto, Full, Faces };
+
+struct Detail {
+  DetailMode mode = DetailMode::Auto;
+  std::size_t faces = 0;  ///< with DetailMode::Faces
+};
+
+/// "auto", "full" or the face count.
+std::string detail_name(const Detail& detail);
+
 /// Everything a caller may choose about one unfolding job, the same for the command line and the
 /// service. Defaults are what a user who says nothing gets. Parsed and validated before any
 /// geometry runs. Each option has one name: `size_mm` in a query or JSON, `--size` on the
@@ -34,10 +47,9 @@ struct JobOptions {
   std::uint64_t seed = 1;
   /// Overrides the collapse target t_f; unset means the paper's formula.
   std::optional<std::size_t> target_faces;
-  /// Unfold and print a low-poly version of the mesh, collapsed to this many faces first (the
-  /// strategy's collapses, QQ's for TU); the result is then approximate. Unset, or not below the
-  /// mesh's face count: the mesh itself.
-  std::optional<std::size_t> simplify;
+  /// The faces printed: auto, full or a count (collapsed with the strategy's collapses, QQ's
+  /// for TU); a collapsed part's net is approximate. `simplify N` is the older name of N.
+  Detail detail;
   /// Seconds the whole job may take; unset means the front end's default.
   std::optional<double> time_limit;
   /// Longest side of the model's bounding box in millimetres (exclusive with `scale`).

@@ -13,6 +13,7 @@
 #include "cli/local_files.h"
 #include "core/errors.h"
 #include "engine/pipeline.h"
+#include "print/layout.h"
 
 namespace papernet::cli {
 namespace {
@@ -39,7 +40,7 @@ std::string extension(const std::string& path) {
   return ext;
 }
 
-// An option's message with the option named as on the command line ("--simplify").
+// An option's message with the option named as on the command line ("--detail").
 std::string in_flags(const InvalidOptionException& e) {
   std::string message = e.what();
   if (const auto at = message.find("option '" + e.option() + "'");
@@ -168,7 +169,7 @@ void say_tab_room(const TabRoomSummary& room) {
               << room.blocked_after << " end at a leaf of the cut tree where no leaf has room "
               << "(only " << room.leaf_room_vertices << " of " << room.interior_vertices
               << " vertices are sharp enough at this size); print larger (--size) or simplify "
-                 "(--simplify N faces) for fewer glue strips\n";
+                 "(--detail N faces, or --detail auto) for fewer glue strips\n";
 }
 
 }  // namespace
@@ -255,7 +256,9 @@ int unfold(int argc, char** argv) {
       std::cerr << "papernet unfold: " << output << ": " << out.print->pages << " page(s) ("
                 << out.print->layout << "), " << out.print->pieces << " piece(s), "
                 << out.print->tabs << " glue tabs, " << out.print->strips << " glue strips, "
-                << out.print->tabs_omitted << " cut edges without glue\n";
+                << out.print->tabs_omitted << " cut edges without glue, smallest label "
+                << out.print->smallest_label_mm << " mm (" << out.print->small_labels << " under "
+                << kLegibleLabelMm << " mm)\n";
       if (!out.print->layout_note.empty())
         std::cerr << "papernet unfold: " << output << ": " << out.print->layout_note << "\n";
     }

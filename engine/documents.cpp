@@ -151,6 +151,10 @@ void write_documents(const JobOptions& options, const DocumentRequest& request,
   summary.tabs = layout.tabs.size();
   summary.strips = layout.strips.size();
   summary.tabs_omitted = layout.omitted_tabs.size();
+  const LabelSizes labels = label_sizes(layout);
+  summary.labels = labels.count;
+  summary.smallest_label_mm = labels.smallest_mm;
+  summary.small_labels = labels.illegible;
   // Without paper, the SVG is the net as laid out; paginating may turn it and move strips.
   if (request.svg_pages && !has_paper(options))
     docs.svg_pages = {write_net_svg(layout, page.margin_mm)};

@@ -78,7 +78,7 @@ class Relay : public Progress {
   Clock::time_point last_;
 };
 
-// A share of `total` for a part of `faces` of `all` faces (`simplify`, a time budget).
+// A share of `total` for a part of `faces` of `all` faces (a time budget).
 double share(double total, std::size_t faces, std::size_t all) {
   return all == 0 ? total : total * static_cast<double>(faces) / static_cast<double>(all);
 }
@@ -104,8 +104,9 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   std::size_t all_faces = 0;
   for (const Mesh& part : prepared.parts) all_faces += part.faces.size();
 
-  // Each part unfolded in turn, with a share of the time left as large as its share of the
-  // faces left (and of `simplify`'s faces).
+  // Each part unfolded in turn (collapsed first as `detail` says), with a share of the time left
+  // as large as its share of the faces left.
+  const double scale = parts_print_scale(prepared.parts, options);
   UnfoldOutcome out;
   std::vector<Piece> pieces;
   Relay relay(progress, prepared, options, documents, pieces);
@@ -114,11 +115,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
     const Mesh& part = prepared.parts[p];
     relay.start(p, faces_before);
     const double left = std::max(time_limit - seconds_since(start), 0.0);
-    const std::size_t simplify =
-        options.simplify ? std::max<std::size_t>(
-                               4, static_cast<std::size_t>(std::llround(share(
-                                      double(*options.simplify), part.faces.size(), all_faces))))
-                         : 0;
+    const std::size_t simplify = detail_faces(part, options, scale, all_faces);
     try {
       pieces.push_back(unfold_piece(part, options, simplify,
                                     share(left, part.faces.size(), all_faces - faces_before),
@@ -158,6 +155,11 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   info.input_faces = prepared.input.faces;
   progress.report(info);
   out.net = assemble(pieces, prepared, options);
+  out.net.detail = {
+      options.detail.mode == DetailMode::Faces ? "faces" : detail_name(options.detail),
+      out.net.mesh.faces.size()};
+  if (auto warning = detail_warning(pieces, prepared.parts, options, scale))
+    out.net.warnings.push_back(std::move(*warning));
   out.net.metrics.seconds = seconds;
   write_documents(options, documents, out);
   return out;

@@ -50,7 +50,26 @@ std::array<Vec2, 4> label_box(const Label& label) {
           label.at - hw * d + hh * up};
 }
 
+LabelSizes label_sizes(const PrintLayout& layout) {
+  LabelSizes out;
+  const auto add = [&out](double size) {
+    out.smallest_mm = out.count == 0 ? size : std::min(out.smallest_mm, size);
+    ++out.count;
+    out.illegible += size < kLegibleLabelMm;
+  };
+  for (const Label& l : layout.labels)
+    if (!l.text.empty()) add(l.size);
+  for (const GlueStrip& s : layout.strips)
+    if (!s.text.empty()) add(s.text_size);
+  return out;
+}
+
 namespace {
+
+/// Text turned half a turn when it would read upside down (its box stays the same).
+void turn_upright(Label& label) {
+  if (std::cos(label.angle) < -1e-9) label.angle += std::numbers::pi;
+}
 
 /// The label for `side`, sized to fit the face: text along the edge, inside the triangle.
 Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text, double max_size) {
@@ -76,7 +95,7 @@ Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text
     }
   }
   // Read upright on the page where possible: turning the text half a turn keeps its box.
-  if (std::cos(label.angle) < -1e-9) label.angle += std::numbers::pi;
+  turn_upright(label);
   return label;
 }
 
@@ -100,6 +119,77 @@ void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Labe
           apart = !convex_overlap(label_box(labels[group[a]]), label_box(labels[group[b]]), 0);
       if (apart) break;
     }
+  }
+}
+
+/// True when `label`'s box meets that of another label of its face.
+bool collides_in_face(const Label& label, const std::vector<Label>& labels) {
+  for (const Label& other : labels)
+    if (&other != &label && other.side.face == label.side.face && !other.text.empty() &&
+        convex_overlap(label_box(label), label_box(other), 0))
+      return true;
+  return false;
+}
+
+/// Labels that did not fit their face at kLegibleLabelMm move where they print that large: onto
+/// the glue tab of their side when it has room (the tab is glued away, its face's partner label
+/// stays in view), else beside their edge at that size, on the face's side of it, reaching over
+/// folds into the faces around, where that is clear of the face's other labels (docs/print.md,
+/// "Labels").
+void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
+                         const std::vector<Tab>& tabs, const std::vector<int>& tab_of,
+                         std::vector<Label>& labels, double max_size) {
+  const std::vector<Label> fitted = labels;  // apart from each other within each face
+  for (Label& label : labels) {
+    if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
+    const double chars = static_cast<double>(label.text.size());
+    const int t = tab_of[label.edge];
+    if (t >= 0 && tabs[t].side.face == label.side.face && tabs[t].side.k == label.side.k) {
+      const auto& c = tabs[t].corners;
+      const double base = norm(c[1] - c[0]);
+      if (base > 0) {
+        const Vec2 d = (1 / base) * (c[1] - c[0]), up{-d.y, d.x};
+        const double height = dot(c[2] - c[1], up), top = norm(c[3] - c[2]);
+        const double size = std::min({max_size, 0.6 * height, top / (1.15 * 0.6 * chars)});
+        if (size >= kLegibleLabelMm) {
+          label.at = 0.25 * (c[0] + c[1] + c[2] + c[3]);
+          label.angle = std::atan2(d.y, d.x);
+          label.size = size;
+          turn_upright(label);
+          continue;
+        }
+      }
+    }
+    const auto& tri = faces[label.side.face];
+    const Vec2 p0 = tri[label.side.k], p1 = tri[(label.side.k + 1) % 3];
+    const Vec2 p2 = tri[(label.side.k + 2) % 3];
+    const double len = norm(p1 - p0);
+    if (!(len > 0)) continue;
+    const Vec2 d = (1 / len) * (p1 - p0);
+    Vec2 up{-d.y, d.x};
+    if (dot(p2 - p0, up) < 0) up = Vec2{0, 0} - up;
+    // Along the edge, the first place clear of the face's other labels (the middle first); where
+    // there is none (a sliver with two cut edges), the label keeps the size its face holds.
+    const Label small = label;
+    label.size = kLegibleLabelMm;
+    label.angle = std::atan2(d.y, d.x);
+    turn_upright(label);
+    bool clear = false;
+    for (const double t : {0.5, 0.3, 0.7, 0.15, 0.85}) {
+      label.at = p0 + (t * len) * d + (0.7 * kLegibleLabelMm) * up;
+      if ((clear = !collides_in_face(label, labels))) break;
+    }
+    if (!clear) label = small;
+  }
+  // A label put back at its fitted size may meet one moved before it: that one goes back too,
+  // until none meet (the fitted labels are apart, so this ends).
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      if (labels[i].size != fitted[i].size && collides_in_face(labels[i], labels)) {
+        labels[i] = fitted[i];
+        changed = true;
+      }
   }
 }
 
@@ -193,7 +283,9 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       const double length = norm(s.corners[1] - s.corners[0]);
       const double half = 0.5 * norm(s.corners[3] - s.corners[0]);
       const double chars = static_cast<double>(s.text.size());
-      s.text_size = std::min({options.max_label_mm, 0.6 * half, 0.8 * length / (0.6 * chars)});
+      s.text_size =
+          std::max(kLegibleLabelMm,
+                   std::min({options.max_label_mm, 0.6 * half, 0.8 * length / (0.6 * chars)}));
     }
   }
 
@@ -233,6 +325,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   }
 
   size_labels(out.faces, out.labels, options.max_label_mm);
+  make_labels_legible(out.faces, out.tabs, tab_of, out.labels, options.max_label_mm);
 
   // Translate so that everything starts at the origin.
   Box2 box = Box2::empty();

@@ -85,6 +85,18 @@ struct PrintLayout {
   int cut_edges = 0;      ///< interior cut edges (label numbers run 1..cut_edges)
 };
 
+/// The smallest text a person reads on a printed kit without a magnifier, mm (a label's text
+/// height; docs/print.md, "Detail").
+constexpr double kLegibleLabelMm = 1.5;
+
+/// How large a layout's labels print: on faces and on glue strips.
+struct LabelSizes {
+  std::size_t count = 0;
+  double smallest_mm = 0;     ///< 0 without labels
+  std::size_t illegible = 0;  ///< under kLegibleLabelMm
+};
+LabelSizes label_sizes(const PrintLayout& layout);
+
 /// Millimetres per model unit: `options.scale` when set, else `options.size_mm` over the
 /// longest side of the mesh's bounding box (1 for a mesh without extent).
 double print_scale(const Mesh& mesh, const PrintOptions& options);

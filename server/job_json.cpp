@@ -105,11 +105,13 @@ json job_to_json(const JobView& view, double now) {
     json metrics = r.metrics;
     json repairs = metrics.contains("repairs") ? metrics["repairs"] : json::array();
     json pieces = metrics.contains("pieces") ? metrics["pieces"] : json::array();
-    metrics.erase("repairs");
-    metrics.erase("pieces");
-    doc["result"] = {{"kind", r.result_kind},        {"faces", r.faces},
-                     {"input_faces", r.input_faces}, {"overlaps", r.overlaps},
-                     {"pieces", std::move(pieces)},  {"repairs", std::move(repairs)},
+    json warnings = metrics.contains("warnings") ? metrics["warnings"] : json::array();
+    json detail = metrics.contains("detail") ? metrics["detail"] : json(nullptr);
+    for (const char* lifted : {"repairs", "pieces", "warnings", "detail"}) metrics.erase(lifted);
+    doc["result"] = {{"kind", r.result_kind},         {"faces", r.faces},
+                     {"input_faces", r.input_faces},  {"overlaps", r.overlaps},
+                     {"detail", std::move(detail)},   {"pieces", std::move(pieces)},
+                     {"repairs", std::move(repairs)}, {"warnings", std::move(warnings)},
                      {"metrics", std::move(metrics)}};
     for (const std::string& name : view.result_files) add_link(links, self, name);
   } else {

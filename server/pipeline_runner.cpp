@@ -22,6 +22,8 @@ JobOutput job_output(const UnfoldOutcome& outcome) {
     out.metrics["glue_strips"] = outcome.print->strips;
     out.metrics["layout"] = outcome.print->layout;
     out.metrics["print_pieces"] = outcome.print->pieces;
+    out.metrics["smallest_label_mm"] = outcome.print->smallest_label_mm;
+    out.metrics["small_labels"] = outcome.print->small_labels;
     if (!outcome.print->layout_note.empty())
       out.metrics["layout_note"] = outcome.print->layout_note;
   }
@@ -34,7 +36,12 @@ JobOutput job_output(const UnfoldOutcome& outcome) {
                       {"result", p.result},
                       {"faces", p.faces},
                       {"hausdorff", p.hausdorff}});
+  nlohmann::json warnings = nlohmann::json::array();
+  for (const NetRepair& w : outcome.net.warnings)
+    warnings.push_back({{"code", w.code}, {"count", w.count}, {"message", w.message}});
   out.metrics["repairs"] = std::move(repairs);
+  out.metrics["warnings"] = std::move(warnings);
+  out.metrics["detail"] = {{"mode", outcome.net.detail.mode}, {"faces", outcome.net.detail.faces}};
   out.metrics["pieces"] = std::move(pieces);
   if (const auto& room = outcome.tab_room)
     out.metrics["tab_room"] = {{"blocked_before", room->blocked_before},

@@ -12,7 +12,10 @@ export interface Options {
   strategy?: Strategy;
   seed?: number;
   target_faces?: number;
-  /** Print a low-poly version: the mesh collapsed to this many faces first (result approximate). */
+  /** Faces printed: "auto" (default; a model denser than a person can build at its size is
+   * collapsed to fewer, larger faces), "full" (every face) or a face count. Collapsed: approximate. */
+  detail?: "auto" | "full" | number;
+  /** @deprecated older name of `detail: N` */
   simplify?: number;
   time_limit?: number;
   /** Longest side of the model in millimetres (exclusive with scale). */

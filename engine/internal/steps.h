@@ -47,8 +47,21 @@ struct Piece {
   std::size_t iterations = 0;
 };
 
+/// Millimetres per model unit of the print of `parts` (print_scale of them all).
+double parts_print_scale(const std::vector<Mesh>& parts, const JobOptions& options);
+
+/// The faces a person can build of `part` printed at `scale` (engine/detail.cpp): its printed
+/// area over that of an equilateral face of the smallest buildable edge; at least 100 (a small part keeps its shape).
+std::size_t buildable_faces(const Mesh& part, double scale);
+
+/// The faces `part` is collapsed to before it is unfolded, by the job's `detail` (0: none):
+/// full none, N the part's share of N (by faces, of `all_faces`), auto buildable_faces when the
+/// part has clearly more.
+std::size_t detail_faces(const Mesh& part, const JobOptions& options, double scale,
+                         std::size_t all_faces);
+
 /// Unfolds `part` with the job's strategy within `seconds` (a low-poly version of `simplify`
-/// faces when asked). \throw UnfoldFailedException, CancelledException.
+/// faces when that is not 0). \throw UnfoldFailedException, CancelledException.
 Piece unfold_piece(const Mesh& part, const JobOptions& options, std::size_t simplify,
                    double seconds, std::size_t input_faces, Progress& progress);
 
@@ -57,6 +70,12 @@ Piece unfold_piece(const Mesh& part, const JobOptions& options, std::size_t simp
 /// Adds what it did to `summary`. Returns the checker's report on the net it leaves.
 NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, double seconds,
                                   Progress& progress, std::optional<TabRoomSummary>& summary);
+
+/// The warning a result carries when `detail` full or N printed parts clearly denser than
+/// buildable_faces ("detail_unbuildable", counting them); none with detail auto.
+std::optional<NetRepair> detail_warning(const std::vector<Piece>& pieces,
+                                        const std::vector<Mesh>& parts, const JobOptions& options,
+                                        double scale);
 
 /// The pieces as one document: their meshes and nets side by side (engine/documents.cpp).
 NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,

@@ -32,13 +32,31 @@ TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   EXPECT_EQ(parse_options_query({{"strategy", "auto"}}).strategy, Strategy::AUTO);
   EXPECT_EQ(o.seed, 1u);
   EXPECT_FALSE(o.target_faces);
-  EXPECT_FALSE(o.simplify);
+  EXPECT_EQ(o.detail.mode, DetailMode::Auto);
   EXPECT_FALSE(o.time_limit);
   EXPECT_EQ(o.paper, "A4");
   EXPECT_EQ(o.tabs, TabMode::Auto);
   EXPECT_EQ(o.tab_room_budget, 100'000u);
   EXPECT_EQ(o.components, Components::All);
   EXPECT_FALSE(o.strict);
+}
+
+TEST(OptionsTest, DetailIsAutoFullOrAFaceCount) {
+  EXPECT_EQ(parse_options_query({{"detail", "FULL"}}).detail.mode, DetailMode::Full);
+  EXPECT_EQ(parse_options_query({{"detail", "auto"}}).detail.mode, DetailMode::Auto);
+  const JobOptions n = parse_options_query({{"detail", "600"}});
+  EXPECT_EQ(n.detail.mode, DetailMode::Faces);
+  EXPECT_EQ(n.detail.faces, 600u);
+  EXPECT_EQ(options_to_json(n)["detail"], 600);
+  EXPECT_EQ(options_to_json(parse_options_query({}))["detail"], "auto");
+  for (const char* bad : {"some", "-3", "2.5", "3"}) {
+    try {
+      parse_options_query({{"detail", bad}});
+      ADD_FAILURE() << "detail=" << bad << " was accepted";
+    } catch (const InvalidOptionException& e) {
+      EXPECT_EQ(e.option(), "detail") << bad;
+    }
+  }
 }
 
 TEST(OptionsTest, QueryParametersAreParsed) {
@@ -57,7 +75,8 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_EQ(o.strategy, Strategy::SEMP);
   EXPECT_EQ(o.seed, 42u);
   EXPECT_EQ(o.target_faces, 500u);
-  EXPECT_EQ(o.simplify, 800u);
+  EXPECT_EQ(o.detail.mode, DetailMode::Faces);  // simplify: the older name of detail N
+  EXPECT_EQ(o.detail.faces, 800u);
   EXPECT_DOUBLE_EQ(*o.time_limit, 2.5);
   EXPECT_DOUBLE_EQ(*o.size_mm, 120);
   EXPECT_EQ(o.paper, "Letter");
@@ -164,7 +183,7 @@ TEST(OptionsTest, RangesAndLimitsAreChecked) {
                 },
                 &option),
             "option_out_of_range");
-  EXPECT_EQ(option, "simplify");
+  EXPECT_EQ(option, "detail");  // simplify N is detail N
   EXPECT_EQ(error_code([&] {
               parse_options_query({{"simplify", "1001"}}, limits);
             }),
@@ -225,7 +244,8 @@ TEST(OptionsTest, CanonicalJsonRoundTrips) {
                                             {"simplify", "600"}});
   const nlohmann::json doc = options_to_json(o);
   EXPECT_EQ(doc["strategy"], "SEQ");
-  EXPECT_EQ(doc["simplify"], 600);
+  EXPECT_EQ(doc["detail"], 600);  // the older name is written as the newer
+  EXPECT_FALSE(doc.contains("simplify"));
   EXPECT_EQ(doc["tab_room_budget"], 5000);
   EXPECT_TRUE(doc["size_mm"].is_null());
   const JobOptions back = parse_options_json(doc.dump());
@@ -308,9 +328,10 @@ TEST(OptionsTest, OpenApiListsEveryOption) {
   const nlohmann::json api = nlohmann::json::parse(openapi_document());
   std::set<std::string> query, schema, options;
   for (const auto& p : api["paths"]["/v1/jobs"]["post"]["parameters"])
-    if (p["in"] == "query" && p["name"] != "format") query.insert(p["name"].get<std::string>());
+    if (p["in"] == "query" && p["name"] != "format" && !p.value("deprecated", false))
+      query.insert(p["name"].get<std::string>());
   for (const auto& [name, value] : api["components"]["schemas"]["Options"]["properties"].items())
-    schema.insert(name);
+    if (!value.value("deprecated", false)) schema.insert(name);
   const nlohmann::json all = options_to_json(JobOptions{});
   for (const auto& [name, value] : all.items()) options.insert(name);
   EXPECT_EQ(query, options);

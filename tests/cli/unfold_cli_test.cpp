@@ -17,8 +17,10 @@ namespace {
 TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
   const std::string out = ::testing::TempDir() + "papernet_progressive_cli.json";
   std::string said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/sample.obj -o " + out, &said),
-            0)
+  ASSERT_EQ(
+      papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/sample.obj --detail full -o " + out,
+               &said),
+      0)
       << said;
   std::stringstream text;
   text << std::ifstream(out).rdbuf();
@@ -45,7 +47,7 @@ TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
   const std::string out = ::testing::TempDir() + "papernet_strips_cli.svg";
   std::string said;
   ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/sample.obj --strategy TU " +
-                         "--tab-room-budget 2000 --paper none -o " + out,
+                         "--detail full --tab-room-budget 2000 --paper none -o " + out,
                      &said),
             0)
       << said;
@@ -116,9 +118,54 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
                          "/Box_Draco.glb --simplify 3 -o " + base + ".json",
                      &said),
             1);
-  EXPECT_NE(said.find("--simplify must be between 4 and"), std::string::npos) << said;
+  EXPECT_NE(said.find("--detail must be auto, full, or between 4 and"), std::string::npos) << said;
   std::remove((base + ".json").c_str());
   std::remove((base + ".svg").c_str());
+}
+
+// By default a model denser than a person can build at its size is printed with fewer, larger
+// faces (docs/print.md, "Detail"): the Duck's 4,212 faces at 200 mm, with hundreds of glue
+// strips and labels under a millimetre, become a few hundred, every label at least 1.5 mm. Every
+// face kept (--detail full) prints, with a warning in the result.
+TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
+  const std::string base = ::testing::TempDir() + "papernet_detail_cli";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/Duck.glb -o " + base +
+                         ".json -o " + base + ".pdf",
+                     &said),
+            0)
+      << said;
+  std::stringstream text;
+  text << std::ifstream(base + ".json").rdbuf();
+  auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["detail"]["mode"], "auto");
+  EXPECT_EQ(j["detail"]["faces"], j["mesh"]["faces"].size());
+  EXPECT_LT(j["mesh"]["faces"].size(), 1500u);
+  EXPECT_GT(j["mesh"]["faces"].size(), 300u);
+  EXPECT_EQ(j["result"], "approximate");
+  EXPECT_GT(j["metrics"]["hausdorff"].get<double>(), 0);
+  EXPECT_TRUE(j["warnings"].empty());
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      said, m, std::regex(R"((\d+) glue strips, .*smallest label ([0-9.]+) mm \((\d+) under)")))
+      << said;
+  EXPECT_LE(std::stoi(m[1].str()), 20) << said;  // 257 with every face
+  EXPECT_GE(std::stod(m[2].str()), 1.5) << said;
+  EXPECT_EQ(m[3].str(), "0") << said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+                         "/Duck.glb --detail full --tab-room-budget 0 -o " + base + ".json",
+                     &said),
+            0)
+      << said;
+  text.str("");
+  text << std::ifstream(base + ".json").rdbuf();
+  j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["detail"]["mode"], "full");
+  EXPECT_EQ(j["mesh"]["faces"].size(), 4212u);
+  ASSERT_EQ(j["warnings"].size(), 1u) << j["warnings"];
+  EXPECT_EQ(j["warnings"][0]["code"], "detail_unbuildable");
+  std::remove((base + ".json").c_str());
+  std::remove((base + ".pdf").c_str());
 }
 
 TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
@@ -163,10 +210,11 @@ TEST(UnfoldCli, RepairsWhatItCanAndStrictRefusesIt) {
 TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
   const std::string out = ::testing::TempDir() + "papernet_local.json";
   std::string said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
-                         "/CesiumMilkTruck/CesiumMilkTruck.gltf --strategy TU -o " + out,
-                     &said),
-            0)
+  ASSERT_EQ(
+      papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+                   "/CesiumMilkTruck/CesiumMilkTruck.gltf --strategy TU --detail full -o " + out,
+               &said),
+      0)
       << said;
   std::stringstream text;
   text << std::ifstream(out).rdbuf();

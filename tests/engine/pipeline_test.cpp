@@ -31,6 +31,7 @@ JobOptions tu(std::uint64_t seed = 1) {
   JobOptions options;
   options.strategy = Strategy::TU;
   options.seed = seed;
+  options.detail = {DetailMode::Full, 0};  // the mesh as given
   return options;
 }
 
@@ -93,6 +94,7 @@ TEST(Pipeline, TheDefaultStrategyGivesCheckedCompleteNetsOfRealMeshes) {
   PipelineProgress quiet;
   JobOptions automatic;
   automatic.tab_room_budget = 0;
+  automatic.detail = {DetailMode::Full, 0};  // every face: the strategy is what is tested
   for (const char* name : {"sample.obj", "reference.obj", "mirror.ply", "testplate.glb",
                            "thingi10k_134617.stl", "thingi10k_65004.stl"}) {
     SCOPED_TRACE(name);
@@ -406,6 +408,7 @@ TEST(Pipeline, ReportsPhasesInOrderAndIntermediateNets) {
   } recorder;
   JobOptions qq;
   qq.tab_room_budget = 2000;  // the pass runs, briefly
+  qq.detail = {DetailMode::Full, 0};
   const UnfoldOutcome out = run_pipeline(data_file("sample.obj"), qq, {}, {.svg = true}, recorder);
   expect_checked(out);
   EXPECT_EQ(out.net.result, "complete");

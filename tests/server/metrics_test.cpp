@@ -41,8 +41,8 @@ TEST_P(ServeMetrics, RoutesFailuresStreamsAndTenantQueues) {
   const httplib::Headers b = {{"Authorization", "Bearer key-b"}};
 
   // B's long job keeps the one worker busy, so that A's jobs stay queued.
-  auto busy =
-      c.Post("/v1/jobs?strategy=TU&time_limit=60", b, test_mesh("reference.obj"), "model/obj");
+  auto busy = c.Post("/v1/jobs?detail=full&strategy=TU&time_limit=60", b,
+                     test_mesh("reference.obj"), "model/obj");
   ASSERT_EQ(busy->status, 202) << busy->body;
   const std::string busy_id = body(busy)["id"];
   while (body(c.Get("/v1/jobs/" + busy_id, b))["status"] == "queued")

@@ -127,7 +127,7 @@ TEST(PipelineRunner, ResultMetricsCountPagesTabsAndStrips) {
 // approximate result whose net JSON keeps the input's face count and measures the distance.
 TEST(PipelineRunner, SimplifyMakesAnApproximateLowPolyResult) {
   JobOptions options = sample_options();
-  options.simplify = 300;
+  options.detail = {DetailMode::Faces, 300};
   RecordingSink sink;
   const JobOutput out = run_sample(options, sink);
   EXPECT_TRUE(out.approximate);

@@ -65,8 +65,8 @@ TEST_P(ServeLoad, TwoHundredClientsAgainstABusyWorkerAndABoundedQueue) {
   Server s({"--workers", "1", "--queue-length", "40", "--http-threads", "16", "--reuse-results",
             "false"});
   const std::size_t rss_before = proc_status_kb(s.pid(), "VmRSS");
-  const std::string busy =
-      submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?strategy=TU&time_limit=60");
+  const std::string busy = submit(s, test_mesh("Duck.glb"), "model/gltf-binary",
+                                  "?detail=full&strategy=TU&time_limit=60");
   wait_running(s, busy);
 
   constexpr int kClients = 200, kPolls = 3;
@@ -127,7 +127,7 @@ TEST_P(ServeLoad, KillNineDuringABurstLosesNoAcceptedJob) {
       "--workers", "1", "--queue-length", "1000", "--reuse-results", "false"});
   const fs::path data = server->data();
   const std::string running =
-      submit(*server, test_mesh("Duck.glb"), "model/gltf-binary", "?strategy=TU");
+      submit(*server, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&strategy=TU");
   wait_running(*server, running);
 
   constexpr int kClients = 8, kEach = 15;

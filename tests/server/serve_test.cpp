@@ -42,7 +42,8 @@ TEST_P(ServeTest, HealthReadinessMetricsAndOpenApi) {
 
 TEST_P(ServeTest, SubmitPollAndFetchObj) {
   Server s({"--workers", "1"});
-  const std::string id = submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3");
+  const std::string id =
+      submit(s, test_mesh("sample.obj"), "model/obj", "?detail=full&strategy=TU&seed=3");
   const json job = wait_final(s, id);
   EXPECT_EQ(job["options"]["strategy"], "TU");
   EXPECT_EQ(job["input"]["format"], "obj");
@@ -60,7 +61,8 @@ TEST_P(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
 
   // The same mesh with the same options is answered from the stored result at once.
-  auto again = c.Post("/v1/jobs?strategy=TU&seed=3", test_mesh("sample.obj"), "model/obj");
+  auto again =
+      c.Post("/v1/jobs?detail=full&strategy=TU&seed=3", test_mesh("sample.obj"), "model/obj");
   ASSERT_EQ(again->status, 202);
   EXPECT_EQ(body(again)["status"], "succeeded");
   EXPECT_EQ(body(again)["result"]["metrics"]["reused_from"], id);
@@ -94,10 +96,10 @@ std::string svg_data(const std::string& svg, const std::string& name) {
 TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   Server s({"--workers", "1"});
   auto c = s.client();
-  const std::string strips =
-      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tabs=strips");
+  const std::string strips = submit(s, test_mesh("sample.obj"), "model/obj",
+                                    "?detail=full&strategy=TU&seed=3&tabs=strips");
   const std::string yes =
-      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tabs=true");
+      submit(s, test_mesh("sample.obj"), "model/obj", "?detail=full&strategy=TU&seed=3&tabs=true");
   const json a = wait_final(s, strips), b = wait_final(s, yes);
   ASSERT_EQ(a["status"], "succeeded") << a.dump();
   ASSERT_EQ(b["status"], "succeeded") << b.dump();
@@ -118,8 +120,8 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
                  "invalid_option_value");
 
   // tab_room_budget=0: the unfolder's net as it is, with more strips.
-  const std::string unchanged =
-      submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU&seed=3&tab_room_budget=0");
+  const std::string unchanged = submit(s, test_mesh("sample.obj"), "model/obj",
+                                       "?detail=full&strategy=TU&seed=3&tab_room_budget=0");
   const json u = wait_final(s, unchanged);
   ASSERT_EQ(u["status"], "succeeded") << u.dump();
   EXPECT_EQ(u["options"]["tab_room_budget"], 0);
@@ -138,7 +140,7 @@ TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
   // No tab-room pass: this is about the unfolding's intermediates, and on a loaded machine the
   // pass alone can take a minute after them.
   const std::string id =
-      submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?tab_room_budget=0");
+      submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&tab_room_budget=0");
   auto c = s.client();
   bool intermediate = false, not_ready = false;
   // A deadline rather than a count of polls: on a loaded machine (CI runs this beside the other
@@ -184,8 +186,8 @@ TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
 // coarsest mesh the collapses reach, still an approximation.)
 TEST_P(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
   Server s({"--workers", "1"});
-  const json job =
-      wait_final(s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?time_limit=0.1"));
+  const json job = wait_final(
+      s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&time_limit=0.1"));
   ASSERT_EQ(job["status"], "approximated") << job.dump();
   EXPECT_EQ(job["result"]["kind"], "approximate");
   EXPECT_LT(job["result"]["faces"].get<int>(), 4212);
@@ -354,7 +356,8 @@ TEST_P(ServeTest, AnImageOverThePixelLimitIs413) {
 
 TEST_P(ServeTest, EventStreamEndsWithTheFinalState) {
   Server s({"--workers", "1"});
-  const std::string id = submit(s, test_mesh("sample.obj"), "model/obj", "?strategy=TU");
+  const std::string id =
+      submit(s, test_mesh("sample.obj"), "model/obj", "?detail=full&strategy=TU");
   std::string stream;
   auto res = s.client().Get("/v1/jobs/" + id + "/events", [&](const char* data, size_t n) {
     stream.append(data, n);
@@ -382,7 +385,8 @@ TEST_P(ServeTest, EveryErrorCodeFromTheInputThatCausesIt) {
   Server s({"--workers", "1", "--max-body-bytes", "100000", "--max-faces", "500"});
   auto c = s.client();
   const std::string obj = test_mesh("sample.obj");  // 1000 faces, 81 KB
-  expect_problem(c.Post("/v1/jobs?strategy=FAST", obj, "model/obj"), 400, "invalid_option_value");
+  expect_problem(c.Post("/v1/jobs?detail=full&strategy=FAST", obj, "model/obj"), 400,
+                 "invalid_option_value");
   expect_problem(c.Post("/v1/jobs?colour=red", obj, "model/obj"), 400, "unknown_option");
   expect_problem(c.Post("/v1/jobs?time_limit=100000", obj, "model/obj"), 400,
                  "option_out_of_range");
@@ -438,7 +442,7 @@ TEST_P(ServeTest, ListsRecentJobsPaged) {
 TEST_P(ServeTest, QueueFullCancelAndShutdown) {
   Server s({"--workers", "1", "--queue-length", "1", "--shutdown-grace", "30"});
   const std::string mesh = test_mesh("reference.obj");
-  const std::string first = submit(s, mesh, "model/obj", "?strategy=TU&time_limit=60");
+  const std::string first = submit(s, mesh, "model/obj", "?detail=full&strategy=TU&time_limit=60");
   std::this_thread::sleep_for(300ms);
   const json probe = body(s.client().Get("/v1/jobs/" + first));
   ASSERT_EQ(probe["status"], "running") << "the test needs a job that runs for a while";
@@ -471,7 +475,7 @@ TEST_P(ServeTest, QueueFullCancelAndShutdown) {
 TEST_P(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
   auto server = std::make_unique<Server>(std::vector<std::string>{"--shutdown-grace", "0"});
   const fs::path data = server->data();
-  const std::string id = submit(*server, test_mesh("Duck.glb"), "", "?strategy=TU");
+  const std::string id = submit(*server, test_mesh("Duck.glb"), "", "?detail=full&strategy=TU");
   wait_running(*server, id);
   server->keep_data();
   const int status = server->stop(SIGTERM);
@@ -494,7 +498,7 @@ TEST_P(ServeTest, KillNineThenRestartFinishesEveryJob) {
 
   std::vector<std::string> ids = {finished};
   for (const char* name : {"Duck.glb", "testplate.glb", "Box_Draco.glb"})
-    ids.push_back(submit(*server, test_mesh(name), "", "?strategy=TU"));
+    ids.push_back(submit(*server, test_mesh(name), "", "?detail=full&strategy=TU"));
   wait_running(*server, ids[1]);
   EXPECT_EQ(body(server->client().Get("/v1/jobs/" + ids[3]))["status"], "queued");
   server->keep_data();

@@ -312,7 +312,7 @@ TEST_P(ServeTenants, QueueShareCapsATenantsQueuedJobs) {
   auto c = s.client();
   // The one worker is busy with a long job of B's, so what follows stays queued.
   const std::string busy =
-      submit_as(s, "key-b", test_mesh("reference.obj"), "?strategy=TU&time_limit=60");
+      submit_as(s, "key-b", test_mesh("reference.obj"), "?detail=full&strategy=TU&time_limit=60");
   while (body(c.Get("/v1/jobs/" + busy, bearer("key-b")))["status"] == "queued")
     std::this_thread::sleep_for(5ms);
   ASSERT_EQ(body(c.Get("/v1/jobs/" + busy, bearer("key-b")))["status"], "running")

@@ -8,7 +8,7 @@ const $ = (id) => document.getElementById(id);
 const client = new PapernetClient("");
 const ui = {
   drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
-  paper: $("paper"), simplify: $("simplify"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
+  paper: $("paper"), detail: $("detail"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
   model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
   downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
 };
@@ -203,7 +203,9 @@ async function run() {
   const options = { strategy: ui.strategy.value, paper: ui.paper.value, components: ui.components.value };
   if (Number(ui.size.value) > 0) options.size_mm = Number(ui.size.value);
   if (Number(ui.timeLimit.value) > 0) options.time_limit = Number(ui.timeLimit.value);
-  if (Number(ui.simplify.value) >= 4) options.simplify = Math.round(Number(ui.simplify.value));
+  const detail = ui.detail.value.trim().toLowerCase();
+  if (detail === "full" || detail === "auto") options.detail = detail;
+  else if (Number(detail) >= 4) options.detail = Math.round(Number(detail));
   current?.abort.abort();
   const abort = new AbortController();
   shownFaces = -1;

@@ -1,0 +1,89 @@
+// How many faces each part is printed with (docs/print.md, "Detail").
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "engine/internal/steps.h"
+#include "print/layout.h"
+
+namespace papernet::engine_detail {
+namespace {
+
+// The printed edge of the smallest faces a person builds without tweezers: a face of this edge
+// holds a 1.5 mm label beside each side, and its edges have room for a glue tab. Tuned on
+// prints of the Duck and of scans (docs/print.md, "Detail").
+constexpr double kBuildableEdgeMm = 18;
+
+// Parts are never collapsed below this many faces: a small part (a wheel of a truck) keeps its
+// shape rather than become a tetrahedron.
+constexpr std::size_t kMinDetailFaces = 100;
+
+// A part is collapsed only when it has this much more than the buildable faces: a model a
+// little denser is printed as it is rather than approximated.
+constexpr double kDetailSlack = 1.25;
+
+double area(const Mesh& mesh) {
+  double a = 0;
+  for (const auto& t : mesh.faces) {
+    const Vec3 p = mesh.vertices[t[0]], q = mesh.vertices[t[1]], r = mesh.vertices[t[2]];
+    a += 0.5 * norm(cross(q - p, r - p));
+  }
+  return a;
+}
+
+}  // namespace
+
+double parts_print_scale(const std::vector<Mesh>& parts, const JobOptions& options) {
+  Mesh all;
+  for (const Mesh& part : parts)
+    all.vertices.insert(all.vertices.end(), part.vertices.begin(), part.vertices.end());
+  return print_scale(all, print_options(options));
+}
+
+std::size_t buildable_faces(const Mesh& part, double scale) {
+  const double face_mm2 = std::sqrt(3.0) / 4 * kBuildableEdgeMm * kBuildableEdgeMm;
+  const double faces = std::ceil(area(part) * scale * scale / face_mm2);
+  return std::max<std::size_t>(
+      kMinDetailFaces, std::isfinite(faces) ? static_cast<std::size_t>(std::min(faces, 1e12)) : 0);
+}
+
+std::size_t detail_faces(const Mesh& part, const JobOptions& options, double scale,
+                         std::size_t all_faces) {
+  switch (options.detail.mode) {
+    case DetailMode::Full:
+      return 0;
+    case DetailMode::Faces: {
+      const double share = all_faces == 0 ? 1.0 : double(part.faces.size()) / double(all_faces);
+      return std::max<std::size_t>(
+          4, static_cast<std::size_t>(std::llround(share * double(options.detail.faces))));
+    }
+    case DetailMode::Auto:
+      break;
+  }
+  const std::size_t buildable = buildable_faces(part, scale);
+  return double(part.faces.size()) > kDetailSlack * double(buildable) ? buildable : 0;
+}
+
+std::optional<NetRepair> detail_warning(const std::vector<Piece>& pieces,
+                                        const std::vector<Mesh>& parts, const JobOptions& options,
+                                        double scale) {
+  if (options.detail.mode == DetailMode::Auto) return std::nullopt;
+  std::size_t dense = 0, faces = 0, buildable = 0;
+  for (std::size_t p = 0; p < pieces.size() && p < parts.size(); ++p) {
+    const std::size_t b = buildable_faces(parts[p], scale);
+    if (double(pieces[p].mesh.faces.size()) <= kDetailSlack * double(b)) continue;
+    ++dense;
+    faces += pieces[p].mesh.faces.size();
+    buildable += b;
+  }
+  if (dense == 0) return std::nullopt;
+  return NetRepair{"detail_unbuildable", dense,
+                   std::to_string(faces) + " faces printed where a person can build about " +
+                       std::to_string(buildable) + " at this size (faces with edges under " +
+                       std::to_string(int(kBuildableEdgeMm)) +
+                       " mm: labels too small to read, edges without room for glue tabs); "
+                       "detail auto collapses to that, or print larger"};
+}
+
+}  // namespace papernet::engine_detail
