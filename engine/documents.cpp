@@ -48,6 +48,14 @@ std::optional<MeshColour> piece_colour(const Piece& piece, const Mesh& part,
   return remap_corners(colour, corners);
 }
 
+// Reports `phase` with `done` of it (ProgressInfo::phase_fraction).
+void report(Progress& progress, const char* phase, double done) {
+  ProgressInfo info;
+  info.phase = phase;
+  info.phase_fraction = done;
+  progress.report(info);
+}
+
 }  // namespace
 
 NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
@@ -106,14 +114,13 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
   return doc;
 }
 
-void write_documents(const JobOptions& options, const DocumentRequest& request,
-                     UnfoldOutcome& outcome) {
+namespace {
+
+// The print's documents (docs/print.md), `outcome.print` and their progress.
+void write_print(const JobOptions& options, const DocumentRequest& request, UnfoldOutcome& outcome,
+                 Progress& progress) {
   const Mesh& mesh = outcome.net.mesh;
   Documents& docs = outcome.documents;
-  docs.net_json = write_net_json(outcome.net);
-  if (request.glb) docs.glb = write_glb(mesh);
-  if (request.obj) docs.obj = write_obj(mesh);
-  if (!request.print()) return;
   const PrintOptions print = print_options(options);
   const double scale = print_scale(mesh, print);
   const double gap = piece_gap_mm(options) / scale;
@@ -145,6 +152,7 @@ void write_documents(const JobOptions& options, const DocumentRequest& request,
       layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
     }
   }
+  report(progress, "layout", 0.3);
   PrintLayout layout = layout_net(mesh, arrange_pieces(pieces.net, pieces.piece, gap), print);
   PrintSummary& summary = outcome.print.emplace();
   summary.cut_edges = static_cast<std::size_t>(layout.cut_edges);
@@ -158,19 +166,34 @@ void write_documents(const JobOptions& options, const DocumentRequest& request,
   // Without paper, the SVG is the net as laid out; paginating may turn it and move strips.
   if (request.svg_pages && !has_paper(options))
     docs.svg_pages = {write_net_svg(layout, page.margin_mm)};
+  report(progress, "layout", 0.6);
   const PageLayout pages =
       fit ? nest_pages(layout, pieces.piece, page, kCutSpacingMm) : paginate(layout, page);
+  report(progress, "write", 0);
   summary.pages = static_cast<int>(pages.pages.size());
   summary.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));
   summary.pieces = fit ? pieces.pieces : static_cast<int>(outcome.net.pieces.size());
   summary.cut_links = pieces.cut_links;
   summary.layout_note = std::move(layout_note);
   if (request.pdf) docs.pdf = write_pdf(layout, pages);
+  report(progress, "write", 0.5);
   if (request.svg_pages && has_paper(options)) docs.svg_pages = write_page_svgs(layout, pages);
   if (request.svg)
     docs.svg = has_paper(options) && pages.pages.size() == 1
                    ? write_page_svgs(layout, pages).front()
                    : write_net_svg(layout, page.margin_mm);
+}
+
+}  // namespace
+
+void write_documents(const JobOptions& options, const DocumentRequest& request,
+                     UnfoldOutcome& outcome, Progress& progress) {
+  if (request.print()) write_print(options, request, outcome, progress);
+  report(progress, "write", 0.9);
+  Documents& docs = outcome.documents;
+  docs.net_json = write_net_json(outcome.net);
+  if (request.glb) docs.glb = write_glb(outcome.net.mesh);
+  if (request.obj) docs.obj = write_obj(outcome.net.mesh);
 }
 
 }  // namespace papernet::engine_detail

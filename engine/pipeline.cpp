@@ -9,7 +9,9 @@
 #include <utility>
 
 #include "core/errors.h"
+#include "engine/internal/run_progress.h"
 #include "engine/internal/steps.h"
+#include "print/layout.h"
 
 namespace papernet {
 namespace {
@@ -21,9 +23,17 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Seconds the tab-room pass gets in all, even when the unfolder used the job's whole time limit
-// (the service's grace beyond the limit covers it and the documents).
-constexpr double kMinTabRoomSeconds = 1;
+// Shares of the job's time limit kept from the steps before them for the tab-room pass and for
+// the print (layout and drawing), when they run: the unfolder gets the rest, the pass what is
+// left of the limit without the print's share, and the print what is left then. So the whole
+// job ends within its limit even when the unfolder would use all of it (docs/architecture.md,
+// "Time limit"; measured: the print of a net the unfolder reached in a tenth of the limit takes
+// well under that tenth).
+constexpr double kTabRoomTimeShare = 0.1;
+constexpr double kPrintTimeShare = 0.1;
+// Seconds a step gets at least (a time limit of 0 means none to the algorithms): the
+// progressive unfolder then returns the coarsest net it finds at once.
+constexpr double kLeastSeconds = 1e-3;
 
 // An intermediate net is rendered at most this often: rendering costs time the unfolder could
 // use.
@@ -34,13 +44,15 @@ constexpr auto kIntermediateInterval = std::chrono::seconds(2);
 // with its documents.
 class Relay : public Progress {
  public:
-  Relay(PipelineProgress& to, const Prepared& input, const JobOptions& options,
+  Relay(RunProgress& to, const Prepared& input, const JobOptions& options,
         const DocumentRequest& documents, const std::vector<Piece>& done)
       : to_(to), input_(input), options_(options), documents_(documents), done_(done) {}
-  // Starts piece `index`: `faces_before` faces of the input are in the pieces before it.
-  void start(std::size_t index, std::size_t faces_before) {
+  // Starts piece `index` of `stage` within `seconds`: `faces_before` faces of the input are in
+  // the pieces before it.
+  void start(Stage stage, std::size_t index, std::size_t faces_before, double seconds) {
     piece_ = index;
     faces_before_ = faces_before;
+    to_.start(stage, seconds, faces_before, input_.parts[index].faces.size(), all_faces());
   }
   void report(const ProgressInfo& info) override {
     ProgressInfo copy = info;
@@ -62,13 +74,19 @@ class Relay : public Progress {
     outcome.net = assemble(pieces, input_, options_);
     outcome.net.result = "approximate";
     outcome.net.intermediate = true;
-    write_documents(options_, documents_, outcome);
+    Progress quiet;  // the run's progress is the unfolder's, not this drawing's
+    write_documents(options_, documents_, outcome, quiet);
     to_.intermediate_outcome(outcome);
   }
   bool cancelled() override { return to_.cancelled(); }
 
  private:
-  PipelineProgress& to_;
+  std::size_t all_faces() const {
+    std::size_t all = 0;
+    for (const Mesh& part : input_.parts) all += part.faces.size();
+    return all;
+  }
+  RunProgress& to_;
   const Prepared& input_;
   const JobOptions& options_;
   const DocumentRequest& documents_;
@@ -100,26 +118,37 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
                            PipelineProgress& progress) {
   const auto start = Clock::now();
   const double time_limit = options.time_limit.value_or(limits.default_time_limit);
-  const Prepared prepared = prepare(load_input(input, limits, progress), options, progress);
+  RunPlan plan;
+  plan.progressive = options.strategy != Strategy::TU;
+  plan.simplify = options.detail.mode != DetailMode::Full;  // auto collapses dense parts
+  plan.tabs = makes_tab_room(print_options(options));
+  plan.print = documents.print();
+  RunProgress tracked(progress, plan);
+  // The steps after the unfolder keep their shares of the time limit (kTabRoomTimeShare, ...).
+  const double print_share = plan.print ? kPrintTimeShare : 0;
+  const double tabs_end = time_limit * (1 - print_share);
+  const double unfold_end = tabs_end - (plan.tabs ? time_limit * kTabRoomTimeShare : 0);
+  tracked.start(Stage::Prepare);
+  const Prepared prepared = prepare(load_input(input, limits, tracked), options, tracked);
   std::size_t all_faces = 0;
   for (const Mesh& part : prepared.parts) all_faces += part.faces.size();
 
-  // Each part unfolded in turn (collapsed first as `detail` says), with a share of the time left
-  // as large as its share of the faces left.
+  // Each part unfolded in turn (collapsed first as `detail` says), with a share of the
+  // unfolder's time left as large as its share of the faces left.
   const double scale = parts_print_scale(prepared.parts, options);
   UnfoldOutcome out;
   std::vector<Piece> pieces;
-  Relay relay(progress, prepared, options, documents, pieces);
+  Relay relay(tracked, prepared, options, documents, pieces);
   std::size_t faces_before = 0;
   for (std::size_t p = 0; p < prepared.parts.size(); ++p) {
     const Mesh& part = prepared.parts[p];
-    relay.start(p, faces_before);
-    const double left = std::max(time_limit - seconds_since(start), 0.0);
+    const double left = std::max(unfold_end - seconds_since(start), 0.0);
+    const double seconds =
+        std::max(share(left, part.faces.size(), all_faces - faces_before), kLeastSeconds);
+    relay.start(Stage::Unfold, p, faces_before, seconds);
     const std::size_t simplify = detail_faces(part, options, scale, all_faces);
     try {
-      pieces.push_back(unfold_piece(part, options, simplify,
-                                    share(left, part.faces.size(), all_faces - faces_before),
-                                    part.faces.size(), relay));
+      pieces.push_back(unfold_piece(part, options, simplify, seconds, part.faces.size(), relay));
     } catch (UnfoldFailedException& e) {
       e.seconds = seconds_since(start);
       throw;
@@ -130,30 +159,33 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   }
   const double seconds = seconds_since(start);
 
-  // The pass that makes room for tabs gets what is left of the time limit (at least
-  // kMinTabRoomSeconds in all), shared the same way.
-  const double left = std::max(time_limit - seconds_since(start), kMinTabRoomSeconds);
+  // The pass that makes room for tabs gets what is left of the time limit without the print's
+  // share, shared the same way; none left, it does not run.
+  const double left = tabs_end - seconds_since(start);
   faces_before = 0;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
-    relay.start(p, faces_before);
-    if (makes_tab_room(print_options(options))) {
+    const double piece_seconds = share(left, prepared.parts[p].faces.size(), all_faces);
+    relay.start(Stage::Tabs, p, faces_before, piece_seconds);
+    const bool room = plan.tabs && piece_seconds > 0;
+    if (room) {
       ProgressInfo info;
       info.phase = "tabs";  // changing cuts so that glue tabs fit (docs/tabs.md, stage 0)
       info.faces = pieces[p].mesh.faces.size();
       relay.report(info);
     }
-    const NetCheckReport check = make_room_for_tabs(
-        pieces[p], options, share(left, prepared.parts[p].faces.size(), all_faces), relay,
-        out.tab_room);
+    const NetCheckReport check =
+        room ? make_room_for_tabs(pieces[p], options, piece_seconds, relay, out.tab_room)
+             : check_net(pieces[p].mesh, pieces[p].net);
     if (!check.ok()) throw std::logic_error("the net fails the net checker: " + check.summary());
     faces_before += prepared.parts[p].faces.size();
   }
 
+  tracked.start(Stage::Print, std::max(time_limit - seconds_since(start), kLeastSeconds));
   ProgressInfo info;
-  info.phase = "write";
+  info.phase = plan.print ? "layout" : "write";
   info.faces = faces_before;
   info.input_faces = prepared.input.faces;
-  progress.report(info);
+  tracked.report(info);
   out.net = assemble(pieces, prepared, options);
   out.net.detail = {
       options.detail.mode == DetailMode::Faces ? "faces" : detail_name(options.detail),
@@ -161,7 +193,8 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   if (auto warning = detail_warning(pieces, prepared.parts, options, scale))
     out.net.warnings.push_back(std::move(*warning));
   out.net.metrics.seconds = seconds;
-  write_documents(options, documents, out);
+  write_documents(options, documents, out, tracked);
+  tracked.finish(out.net.mesh.faces.size(), prepared.input.faces);
   return out;
 }
 

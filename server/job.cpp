@@ -57,7 +57,10 @@ nlohmann::json progress_to_json(const ProgressInfo& info) {
           {"input_faces", info.input_faces},
           {"overlaps", info.overlaps},
           {"iterations", info.iterations},
-          {"elapsed_seconds", info.elapsed_seconds}};
+          {"elapsed_seconds", info.elapsed_seconds},
+          {"piece", info.piece},
+          {"pieces", info.pieces},
+          {"fraction", info.fraction}};
 }
 
 std::optional<ProgressInfo> progress_from_json(const nlohmann::json& doc) {
@@ -69,6 +72,9 @@ std::optional<ProgressInfo> progress_from_json(const nlohmann::json& doc) {
   info.overlaps = doc.value("overlaps", std::size_t{0});
   info.iterations = doc.value("iterations", std::size_t{0});
   info.elapsed_seconds = doc.value("elapsed_seconds", 0.0);
+  info.piece = doc.value("piece", std::size_t{0});
+  info.pieces = doc.value("pieces", std::size_t{0});
+  info.fraction = doc.value("fraction", 0.0);
   return info;
 }
 

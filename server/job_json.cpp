@@ -78,9 +78,14 @@ json job_to_json(const JobView& view, double now) {
       {"overlaps", nullptr},
       {"iterations", nullptr},
       {"elapsed_seconds", std::round(elapsed * 1000) / 1000},
+      // Of the whole job: 0 until it reports, 1 once it ended (also when it failed).
+      {"fraction", is_final(r.status) ? 1.0 : 0.0},
       {"queue_position", view.queue_position ? json(view.queue_position) : json(nullptr)}};
   if (view.progress) {
     progress["phase"] = view.progress->phase;
+    // Rounded down: 1 only when the run ended.
+    progress["fraction"] =
+        is_final(r.status) ? 1.0 : std::floor(view.progress->fraction * 1000) / 1000;
     progress["faces"] = view.progress->faces;
     progress["input_faces"] = view.progress->input_faces;
     progress["overlaps"] = view.progress->overlaps;

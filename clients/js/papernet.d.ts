@@ -81,6 +81,9 @@ export interface Progress {
   /** The piece being unfolded (1-based) and how many there are, while one is. */
   piece?: number;
   pieces?: number;
+  /** The share of the whole job done, 0 to 1, every phase counted; never goes back, 1 once
+   *  the job ended. */
+  fraction?: number;
 }
 
 export interface Job {
@@ -199,6 +202,8 @@ export interface RequestOptions {
 export const FINAL_STATUSES: readonly JobStatus[];
 export const RESULT_FILES: readonly ResultFile[];
 export function isFinal(status: string): boolean;
+/** The share of a job done, 0 to 1 (progress.fraction; 1 once final). */
+export function progressFraction(job: Job): number;
 export function formatOfFileName(name: string | undefined | null): MeshFormat | undefined;
 export function parseLevel(header: string | null | undefined): Level | null;
 /** Server-Sent Events from a byte stream (e.g. a fetch Response's body). */

@@ -30,6 +30,16 @@ export function isFinal(status) {
   return FINAL_STATUSES.includes(status);
 }
 
+/**
+ * The share of a job done, 0 to 1, every phase counted (load, collapse, unfold, uncollapse,
+ * tabs, layout, write): the server's `progress.fraction`, which never goes back while the job
+ * runs; 1 once the job is final.
+ */
+export function progressFraction(job) {
+  if (isFinal(job.status)) return 1;
+  return job.progress?.fraction ?? 0;
+}
+
 /** The mesh format a file name implies ("duck.GLB" -> "glb"), or undefined. */
 export function formatOfFileName(name) {
   const m = /\.([A-Za-z0-9]+)$/.exec(name ?? "");

@@ -113,8 +113,12 @@ class Decimator {
     ProgressInfo info;
     info.phase = "collapse";
     info.input_faces = pm_.input_face_count();
+    const std::size_t from = pm_.face_count();
     auto report = [&] {
       info.faces = pm_.face_count();
+      // Collapses made of those towards the target (each removes about two faces).
+      info.phase_fraction =
+          from > target ? double(from - std::max(info.faces, target)) / double(from - target) : 1.0;
       info.elapsed_seconds = std::chrono::duration<double>(last_report - start).count();
       progress.report(info);
     };

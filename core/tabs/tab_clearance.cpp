@@ -412,6 +412,7 @@ void Clearance::commit() {
 
 using tab_clearance_detail::Clearance;
 using tab_clearance_detail::kSearchOnBlocked;
+using tab_clearance_detail::PassProgress;
 
 std::vector<EdgeSide> edges_without_tab_room(const Mesh& mesh, const Net& net,
                                              const TabClearanceOptions& options) {
@@ -429,27 +430,31 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
     return options.time_limit_seconds -
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
+  // Both rounds' budget: the second is as long as the first (see below).
+  const bool second = options.second_round && !options.keep_bounds;
+  PassProgress pass(progress, (second ? 2 : 1) * options.max_evaluations,
+                    options.time_limit_seconds, mesh.faces.size());
   Clearance state(mesh, net, options);
   result.blocked_before = state.blocked_count();
-  state.run(progress);
+  state.run(pass);
   // The second round: when the search spent its budget with many edges left it goes on (its
   // sweeps open many edges at a time: the Duck, reference.obj); else kicks, one edge at a time
   // (docs/tabs.md, "Second round").
-  const bool second = options.second_round && !options.keep_bounds && state.blocked_count() > 0;
   const std::size_t budget = options.max_evaluations;
-  result.searched_on =
-      second && state.evaluations_ >= budget && state.blocked_count() > kSearchOnBlocked;
+  result.searched_on = second && state.blocked_count() > 0 && state.evaluations_ >= budget &&
+                       state.blocked_count() > kSearchOnBlocked;
   if (result.searched_on) {
     state.extend(budget, seconds_left());
-    state.run(progress);
+    state.run(pass);
   }
   result.blocked_after = state.blocked_count();
   result.moves = state.moves_;
   result.evaluations = state.evaluations_;
   result.compound_moves = state.compound_moves_;
   if (result.moves > 0) result.net = state.net();
-  if (second && !result.searched_on)
-    tab_clearance_detail::kick(mesh, options, seconds_left(), progress, result);
+  if (second && !result.searched_on && state.blocked_count() > 0)
+    tab_clearance_detail::kick(mesh, options, seconds_left(), pass, result);
+  pass.done(result.evaluations);
   return result;
 }
 

@@ -90,7 +90,10 @@ struct TabClearanceResult {
 /// it out of where it stalled (every swap that opens an edge overlaps): such a swap is made
 /// anyway, the unfolder's local repair (Unfolding::repair_locally) removes the overlaps, and a
 /// short tabu search from the repaired net replaces the result when it ends with fewer edges
-/// without room. Deterministic (unless options.time_limit_seconds stops it).
+/// without room. Deterministic (unless options.time_limit_seconds stops it). Progress: phase
+/// "tabs", at most every 50 ms and once at the end (phase_fraction 1), with the candidate moves
+/// evaluated (`iterations`) and the share of the pass done (`phase_fraction`: of both rounds'
+/// budget, or of the time limit when that is further along).
 /// \pre `net` is an overlap-free net of `mesh` (check_net passes).
 /// \throw CancelledException when `progress` asks to stop.
 TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,

@@ -50,7 +50,7 @@ std::vector<char> moved_faces(const Net& before, const Net& after, double length
 }  // namespace
 
 void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_left,
-          Progress& progress, TabClearanceResult& result) {
+          PassProgress& progress, TabClearanceResult& result) {
   const std::size_t budget = options.max_evaluations;
   if (result.blocked_after == 0 || budget == 0) return;
   const auto start = std::chrono::steady_clock::now();
@@ -79,6 +79,7 @@ void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_l
           const std::size_t cost = 1 + mesh.faces.size() / kKickFacesPerEvaluation;
           if (spent + cost > budget || (timed && elapsed() >= seconds_left)) return Outcome::kStop;
           if (progress.cancelled()) throw CancelledException();
+          progress.at(result.evaluations);
           spent += cost;
           result.evaluations += cost;
           Unfolding unfolding(mesh, current.swapped_tree(lf, lk, cf, ck));
@@ -111,7 +112,7 @@ void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_l
               const int g = current.neighbour(f, k);
               search.focus_[3 * f + k] = !was_blocked[3 * f + k] || near[f] || (g >= 0 && near[g]);
             }
-          search.run(progress);
+          search.run(progress, result.evaluations);
           spent += search.evaluations_;
           result.evaluations += search.evaluations_;
           if (search.blocked_count() >= result.blocked_after) continue;

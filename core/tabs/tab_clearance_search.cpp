@@ -351,7 +351,7 @@ bool Clearance::try_compound(int f, int k, Sideways* sideways) {
 // offers an edge only its first kStepCaps[0] candidates (most overlap; the easy moves elsewhere
 // come first); after kStallSweeps sweeps over the blocked edges without a new best, the next cap;
 // after the last, it stops. It stops too when the budget is spent.
-void Clearance::run(Progress& progress) {
+void Clearance::run(PassProgress& progress, std::size_t evaluations_before) {
   std::vector<std::uint8_t> best_links = links_;
   std::vector<Triangle2> best_pos = pos_;
   std::vector<char> best_blocked = blocked_;
@@ -407,6 +407,7 @@ void Clearance::run(Progress& progress) {
       const int h = static_cast<int>((static_cast<std::size_t>(i) + offset) % halves);
       if (!blocked_[h] || (!focus_.empty() && !focus_[h])) continue;
       if (progress.cancelled()) throw CancelledException();
+      progress.at(evaluations_before + evaluations_);
       if (out_of_time()) break;
       ++step_;
       step_limit_ = evaluations_ + std::min(kStepCaps[level], budget_);

@@ -82,8 +82,10 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
                      const JobOptions& options);
 
 /// The documents of `outcome.net` that `request` asks for; fills `outcome.print` when it asks
-/// for a print. \throw InvalidOptionException when the print refuses the options.
+/// for a print. Progress: phase "layout" (a print's pieces cut to fit, tabs, nesting), then
+/// "write", each with its phase_fraction. \throw InvalidOptionException when the print refuses
+/// the options.
 void write_documents(const JobOptions& options, const DocumentRequest& request,
-                     UnfoldOutcome& outcome);
+                     UnfoldOutcome& outcome, Progress& progress);
 
 }  // namespace papernet::engine_detail

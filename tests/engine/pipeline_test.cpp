@@ -9,6 +9,7 @@
 #include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -413,7 +414,7 @@ TEST(Pipeline, ReportsPhasesInOrderAndIntermediateNets) {
   expect_checked(out);
   EXPECT_EQ(out.net.result, "complete");
   const std::vector<std::string> want = {"load",       "validate", "collapse", "unfold",
-                                         "uncollapse", "tabs",     "write"};
+                                         "uncollapse", "tabs",     "layout",   "write"};
   EXPECT_EQ(recorder.phases, want);
   ASSERT_FALSE(recorder.intermediates.empty());
   for (const UnfoldOutcome& mid : recorder.intermediates) {
@@ -424,6 +425,48 @@ TEST(Pipeline, ReportsPhasesInOrderAndIntermediateNets) {
     EXPECT_EQ(level["input_faces"], 1000);
     EXPECT_FALSE(mid.documents.svg.empty());
   }
+}
+
+// One fraction of the whole run through every phase, the print's included: never back, below 1
+// until the last report, which is 1; the tab-room pass, most of a typical run's time, moves it
+// from its own reports (issue 23: the bar was full while the pass had not started).
+TEST(Pipeline, ProgressFractionNeverGoesBackAndEndsAtOne) {
+  struct Recorder : PipelineProgress {
+    std::vector<ProgressInfo> reports;
+    void report(const ProgressInfo& info) override { reports.push_back(info); }
+  } recorder;
+  JobOptions options;  // AUTO: collapse, unfold, uncollapse
+  options.tab_room_budget = 20'000;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("sample.obj"), options, {}, {.svg = true, .pdf = true}, recorder);
+  expect_checked(out);
+  ASSERT_TRUE(out.tab_room);
+  const std::vector<ProgressInfo>& reports = recorder.reports;
+  ASSERT_GT(reports.size(), 8u);
+  std::set<std::string> phases;
+  double before = 0;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    const ProgressInfo& r = reports[i];
+    phases.insert(r.phase);
+    EXPECT_GE(r.fraction, before) << "report " << i << ", phase " << r.phase;
+    if (i + 1 < reports.size()) {
+      EXPECT_LT(r.fraction, 1.0) << "report " << i << ", phase " << r.phase;
+    }
+    before = r.fraction;
+  }
+  EXPECT_EQ(reports.back().fraction, 1.0);
+  EXPECT_EQ(reports.back().phase, "write");
+  for (const char* phase :
+       {"load", "validate", "collapse", "unfold", "uncollapse", "tabs", "layout", "write"})
+    EXPECT_TRUE(phases.count(phase)) << phase;
+  // The pass reports from inside (evaluations made), and most of the bar lies ahead of it.
+  const auto first_tabs = std::find_if(reports.begin(), reports.end(),
+                                       [](const ProgressInfo& r) { return r.phase == "tabs"; });
+  const auto last_tabs = std::find_if(reports.rbegin(), reports.rend(),
+                                      [](const ProgressInfo& r) { return r.phase == "tabs"; });
+  EXPECT_LT(first_tabs->fraction, 0.5);
+  EXPECT_GT(last_tabs->fraction, 0.75);
+  EXPECT_GT(last_tabs->iterations, 0u);
 }
 
 }  // namespace

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
+#include "server/job.h"
 #include "server/problem.h"
 
 using namespace papernet::server;
@@ -26,6 +29,7 @@ TEST(JobJsonTest, QueuedJobShowsItsPlaceAndNoResult) {
   EXPECT_EQ(doc["status"], "queued");
   EXPECT_EQ(doc["progress"]["queue_position"], 3);
   EXPECT_EQ(doc["progress"]["elapsed_seconds"], 0.0);
+  EXPECT_EQ(doc["progress"]["fraction"], 0.0);
   EXPECT_TRUE(doc["result"].is_null());
   EXPECT_TRUE(doc["error"].is_null());
   EXPECT_EQ(doc["created"], "2023-11-14T22:13:20.250Z");
@@ -39,9 +43,11 @@ TEST(JobJsonTest, RunningJobShowsProgressAndIntermediateLinks) {
   v.record.started = 1'700'000'001;
   v.queue_position = 0;
   v.progress = papernet::ProgressInfo{"uncollapse", 800, 2000, 0, 17, 4.5};
+  v.progress->fraction = 0.1239;
   v.intermediate = IntermediateLevel{800, 2000, 0, {"net.json"}};
   const nlohmann::json doc = job_to_json(v, 1'700'000'003);
   EXPECT_EQ(doc["progress"]["phase"], "uncollapse");
+  EXPECT_EQ(doc["progress"]["fraction"], 0.123);  // rounded down: 1 only once the job ended
   EXPECT_EQ(doc["progress"]["faces"], 800);
   EXPECT_EQ(doc["progress"]["input_faces"], 2000);
   EXPECT_EQ(doc["progress"]["elapsed_seconds"], 2.0);
@@ -50,6 +56,20 @@ TEST(JobJsonTest, RunningJobShowsProgressAndIntermediateLinks) {
   EXPECT_EQ(doc["intermediate"]["faces"], 800);
   EXPECT_TRUE(doc["links"].contains("net.json"));
   EXPECT_FALSE(doc["links"].contains("net.pdf"));
+}
+
+// What a node publishes of a running job for the others (the store) keeps its piece and fraction.
+TEST(JobJsonTest, PublishedProgressKeepsPieceAndFraction) {
+  papernet::ProgressInfo info{"tabs", 500, 2000, 0, 40, 3.0};
+  info.piece = 2;
+  info.pieces = 3;
+  info.fraction = 0.5;
+  const std::optional<papernet::ProgressInfo> back = progress_from_json(progress_to_json(info));
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->phase, "tabs");
+  EXPECT_EQ(back->piece, 2u);
+  EXPECT_EQ(back->pieces, 3u);
+  EXPECT_EQ(back->fraction, 0.5);
 }
 
 TEST(JobJsonTest, FinishedJobsShowResultOrError) {
@@ -65,6 +85,7 @@ TEST(JobJsonTest, FinishedJobsShowResultOrError) {
   const nlohmann::json done = job_to_json(ok, 1'700'000'100);
   EXPECT_EQ(done["result"]["kind"], "approximate");
   EXPECT_EQ(done["progress"]["elapsed_seconds"], 1.5);
+  EXPECT_EQ(done["progress"]["fraction"], 1.0);
   EXPECT_TRUE(done["links"].contains("mesh.glb"));
   EXPECT_FALSE(done["links"].contains("net.svg"));
 

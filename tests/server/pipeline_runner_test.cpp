@@ -87,7 +87,9 @@ TEST(PipelineRunner, ReportsTheTabPassBetweenUnfoldingAndWriting) {
   ASSERT_GE(position(phases, "write"), 0);
   EXPECT_LT(position(phases, "load"), position(phases, "validate"));
   EXPECT_LT(position(phases, "validate"), position(phases, "tabs"));
-  EXPECT_EQ(position(phases, "tabs") + 1, position(phases, "write")) << "tabs comes last but one";
+  // Then the print: its layout (cut to fit, tabs, nesting), then the documents.
+  EXPECT_EQ(position(phases, "tabs") + 1, position(phases, "layout"));
+  EXPECT_EQ(position(phases, "layout") + 1, position(phases, "write"));
   EXPECT_EQ(phases.back(), "write");
 }
 

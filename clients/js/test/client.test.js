@@ -1,7 +1,7 @@
 // The JS client against a real `papernet serve` (see server.js), with the repository's meshes.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { PapernetClient, PapernetError, isFinal, parseSse, parseLevel } from "../papernet.js";
+import { PapernetClient, PapernetError, isFinal, parseSse, parseLevel, progressFraction } from "../papernet.js";
 import { startServer, sample } from "./server.js";
 
 let server;
@@ -57,6 +57,11 @@ test("raw OBJ upload: SSE progress to the end, then every result file", async ()
   assert.ok(["succeeded", "approximated"].includes(last.status), JSON.stringify(last.error));
   assert.equal(last.id, job.id);
   assert.ok(seen.slice(0, -1).every((j) => !isFinal(j.status)), "only the last event is final");
+  // One fraction over every phase: never back, 1 only at the end.
+  const fractions = seen.map(progressFraction);
+  assert.ok(fractions.every((f, i) => f >= 0 && f <= 1 && (i === 0 || f >= fractions[i - 1])), JSON.stringify(fractions));
+  assert.ok(fractions.slice(0, -1).every((f) => f < 1), JSON.stringify(fractions));
+  assert.equal(last.progress.fraction, 1);
 
   const net = await client.netJson(job.id);
   checkNet(net);

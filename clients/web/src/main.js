@@ -1,7 +1,7 @@
 // The demo page: upload a mesh, follow the job, show the model folding from its net.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { PapernetClient, PapernetError, isFinal, formatOfFileName } from "../../js/papernet.js";
+import { PapernetClient, PapernetError, isFinal, formatOfFileName, progressFraction } from "../../js/papernet.js";
 import { prepareFold, foldPositions } from "./fold.js";
 
 const $ = (id) => document.getElementById(id);
@@ -163,6 +163,7 @@ function describe(job, withStatus = true) {
   const p = job.progress ?? {};
   const parts = withStatus ? [job.status] : [];
   if (p.phase && p.phase !== job.status && !isFinal(job.status)) parts.push(p.phase);
+  if (job.status === "running" && p.fraction != null) parts.push(`${Math.floor(100 * p.fraction)} %`);
   if (p.pieces > 1 && !isFinal(job.status)) parts.push(`piece ${p.piece} of ${p.pieces}`);
   if (p.queue_position) parts.push(`#${p.queue_position} in queue`);
   if (p.faces != null && p.input_faces && p.faces < p.input_faces) {
@@ -174,10 +175,9 @@ function describe(job, withStatus = true) {
 }
 
 function showProgress(job) {
-  const p = job.progress ?? {};
-  if (p.faces != null && p.input_faces) ui.progress.value = Math.min(1, p.faces / p.input_faces);
-  else if (isFinal(job.status)) ui.progress.value = 1;
-  else ui.progress.removeAttribute("value"); // indeterminate while loading
+  // The whole job's share done, every phase counted (README "Job status"): never goes back.
+  if (job.status === "queued") ui.progress.removeAttribute("value"); // indeterminate
+  else ui.progress.value = progressFraction(job);
   setStatus(describe(job));
 }
 

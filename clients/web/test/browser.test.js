@@ -71,14 +71,21 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.fill("#size", "120");
   await page.selectOption("#paper", "A4");
   await page.fill("#time-limit", "240");
-  // Record every status line, to check the live progress shown while the job runs.
+  // Record every status line and every value of the bar, to check the live progress shown while
+  // the job runs.
   await page.evaluate(() => {
     window.statusLog = [];
+    window.barLog = [];
     const status = document.getElementById("status");
     new MutationObserver(() => window.statusLog.push(status.textContent)).observe(status, {
       childList: true,
       characterData: true,
       subtree: true,
+    });
+    const bar = document.getElementById("progress");
+    new MutationObserver(() => bar.hasAttribute("value") && window.barLog.push(bar.value)).observe(bar, {
+      attributes: true,
+      attributeFilter: ["value"],
     });
   });
   await page.click("#start");
@@ -95,6 +102,13 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   const live = log.filter((line) => /^running · .*approximation: \d+ of \d+ faces/.test(line));
   assert.ok(live.length > 0, `the approximation level was shown while running: ${JSON.stringify(log.slice(0, 5))}`);
   console.log(`live status lines: ${live.length}, e.g. ${live[Math.floor(live.length / 2)]}`);
+  // The bar: the job's one fraction over every phase, never back, full only at the end.
+  const bar = await page.evaluate(() => window.barLog);
+  assert.ok(bar.length > 1, `the bar moved: ${JSON.stringify(bar)}`);
+  assert.ok(bar.every((v, i) => i === 0 || v >= bar[i - 1]), `the bar never goes back: ${JSON.stringify(bar)}`);
+  assert.equal(bar.at(-1), 1);
+  assert.ok(bar.some((v) => v > 0 && v < 1), `the bar went through the run: ${JSON.stringify(bar)}`);
+  assert.ok(log.some((line) => /^running · tabs · \d+ %/.test(line)), "the tabs phase is shown with the fraction");
 
   // The net: the server's SVG with drawn paths.
   const paths = await page.locator("#net svg path").count();

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "core/mesh/mesh.h"
-#include "core/progress.h"
+#include "core/tabs/internal/pass_progress.h"
 #include "core/tabs/tab_clearance.h"
 
 namespace papernet::tab_clearance_detail {
@@ -18,6 +18,6 @@ namespace papernet::tab_clearance_detail {
 /// faces / kKickFacesPerEvaluation of them, its search as what it evaluates), or `seconds_left`
 /// runs out (only when options.time_limit_seconds > 0). Deterministic otherwise.
 void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_left,
-          Progress& progress, TabClearanceResult& result);
+          PassProgress& progress, TabClearanceResult& result);
 
 }  // namespace papernet::tab_clearance_detail

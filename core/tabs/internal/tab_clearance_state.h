@@ -11,6 +11,7 @@
 
 #include "core/mesh/mesh.h"
 #include "core/progress.h"
+#include "core/tabs/internal/pass_progress.h"
 #include "core/tabs/internal/tab_clearance_params.h"
 #include "core/tabs/tab_clearance.h"
 #include "core/unfold/folds.h"
@@ -26,7 +27,9 @@ class Clearance {
   Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions& options);
   std::size_t blocked_count() const { return blocked_count_; }
   std::vector<EdgeSide> blocked_edges() const;
-  void run(Progress& progress);
+  /// The tabu search (tab_clearance_search.cpp); reports to `progress` the pass's evaluations:
+  /// `evaluations_before` and this search's.
+  void run(PassProgress& progress, std::size_t evaluations_before = 0);
   /// The tree links across edges at vertex a, each once, as (face, edge) on the face with the
   /// smaller index.
   std::vector<std::pair<int, int>> links_at(int a) const;
