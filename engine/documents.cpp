@@ -12,6 +12,7 @@
 #include "print/nest.h"
 #include "print/pages.h"
 #include "print/pdf.h"
+#include "print/placements.h"
 #include "print/svg.h"
 
 namespace papernet::engine_detail {
@@ -46,6 +47,34 @@ std::optional<MeshColour> piece_colour(const Piece& piece, const Mesh& part,
     corners[f] = {3 * face + k, 3 * face + (k + 1) % 3, 3 * face + (k + 2) % 3};
   }
   return remap_corners(colour, corners);
+}
+
+/// The net document as printed: with layout fit its pieces are those cut to fit a sheet (each
+/// naming the part it was cut from, whose result and distance it inherits); then where each
+/// piece lies on the pages.
+void describe_print(NetDocument& doc, const FitPieces& pieces, const PrintLayout& layout,
+                    const PageLayout& pages, const PageOptions& page, bool fit) {
+  if (fit) {
+    std::vector<NetPiece> printed(static_cast<std::size_t>(pieces.pieces));
+    for (std::size_t f = 0; f < pieces.piece.size(); ++f)
+      printed[pieces.piece[f]] = doc.pieces[doc.piece[f]];
+    for (NetPiece& p : printed) p.faces = 0;
+    for (int p : pieces.piece) ++printed[p].faces;
+    doc.pieces = std::move(printed);
+    doc.piece = pieces.piece;
+    doc.net.parent = pieces.net.parent;
+  }
+  NetPrint& print = doc.print.emplace();
+  print.paper = page.paper.name;
+  print.page_width_mm = pages.width;
+  print.page_height_mm = pages.height;
+  print.margin_mm = pages.margin;
+  print.mm_per_unit = layout.scale;
+  print.pages = static_cast<int>(pages.pages.size());
+  print.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));
+  PiecePlacements placed = place_pieces(doc.net, doc.piece, layout, pages);
+  print.placements = std::move(placed.pieces);
+  print.tiles = std::move(placed.tiles);
 }
 
 }  // namespace
@@ -106,14 +135,14 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
   return doc;
 }
 
-void write_documents(const JobOptions& options, const DocumentRequest& request,
+namespace {
+
+// The print documents `request` asks for, with the print's summary; with paper, the net
+// document as printed (describe_print).
+void print_documents(const JobOptions& options, const DocumentRequest& request,
                      UnfoldOutcome& outcome) {
   const Mesh& mesh = outcome.net.mesh;
   Documents& docs = outcome.documents;
-  docs.net_json = write_net_json(outcome.net);
-  if (request.glb) docs.glb = write_glb(mesh);
-  if (request.obj) docs.obj = write_obj(mesh);
-  if (!request.print()) return;
   const PrintOptions print = print_options(options);
   const double scale = print_scale(mesh, print);
   const double gap = piece_gap_mm(options) / scale;
@@ -161,12 +190,26 @@ void write_documents(const JobOptions& options, const DocumentRequest& request,
   summary.pieces = fit ? pieces.pieces : static_cast<int>(outcome.net.pieces.size());
   summary.cut_links = pieces.cut_links;
   summary.layout_note = std::move(layout_note);
+  if (has_paper(options)) describe_print(outcome.net, pieces, layout, pages, page, fit);
   if (request.pdf) docs.pdf = write_pdf(layout, pages);
   if (request.svg_pages && has_paper(options)) docs.svg_pages = write_page_svgs(layout, pages);
   if (request.svg)
     docs.svg = has_paper(options) && pages.pages.size() == 1
                    ? write_page_svgs(layout, pages).front()
                    : write_net_svg(layout, page.margin_mm);
+}
+
+}  // namespace
+
+void write_documents(const JobOptions& options, const DocumentRequest& request,
+                     UnfoldOutcome& outcome) {
+  const Mesh& mesh = outcome.net.mesh;
+  Documents& docs = outcome.documents;
+  if (request.glb) docs.glb = write_glb(mesh);
+  if (request.obj) docs.obj = write_obj(mesh);
+  // The print first: the net JSON describes the pieces as printed.
+  if (request.print()) print_documents(options, request, outcome);
+  docs.net_json = write_net_json(outcome.net);
 }
 
 }  // namespace papernet::engine_detail
