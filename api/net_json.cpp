@@ -182,6 +182,9 @@ NetPrint print_from_json(const nlohmann::json& j, std::size_t pieces) {
                         std::to_string(placed.page) + " of " + std::to_string(print.pages));
     print.placements.push_back(placed);
   }
+  if (print.placements.size() != pieces)
+    throw IOException("net JSON: " + std::to_string(print.placements.size()) + " placements for " +
+                      std::to_string(pieces) + " pieces");
   if (j.contains("tiles"))
     for (const auto& t : j["tiles"])
       print.tiles.push_back({field(t, "page", "a tile").get<int>(),
