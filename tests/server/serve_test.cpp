@@ -55,7 +55,9 @@ TEST_P(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(doc["metrics"]["overlaps"], 0);
   EXPECT_EQ(doc["net"]["faces"].size(), doc["mesh"]["faces"].size());
   const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
-  const papernet::NetCheckReport check = papernet::check_net(net_doc.mesh, net_doc.net);
+  // Printed with layout fit, the net is cut into pieces that each fit a sheet.
+  const papernet::NetCheckReport check =
+      papernet::check_pieces(net_doc.mesh, net_doc.net, net_doc.piece);
   EXPECT_TRUE(check.ok()) << check.summary();
   EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
 
@@ -113,7 +115,7 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   EXPECT_GT(std::stoi(svg_data(svg_b, "tabs")), 4 * std::stoi(svg_data(svg_b, "strips")));
   const papernet::NetDocument doc =
       papernet::read_net_json(c.Get("/v1/jobs/" + yes + "/net.json")->body);
-  EXPECT_TRUE(papernet::check_net(doc.mesh, doc.net).ok());
+  EXPECT_TRUE(papernet::check_pieces(doc.mesh, doc.net, doc.piece).ok());
   expect_problem(c.Post("/v1/jobs?tabs=glue", test_mesh("sample.obj"), "model/obj"), 400,
                  "invalid_option_value");
 
@@ -157,7 +159,8 @@ TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
       EXPECT_EQ(doc["level"]["kind"], "intermediate");
       EXPECT_LT(doc["mesh"]["faces"].size(), 4212u);
       const papernet::NetDocument net = papernet::read_net_json(res->body);
-      EXPECT_TRUE(papernet::check_net(net.mesh, net.net).ok()) << "intermediate nets are valid";
+      EXPECT_TRUE(papernet::check_pieces(net.mesh, net.net, net.piece).ok())
+          << "intermediate nets are valid";
       EXPECT_EQ(c.Get("/v1/jobs/" + id + "/net.svg")->status, 200);
       EXPECT_NE(body(c.Get("/v1/jobs/" + id))["links"].value("net.json", ""), "");
     } else {
@@ -256,7 +259,7 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
   EXPECT_EQ(doc["mesh"]["uvs"].size(), doc["mesh"]["faces"].size());
   ASSERT_EQ(doc["textures"].size(), 1u);
   const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
-  EXPECT_TRUE(papernet::check_net(net_doc.mesh, net_doc.net).ok());
+  EXPECT_TRUE(papernet::check_pieces(net_doc.mesh, net_doc.net, net_doc.piece).ok());
   auto texture = c.Get("/v1/jobs/" + box + "/textures/0");
   ASSERT_EQ(texture->status, 200);
   EXPECT_EQ(texture->get_header_value("Content-Type"), "image/png");
@@ -276,6 +279,44 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
   EXPECT_TRUE(said) << bare["result"]["repairs"].dump();
   EXPECT_FALSE(bare["links"].contains("textures"));
   expect_problem(c.Get("/v1/jobs/" + without_image + "/textures/0"), 404, "not_found");
+}
+
+// Each printed page on its own, at /v1/jobs/{id}/pages/{k} (k from 1, as the page numbers
+// itself) and listed in links.pages; the net JSON's placements name those pages from 0; the
+// whole net stays at net.svg.
+TEST_P(ServeTest, ServesEachPrintedPageOnItsOwn) {
+  Server s({"--workers", "1"});
+  const std::string id = submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU");
+  const json job = wait_final(s, id);
+  ASSERT_EQ(job["status"], "succeeded") << job.dump();
+  auto c = s.client();
+  auto net = c.Get("/v1/jobs/" + id + "/net.json");
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  ASSERT_TRUE(doc.contains("print")) << net->body.substr(0, 200);
+  const int n = doc["print"]["pages"];
+  ASSERT_GT(n, 1);
+  EXPECT_EQ(job["result"]["metrics"]["pages"], n);
+  ASSERT_EQ(job["links"]["pages"].size(), static_cast<std::size_t>(n)) << job["links"].dump();
+  for (int k = 1; k <= n; ++k) {
+    const std::string path = "/v1/jobs/" + id + "/pages/" + std::to_string(k);
+    EXPECT_EQ(job["links"]["pages"][k - 1], path);
+    auto page = c.Get(path);
+    ASSERT_EQ(page->status, 200) << path;
+    EXPECT_EQ(page->get_header_value("Content-Type"), "image/svg+xml");
+    EXPECT_NE(page->body.find("page " + std::to_string(k) + " of " + std::to_string(n)),
+              std::string::npos)
+        << path;
+  }
+  for (const json& placed : doc["print"]["placements"]) {
+    EXPECT_GE(placed["page"], 0);
+    EXPECT_LT(placed["page"], n);
+  }
+  expect_problem(c.Get("/v1/jobs/" + id + "/pages/0"), 404, "not_found");
+  expect_problem(c.Get("/v1/jobs/" + id + "/pages/" + std::to_string(n + 1)), 404, "not_found");
+  auto svg = c.Get("/v1/jobs/" + id + "/net.svg");
+  ASSERT_EQ(svg->status, 200);
+  EXPECT_NE(svg->body.find("<svg"), std::string::npos);
 }
 
 namespace {
