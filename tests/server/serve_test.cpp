@@ -38,6 +38,7 @@ TEST_P(ServeTest, HealthReadinessMetricsAndOpenApi) {
   const json doc = json::parse(api->body);
   EXPECT_EQ(doc["openapi"].get<std::string>().substr(0, 2), "3.");
   EXPECT_TRUE(doc["paths"].contains("/v1/jobs/{id}"));
+  EXPECT_TRUE(doc["paths"].contains("/v1/jobs/{id}/pages/{k}"));
 }
 
 TEST_P(ServeTest, SubmitPollAndFetchObj) {
