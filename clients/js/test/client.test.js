@@ -65,6 +65,14 @@ test("raw OBJ upload: SSE progress to the end, then every result file", async ()
   const svg = await client.netSvg(job.id);
   assert.match(svg, /<svg[\s>]/);
   assert.match(svg, /<path|<polygon|<line/);
+  // Each printed page on its own; the net's placements name them from 0.
+  const pages = net.print.pages;
+  assert.ok(pages >= 1);
+  assert.equal(last.links.pages.length, pages);
+  const page = await client.page(job.id, pages);
+  assert.ok(page.includes(`page ${pages} of ${pages}`));
+  net.print.placements.forEach((p) => assert.ok(p.page >= 0 && p.page < pages));
+  await assert.rejects(client.page(job.id, pages + 1), (e) => e.code === "not_found" && e.status === 404);
   const pdf = await client.netPdf(job.id);
   assert.equal(new TextDecoder().decode(pdf.slice(0, 5)), "%PDF-");
   const glb = await client.meshGlb(job.id);

@@ -237,8 +237,10 @@ async function run() {
       const r = final.result ?? {};
       const m = r.metrics ?? {};
       const glue = m.glue_tabs === undefined ? "" : ` · ${m.glue_tabs} glue tabs, ${m.glue_strips} glue strips, ${m.pages} pages`;
+      // Pieces as printed (a part too large for a sheet is cut into several), of the model's parts.
       const pieces = (r.pieces ?? []).length;
-      const parts = pieces > 1 ? ` in ${pieces} pieces` : "";
+      const partCount = new Set((r.pieces ?? []).map((p) => p.component)).size;
+      const parts = pieces > 1 ? ` in ${pieces} pieces${partCount > 1 ? ` of ${partCount} parts` : ""}` : "";
       setStatus(`${final.status}: net of ${r.faces} faces${parts} (input ${r.input_faces})${glue} · ${describe(final, false)}`);
       // What was repaired (or skipped, or dropped), one line each.
       ui.repairs.replaceChildren(

@@ -159,8 +159,8 @@ test("the demo unfolds every part of a model, or only the largest, and lists the
   };
   const all = await run("all");
   assert.equal(all.state, "done", all.status);
-  assert.match(all.status, /net of \d+ faces in (\d+) pieces/);
-  assert.ok(Number(all.status.match(/in (\d+) pieces/)[1]) > 10, all.status);
+  assert.match(all.status, /net of \d+ faces in (\d+) pieces of (\d+) parts/);
+  assert.ok(Number(all.status.match(/of (\d+) parts/)[1]) > 10, all.status);
   assert.ok(all.repairs.some(([code]) => code === "split_pinched_vertices"), JSON.stringify(all.repairs));
   assert.ok(await page.isVisible("#repairs"));
   const pieces = screenshot.replace(/\.png$/, "-pieces.png");
@@ -168,7 +168,7 @@ test("the demo unfolds every part of a model, or only the largest, and lists the
   console.log(`screenshot: ${pieces}`);
   const largest = await run("largest");
   assert.equal(largest.state, "done", largest.status);
-  assert.doesNotMatch(largest.status, /pieces/);
+  assert.doesNotMatch(largest.status, / parts/);
   assert.ok(largest.repairs.some(([code, text]) => code === "dropped_components" && /kept the largest/.test(text)), JSON.stringify(largest.repairs));
   console.log(`parts: "${all.status.split(" · ")[0]}"; repairs: ${all.repairs.map(([c]) => c).join(", ")}`);
   assert.deepEqual(problems, []);
