@@ -574,6 +574,10 @@ TEST_P(ServeTest, CommandLineAndServiceWriteTheSameNet) {
   };
   const fs::path out =
       fs::temp_directory_path() / ("papernet-same-net-" + std::to_string(getpid()) + ".json");
+  // The service prints every job: the command line prints too (a PDF), so that its net JSON
+  // has the same pieces as printed and the same `print`.
+  fs::path pdf = out;
+  pdf.replace_extension(".pdf");
   for (const auto& [query, flags, status] : jobs) {
     SCOPED_TRACE(query);
     const std::string id = submit(s, mesh, "model/x-ply", "?" + query);
@@ -582,13 +586,15 @@ TEST_P(ServeTest, CommandLineAndServiceWriteTheSameNet) {
     ASSERT_EQ(served->status, 200);
     const std::string cmd = std::string(PAPERNET_BINARY) + " unfold " +
                             (fs::path(PAPERNET_TEST_DATA) / "mirror.ply").string() + " " + flags +
-                            " -o " + out.string() + " > /dev/null 2>&1";
+                            " -o " + out.string() + " -o " + pdf.string() + " > /dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     const json cli = json::parse(read_file(out));
     EXPECT_EQ(without_seconds(cli), without_seconds(json::parse(served->body)));
     EXPECT_EQ(cli["mesh"]["faces"].size(), cli["net"]["faces"].size());
+    EXPECT_EQ(cli.contains("print"), query.find("paper=none") == std::string::npos);
   }
   fs::remove(out);
+  fs::remove(pdf);
 }
 
 // A bad option is the caller's fault, not the mesh's: 400 naming it, before any job exists;
