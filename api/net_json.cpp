@@ -139,6 +139,59 @@ void colour_from_json(const nlohmann::json& j, const nlohmann::json& mesh, std::
                         " of " + std::to_string(c.materials.size()));
 }
 
+nlohmann::json print_to_json(const NetPrint& print) {
+  using nlohmann::json;
+  json placements = json::array();
+  for (const PiecePlacement& p : print.placements)
+    placements.push_back({{"piece", p.piece}, {"page", p.page}, {"transform", p.transform}});
+  json out{{"paper", print.paper},
+           {"page_size_mm", {print.page_width_mm, print.page_height_mm}},
+           {"margin_mm", print.margin_mm},
+           {"mm_per_unit", print.mm_per_unit},
+           {"pages", print.pages},
+           {"layout", print.layout},
+           {"placements", std::move(placements)}};
+  if (!print.tiles.empty()) {
+    json tiles = json::array();
+    for (const PageWindow& t : print.tiles)
+      tiles.push_back({{"page", t.page}, {"window_mm", t.window_mm}});
+    out["tiles"] = std::move(tiles);
+  }
+  return out;
+}
+
+NetPrint print_from_json(const nlohmann::json& j, std::size_t pieces) {
+  NetPrint print;
+  print.paper = field(j, "paper", "print").get<std::string>();
+  const auto size = field(j, "page_size_mm", "print").get<std::array<double, 2>>();
+  print.page_width_mm = size[0];
+  print.page_height_mm = size[1];
+  print.margin_mm = j.value("margin_mm", 0.0);
+  print.mm_per_unit = field(j, "mm_per_unit", "print").get<double>();
+  print.pages = field(j, "pages", "print").get<int>();
+  print.layout = field(j, "layout", "print").get<std::string>();
+  for (const auto& p : field(j, "placements", "print")) {
+    PiecePlacement placed;
+    placed.piece = field(p, "piece", "a placement").get<int>();
+    placed.page = field(p, "page", "a placement").get<int>();
+    placed.transform = field(p, "transform", "a placement").get<std::array<double, 6>>();
+    if (placed.piece < 0 || static_cast<std::size_t>(placed.piece) >= pieces || placed.page < -1 ||
+        placed.page >= print.pages)
+      throw IOException("net JSON: a placement names piece " + std::to_string(placed.piece) +
+                        " of " + std::to_string(pieces) + " on page " +
+                        std::to_string(placed.page) + " of " + std::to_string(print.pages));
+    print.placements.push_back(placed);
+  }
+  if (print.placements.size() != pieces)
+    throw IOException("net JSON: " + std::to_string(print.placements.size()) + " placements for " +
+                      std::to_string(pieces) + " pieces");
+  if (j.contains("tiles"))
+    for (const auto& t : j["tiles"])
+      print.tiles.push_back({field(t, "page", "a tile").get<int>(),
+                             field(t, "window_mm", "a tile").get<std::array<double, 4>>()});
+  return print;
+}
+
 }  // namespace
 
 nlohmann::json net_to_json(const NetDocument& doc) {
@@ -189,6 +242,7 @@ nlohmann::json net_to_json(const NetDocument& doc) {
         {"seconds", doc.metrics.seconds}}},
   };
   colour_to_json(doc.colour, out);
+  if (doc.print) out["print"] = print_to_json(*doc.print);
   if (doc.intermediate)
     out["level"] = {{"kind", "intermediate"},
                     {"faces", doc.mesh.faces.size()},
@@ -264,6 +318,7 @@ NetDocument read_net_json(std::string_view text) {
     doc.metrics.hausdorff = field(m, "hausdorff", "metrics").get<double>();
     doc.metrics.overlaps = field(m, "overlaps", "metrics").get<std::size_t>();
     doc.metrics.seconds = field(m, "seconds", "metrics").get<double>();
+    if (j.contains("print")) doc.print = print_from_json(j["print"], doc.pieces.size());
     return doc;
   } catch (const nlohmann::json::exception& e) {
     throw IOException(std::string("net JSON: ") + e.what());

@@ -11,6 +11,7 @@
 #include "core/mesh/colour.h"
 #include "core/mesh/mesh.h"
 #include "core/unfold/net.h"
+#include "print/placements.h"
 
 namespace papernet {
 
@@ -30,11 +31,13 @@ struct NetRepair {
   std::string message;
 };
 
-/// One entry of `pieces`: a part of the input unfolded on its own into one piece.
+/// One entry of `pieces`: a part of the input unfolded on its own into one piece, or, printed
+/// with layout fit, a piece cut out of one so that it fits a sheet (it inherits the part's
+/// result and hausdorff).
 struct NetPiece {
   std::size_t component = 0;        ///< which part of the input (largest first)
   std::string result = "complete";  ///< "complete" or "approximate"
-  std::size_t faces = 0;            ///< faces of the mesh the piece folds into
+  std::size_t faces = 0;            ///< faces of this piece
   double hausdorff = 0;             ///< an approximation's distance to its part
 };
 
@@ -45,6 +48,18 @@ struct NetMetrics {
   double hausdorff = 0;  ///< the largest of the pieces'
   std::size_t overlaps = 0;
   double seconds = 0;
+};
+
+/// The `print` object: how the pieces lie on the printed sheets (README.md "The net").
+struct NetPrint {
+  std::string paper;                             ///< "A4", "A3", "Letter" or "WxHmm"
+  double page_width_mm = 0, page_height_mm = 0;  ///< the page as printed (landscape when tiled so)
+  double margin_mm = 0;                          ///< unprinted border on each side of a page
+  double mm_per_unit = 1;                        ///< the print's scale
+  int pages = 0;
+  std::string layout;                      ///< "fit" or "tile"
+  std::vector<PiecePlacement> placements;  ///< one per piece of `pieces`
+  std::vector<PageWindow> tiles;           ///< layout tile: what each page shows of the grid
 };
 
 /// A `papernet.net/2` document (README.md "The net"): the pieces and the mesh they fold into.
@@ -75,6 +90,9 @@ struct NetDocument {
   std::vector<int> piece;  ///< the piece of each face
   std::vector<NetPiece> pieces;
   NetMetrics metrics;
+  /// The sheets, when the run printed on paper; `piece`, `net.parent` and `pieces` are then the
+  /// pieces as printed (cut to fit a sheet with layout fit).
+  std::optional<NetPrint> print;
   /// An overlap-free net of a coarser mesh handed out while the job still runs: the JSON then
   /// carries `level` (kind "intermediate", its faces and the input's).
   bool intermediate = false;

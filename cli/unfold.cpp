@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -223,8 +224,11 @@ int unfold(int argc, char** argv) {
               << (r.code == "skipped_on_load" || r.code == "dropped_components" ? "note"
                                                                                 : "repaired")
               << ": " << r.message << "\n";
-  if (doc.pieces.size() > 1)
-    std::cerr << "papernet unfold: " << file << ": " << doc.pieces.size()
+  // Printed with layout fit, a part may be cut into several pieces: each names its part.
+  std::set<std::size_t> parts;
+  for (const NetPiece& p : doc.pieces) parts.insert(p.component);
+  if (parts.size() > 1)
+    std::cerr << "papernet unfold: " << file << ": " << parts.size()
               << " parts, each unfolded into a piece of its own\n";
   if (out.simplified)
     std::cerr << "papernet unfold: " << file << ": simplified from " << doc.input.faces << " to "

@@ -12,6 +12,7 @@
 #include "print/nest.h"
 #include "print/pages.h"
 #include "print/pdf.h"
+#include "print/placements.h"
 #include "print/svg.h"
 
 namespace papernet::engine_detail {
@@ -54,6 +55,34 @@ void report(Progress& progress, const char* phase, double done) {
   info.phase = phase;
   info.phase_fraction = done;
   progress.report(info);
+}
+
+/// The net document as printed: with layout fit its pieces are those cut to fit a sheet (each
+/// naming the part it was cut from, whose result and distance it inherits); then where each
+/// piece lies on the pages.
+void describe_print(NetDocument& doc, const FitPieces& pieces, const PrintLayout& layout,
+                    const PageLayout& pages, const PageOptions& page, bool fit) {
+  if (fit) {
+    std::vector<NetPiece> printed(static_cast<std::size_t>(pieces.pieces));
+    for (std::size_t f = 0; f < pieces.piece.size(); ++f)
+      printed[pieces.piece[f]] = doc.pieces[doc.piece[f]];
+    for (NetPiece& p : printed) p.faces = 0;
+    for (int p : pieces.piece) ++printed[p].faces;
+    doc.pieces = std::move(printed);
+    doc.piece = pieces.piece;
+    doc.net.parent = pieces.net.parent;
+  }
+  NetPrint& print = doc.print.emplace();
+  print.paper = page.paper.name;
+  print.page_width_mm = pages.width;
+  print.page_height_mm = pages.height;
+  print.margin_mm = pages.margin;
+  print.mm_per_unit = layout.scale;
+  print.pages = static_cast<int>(pages.pages.size());
+  print.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));
+  PiecePlacements placed = place_pieces(doc.net, doc.piece, layout, pages);
+  print.placements = std::move(placed.pieces);
+  print.tiles = std::move(placed.tiles);
 }
 
 }  // namespace
@@ -116,7 +145,8 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
 
 namespace {
 
-// The print's documents (docs/print.md), `outcome.print` and their progress.
+// The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
+// net document as printed (describe_print).
 void write_print(const JobOptions& options, const DocumentRequest& request, UnfoldOutcome& outcome,
                  Progress& progress) {
   const Mesh& mesh = outcome.net.mesh;
@@ -175,6 +205,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.pieces = fit ? pieces.pieces : static_cast<int>(outcome.net.pieces.size());
   summary.cut_links = pieces.cut_links;
   summary.layout_note = std::move(layout_note);
+  if (has_paper(options)) describe_print(outcome.net, pieces, layout, pages, page, fit);
   if (request.pdf) docs.pdf = write_pdf(layout, pages);
   report(progress, "write", 0.5);
   if (request.svg_pages && has_paper(options)) docs.svg_pages = write_page_svgs(layout, pages);

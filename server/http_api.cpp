@@ -644,6 +644,10 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
            guarded([api](const httplib::Request& req, httplib::Response& res) {
              api->result(req, res, texture_file_name(std::stoul(req.matches[2].str())));
            }));
+  http.Get(job + "/pages/([0-9]{1,6})",
+           guarded([api](const httplib::Request& req, httplib::Response& res) {
+             api->result(req, res, page_file_name(std::stoul(req.matches[2].str())));
+           }));
 }
 
 }  // namespace papernet::server

@@ -21,23 +21,42 @@ std::string texture_file_name(std::size_t index) {
   return name;
 }
 
+std::string page_file_name(std::size_t number) {
+  std::string name = "page-";
+  name += std::to_string(number);
+  name += ".svg";
+  return name;
+}
+
 namespace {
 
-// A result file's link: its name, or for a texture ("texture-k") entry k of "textures", served
-// at /v1/jobs/{id}/textures/{k}.
-void add_link(json& links, const std::string& self, const std::string& name) {
-  if (!name.starts_with("texture-")) {
-    links[name] = self + "/" + name;
-    return;
-  }
-  const std::size_t k = std::stoul(name.substr(8));
-  json& textures = links["textures"];
-  if (!textures.is_array()) textures = json::array();
-  while (textures.size() <= k) textures.push_back(nullptr);
+// Entry `index` of the array `links[list]`, served at `self`/`list`/`number`.
+void add_listed_link(json& links, const std::string& self, const char* list, std::size_t index,
+                     const std::string& number) {
+  json& entries = links[list];
+  if (!entries.is_array()) entries = json::array();
+  while (entries.size() <= index) entries.push_back(nullptr);
   std::string link = self;
-  link += "/textures/";
-  link += name.substr(8);
-  textures[k] = std::move(link);
+  link += '/';
+  link += list;
+  link += '/';
+  link += number;
+  entries[index] = std::move(link);
+}
+
+// A result file's link: its name; for a texture ("texture-k") entry k of "textures", served at
+// /v1/jobs/{id}/textures/{k}; for a page ("page-k.svg") entry k - 1 of "pages", served at
+// /v1/jobs/{id}/pages/{k}.
+void add_link(json& links, const std::string& self, const std::string& name) {
+  if (name.starts_with("texture-")) {
+    const std::string k = name.substr(8);
+    add_listed_link(links, self, "textures", std::stoul(k), k);
+  } else if (name.starts_with("page-") && name.ends_with(".svg")) {
+    const std::string k = name.substr(5, name.size() - 9);
+    add_listed_link(links, self, "pages", std::stoul(k) - 1, k);
+  } else {
+    links[name] = self + "/" + name;
+  }
 }
 
 }  // namespace

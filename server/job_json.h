@@ -14,6 +14,11 @@ const std::vector<std::string>& result_file_names();
 /// /v1/jobs/{id}/textures/{k} and listed under the job's `links.textures`.
 std::string texture_file_name(std::size_t index);
 
+/// The result file of printed page `number` (1-based, as the page says "page k of n"):
+/// "page-k.svg", served at /v1/jobs/{id}/pages/{k} and listed under the job's `links.pages`
+/// (entry k - 1, the net JSON's `print.placements[i].page`).
+std::string page_file_name(std::size_t number);
+
 /// A job as GET /v1/jobs/{id} shows it: status, progress, result summary, error, links.
 /// `now` (seconds since the epoch) fills elapsed times.
 nlohmann::json job_to_json(const JobView& view, double now);

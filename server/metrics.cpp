@@ -86,6 +86,10 @@ std::string route_of(const std::string& method, const std::string& path) {
     if (rest == "events") return m + "/v1/jobs/{id}/events";
     for (const char* file : {"net.json", "net.svg", "net.pdf", "mesh.glb"})
       if (rest == file) return m + "/v1/jobs/{id}/{file}";
+    for (const std::string list : {"textures", "pages"})
+      if (rest.size() > list.size() + 1 && rest.starts_with(list + "/") &&
+          rest.find_first_not_of("0123456789", list.size() + 1) == std::string::npos)
+        return m + "/v1/jobs/{id}/" + list + "/{k}";
   }
   return m + "other";
 }

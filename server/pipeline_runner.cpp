@@ -6,7 +6,7 @@ namespace papernet::server {
 namespace {
 
 // What the service serves of every result, final or intermediate.
-constexpr DocumentRequest kDocuments{.svg = true, .pdf = true, .glb = true};
+constexpr DocumentRequest kDocuments{.svg = true, .svg_pages = true, .pdf = true, .glb = true};
 
 JobOutput job_output(const UnfoldOutcome& outcome) {
   JobOutput out;
@@ -57,6 +57,10 @@ JobOutput job_output(const UnfoldOutcome& outcome) {
   out.files["net.svg"] = {"image/svg+xml", docs.svg};
   out.files["net.pdf"] = {"application/pdf", docs.pdf};
   out.files["mesh.glb"] = {"model/gltf-binary", docs.glb};
+  // Each printed page on its own (none without paper: net.svg is then the one drawing).
+  if (outcome.net.print)
+    for (std::size_t k = 0; k < docs.svg_pages.size(); ++k)
+      out.files[page_file_name(k + 1)] = {"image/svg+xml", docs.svg_pages[k]};
   const std::vector<Texture>& textures = outcome.net.colour.textures;
   for (std::size_t k = 0; k < textures.size(); ++k)
     out.files[texture_file_name(k)] = {textures[k].mime_type, textures[k].bytes};

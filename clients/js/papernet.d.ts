@@ -111,7 +111,8 @@ export interface Job {
   error?: Problem | null;
   /** Only for a job with a callback_url. */
   callback?: Callback;
-  links: Record<string, string>;
+  /** self, events, the result files by name; `textures` and `pages` (page 1 first) as arrays. */
+  links: { [name: string]: string | string[] | undefined; textures?: string[]; pages?: string[] };
 }
 
 /** X-Papernet-Level of a result file. */
@@ -128,7 +129,8 @@ export interface Repair {
   message: string;
 }
 
-/** A part of the input unfolded on its own into one piece. */
+/** A part of the input unfolded on its own into one piece; printed with layout fit, a piece cut
+ *  out of part `component` to fit a sheet (its result and hausdorff are the part's). */
 export interface Piece {
   component: number;
   result: "complete" | "approximate";
@@ -165,10 +167,28 @@ export interface NetDocument {
   }>;
   /** One tree per piece: `parent` is -1 for its root, else a face of the same piece. */
   net: { faces: Array<{ piece: number; parent: number; points: Array<[number, number]> }> };
+  /** Present when the run printed on paper; `pieces` are then the pieces as printed. */
+  print?: NetPrint;
   metrics?: Record<string, number>;
   /** Parsed from the X-Papernet-Level header (not enumerable). */
   readonly level: Level | null;
   [extra: string]: unknown;
+}
+
+/** Where the pieces lie on the printed pages (README.md, "The net"). */
+export interface NetPrint {
+  paper: string;
+  page_size_mm: [number, number];
+  margin_mm: number;
+  mm_per_unit: number;
+  pages: number;
+  layout: "fit" | "tile";
+  /** One per piece: `transform` [a, b, c, d, e, f] maps a net point (u, v) of the piece to
+   *  (a·u + c·v + e, b·u + d·v + f) mm from the top-left corner of page `page` (0-based; -1 when
+   *  tiled: then into the tile grid's frame, see `tiles`). */
+  placements: Array<{ piece: number; page: number; transform: [number, number, number, number, number, number] }>;
+  /** Layout tile: the window [x, y, width, height] of the tile grid's frame each page shows. */
+  tiles?: Array<{ page: number; window_mm: [number, number, number, number] }>;
 }
 
 export interface SseEvent {
@@ -250,6 +270,8 @@ export class PapernetClient {
   meshGlb(id: string, init?: RequestOptions): Promise<Uint8Array>;
   /** Texture k of the net's `textures`: GET /v1/jobs/{id}/textures/{k}. */
   texture(id: string, k: number, init?: RequestOptions): Promise<{ contentType: string | null; bytes: Uint8Array }>;
-  /** GET /readyz answers 200. */
+  /** Printed page k (from 1) as SVG text: GET /v1/jobs/{id}/pages/{k}. */
+  page(id: string, k: number, init?: RequestOptions): Promise<string>;
+    /** GET /readyz answers 200. */
   ready(init?: RequestOptions): Promise<boolean>;
 }

@@ -387,7 +387,14 @@ export class PapernetClient {
     return { contentType: res.headers.get("Content-Type"), bytes: new Uint8Array(await res.arrayBuffer()) };
   }
 
-  /** GET /healthz and /readyz: true when the server answers 200. */
+  /** Printed page k (from 1, as the page says "page k of n") as SVG text: the net JSON's
+   *  `print.placements[i].page` p is page p + 1. */
+  async page(id, k, { signal } = {}) {
+    if (!Number.isInteger(k) || k < 1) throw new TypeError(`bad page number ${k}`);
+    return (await this._request(`/v1/jobs/${encodeURIComponent(id)}/pages/${k}`, { signal })).text();
+  }
+
+    /** GET /healthz and /readyz: true when the server answers 200. */
   async ready({ signal } = {}) {
     try {
       await this._request("/readyz", { signal });

@@ -82,9 +82,10 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
                      const JobOptions& options);
 
 /// The documents of `outcome.net` that `request` asks for; fills `outcome.print` when it asks
-/// for a print. Progress: phase "layout" (a print's pieces cut to fit, tabs, nesting), then
-/// "write", each with its phase_fraction. \throw InvalidOptionException when the print refuses
-/// the options.
+/// for a print. Printed on paper, `outcome.net` becomes the net as printed (its pieces cut to fit
+/// a sheet, its `print` placements) before the net JSON is written. Progress: phase "layout" (a
+/// print's pieces cut to fit, tabs, nesting), then "write", each with its phase_fraction.
+/// 	hrow InvalidOptionException when the print refuses the options.
 void write_documents(const JobOptions& options, const DocumentRequest& request,
                      UnfoldOutcome& outcome, Progress& progress);
 

@@ -176,5 +176,64 @@ TEST(NetJson, RefusesColourThatDoesNotFit) {
   EXPECT_THROW(read_net_json(j.dump()), IOException);
 }
 
+// The cube printed on two A4 pages, tiled: its one piece spans them.
+NetDocument printed_cube() {
+  NetDocument doc = cube_document();
+  NetPrint& print = doc.print.emplace();
+  print.paper = "A4";
+  print.page_width_mm = 297;
+  print.page_height_mm = 210;
+  print.margin_mm = 10;
+  print.mm_per_unit = 200;
+  print.pages = 2;
+  print.layout = "tile";
+  print.placements = {{0, -1, {0, -200, -200, 0, 250, 300}}};
+  print.tiles = {{0, {0, 0, 277, 190}}, {1, {267, 0, 277, 190}}};
+  return doc;
+}
+
+TEST(NetJson, PrintIsWrittenPerDesignAndRoundTrips) {
+  const nlohmann::json j = net_to_json(printed_cube());
+  const nlohmann::json& print = j["print"];
+  EXPECT_EQ(print["paper"], "A4");
+  EXPECT_EQ(print["page_size_mm"], nlohmann::json::parse("[297, 210]"));
+  EXPECT_EQ(print["mm_per_unit"], 200);
+  EXPECT_EQ(print["pages"], 2);
+  EXPECT_EQ(print["layout"], "tile");
+  ASSERT_EQ(print["placements"].size(), 1u);
+  EXPECT_EQ(print["placements"][0]["page"], -1);
+  EXPECT_EQ(print["placements"][0]["transform"],
+            nlohmann::json::parse("[0, -200, -200, 0, 250, 300]"));
+  EXPECT_EQ(print["tiles"][1]["window_mm"], nlohmann::json::parse("[267, 0, 277, 190]"));
+  const std::string text = j.dump();
+  const NetDocument back = read_net_json(text);
+  ASSERT_TRUE(back.print);
+  EXPECT_EQ(back.print->placements[0].transform, printed_cube().print->placements[0].transform);
+  EXPECT_EQ(back.print->tiles.size(), 2u);
+  EXPECT_EQ(write_net_json(back), text);
+  // Nothing printed, no `print`; fit lists no tiles.
+  EXPECT_FALSE(net_to_json(cube_document()).contains("print"));
+  NetDocument fit = printed_cube();
+  fit.print->layout = "fit";
+  fit.print->placements[0].page = 1;
+  fit.print->tiles.clear();
+  EXPECT_FALSE(net_to_json(fit)["print"].contains("tiles"));
+}
+
+TEST(NetJson, RefusesPlacementsOfPiecesOrPagesItDoesNotHave) {
+  nlohmann::json j = net_to_json(printed_cube());
+  j["print"]["placements"][0]["piece"] = 1;
+  EXPECT_THROW(read_net_json(j.dump()), IOException);
+  j = net_to_json(printed_cube());
+  j["print"]["placements"][0]["page"] = 2;
+  EXPECT_THROW(read_net_json(j.dump()), IOException);
+  j = net_to_json(printed_cube());
+  j["print"]["placements"][0]["transform"].erase(5);
+  EXPECT_THROW(read_net_json(j.dump()), IOException);
+  j = net_to_json(printed_cube());
+  j["print"]["placements"].erase(0);  // not one per piece
+  EXPECT_THROW(read_net_json(j.dump()), IOException);
+}
+
 }  // namespace
 }  // namespace papernet

@@ -111,6 +111,10 @@ TEST(MetricsRoutes, LabelsStayFew) {
   EXPECT_EQ(route_of("GET", "/v1/jobs/0123456789abcdef0123456789abcdef"), "GET /v1/jobs/{id}");
   EXPECT_EQ(route_of("GET", "/v1/jobs/x/net.svg"), "GET /v1/jobs/{id}/{file}");
   EXPECT_EQ(route_of("GET", "/v1/jobs/x/events"), "GET /v1/jobs/{id}/events");
+  EXPECT_EQ(route_of("GET", "/v1/jobs/x/pages/12"), "GET /v1/jobs/{id}/pages/{k}");
+  EXPECT_EQ(route_of("GET", "/v1/jobs/x/textures/0"), "GET /v1/jobs/{id}/textures/{k}");
+  EXPECT_EQ(route_of("GET", "/v1/jobs/x/pages/"), "GET other");
+  EXPECT_EQ(route_of("GET", "/v1/jobs/x/pages/1x"), "GET other");
   EXPECT_EQ(route_of("GET", "/v1/jobs/x/secret.txt"), "GET other");
   EXPECT_EQ(route_of("POST", "/v1/jobs"), "POST /v1/jobs");
   EXPECT_EQ(route_of("BREW", "/healthz"), "OTHER /healthz");

@@ -42,6 +42,7 @@ JobOptions sample_options() {
   options.strategy = Strategy::TU;
   options.seed = 3;
   options.time_limit = 60;
+  options.detail = {DetailMode::Full, 0};  // all 1,000 faces
   return options;
 }
 

@@ -38,6 +38,7 @@ TEST_P(ServeTest, HealthReadinessMetricsAndOpenApi) {
   const json doc = json::parse(api->body);
   EXPECT_EQ(doc["openapi"].get<std::string>().substr(0, 2), "3.");
   EXPECT_TRUE(doc["paths"].contains("/v1/jobs/{id}"));
+  EXPECT_TRUE(doc["paths"].contains("/v1/jobs/{id}/pages/{k}"));
 }
 
 TEST_P(ServeTest, SubmitPollAndFetchObj) {
@@ -56,7 +57,9 @@ TEST_P(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(doc["metrics"]["overlaps"], 0);
   EXPECT_EQ(doc["net"]["faces"].size(), doc["mesh"]["faces"].size());
   const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
-  const papernet::NetCheckReport check = papernet::check_net(net_doc.mesh, net_doc.net);
+  // Printed with layout fit, the net is cut into pieces that each fit a sheet.
+  const papernet::NetCheckReport check =
+      papernet::check_pieces(net_doc.mesh, net_doc.net, net_doc.piece);
   EXPECT_TRUE(check.ok()) << check.summary();
   EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
 
@@ -115,7 +118,7 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   EXPECT_GT(std::stoi(svg_data(svg_b, "tabs")), 4 * std::stoi(svg_data(svg_b, "strips")));
   const papernet::NetDocument doc =
       papernet::read_net_json(c.Get("/v1/jobs/" + yes + "/net.json")->body);
-  EXPECT_TRUE(papernet::check_net(doc.mesh, doc.net).ok());
+  EXPECT_TRUE(papernet::check_pieces(doc.mesh, doc.net, doc.piece).ok());
   expect_problem(c.Post("/v1/jobs?tabs=glue", test_mesh("sample.obj"), "model/obj"), 400,
                  "invalid_option_value");
 
@@ -159,7 +162,8 @@ TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
       EXPECT_EQ(doc["level"]["kind"], "intermediate");
       EXPECT_LT(doc["mesh"]["faces"].size(), 4212u);
       const papernet::NetDocument net = papernet::read_net_json(res->body);
-      EXPECT_TRUE(papernet::check_net(net.mesh, net.net).ok()) << "intermediate nets are valid";
+      EXPECT_TRUE(papernet::check_pieces(net.mesh, net.net, net.piece).ok())
+          << "intermediate nets are valid";
       EXPECT_EQ(c.Get("/v1/jobs/" + id + "/net.svg")->status, 200);
       EXPECT_NE(body(c.Get("/v1/jobs/" + id))["links"].value("net.json", ""), "");
     } else {
@@ -244,7 +248,8 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
       {"mesh", test_mesh(truck + ".gltf"), "CesiumMilkTruck.gltf", "model/gltf+json"},
       {"buffers", test_mesh(truck + "0.bin"), "CesiumMilkTruck0.bin", "application/octet-stream"},
       {"buffers", test_mesh(truck + ".png"), "CesiumMilkTruck.png", "image/png"},
-      {"options", R"({"strategy":"TU","tab_room_budget":0})", "", "application/json"}};
+      {"options", R"({"strategy":"TU","tab_room_budget":0,"detail":"full"})", "",
+       "application/json"}};
   const std::string with_image = body(c.Post("/v1/jobs", items))["id"];
   items.erase(items.begin() + 2);
   const std::string without_image = body(c.Post("/v1/jobs", items))["id"];
@@ -258,7 +263,7 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
   EXPECT_EQ(doc["mesh"]["uvs"].size(), doc["mesh"]["faces"].size());
   ASSERT_EQ(doc["textures"].size(), 1u);
   const papernet::NetDocument net_doc = papernet::read_net_json(net->body);
-  EXPECT_TRUE(papernet::check_net(net_doc.mesh, net_doc.net).ok());
+  EXPECT_TRUE(papernet::check_pieces(net_doc.mesh, net_doc.net, net_doc.piece).ok());
   auto texture = c.Get("/v1/jobs/" + box + "/textures/0");
   ASSERT_EQ(texture->status, 200);
   EXPECT_EQ(texture->get_header_value("Content-Type"), "image/png");
@@ -278,6 +283,44 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
   EXPECT_TRUE(said) << bare["result"]["repairs"].dump();
   EXPECT_FALSE(bare["links"].contains("textures"));
   expect_problem(c.Get("/v1/jobs/" + without_image + "/textures/0"), 404, "not_found");
+}
+
+// Each printed page on its own, at /v1/jobs/{id}/pages/{k} (k from 1, as the page numbers
+// itself) and listed in links.pages; the net JSON's placements name those pages from 0; the
+// whole net stays at net.svg.
+TEST_P(ServeTest, ServesEachPrintedPageOnItsOwn) {
+  Server s({"--workers", "1"});
+  const std::string id = submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU");
+  const json job = wait_final(s, id);
+  ASSERT_EQ(job["status"], "succeeded") << job.dump();
+  auto c = s.client();
+  auto net = c.Get("/v1/jobs/" + id + "/net.json");
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  ASSERT_TRUE(doc.contains("print")) << net->body.substr(0, 200);
+  const int n = doc["print"]["pages"];
+  ASSERT_GT(n, 1);
+  EXPECT_EQ(job["result"]["metrics"]["pages"], n);
+  ASSERT_EQ(job["links"]["pages"].size(), static_cast<std::size_t>(n)) << job["links"].dump();
+  for (int k = 1; k <= n; ++k) {
+    const std::string path = "/v1/jobs/" + id + "/pages/" + std::to_string(k);
+    EXPECT_EQ(job["links"]["pages"][k - 1], path);
+    auto page = c.Get(path);
+    ASSERT_EQ(page->status, 200) << path;
+    EXPECT_EQ(page->get_header_value("Content-Type"), "image/svg+xml");
+    EXPECT_NE(page->body.find("page " + std::to_string(k) + " of " + std::to_string(n)),
+              std::string::npos)
+        << path;
+  }
+  for (const json& placed : doc["print"]["placements"]) {
+    EXPECT_GE(placed["page"], 0);
+    EXPECT_LT(placed["page"], n);
+  }
+  expect_problem(c.Get("/v1/jobs/" + id + "/pages/0"), 404, "not_found");
+  expect_problem(c.Get("/v1/jobs/" + id + "/pages/" + std::to_string(n + 1)), 404, "not_found");
+  auto svg = c.Get("/v1/jobs/" + id + "/net.svg");
+  ASSERT_EQ(svg->status, 200);
+  EXPECT_NE(svg->body.find("<svg"), std::string::npos);
 }
 
 namespace {
@@ -526,8 +569,11 @@ TEST_P(ServeTest, CommandLineAndServiceWriteTheSameNet) {
     std::string query, flags, status;
   };
   const Job jobs[] = {
-      {"strategy=QQ&seed=2&size_mm=150", "--strategy QQ --seed 2 --size 150mm", "succeeded"},
-      {"strategy=TU&seed=3&paper=none", "--strategy TU --seed 3 --paper none", "succeeded"},
+      {"detail=full&strategy=QQ&seed=2&size_mm=150",
+       "--detail full --strategy QQ --seed 2 --size 150mm", "succeeded"},
+      {"detail=full&strategy=TU&seed=3&paper=none",
+       "--detail full --strategy TU --seed 3 --paper none", "succeeded"},
+      {"strategy=TU&seed=3", "--strategy TU --seed 3", "approximated"},  // detail auto
       {"simplify=60&seed=1&tabs=strips", "--simplify 60 --seed 1 --tabs strips", "approximated"},
   };
   const auto without_seconds = [](json doc) {
@@ -536,6 +582,10 @@ TEST_P(ServeTest, CommandLineAndServiceWriteTheSameNet) {
   };
   const fs::path out =
       fs::temp_directory_path() / ("papernet-same-net-" + std::to_string(getpid()) + ".json");
+  // The service prints every job: the command line prints too (a PDF), so that its net JSON
+  // has the same pieces as printed and the same `print`.
+  fs::path pdf = out;
+  pdf.replace_extension(".pdf");
   for (const auto& [query, flags, status] : jobs) {
     SCOPED_TRACE(query);
     const std::string id = submit(s, mesh, "model/x-ply", "?" + query);
@@ -544,13 +594,15 @@ TEST_P(ServeTest, CommandLineAndServiceWriteTheSameNet) {
     ASSERT_EQ(served->status, 200);
     const std::string cmd = std::string(PAPERNET_BINARY) + " unfold " +
                             (fs::path(PAPERNET_TEST_DATA) / "mirror.ply").string() + " " + flags +
-                            " -o " + out.string() + " > /dev/null 2>&1";
+                            " -o " + out.string() + " -o " + pdf.string() + " > /dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     const json cli = json::parse(read_file(out));
     EXPECT_EQ(without_seconds(cli), without_seconds(json::parse(served->body)));
     EXPECT_EQ(cli["mesh"]["faces"].size(), cli["net"]["faces"].size());
+    EXPECT_EQ(cli.contains("print"), query.find("paper=none") == std::string::npos);
   }
   fs::remove(out);
+  fs::remove(pdf);
 }
 
 // A bad option is the caller's fault, not the mesh's: 400 naming it, before any job exists;

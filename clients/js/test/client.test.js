@@ -70,6 +70,14 @@ test("raw OBJ upload: SSE progress to the end, then every result file", async ()
   const svg = await client.netSvg(job.id);
   assert.match(svg, /<svg[\s>]/);
   assert.match(svg, /<path|<polygon|<line/);
+  // Each printed page on its own; the net's placements name them from 0.
+  const pages = net.print.pages;
+  assert.ok(pages >= 1);
+  assert.equal(last.links.pages.length, pages);
+  const page = await client.page(job.id, pages);
+  assert.ok(page.includes(`page ${pages} of ${pages}`));
+  net.print.placements.forEach((p) => assert.ok(p.page >= 0 && p.page < pages));
+  await assert.rejects(client.page(job.id, pages + 1), (e) => e.code === "not_found" && e.status === 404);
   const pdf = await client.netPdf(job.id);
   assert.equal(new TextDecoder().decode(pdf.slice(0, 5)), "%PDF-");
   const glb = await client.meshGlb(job.id);
@@ -194,7 +202,7 @@ test("cancel a queued job; cancelling a finished one is job_finished (409)", asy
   // The single worker is busy with a long job, so the second one waits in the queue.
   const busy = await client.submit(sample("Duck.glb"), {
     filename: "busy.glb",
-    options: { strategy: "TU", seed: 11, time_limit: 30 },
+    options: { strategy: "TU", seed: 11, time_limit: 30, detail: "full" },
   });
   const queued = await client.submit(sample("sample.obj"), { filename: "q.obj", options: { strategy: "TU", seed: 12 } });
   const cancelled = await client.cancel(queued.id);
@@ -206,7 +214,10 @@ test("cancel a queued job; cancelling a finished one is job_finished (409)", asy
   await client.cancel(busy.id).catch((e) => assert.equal(e.code, "job_finished"));
   assert.ok(["cancelled", "succeeded", "approximated"].includes((await client.wait(busy.id)).status));
   // A job that succeeded cannot be cancelled.
-  const small = await client.submit(sample("sample.obj"), { filename: "s.obj", options: { strategy: "TU", seed: 13 } });
+  const small = await client.submit(sample("sample.obj"), {
+    filename: "s.obj",
+    options: { strategy: "TU", seed: 13, detail: "full" },
+  });
   assert.equal((await client.wait(small.id)).status, "succeeded");
   await assert.rejects(client.cancel(small.id), (e) => e instanceof PapernetError && e.code === "job_finished" && e.status === 409);
 });
@@ -288,7 +299,7 @@ test("apiKey: a server with --api-keys answers the key's tenant; no key is missi
     const b = new PapernetClient(keyed.url, { apiKey: "key-b" });
     await assert.rejects(new PapernetClient(keyed.url).jobs(), (e) => e.code === "missing_api_key" && e.status === 401);
     await assert.rejects(new PapernetClient(keyed.url, { apiKey: "nope" }).jobs(), (e) => e.code === "invalid_api_key");
-    const job = await a.submit(sample("sample.obj"), { filename: "a.obj", options: { strategy: "TU" } });
+    const job = await a.submit(sample("sample.obj"), { filename: "a.obj", options: { strategy: "TU", detail: "full" } });
     assert.equal((await a.wait(job.id)).status, "succeeded");
     checkNet(await a.netJson(job.id));
     await assert.rejects(b.job(job.id), (e) => e.code === "job_not_found" && e.status === 404);

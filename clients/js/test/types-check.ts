@@ -12,6 +12,10 @@ async function example(bytes: Uint8Array): Promise<NetDocument | null> {
     const net = await client.netJson(job.id);
     const root: number = net.net.faces.findIndex((f) => f.parent === -1);
     console.log(root, net.level?.kind);
+    const first = net.print?.placements[0];
+    if (first && first.page >= 0) console.log((await client.page(job.id, first.page + 1)).length);
+    const pages: string[] | undefined = (await client.job(job.id)).links.pages;
+    console.log(pages?.length);
     return net;
   } catch (e) {
     if (e instanceof PapernetError && e.code === "invalid_mesh") return null;

@@ -10,6 +10,7 @@ const ui = {
   drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
   paper: $("paper"), detail: $("detail"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
   model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
+  sheet: $("sheet"),
   downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
 };
 
@@ -181,16 +182,32 @@ function showProgress(job) {
   setStatus(describe(job));
 }
 
+// Puts an SVG from our own server (the net's cut, fold and label layers) into the net panel.
+function showSvg(svg) {
+  ui.net.innerHTML = svg;
+  const svgElement = ui.net.querySelector("svg");
+  svgElement?.removeAttribute("width");
+  svgElement?.removeAttribute("height");
+}
+
+// The sheet chooser: the whole net, or each printed page of job `id` (pages/k, k from 1).
+function offerSheets(id, pages) {
+  ui.sheet.replaceChildren(new Option("whole net", "0"));
+  for (let k = 1; k <= pages; ++k) ui.sheet.append(new Option(`sheet ${k} of ${pages}`, String(k)));
+  ui.sheet.disabled = pages === 0;
+  ui.sheet.onchange = async () => {
+    const k = Number(ui.sheet.value);
+    showSvg(k === 0 ? await client.netSvg(id) : await client.page(id, k));
+  };
+}
+
 async function showResult(id, final) {
   const [doc, svg] = await Promise.all([client.netJson(id), client.netSvg(id)]);
   const faces = doc.mesh.faces.length;
   if (!final && faces === shownFaces) return;
   shownFaces = faces;
-  // The SVG comes from our own server; it holds the net's cut, fold and label layers.
-  ui.net.innerHTML = svg;
-  const svgElement = ui.net.querySelector("svg");
-  svgElement?.removeAttribute("width");
-  svgElement?.removeAttribute("height");
+  showSvg(svg);
+  offerSheets(id, final ? doc.print?.pages ?? 0 : 0);
   showNet3d(doc);
   for (const [name, a] of Object.entries(ui.downloads)) a.href = client.url(`/v1/jobs/${id}/${name}`);
   document.body.dataset.level = doc.level?.kind ?? doc.result;
@@ -239,9 +256,16 @@ async function run() {
       const r = final.result ?? {};
       const m = r.metrics ?? {};
       const glue = m.glue_tabs === undefined ? "" : ` · ${m.glue_tabs} glue tabs, ${m.glue_strips} glue strips, ${m.pages} pages`;
+      // Pieces as printed (a part too large for a sheet is cut into several), of the model's parts.
       const pieces = (r.pieces ?? []).length;
-      const parts = pieces > 1 ? ` in ${pieces} pieces` : "";
-      setStatus(`${final.status}: net of ${r.faces} faces${parts} (input ${r.input_faces})${glue} · ${describe(final, false)}`);
+      const partCount = new Set((r.pieces ?? []).map((p) => p.component)).size;
+      const parts = pieces > 1 ? ` in ${pieces} pieces${partCount > 1 ? ` of ${partCount} parts` : ""}` : "";
+      // The detail printed (auto collapses a model too dense to build at its size), and warnings.
+      const detail = r.detail ? ` · detail ${r.detail.mode}` : "";
+      const warnings = (r.warnings ?? []).map((w) => ` · warning: ${w.message}`).join("");
+      setStatus(
+        `${final.status}: net of ${r.faces} faces${parts} (input ${r.input_faces})${detail}${glue}${warnings} · ${describe(final, false)}`,
+      );
       // What was repaired (or skipped, or dropped), one line each.
       ui.repairs.replaceChildren(
         ...(r.repairs ?? []).map((repair) => {

@@ -69,6 +69,7 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.setInputFiles("#file", join(dataDir, sampleName));
   await page.selectOption("#strategy", strategy);
   await page.fill("#size", "120");
+  await page.fill("#detail", "full"); // every face: the live approximation levels are tested
   await page.selectOption("#paper", "A4");
   await page.fill("#time-limit", "240");
   // Record every status line and every value of the bar, to check the live progress shown while
@@ -138,10 +139,19 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
     assert.ok((await res.body()).toString("latin1").trimStart().startsWith(magic), `${href} starts with ${magic}`);
   }
 
+  // The status says the detail printed; the sheets, one by one, as the printer prints them.
+  assert.match(await page.textContent("#status"), / · detail full · /);
+  const sheets = await page.locator("#sheet option").count();
+  assert.ok(sheets > 2, `the sheet chooser lists the whole net and the sheets: ${sheets}`);
+  await page.selectOption("#sheet", "2");
+  await page.waitForFunction((n) => document.querySelector("#net svg")?.textContent.includes(`page 2 of ${n}`), sheets - 1);
+  assert.ok((await page.locator("#net svg path").count()) > 0, "sheet 2 has paths");
+
   mkdirSync(dirname(screenshot), { recursive: true });
   await page.screenshot({ path: screenshot, fullPage: true });
   assert.ok(statSync(screenshot).size > 10000);
   console.log(`screenshot: ${screenshot}`);
+  await page.selectOption("#sheet", "0");
   assert.deepEqual(problems, []);
   assert.deepEqual(foreign, []);
 });
@@ -173,8 +183,8 @@ test("the demo unfolds every part of a model, or only the largest, and lists the
   };
   const all = await run("all");
   assert.equal(all.state, "done", all.status);
-  assert.match(all.status, /net of \d+ faces in (\d+) pieces/);
-  assert.ok(Number(all.status.match(/in (\d+) pieces/)[1]) > 10, all.status);
+  assert.match(all.status, /net of \d+ faces in (\d+) pieces of (\d+) parts/);
+  assert.ok(Number(all.status.match(/of (\d+) parts/)[1]) > 10, all.status);
   assert.ok(all.repairs.some(([code]) => code === "split_pinched_vertices"), JSON.stringify(all.repairs));
   assert.ok(await page.isVisible("#repairs"));
   const pieces = screenshot.replace(/\.png$/, "-pieces.png");
@@ -182,7 +192,7 @@ test("the demo unfolds every part of a model, or only the largest, and lists the
   console.log(`screenshot: ${pieces}`);
   const largest = await run("largest");
   assert.equal(largest.state, "done", largest.status);
-  assert.doesNotMatch(largest.status, /pieces/);
+  assert.doesNotMatch(largest.status, / parts/);
   assert.ok(largest.repairs.some(([code, text]) => code === "dropped_components" && /kept the largest/.test(text)), JSON.stringify(largest.repairs));
   console.log(`parts: "${all.status.split(" · ")[0]}"; repairs: ${all.repairs.map(([c]) => c).join(", ")}`);
   assert.deepEqual(problems, []);

@@ -139,17 +139,29 @@ test("a net from the server folds into its mesh", async () => {
       const doc = await client.netJson(job.id);
       const prepared = prepareFold(doc);
       const flat = foldPositions(prepared, 0);
-      // Flat: the net's own 2D points (up to the mirror), z = 0.
-      doc.net.faces.forEach((f, i) =>
-        f.points.forEach(([u, v], k) => {
-          assert.ok(Math.abs(flat[i * 9 + k * 3] - u) < 1e-4 * (1 + Math.abs(u)));
-          assert.ok(Math.abs(Math.abs(flat[i * 9 + k * 3 + 1]) - Math.abs(v)) < 1e-4 * (1 + Math.abs(v)));
-        }),
-      );
       const diagonal = Math.hypot(...[0, 1, 2].map((k) => {
         const xs = doc.mesh.vertices.map((p) => p[k]);
         return Math.max(...xs) - Math.min(...xs);
       }));
+      // Flat: each piece (as printed: cut to fit a sheet) its net's own 2D points, up to the mirror
+      // and a shift of the piece beside the others, z = 0.
+      const offsets = new Map(); // piece -> [x - u], [y - v], [y + v]
+      doc.net.faces.forEach((f, i) =>
+        f.points.forEach(([u, v], k) => {
+          if (!offsets.has(f.piece)) offsets.set(f.piece, [[], [], []]);
+          const [dx, dy, dyMirrored] = offsets.get(f.piece);
+          dx.push(flat[i * 9 + k * 3] - u);
+          dy.push(flat[i * 9 + k * 3 + 1] - v);
+          dyMirrored.push(flat[i * 9 + k * 3 + 1] + v);
+          assert.ok(Math.abs(flat[i * 9 + k * 3 + 2]) < 1e-9 * diagonal);
+        }),
+      );
+      const spread = (xs) => Math.max(...xs) - Math.min(...xs);
+      for (const [piece, [dx, dy, dyMirrored]] of offsets) {
+        assert.ok(spread(dx) < 1e-6 * diagonal, `piece ${piece} moved rigidly in x`);
+        assert.ok(Math.min(spread(dy), spread(dyMirrored)) < 1e-6 * diagonal, `piece ${piece} in y`);
+      }
+      assert.ok(doc.pieces.length > 1, "the sheets' pieces: cut to fit");
       assertFoldsIntoMesh(doc, foldPositions(prepared, 1), 1e-3 * diagonal);
     }
   } finally {
