@@ -51,7 +51,8 @@ struct Piece {
 double parts_print_scale(const std::vector<Mesh>& parts, const JobOptions& options);
 
 /// The faces a person can build of `part` printed at `scale` (engine/detail.cpp): its printed
-/// area over that of an equilateral face of the smallest buildable edge; at least 100 (a small part keeps its shape).
+/// area over that of an equilateral face of the smallest buildable edge; at least 100 (a small part
+/// keeps its shape).
 std::size_t buildable_faces(const Mesh& part, double scale);
 
 /// The faces `part` is collapsed to before it is unfolded, by the job's `detail` (0: none):
