@@ -122,12 +122,16 @@ void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Labe
   }
 }
 
-/// True when `label`'s box meets that of another label of its face.
-bool collides_in_face(const Label& label, const std::vector<Label>& labels) {
-  for (const Label& other : labels)
-    if (&other != &label && other.side.face == label.side.face && !other.text.empty() &&
+/// True when `label`'s box meets that of another label of its face (`by_face`: the labels of
+/// each face, indices into `labels`).
+bool collides_in_face(const Label& label, const std::vector<Label>& labels,
+                      const std::vector<std::vector<int>>& by_face) {
+  for (int i : by_face[label.side.face]) {
+    const Label& other = labels[i];
+    if (&other != &label && !other.text.empty() &&
         convex_overlap(label_box(label), label_box(other), 0))
       return true;
+  }
   return false;
 }
 
@@ -140,6 +144,9 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
                          const std::vector<Tab>& tabs, const std::vector<int>& tab_of,
                          std::vector<Label>& labels, double max_size) {
   const std::vector<Label> fitted = labels;  // apart from each other within each face
+  std::vector<std::vector<int>> by_face(faces.size());
+  for (int i = 0; i < static_cast<int>(labels.size()); ++i)
+    by_face[labels[i].side.face].push_back(i);
   for (Label& label : labels) {
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
     const double chars = static_cast<double>(label.text.size());
@@ -177,7 +184,7 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
     bool clear = false;
     for (const double t : {0.5, 0.3, 0.7, 0.15, 0.85}) {
       label.at = p0 + (t * len) * d + (0.7 * kLegibleLabelMm) * up;
-      if ((clear = !collides_in_face(label, labels))) break;
+      if ((clear = !collides_in_face(label, labels, by_face))) break;
     }
     if (!clear) label = small;
   }
@@ -186,7 +193,7 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
   for (bool changed = true; changed;) {
     changed = false;
     for (std::size_t i = 0; i < labels.size(); ++i)
-      if (labels[i].size != fitted[i].size && collides_in_face(labels[i], labels)) {
+      if (labels[i].size != fitted[i].size && collides_in_face(labels[i], labels, by_face)) {
         labels[i] = fitted[i];
         changed = true;
       }
