@@ -17,16 +17,10 @@
 #include "core/io/load.h"
 #include "core/mesh/validate.h"
 #include "core/unfold/net_check.h"
+#include "tests/support/job_input.h"
 
 namespace papernet::test {
 namespace {
-
-JobInput data_file(const std::string& name) {
-  JobInput input;
-  input.mesh = read_mesh_file(std::string(PAPERNET_TEST_DATA) + "/" + name, 64 << 20);
-  input.format = format_from_extension(name);
-  return input;
-}
 
 JobOptions tu(std::uint64_t seed = 1) {
   JobOptions options;

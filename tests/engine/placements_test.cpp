@@ -15,39 +15,20 @@
 #include "core/io/load.h"
 #include "core/unfold/net_check.h"
 #include "engine/pipeline.h"
+#include "tests/support/job_input.h"
+#include "tests/support/svg.h"
 
 namespace papernet::test {
 namespace {
-
-JobInput data_file(const std::string& name) {
-  JobInput input;
-  input.mesh = read_mesh_file(std::string(PAPERNET_TEST_DATA) + "/" + name, 64 << 20);
-  input.format = format_from_extension(name);
-  return input;
-}
 
 // A4 with 10 mm margins (the defaults).
 constexpr double kWidth = 210, kHeight = 297, kMargin = 10;
 // The transforms against the drawing: SVG numbers are rounded to 1 µm.
 constexpr double kTolerance = 0.05;
 
-/// The closed polygons of one SVG group (print/svg.cpp writes a layer as <g id="...">).
+/// The closed polygons of one SVG group.
 std::vector<std::vector<Vec2>> polygons(const std::string& svg, const std::string& id) {
-  const auto start = svg.find("<g id=\"" + id + "\"");
-  if (start == std::string::npos) return {};
-  const std::string group = svg.substr(start, svg.find("</g>", start) - start);
-  std::vector<std::vector<Vec2>> out;
-  static const std::regex polygon("<polygon points=\"([^\"]*)\"");
-  for (auto it = std::sregex_iterator(group.begin(), group.end(), polygon);
-       it != std::sregex_iterator(); ++it) {
-    std::istringstream in((*it)[1].str());
-    std::vector<Vec2> poly;
-    double x = 0, y = 0;
-    char comma = 0;
-    while (in >> x >> comma >> y) poly.push_back({x, y});
-    out.push_back(std::move(poly));
-  }
-  return out;
+  return svg_polygons(svg_group(svg, id));
 }
 
 Vec2 apply(const std::array<double, 6>& t, Vec2 p) {

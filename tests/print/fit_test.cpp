@@ -17,6 +17,7 @@
 #include "print/svg.h"
 #include "tests/support/meshes.h"
 #include "tests/support/polygons.h"
+#include "tests/support/svg.h"
 
 namespace papernet {
 namespace {
@@ -123,27 +124,6 @@ TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
   }
 }
 
-std::string group(const std::string& svg, const std::string& id) {
-  const auto start = svg.find("<g id=\"" + id + "\"");
-  if (start == std::string::npos) return {};
-  return svg.substr(start, svg.find("</g>", start) - start);
-}
-
-std::vector<std::vector<Vec2>> polygons(const std::string& svg_group) {
-  std::vector<std::vector<Vec2>> out;
-  static const std::regex polygon("<polygon points=\"([^\"]*)\"");
-  for (auto it = std::sregex_iterator(svg_group.begin(), svg_group.end(), polygon);
-       it != std::sregex_iterator(); ++it) {
-    std::istringstream in((*it)[1].str());
-    std::vector<Vec2> poly;
-    double x = 0, y = 0;
-    char comma = 0;
-    while (in >> x >> comma >> y) poly.push_back({x, y});
-    out.push_back(std::move(poly));
-  }
-  return out;
-}
-
 // The whole path of a print: a dense net is cut to fit, laid out with tabs and strips, nested,
 // drawn. Each page, as drawn in its SVG, holds its faces, tabs and strips inside the printable
 // area, none overlapping another; every face is drawn once (no tiles), and every page says which
@@ -168,12 +148,12 @@ TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
     const std::string& svg = svgs[k];
     const std::string name = "page " + std::to_string(k + 1) + " of " + std::to_string(svgs.size());
     EXPECT_NE(svg.find(name), std::string::npos) << name;
-    std::vector<std::vector<Vec2>> shapes = polygons(group(svg, "faces"));
+    std::vector<std::vector<Vec2>> shapes = test::svg_polygons(test::svg_group(svg, "faces"));
     faces += shapes.size();
-    const auto tab_shapes = polygons(group(svg, "tabs"));
+    const auto tab_shapes = test::svg_polygons(test::svg_group(svg, "tabs"));
     tabs += tab_shapes.size();
     shapes.insert(shapes.end(), tab_shapes.begin(), tab_shapes.end());
-    const auto strip_shapes = polygons(group(svg, "strips"));
+    const auto strip_shapes = test::svg_polygons(test::svg_group(svg, "strips"));
     strips += strip_shapes.size();
     shapes.insert(shapes.end(), strip_shapes.begin(), strip_shapes.end());
     for (const auto& s : shapes)
