@@ -1,7 +1,6 @@
 // How many faces each part is printed with (docs/print.md, "Detail").
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include "engine/internal/steps.h"
