@@ -227,6 +227,20 @@ constexpr Spec kOptions[] = {
      }},
     {"labels", "", "matching numbers on both sides of each cut edge",
      [](JobOptions& o, const std::string& n, const json& v) { o.labels = boolean(n, v); }},
+    {"colour", "auto|none",
+     "auto: the model's textures, material and vertex colours printed on the pieces and their "
+     "tabs; none: line art only",
+     [](JobOptions& o, const std::string& n, const json& v) {
+       const std::string s = v.is_boolean() ? (v.get<bool>() ? "auto" : "none") : lower(text(n, v));
+       if (s == "auto")
+         o.colour = true;
+       else if (s == "none")
+         o.colour = false;
+       else
+         bad_value(n, v, "auto or none");
+     }},
+    {"dpi", "N", "resolution of the printed colour, dots per inch (50 to 1200)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.dpi = number(n, v); }},
     {"components", "all|largest",
      "all: every connected part of the mesh its own piece; largest: only the largest part",
      [](JobOptions& o, const std::string& n, const json& v) {
@@ -411,6 +425,8 @@ void validate_options(const JobOptions& o, const OptionsLimits& limits) {
         "must be between 0 and 50 millimetres");
   range(o.tab_room_budget <= kMaxTabRoomBudget, "tab_room_budget",
         "must be at most " + std::to_string(kMaxTabRoomBudget) + " moves");
+  range(within(o.dpi, kMinColourDpi, kMaxColourDpi), "dpi",
+        "must be between 50 and 1200 dots per inch");
   range(std::isfinite(o.flat_fold_degrees) && o.flat_fold_degrees >= 0 && o.flat_fold_degrees < 90,
         "flat_fold_degrees", "must be at least 0 and less than 90 degrees");
   // What the print checks of itself: a custom paper too small for its margins, say.
@@ -475,6 +491,8 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"tab_room_budget", o.tab_room_budget},
               {"flat_fold_degrees", o.flat_fold_degrees},
               {"labels", o.labels},
+              {"colour", o.colour ? "auto" : "none"},
+              {"dpi", o.dpi},
               {"components", o.components == Components::All ? "all" : "largest"},
               {"strict", o.strict},
               {"callback_url", opt(o.callback_url)}};

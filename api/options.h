@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/errors.h"
+#include "print/colour.h"
 #include "print/layout.h"
 #include "print/pages.h"
 
@@ -79,6 +80,11 @@ struct JobOptions {
   /// Folds flatter than this many degrees are not drawn.
   double flat_fold_degrees = PrintOptions{}.flat_fold_degrees;
   bool labels = PrintOptions{}.labels;  ///< matching numbers on both sides of each cut edge
+  /// Print the model's colour (textures, material and vertex colours) on SVG and PDF pages
+  /// (docs/colour.md, "Printing"); false prints line art.
+  bool colour = true;
+  /// Resolution of the printed colour, dots per inch.
+  double dpi = kDefaultColourDpi;
   /// Every connected part its own piece (all), or only the largest part (the result says what
   /// it dropped).
   Components components = Components::All;

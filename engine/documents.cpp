@@ -8,6 +8,7 @@
 #include "core/unfold/net_metrics.h"
 #include "engine/internal/steps.h"
 #include "print/arrange.h"
+#include "print/colour.h"
 #include "print/fit.h"
 #include "print/nest.h"
 #include "print/pages.h"
@@ -184,6 +185,20 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   }
   report(progress, "layout", 0.3);
   PrintLayout layout = layout_net(mesh, arrange_pieces(pieces.net, pieces.piece, gap), print);
+  // Colour (docs/colour.md, "Printing"): rasterised page by page as the pages are drawn.
+  std::optional<PrintColour> colour;
+  if (options.colour && !outcome.net.colour.empty()) {
+    std::vector<std::string> notes;
+    colour = print_colour(outcome.net.colour, mesh.faces.size(), options.dpi, notes);
+    for (const std::string& note : notes)
+      outcome.net.warnings.push_back({"texture_not_printed", 1, note});
+    // Faces of approximate pieces: from the input surface nearest them (engine/colour.cpp).
+    colour->faces.resize(mesh.faces.size());
+    for (std::size_t f = 0; f < outcome.baked_colour.size() && f < mesh.faces.size(); ++f)
+      if (!outcome.baked_colour[f].empty()) colour->faces[f] = outcome.baked_colour[f];
+    if (!colour->any()) colour.reset();
+  }
+  const PrintColour* paint = colour ? &*colour : nullptr;
   PrintSummary& summary = outcome.print.emplace();
   summary.cut_edges = static_cast<std::size_t>(layout.cut_edges);
   summary.tabs = layout.tabs.size();
@@ -195,7 +210,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.small_labels = labels.illegible;
   // Without paper, the SVG is the net as laid out; paginating may turn it and move strips.
   if (request.svg_pages && !has_paper(options))
-    docs.svg_pages = {write_net_svg(layout, page.margin_mm)};
+    docs.svg_pages = {write_net_svg(layout, page.margin_mm, paint)};
   report(progress, "layout", 0.6);
   const PageLayout pages =
       fit ? nest_pages(layout, pieces.piece, page, kCutSpacingMm) : paginate(layout, page);
@@ -206,13 +221,14 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.cut_links = pieces.cut_links;
   summary.layout_note = std::move(layout_note);
   if (has_paper(options)) describe_print(outcome.net, pieces, layout, pages, page, fit);
-  if (request.pdf) docs.pdf = write_pdf(layout, pages);
+  if (request.pdf) docs.pdf = write_pdf(layout, pages, paint);
   report(progress, "write", 0.5);
-  if (request.svg_pages && has_paper(options)) docs.svg_pages = write_page_svgs(layout, pages);
+  if (request.svg_pages && has_paper(options))
+    docs.svg_pages = write_page_svgs(layout, pages, paint);
   if (request.svg)
     docs.svg = has_paper(options) && pages.pages.size() == 1
-                   ? write_page_svgs(layout, pages).front()
-                   : write_net_svg(layout, page.margin_mm);
+                   ? write_page_svgs(layout, pages, paint).front()
+                   : write_net_svg(layout, page.margin_mm, paint);
 }
 
 }  // namespace

@@ -193,6 +193,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   if (auto warning = detail_warning(pieces, prepared.parts, options, scale))
     out.net.warnings.push_back(std::move(*warning));
   out.net.metrics.seconds = seconds;
+  if (options.colour && documents.print()) out.baked_colour = bake_colour(pieces, prepared, scale);
   write_documents(options, documents, out, tracked);
   tracked.finish(out.net.mesh.faces.size(), prepared.input.faces);
   return out;

@@ -85,6 +85,9 @@ struct UnfoldOutcome {
   std::size_t iterations = 0;  ///< of the Tabu Unfolder
   std::optional<TabRoomSummary> tab_room;  ///< when the pass ran
   std::optional<PrintSummary> print;       ///< when a print document was asked for
+  /// Per face of `net.mesh`, the colour of faces of approximate pieces from the input surface
+  /// nearest to them, for the print (empty: none baked; docs/colour.md, "Printing").
+  std::vector<std::vector<ColourTriangle>> baked_colour;
   Documents documents;
 };
 

@@ -300,11 +300,14 @@ void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawin
 
 }  // namespace
 
-PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index) {
+PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index,
+                      const PrintColour* colour) {
   const Page& page = pages.pages.at(static_cast<std::size_t>(index));
   const double m = pages.margin;
-  PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}};
+  PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}, {}};
   add_layout(layout, page.lo, page.hi, {m, m}, d);
+  if (colour)
+    d.images = colour_images(layout, *colour, page.lo, page.hi, {m, m}, d.clip_lo, d.clip_hi);
   auto mark = [&](Vec2 a, Vec2 b) { d.shapes.push_back({Layer::Marks, {a, b}, false, {}, 0, 0}); };
   const double ov = pages.overlap, x1 = pages.width - m, y1 = pages.height - m;
   // Overlap marks: where the neighbouring tile's window begins, with ticks in the margin so the
@@ -326,11 +329,13 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
   return d;
 }
 
-PageDrawing draw_unpaged(const PrintLayout& layout, double margin_mm) {
+PageDrawing draw_unpaged(const PrintLayout& layout, double margin_mm, const PrintColour* colour) {
   const double m = std::max(0.0, margin_mm);
-  PageDrawing d{layout.size.x + 2 * m, layout.size.y + 2 * m, {0, 0}, {}, {}};
+  PageDrawing d{layout.size.x + 2 * m, layout.size.y + 2 * m, {0, 0}, {}, {}, {}};
   d.clip_hi = {d.width, d.height};
-  add_layout(layout, {-m, -m}, {layout.size.x + m, layout.size.y + m}, {0, 0}, d);
+  const Vec2 lo{-m, -m}, hi{layout.size.x + m, layout.size.y + m};
+  add_layout(layout, lo, hi, {0, 0}, d);
+  if (colour) d.images = colour_images(layout, *colour, lo, hi, {0, 0}, d.clip_lo, d.clip_hi);
   return d;
 }
 

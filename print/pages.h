@@ -4,6 +4,7 @@
 #include <string_view>
 #include <vector>
 
+#include "print/colour.h"
 #include "print/layout.h"
 
 namespace papernet {
@@ -87,12 +88,16 @@ struct PageDrawing {
   double width = 0, height = 0;
   Vec2 clip_lo, clip_hi;
   std::vector<Shape> shapes;
+  std::vector<PageImage> images;  ///< the pieces' colour, under every layer but faces and tabs
 };
 
-/// The shapes of page `index` of a paginated layout, with tile overlap marks and page number.
-PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index);
+/// The shapes of page `index` of a paginated layout, with tile overlap marks and page number;
+/// with `colour`, the coloured pieces' images on it.
+PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index,
+                      const PrintColour* colour = nullptr);
 
 /// The whole layout as one drawing sized to the net plus `margin_mm` (no paper).
-PageDrawing draw_unpaged(const PrintLayout& layout, double margin_mm);
+PageDrawing draw_unpaged(const PrintLayout& layout, double margin_mm,
+                         const PrintColour* colour = nullptr);
 
 }  // namespace papernet

@@ -67,6 +67,15 @@ void draw(cairo_t* cr, const PageDrawing& d) {
   };
   fill_layer(Layer::Faces, 0xf3f6fb);
   fill_layer(Layer::Tabs, 0xe2e2e2);
+  for (const PageImage& image : d.images) {
+    cairo_save(cr);
+    cairo_translate(cr, image.at.x, image.at.y);
+    cairo_scale(cr, image.width / cairo_image_surface_get_width(image.surface.get()),
+                image.height / cairo_image_surface_get_height(image.surface.get()));
+    cairo_set_source_surface(cr, image.surface.get(), 0, 0);
+    cairo_paint(cr);
+    cairo_restore(cr);
+  }
   set_rgb(cr, 0xfbf1d3);  // glue strips: filled, outlined as cut, seam dotted, labelled
   for (const Shape& s : d.shapes)
     if (s.layer == Layer::Strips && s.closed) trace(cr, s), cairo_fill(cr);
@@ -95,7 +104,8 @@ void draw(cairo_t* cr, const PageDrawing& d) {
 
 }  // namespace
 
-std::string write_pdf(const PrintLayout& layout, const PageLayout& pages) {
+std::string write_pdf(const PrintLayout& layout, const PageLayout& pages,
+                      const PrintColour* colour) {
   std::string bytes;
   cairo_surface_t* surface =
       cairo_pdf_surface_create_for_stream(append, &bytes, pages.width * kPt, pages.height * kPt);
@@ -117,7 +127,7 @@ std::string write_pdf(const PrintLayout& layout, const PageLayout& pages) {
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> own_cr(cr, cairo_destroy);
   cairo_scale(cr, kPt, kPt);  // draw in millimetres
   for (int i = 0; i < static_cast<int>(pages.pages.size()); ++i) {
-    draw(cr, draw_page(layout, pages, i));
+    draw(cr, draw_page(layout, pages, i, colour));
     cairo_show_page(cr);
   }
   own_cr.reset();

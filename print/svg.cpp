@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/io/image.h"
+
 namespace papernet {
 
 namespace {
@@ -120,6 +122,15 @@ std::string write_svg(const PageDrawing& d,
     }
     if (!path.empty()) o << "<path d=\"" << path << '"' << ls.path_style << "/>\n";
     o << "</g>\n";
+    if (ls.layer == Layer::Tabs && !d.images.empty()) {  // colour over the faces and tabs
+      o << "<g id=\"colour\" clip-path=\"url(#printable)\">\n";
+      for (const PageImage& image : d.images)
+        o << "<image x=\"" << num(image.at.x) << "\" y=\"" << num(image.at.y) << "\" width=\""
+          << num(image.width) << "\" height=\"" << num(image.height)
+          << "\" preserveAspectRatio=\"none\" href=\"data:image/png;base64,"
+          << encode_base64(encode_png(image.surface.get())) << "\"/>\n";
+      o << "</g>\n";
+    }
   }
   o << "</svg>\n";
   return o.str();
@@ -140,17 +151,18 @@ std::vector<std::pair<std::string, std::string>> layout_metadata(const PrintLayo
           {"pages", std::to_string(pages)}};
 }
 
-std::string write_net_svg(const PrintLayout& layout, double margin_mm) {
-  return write_svg(draw_unpaged(layout, margin_mm), layout_metadata(layout, 1));
+std::string write_net_svg(const PrintLayout& layout, double margin_mm, const PrintColour* colour) {
+  return write_svg(draw_unpaged(layout, margin_mm, colour), layout_metadata(layout, 1));
 }
 
-std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLayout& pages) {
+std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLayout& pages,
+                                         const PrintColour* colour) {
   std::vector<std::string> out;
   const int n = static_cast<int>(pages.pages.size());
   for (int i = 0; i < n; ++i) {
     auto meta = layout_metadata(layout, n);
     meta.emplace_back("page", std::to_string(i + 1));
-    out.push_back(write_svg(draw_page(layout, pages, i), meta));
+    out.push_back(write_svg(draw_page(layout, pages, i, colour), meta));
   }
   return out;
 }

@@ -12,10 +12,10 @@ namespace papernet {
 std::string xml_escape(const std::string& s);
 
 /// One SVG document for a drawing: width/height in mm, a viewBox in mm, and one <g> per layer
-/// with ids faces, tabs, strips, cut, mountain, valley, labels, marks (strips: glue strips'
-/// outlines solid, their seams dotted, their labels). Cut lines are solid, mountain folds dashed,
-/// valley folds dash-dotted. `metadata` (e.g. omitted tab counts) goes into a <metadata> element as
-/// data-* attributes of a <papernet> element.
+/// with ids faces, tabs, (colour: the drawing's images,) strips, cut, mountain, valley, labels,
+/// marks (strips: glue strips' outlines solid, their seams dotted, their labels). Cut lines are
+/// solid, mountain folds dashed, valley folds dash-dotted. `metadata` (e.g. omitted tab counts)
+/// goes into a <metadata> element as data-* attributes of a <papernet> element.
 std::string write_svg(const PageDrawing& drawing,
                       const std::vector<std::pair<std::string, std::string>>& metadata = {});
 
@@ -24,10 +24,13 @@ std::string write_svg(const PageDrawing& drawing,
 std::vector<std::pair<std::string, std::string>> layout_metadata(const PrintLayout& layout,
                                                                  int pages);
 
-/// The net as one SVG sized to itself (no paper), with a margin.
-std::string write_net_svg(const PrintLayout& layout, double margin_mm = 5);
+/// The net as one SVG sized to itself (no paper), with a margin; with `colour`, each coloured
+/// piece's image (PNG) in a group `colour` over the faces and tabs.
+std::string write_net_svg(const PrintLayout& layout, double margin_mm = 5,
+                          const PrintColour* colour = nullptr);
 
-/// One SVG per page of a paginated layout.
-std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLayout& pages);
+/// One SVG per page of a paginated layout (colour as write_net_svg).
+std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLayout& pages,
+                                         const PrintColour* colour = nullptr);
 
 }  // namespace papernet

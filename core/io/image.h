@@ -37,4 +37,7 @@ Image image_size(std::string_view bytes, std::uint64_t max_pixels = kDefaultMaxI
 ///        LimitExceededException over the limit.
 Image decode_image(std::string_view bytes, std::uint64_t max_pixels = kDefaultMaxImagePixels);
 
+/// `bytes` in base64 (RFC 4648), for data URIs: tinygltf's encoder.
+std::string encode_base64(std::string_view bytes);
+
 }  // namespace papernet

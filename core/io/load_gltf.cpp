@@ -18,6 +18,7 @@
 #include <unordered_set>
 
 #include "core/errors.h"
+#include "core/io/image.h"
 #include "core/io/internal/gltf_colour.h"
 #include "core/io/internal/load_formats.h"
 
@@ -439,6 +440,11 @@ std::vector<std::string> gltf_external_uris(std::string_view gltf_json) {
     if (!tinygltf::IsDataURI(uri)) uris.push_back(uri);
   }
   return uris;
+}
+
+std::string encode_base64(std::string_view bytes) {
+  return tinygltf::base64_encode(reinterpret_cast<const unsigned char*>(bytes.data()),
+                                 static_cast<unsigned int>(bytes.size()));
 }
 
 }  // namespace papernet

@@ -78,6 +78,13 @@ std::optional<NetRepair> detail_warning(const std::vector<Piece>& pieces,
                                         const std::vector<Mesh>& parts, const JobOptions& options,
                                         double scale);
 
+/// The colour of each face of the approximate pieces, from the input surface nearest to it
+/// (engine/colour.cpp): per face of the pieces side by side (as `assemble` puts them), empty for
+/// faces of pieces that fold into their part's own faces and for parts without colour.
+/// `scale` is the print's millimetres per model unit.
+std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& pieces,
+                                                     const Prepared& input, double scale);
+
 /// The pieces as one document: their meshes and nets side by side (engine/documents.cpp).
 NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
                      const JobOptions& options);
@@ -86,7 +93,7 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
 /// for a print. Printed on paper, `outcome.net` becomes the net as printed (its pieces cut to fit
 /// a sheet, its `print` placements) before the net JSON is written. Progress: phase "layout" (a
 /// print's pieces cut to fit, tabs, nesting), then "write", each with its phase_fraction.
-/// 	hrow InvalidOptionException when the print refuses the options.
+/// \throw InvalidOptionException when the print refuses the options.
 void write_documents(const JobOptions& options, const DocumentRequest& request,
                      UnfoldOutcome& outcome, Progress& progress);
 

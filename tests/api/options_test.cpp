@@ -87,6 +87,25 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_TRUE(o.strict);
 }
 
+TEST(OptionsTest, ColourAndItsResolutionAreParsedAndChecked) {
+  EXPECT_TRUE(JobOptions{}.colour);
+  EXPECT_DOUBLE_EQ(JobOptions{}.dpi, 300);
+  const JobOptions o = parse_options_query({{"colour", "none"}, {"dpi", "150"}});
+  EXPECT_FALSE(o.colour);
+  EXPECT_DOUBLE_EQ(o.dpi, 150);
+  EXPECT_TRUE(parse_options_json(R"({"colour":"AUTO"})").colour);
+  EXPECT_FALSE(parse_options_json(R"({"colour":false})").colour);
+  EXPECT_EQ(error_code([] { parse_options_query({{"colour", "sepia"}}); }), "invalid_option_value");
+  std::string option;
+  EXPECT_EQ(error_code([] { parse_options_query({{"dpi", "20"}}); }, &option),
+            "option_out_of_range");
+  EXPECT_EQ(option, "dpi");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"dpi":5000})"); }), "option_out_of_range");
+  const auto echo = options_to_json(o);
+  EXPECT_EQ(echo.at("colour"), "none");
+  EXPECT_EQ(echo.at("dpi"), 150);
+}
+
 TEST(OptionsTest, JsonObjectIsParsedWithTypedValues) {
   const JobOptions o = parse_options_json(
       R"({"strategy":"TU","seed":7,"scale":2.0,"paper":"none","tabs":false,"time_limit":null})");
@@ -124,7 +143,7 @@ TEST(OptionsTest, UnknownOptionIsNamed) {
                 &option),
             "unknown_option");
   EXPECT_EQ(option, "stratgey");
-  EXPECT_EQ(error_code([] { parse_options_json(R"({"colour":"red"})"); }), "unknown_option");
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"color":"red"})"); }), "unknown_option");
 }
 
 TEST(OptionsTest, BadValuesHaveStableCodes) {
@@ -299,7 +318,7 @@ TEST(OptionsTest, CommandLineFlagsFillTheSameOptions) {
   EXPECT_EQ(o.strategy, Strategy::SEMP);
   EXPECT_TRUE(apply_option_flag(o, "--tab-room-budget", "250000"));
   EXPECT_EQ(o.tab_room_budget, 250'000u);
-  EXPECT_FALSE(apply_option_flag(o, "--colour", "red"));
+  EXPECT_FALSE(apply_option_flag(o, "--color", "red"));
   EXPECT_FALSE(apply_option_flag(o, "--size-mm", "100"));  // one name per option
   std::string option;
   EXPECT_EQ(error_code([&] { apply_option_flag(o, "--flat-fold-degrees", "lots"); }, &option),

@@ -1,0 +1,414 @@
+// Colour rasterised per piece (docs/colour.md, "Printing"). cairo does the sampling: each
+// triangle is filled from the texture through the affine map of its page corners to its texels
+// (CAIRO_FILTER_GOOD filters a minified texture over the texels a pixel covers), vertex colours
+// are a mesh gradient, and colour factors multiply (CAIRO_OPERATOR_MULTIPLY).
+#include "print/colour.h"
+
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/errors.h"
+#include "core/io/image.h"
+#include "core/union_find.h"
+
+namespace papernet {
+namespace {
+
+using SurfacePtr = std::shared_ptr<cairo_surface_t>;
+
+SurfacePtr own(cairo_surface_t* s) { return SurfacePtr(s, cairo_surface_destroy); }
+
+// The largest image side drawn, pixels: a piece wider than this at the dpi asked is drawn at a
+// lower resolution (at 300 dpi, 1.4 m).
+constexpr int kMaxImageSide = 16384;
+
+bool finite(const UV& uv) { return std::isfinite(uv[0]) && std::isfinite(uv[1]); }
+bool finite(const RGBA& c) {
+  return std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]);
+}
+
+// glTF's factors and vertex colours are linear; textures and paper are sRGB.
+double srgb(double linear) {
+  const double c = std::clamp(linear, 0.0, 1.0);
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
+}
+
+SurfacePtr texture_surface(const Image& image) {
+  SurfacePtr s = own(cairo_image_surface_create(CAIRO_FORMAT_RGB24, image.width, image.height));
+  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS) return nullptr;
+  cairo_surface_flush(s.get());
+  unsigned char* data = cairo_image_surface_get_data(s.get());
+  const int stride = cairo_image_surface_get_stride(s.get());
+  for (int y = 0; y < image.height; ++y) {
+    auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    const std::uint8_t* in = image.rgba.data() + static_cast<std::size_t>(y) * image.width * 4;
+    for (int x = 0; x < image.width; ++x, in += 4)  // alpha ignored: paper is opaque
+      row[x] = 0xff000000u | (std::uint32_t{in[0]} << 16) | (std::uint32_t{in[1]} << 8) | in[2];
+  }
+  cairo_surface_mark_dirty(s.get());
+  return s;
+}
+
+cairo_extend_t extend_of(int wrap) {
+  switch (wrap) {
+    case 33071:
+      return CAIRO_EXTEND_PAD;
+    case 33648:
+      return CAIRO_EXTEND_REFLECT;
+    default:
+      return CAIRO_EXTEND_REPEAT;
+  }
+}
+
+// The triangle's own colour factor (material × vertex colours), sRGB, at one corner.
+std::array<double, 3> corner_colour(const ColourTriangle& t, const PrintColour& colour, int k) {
+  RGBA c{1, 1, 1, 1};
+  if (t.material >= 0 && t.material < static_cast<int>(colour.materials.size()))
+    c = colour.materials[t.material].base_color;
+  if (finite(t.rgba[k]))
+    for (int i = 0; i < 3; ++i) c[i] *= t.rgba[k][i];
+  return {srgb(c[0]), srgb(c[1]), srgb(c[2])};
+}
+
+const PrintTexture* texture_of(const ColourTriangle& t, const PrintColour& colour) {
+  if (t.material < 0 || t.material >= static_cast<int>(colour.materials.size())) return nullptr;
+  const int k = colour.materials[t.material].texture;
+  if (k < 0 || k >= static_cast<int>(colour.textures.size())) return nullptr;
+  const PrintTexture& tex = colour.textures[k];
+  if (!tex.surface || !finite(t.uv[0]) || !finite(t.uv[1]) || !finite(t.uv[2])) return nullptr;
+  return &tex;
+}
+
+bool coloured(const ColourTriangle& t, const PrintColour& colour) {
+  return texture_of(t, colour) ||
+         (t.material >= 0 && t.material < static_cast<int>(colour.materials.size())) ||
+         (finite(t.rgba[0]) && finite(t.rgba[1]) && finite(t.rgba[2]));
+}
+
+// The texture as a pattern for a triangle with page corners p and texture coordinates uv:
+// its matrix maps page millimetres to texels. Null when either triangle is degenerate.
+cairo_pattern_t* texture_pattern(const PrintTexture& tex, const std::array<Vec2, 3>& p,
+                                 const std::array<UV, 3>& uv) {
+  const Vec2 e1 = p[1] - p[0], e2 = p[2] - p[0];
+  const double det = cross(e1, e2);
+  const Vec2 t0{uv[0][0] * tex.width, uv[0][1] * tex.height};
+  const Vec2 f1 = Vec2{uv[1][0] * tex.width, uv[1][1] * tex.height} - t0;
+  const Vec2 f2 = Vec2{uv[2][0] * tex.width, uv[2][1] * tex.height} - t0;
+  const double area = cross(f1, f2);
+  if (!(std::abs(det) > 1e-12) || !(std::abs(area) > 1e-9)) return nullptr;
+  // M = [f1 f2] · [e1 e2]⁻¹, then the translation that takes p0 to t0.
+  const double i00 = e2.y / det, i01 = -e2.x / det, i10 = -e1.y / det, i11 = e1.x / det;
+  cairo_matrix_t m;
+  m.xx = f1.x * i00 + f2.x * i10;
+  m.xy = f1.x * i01 + f2.x * i11;
+  m.yx = f1.y * i00 + f2.y * i10;
+  m.yy = f1.y * i01 + f2.y * i11;
+  m.x0 = t0.x - (m.xx * p[0].x + m.xy * p[0].y);
+  m.y0 = t0.y - (m.yx * p[0].x + m.yy * p[0].y);
+  cairo_pattern_t* pattern = cairo_pattern_create_for_surface(tex.surface.get());
+  cairo_pattern_set_matrix(pattern, &m);
+  cairo_pattern_set_extend(pattern, extend_of(tex.sampler.wrap_s));
+  cairo_pattern_set_filter(
+      pattern, tex.sampler.mag_filter == 9728 ? CAIRO_FILTER_NEAREST : CAIRO_FILTER_GOOD);
+  return pattern;
+}
+
+// The texel at the centroid of uv, for a triangle whose map to the texture is degenerate.
+std::array<double, 3> texel_at(const PrintTexture& tex, const std::array<UV, 3>& uv) {
+  auto wrap = [](double t, int n, int mode) {
+    double x = t * n;
+    if (mode == 33071) return std::clamp(static_cast<int>(std::floor(x)), 0, n - 1);
+    x = std::fmod(std::floor(x), 2.0 * n);
+    if (x < 0) x += 2.0 * n;
+    int i = static_cast<int>(x);
+    if (mode == 33648 && i >= n) return 2 * n - 1 - i;
+    return i % n;
+  };
+  const double u = (uv[0][0] + uv[1][0] + uv[2][0]) / 3, v = (uv[0][1] + uv[1][1] + uv[2][1]) / 3;
+  const int x = wrap(u, tex.width, tex.sampler.wrap_s), y = wrap(v, tex.height, tex.sampler.wrap_t);
+  cairo_surface_t* s = tex.surface.get();
+  const auto* row = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(s) +
+                                                           static_cast<std::ptrdiff_t>(y) *
+                                                               cairo_image_surface_get_stride(s));
+  const std::uint32_t px = row[x];
+  return {((px >> 16) & 255) / 255.0, ((px >> 8) & 255) / 255.0, (px & 255) / 255.0};
+}
+
+template <typename Points>
+void trace(cairo_t* cr, const Points& p) {
+  cairo_move_to(cr, p[0].x, p[0].y);
+  for (std::size_t i = 1; i < p.size(); ++i) cairo_line_to(cr, p[i].x, p[i].y);
+  cairo_close_path(cr);
+}
+
+// Fills the triangle at page corners p with its colour, and `bleed` millimetres around it; with
+// `area`, that polygon instead, coloured by the triangle's map extended past its sides.
+void paint(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2, 3>& p,
+           const PrintColour& colour, double bleed, const std::vector<Vec2>* area = nullptr) {
+  const std::array<std::array<double, 3>, 3> c{
+      corner_colour(t, colour, 0), corner_colour(t, colour, 1), corner_colour(t, colour, 2)};
+  const bool uniform = c[0] == c[1] && c[1] == c[2];
+  const bool white = uniform && c[0] == std::array<double, 3>{1, 1, 1};
+  const PrintTexture* tex = texture_of(t, colour);
+  cairo_pattern_t* pattern = tex ? texture_pattern(*tex, p, t.uv) : nullptr;
+  auto fill_and_bleed = [&] {
+    if (area)
+      trace(cr, *area);
+    else
+      trace(cr, p);
+    cairo_fill_preserve(cr);
+    cairo_set_line_width(cr, 2 * bleed);
+    cairo_stroke(cr);
+  };
+  if (tex && !pattern) {  // a texture squeezed to a point or a line: the texel there
+    const auto texel = texel_at(*tex, t.uv);
+    cairo_set_source_rgb(cr, texel[0] * c[0][0], texel[1] * c[0][1], texel[2] * c[0][2]);
+    fill_and_bleed();
+    return;
+  }
+  if (pattern && white) {
+    cairo_set_source(cr, pattern);
+    cairo_pattern_destroy(pattern);
+    fill_and_bleed();
+    return;
+  }
+  auto gradient = [&] {
+    cairo_pattern_t* mesh = cairo_pattern_create_mesh();
+    cairo_mesh_pattern_begin_patch(mesh);
+    cairo_mesh_pattern_move_to(mesh, p[0].x, p[0].y);
+    cairo_mesh_pattern_line_to(mesh, p[1].x, p[1].y);
+    cairo_mesh_pattern_line_to(mesh, p[2].x, p[2].y);
+    for (int k = 0; k < 3; ++k)
+      cairo_mesh_pattern_set_corner_color_rgb(mesh, k, c[k][0], c[k][1], c[k][2]);
+    cairo_mesh_pattern_end_patch(mesh);
+    return mesh;
+  };
+  // The bleed in the colour of the corners' mean; a gradient only covers its triangle.
+  auto mean = [&](int i) { return (c[0][i] + c[1][i] + c[2][i]) / 3; };
+  if (!pattern) {
+    cairo_set_source_rgb(cr, mean(0), mean(1), mean(2));
+    fill_and_bleed();
+    if (!uniform) {
+      cairo_pattern_t* mesh = gradient();
+      cairo_set_source(cr, mesh);
+      cairo_pattern_destroy(mesh);
+      trace(cr, p);
+      cairo_fill(cr);
+    }
+    return;
+  }
+  // Texture times colour: the product made in a group over the triangle, then drawn.
+  cairo_save(cr);
+  if (area)
+    trace(cr, *area);
+  else
+    trace(cr, p);
+  cairo_set_line_width(cr, 2 * bleed);
+  double x0, y0, x1, y1;
+  cairo_stroke_extents(cr, &x0, &y0, &x1, &y1);
+  cairo_new_path(cr);
+  cairo_rectangle(cr, x0, y0, x1 - x0, y1 - y0);
+  cairo_clip(cr);
+  cairo_push_group(cr);
+  cairo_set_source(cr, pattern);
+  cairo_pattern_destroy(pattern);
+  cairo_paint(cr);
+  cairo_set_operator(cr, CAIRO_OPERATOR_MULTIPLY);
+  if (uniform) {
+    cairo_set_source_rgb(cr, c[0][0], c[0][1], c[0][2]);
+    cairo_paint(cr);
+  } else {  // the gradient covers the triangle only: its bleed keeps the texture's colour
+    cairo_pattern_t* mesh = gradient();
+    cairo_set_source(cr, mesh);
+    cairo_pattern_destroy(mesh);
+    trace(cr, p);
+    cairo_fill(cr);
+  }
+  cairo_pop_group_to_source(cr);
+  fill_and_bleed();
+  cairo_restore(cr);
+}
+
+// Page corners of a colour triangle of a face placed at page corners f.
+std::array<Vec2, 3> place(const ColourTriangle& t, const std::array<Vec2, 3>& f) {
+  std::array<Vec2, 3> p;
+  for (int k = 0; k < 3; ++k) p[k] = t.at[k][0] * f[0] + t.at[k][1] * f[1] + t.at[k][2] * f[2];
+  return p;
+}
+
+// The rigid motion of the plane that takes a0 to a1 and b0 to b1 (|a0 b0| = |a1 b1|).
+struct Motion {
+  Vec2 from, to;
+  double c = 1, s = 0;
+  Vec2 operator()(Vec2 p) const {
+    const Vec2 d = p - from;
+    return to + Vec2{c * d.x - s * d.y, s * d.x + c * d.y};
+  }
+};
+Motion motion(Vec2 a0, Vec2 b0, Vec2 a1, Vec2 b1) {
+  const Vec2 u = b0 - a0, v = b1 - a1;
+  const double n = norm(u) * norm(v);
+  if (!(n > 0)) return {a0, a1, 1, 0};
+  return {a0, a1, dot(u, v) / n, cross(u, v) / n};
+}
+
+}  // namespace
+
+bool PrintColour::any() const {
+  for (const auto& f : faces)
+    for (const ColourTriangle& t : f)
+      if (coloured(t, *this)) return true;
+  return false;
+}
+
+PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi,
+                         std::vector<std::string>& notes) {
+  PrintColour out;
+  out.dpi = dpi;
+  out.materials = colour.materials;
+  for (const Texture& t : colour.textures) {
+    PrintTexture& p = out.textures.emplace_back();
+    p.sampler = t.sampler;
+    try {
+      const Image image = decode_image(t.bytes);
+      p.surface = texture_surface(image);
+      p.width = image.width;
+      p.height = image.height;
+    } catch (const IOException& e) {
+      notes.push_back("texture " + std::to_string(out.textures.size() - 1) +
+                      (t.name.empty() ? std::string() : " (" + t.name + ")") +
+                      " is printed without its image: " + e.what());
+    }
+  }
+  if (colour.empty()) return out;
+  out.faces.resize(faces);
+  for (std::size_t f = 0; f < faces; ++f) {
+    ColourTriangle t;
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    t.uv.fill({kNaN, kNaN});
+    t.rgba.fill({kNaN, kNaN, kNaN, kNaN});
+    if (f < colour.uvs.size()) t.uv = colour.uvs[f];
+    if (f < colour.colours.size()) t.rgba = colour.colours[f];
+    if (f < colour.face_materials.size()) t.material = colour.face_materials[f];
+    if (coloured(t, out)) out.faces[f].push_back(t);
+  }
+  return out;
+}
+
+std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColour& colour, Vec2 lo,
+                                     Vec2 hi, Vec2 at, Vec2 clip_lo, Vec2 clip_hi) {
+  std::vector<PageImage> images;
+  const std::size_t n = layout.faces.size();
+  if (colour.faces.size() != n) return images;
+  auto map = [&](Vec2 p) { return Vec2{at.x + (p.x - lo.x), at.y + (hi.y - p.y)}; };
+  auto page_face = [&](int f) {
+    const auto& t = layout.faces[f];
+    return std::array<Vec2, 3>{map(t[0]), map(t[1]), map(t[2])};
+  };
+  // Pieces: faces joined by folds.
+  UnionFind pieces(n);
+  for (const NetEdge& e : layout.edges)
+    if (e.kind != EdgeKind::Cut && e.b.face >= 0) pieces.unite(e.a.face, e.b.face);
+  std::vector<Box2> box(n, Box2::empty());
+  std::vector<char> has_colour(n, 0);
+  std::vector<std::vector<int>> members(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    if (colour.faces[f].empty()) continue;
+    const int r = pieces.find(static_cast<int>(f));
+    has_colour[r] = 1;
+    members[r].push_back(static_cast<int>(f));
+    for (Vec2 p : page_face(static_cast<int>(f))) box[r].add(p);
+  }
+  // A tab glues under the face across its edge: it shows that face hinged onto the tab's side.
+  struct TabUnder {
+    const Tab* tab;
+    int under;
+  };
+  std::vector<std::vector<TabUnder>> tabs(n);
+  for (const Tab& tab : layout.tabs) {
+    const NetEdge& e = layout.edges[tab.edge];
+    const int under = e.a.face == tab.side.face ? e.b.face : e.a.face;
+    if (under < 0 || colour.faces[under].empty()) continue;
+    const int r = pieces.find(tab.side.face);
+    tabs[r].push_back({&tab, under});
+    has_colour[r] = 1;
+    for (Vec2 p : tab.corners) box[r].add(map(p));
+  }
+  const double px_per_mm = colour.dpi / 25.4;
+  const double bleed = 1 / px_per_mm;
+  for (std::size_t r = 0; r < n; ++r) {
+    if (!has_colour[r]) continue;
+    Box2 b = box[r];
+    b.lo = {std::max(b.lo.x - 2 * bleed, clip_lo.x), std::max(b.lo.y - 2 * bleed, clip_lo.y)};
+    b.hi = {std::min(b.hi.x + 2 * bleed, clip_hi.x), std::min(b.hi.y + 2 * bleed, clip_hi.y)};
+    if (!(b.hi.x > b.lo.x && b.hi.y > b.lo.y)) continue;
+    // Whole pixels from the box's corner, at most kMaxImageSide a side.
+    const double scale =
+        std::min(px_per_mm, kMaxImageSide / std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y));
+    const int w = std::max(1, static_cast<int>(std::ceil((b.hi.x - b.lo.x) * scale)));
+    const int h = std::max(1, static_cast<int>(std::ceil((b.hi.y - b.lo.y) * scale)));
+    SurfacePtr surface = own(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h));
+    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
+      throw IOException("cairo could not make a " + std::to_string(w) + " x " + std::to_string(h) +
+                        " colour image");
+    cairo_t* cr = cairo_create(surface.get());
+    cairo_scale(cr, scale, scale);
+    cairo_translate(cr, -b.lo.x, -b.lo.y);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    const double line = 1 / scale;  // the bleed: a pixel at the resolution drawn
+    for (int f : members[r]) {
+      const auto corners = page_face(f);
+      for (const ColourTriangle& t : colour.faces[f]) paint(cr, t, place(t, corners), colour, line);
+    }
+    for (const TabUnder& tu : tabs[r]) {
+      const NetEdge& e = layout.edges[tu.tab->edge];
+      const EdgeSide& own_side = e.a.face == tu.tab->side.face ? e.a : e.b;
+      const EdgeSide& under_side = e.a.face == tu.tab->side.face ? e.b : e.a;
+      const auto mine = page_face(own_side.face), under = page_face(under_side.face);
+      // The edge runs k -> k+1 on one side and k+1 -> k on the other.
+      const Motion hinge = motion(under[under_side.k], under[(under_side.k + 1) % 3],
+                                  mine[(own_side.k + 1) % 3], mine[own_side.k]);
+      const std::array<Vec2, 3> hinged{hinge(under[0]), hinge(under[1]), hinge(under[2])};
+      std::vector<Vec2> tab;
+      for (Vec2 q : tu.tab->corners) tab.push_back(map(q));
+      cairo_save(cr);
+      trace(cr, tab);
+      cairo_clip(cr);
+      // The first triangle's map covers the whole tab (a tab can reach past its face); the
+      // others, where a face has several, over it.
+      const auto& under_triangles = colour.faces[tu.under];
+      for (std::size_t i = 0; i < under_triangles.size(); ++i)
+        paint(cr, under_triangles[i], place(under_triangles[i], hinged), colour, line,
+              i == 0 ? &tab : nullptr);
+      cairo_restore(cr);
+    }
+    const cairo_status_t status = cairo_status(cr);
+    cairo_destroy(cr);
+    if (status != CAIRO_STATUS_SUCCESS)
+      throw IOException(std::string("cairo failed drawing colour: ") +
+                        cairo_status_to_string(status));
+    images.push_back({b.lo, w / scale, h / scale, std::move(surface)});
+  }
+  return images;
+}
+
+namespace {
+cairo_status_t append(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+}  // namespace
+
+std::string encode_png(cairo_surface_t* surface) {
+  std::string out;
+  const cairo_status_t status = cairo_surface_write_to_png_stream(surface, append, &out);
+  if (status != CAIRO_STATUS_SUCCESS)
+    throw IOException(std::string("cairo could not write a PNG: ") +
+                      cairo_status_to_string(status));
+  return out;
+}
+
+}  // namespace papernet

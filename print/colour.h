@@ -1,0 +1,81 @@
+#pragma once
+// Printing the model's colour (docs/colour.md, "Printing"): each piece rasterised at the print's
+// dpi from the affine map of each net triangle to its texture coordinates, glue tabs filled with
+// the colour of the face they glue under, about a pixel of bleed past folds and cuts. One image
+// per piece and page, drawn under the vector layers.
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/mesh/colour.h"
+#include "core/vec.h"
+#include "print/layout.h"
+
+using cairo_surface_t = struct _cairo_surface;
+
+namespace papernet {
+
+/// Part of a printed face with one affine map to the texture: its corners in the face's
+/// barycentric coordinates (a face coloured from its own corners has one, with the corners
+/// (1,0,0), (0,1,0), (0,0,1)); a face coloured from a surface it approximates has many.
+struct ColourTriangle {
+  std::array<std::array<double, 3>, 3> at{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  std::array<UV, 3> uv;      ///< NaN: no texture coordinates
+  std::array<RGBA, 3> rgba;  ///< vertex colours (linear); NaN: none
+  int material = -1;
+};
+
+/// The default raster resolution of printed colour, dots per inch.
+constexpr double kDefaultColourDpi = 300;
+/// Limits of the `dpi` option.
+constexpr double kMinColourDpi = 50, kMaxColourDpi = 1200;
+
+/// A decoded texture ready to sample (cairo image surface), and how to sample it.
+struct PrintTexture {
+  std::shared_ptr<cairo_surface_t> surface;  ///< null when the image was not decoded
+  int width = 0, height = 0;
+  TextureSampler sampler;
+};
+
+/// What a print needs to colour a net: per face of the printed mesh its colour triangles (empty:
+/// printed uncoloured), the materials and the decoded textures.
+struct PrintColour {
+  std::vector<std::vector<ColourTriangle>> faces;
+  std::vector<Material> materials;
+  std::vector<PrintTexture> textures;
+  double dpi = kDefaultColourDpi;
+
+  /// True when some face is coloured.
+  bool any() const;
+};
+
+/// The colour of a mesh of `faces` faces from its per-corner data (each face one
+/// ColourTriangle). Textures are decoded here; one that does not decode (or exceeds the pixel
+/// limit) leaves its faces with the material's factor only, and adds a note to `notes` naming
+/// the texture and the fault.
+PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi,
+                         std::vector<std::string>& notes);
+
+/// A piece's colour placed on a page: the image's top-left corner and size in page
+/// millimetres (y down), its pixels an ARGB32 cairo image surface (transparent where nothing is
+/// coloured).
+struct PageImage {
+  Vec2 at;
+  double width = 0, height = 0;
+  std::shared_ptr<cairo_surface_t> surface;
+};
+
+/// The colour images of every piece of `layout` (faces joined by folds) that is coloured and
+/// meets the layout window [lo, hi] (y up), drawn as `map` puts the layout on the page: layout
+/// point p to page point (at.x + p.x - lo.x, at.y + hi.y - p.y). Each image is cropped to the
+/// page's [clip_lo, clip_hi].
+std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColour& colour, Vec2 lo,
+                                     Vec2 hi, Vec2 at, Vec2 clip_lo, Vec2 clip_hi);
+
+/// The image's pixels as a PNG file's bytes.
+std::string encode_png(cairo_surface_t* surface);
+
+}  // namespace papernet
