@@ -75,7 +75,9 @@ class Relay : public Progress {
     outcome.net.result = "approximate";
     outcome.net.intermediate = true;
     Progress quiet;  // the run's progress is the unfolder's, not this drawing's
-    write_documents(options_, documents_, outcome, quiet);
+    JobOptions line_art = options_;  // a preview: colour is for the final print
+    line_art.colour = false;
+    write_documents(line_art, documents_, outcome, quiet);
     to_.intermediate_outcome(outcome);
   }
   bool cancelled() override { return to_.cancelled(); }

@@ -21,9 +21,10 @@ using SurfacePtr = std::shared_ptr<cairo_surface_t>;
 
 SurfacePtr own(cairo_surface_t* s) { return SurfacePtr(s, cairo_surface_destroy); }
 
-// The largest image side drawn, pixels: a piece wider than this at the dpi asked is drawn at a
-// lower resolution (at 300 dpi, 1.4 m).
-constexpr int kMaxImageSide = 16384;
+// The most pixels one image holds (144 MB as ARGB): a piece larger than that at the dpi asked
+// (a whole A3 sheet at 300 dpi is 17 million) is drawn at a lower resolution, so memory stays
+// bounded.
+constexpr double kMaxImagePixels = 36e6;
 
 bool finite(const UV& uv) { return std::isfinite(uv[0]) && std::isfinite(uv[1]); }
 bool finite(const RGBA& c) {
@@ -345,9 +346,9 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
     b.lo = {std::max(b.lo.x - 2 * bleed, clip_lo.x), std::max(b.lo.y - 2 * bleed, clip_lo.y)};
     b.hi = {std::min(b.hi.x + 2 * bleed, clip_hi.x), std::min(b.hi.y + 2 * bleed, clip_hi.y)};
     if (!(b.hi.x > b.lo.x && b.hi.y > b.lo.y)) continue;
-    // Whole pixels from the box's corner, at most kMaxImageSide a side.
+    // Whole pixels from the box's corner, at most kMaxImagePixels.
     const double scale =
-        std::min(px_per_mm, kMaxImageSide / std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y));
+        std::min(px_per_mm, std::sqrt(kMaxImagePixels / ((b.hi.x - b.lo.x) * (b.hi.y - b.lo.y))));
     const int w = std::max(1, static_cast<int>(std::ceil((b.hi.x - b.lo.x) * scale)));
     const int h = std::max(1, static_cast<int>(std::ceil((b.hi.y - b.lo.y) * scale)));
     SurfacePtr surface = own(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h));
