@@ -115,8 +115,9 @@ int main(int argc, char** argv) {
   try {
     std::printf("%s, 200 mm on A4, layout fit, detail %s: PDF and SVG pages\n\n", model.c_str(),
                 detail.c_str());
-    std::printf("| dpi | pages | colour pass s/page | peak MB (line art) | peak MB (colour) | "
-                "PDF MB/page | SVG MB/page |\n|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::printf(
+        "| dpi | pages | colour pass s/page | peak MB (line art) | peak MB (colour) | "
+        "PDF MB/page | SVG MB/page |\n|---:|---:|---:|---:|---:|---:|---:|\n");
     for (double dpi : dpis) {
       const Run plain = in_child(model, dpi, false, detail);
       const Run colour = in_child(model, dpi, true, detail);
