@@ -420,6 +420,8 @@ struct Api {
 
   void events(const httplib::Request& req, httplib::Response& res) {
     const std::string id = find_job(service, req).record.id;
+    if (!service.accepting())
+      throw ApiError("shutting_down", "the server is shutting down; try again");
     std::shared_ptr<EventStreams::Watch> watch = streams.open(id);
     if (!watch) {
       Problem p = make_problem("too_many_streams", "the server has its most event streams open (" +
