@@ -53,6 +53,24 @@ void send_json(httplib::Response& res, int status, const json& doc) {
   res.set_content(doc.dump(), "application/json");
 }
 
+// Ends a chunked response. cpp-httplib writes the last chunk from a function-local static that
+// it initialises on first use, behind a guard inside the (uninstrumented) library: ThreadSanitizer
+// would report every later end, on other threads, as racing with that first one. The first end
+// is therefore made under a mutex that every end passes, which TSan sees.
+void end_chunked(httplib::DataSink& sink) {
+  static std::mutex first_mutex;
+  static bool first_done = false;
+  {
+    std::lock_guard lock(first_mutex);
+    if (!first_done) {
+      sink.done();
+      first_done = true;
+      return;
+    }
+  }
+  sink.done();
+}
+
 // Every handler runs inside this: whatever it throws becomes a problem, mapped in problem.cpp.
 template <class Handler>
 httplib::Server::Handler guarded(Handler handler) {
@@ -447,7 +465,7 @@ struct Api {
             *seen = state.generation;
           }
           if (state.final || state.closing) {
-            sink.done();
+            end_chunked(sink);
             return true;
           }
           return !client_closed();
