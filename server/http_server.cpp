@@ -13,6 +13,7 @@
 #include <deque>
 #include <list>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 namespace papernet::server {
@@ -271,10 +272,17 @@ class ConnectionThreadPool : public httplib::TaskQueue {
  private:
   static constexpr auto kIdleExtra = std::chrono::seconds(10);
 
-  void start() {  // under mutex_
+  // Under mutex_. A thread the system refuses (a container's pids limit) is not fatal: the
+  // connection waits for a thread that frees up, as in a fixed pool.
+  void start() {
     threads_.emplace_back();
     const auto self = std::prev(threads_.end());
-    *self = std::thread([this, self] { run(self); });
+    try {
+      *self = std::thread([this, self] { run(self); });
+    } catch (const std::system_error&) {
+      threads_.erase(self);
+      if (threads_.empty()) throw;  // not even one: nothing could be served
+    }
   }
 
   void run(std::list<std::thread>::iterator self) {
