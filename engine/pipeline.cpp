@@ -74,8 +74,10 @@ class Relay : public Progress {
     outcome.net = assemble(pieces, input_, options_);
     outcome.net.result = "approximate";
     outcome.net.intermediate = true;
-    Progress quiet;  // the run's progress is the unfolder's, not this drawing's
-    JobOptions line_art = options_;  // a preview: colour is for the final print
+    // The run's progress is the unfolder's, not this drawing's; a preview is line art (colour
+    // is for the final print).
+    Progress quiet;
+    JobOptions line_art = options_;
     line_art.colour = false;
     write_documents(line_art, documents_, outcome, quiet);
     to_.intermediate_outcome(outcome);
