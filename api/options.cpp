@@ -227,6 +227,10 @@ constexpr Spec kOptions[] = {
      }},
     {"labels", "", "matching numbers on both sides of each cut edge",
      [](JobOptions& o, const std::string& n, const json& v) { o.labels = boolean(n, v); }},
+    {"overview", "",
+     "with layout fit, a first page mapping the sheets, the pieces on each and the build order "
+     "(unset: when there is more than one piece)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.overview = boolean(n, v); }},
     {"components", "all|largest",
      "all: every connected part of the mesh its own piece; largest: only the largest part",
      [](JobOptions& o, const std::string& n, const json& v) {
@@ -475,6 +479,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"tab_room_budget", o.tab_room_budget},
               {"flat_fold_degrees", o.flat_fold_degrees},
               {"labels", o.labels},
+              {"overview", opt(o.overview)},
               {"components", o.components == Components::All ? "all" : "largest"},
               {"strict", o.strict},
               {"callback_url", opt(o.callback_url)}};

@@ -79,6 +79,9 @@ struct JobOptions {
   /// Folds flatter than this many degrees are not drawn.
   double flat_fold_degrees = PrintOptions{}.flat_fold_degrees;
   bool labels = PrintOptions{}.labels;  ///< matching numbers on both sides of each cut edge
+  /// A first page with a map of the sheets, the pieces on each and the build order (layout fit
+  /// only). Unset: with more than one piece.
+  std::optional<bool> overview;
   /// Every connected part its own piece (all), or only the largest part (the result says what
   /// it dropped).
   Components components = Components::All;

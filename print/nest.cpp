@@ -169,13 +169,14 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
   for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
     for (Segment& s : *list)
       if (s.face >= 0) s.a = move(piece[s.face], s.a), s.b = move(piece[s.face], s.b);
-  for (Label& l : layout.labels) {
-    const auto part = static_cast<std::size_t>(piece[l.side.face]);
-    l.at = move(part, l.at);
-    l.angle = std::remainder(l.angle + placed.angle[part], 2 * std::numbers::pi);
-    // Upright on the page: a label turned past a quarter turn reads better turned half round.
-    if (std::cos(l.angle) < -1e-9) l.angle += std::numbers::pi;
-  }
+  for (auto* labels : {&layout.labels, &layout.piece_labels})
+    for (Label& l : *labels) {
+      const auto part = static_cast<std::size_t>(piece[l.side.face]);
+      l.at = move(part, l.at);
+      l.angle = std::remainder(l.angle + placed.angle[part], 2 * std::numbers::pi);
+      // Upright on the page: a label turned past a quarter turn reads better turned half round.
+      if (std::cos(l.angle) < -1e-9) l.angle += std::numbers::pi;
+    }
   int sheets = placed.sheets;
   auto window = [&](int k) {
     return std::pair{Vec2{k * (w + kSheetGap), 0}, Vec2{k * (w + kSheetGap) + w, h}};
@@ -227,7 +228,20 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
   out.fitted = true;
   out.rows = 1;
   out.cols = sheets;
-  for (int k = 0; k < sheets; ++k) out.pages.push_back({0, k, window(k).first, window(k).second});
+  // The sheets in the order of the lowest piece each holds (pieces are numbered in build order:
+  // print/build_order.h), so a kit is built page after page; sheets of strips only last.
+  std::vector<int> lowest(static_cast<std::size_t>(sheets), std::numeric_limits<int>::max());
+  for (std::size_t f = 0; f < layout.faces.size(); ++f) {
+    const auto& t = layout.faces[f];
+    const double x = (t[0].x + t[1].x + t[2].x) / 3;
+    const int k = std::clamp(static_cast<int>(std::floor(x / (w + kSheetGap))), 0, sheets - 1);
+    lowest[k] = std::min(lowest[k], piece[f]);
+  }
+  std::vector<int> order(static_cast<std::size_t>(sheets));
+  for (int k = 0; k < sheets; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return lowest[a] < lowest[b]; });
+  for (int i = 0; i < sheets; ++i)
+    out.pages.push_back({0, i, window(order[i]).first, window(order[i]).second});
   return out;
 }
 

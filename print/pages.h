@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,7 +42,12 @@ struct PageOptions {
 struct Page {
   int row = 0, col = 0;  ///< row 0 is the top row
   Vec2 lo, hi;           ///< window in layout coordinates (mm, y up)
+  /// The overview page (print/overview.h): a map of the other pages, no window of the layout
+  /// (lo > hi, so it holds no point).
+  bool overview = false;
 };
+
+struct Overview;
 
 /// How a layout is split onto pages. All pages share one orientation.
 struct PageLayout {
@@ -53,6 +59,8 @@ struct PageLayout {
   bool fitted = false;
   int rows = 1, cols = 1;
   std::vector<Page> pages;  ///< row by row, left to right; empty tiles left out
+  /// With an overview page (add_overview, layout fit): what it shows.
+  std::shared_ptr<const Overview> overview;
 };
 
 /// Splits a layout onto pages, choosing orientation (page portrait or landscape, net turned or
@@ -89,7 +97,8 @@ struct PageDrawing {
   std::vector<Shape> shapes;
 };
 
-/// The shapes of page `index` of a paginated layout, with tile overlap marks and page number.
+/// The shapes of page `index` of a paginated layout, with tile overlap marks and page number
+/// ("page k of n"); the overview page's are draw_overview's (print/overview.h).
 PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index);
 
 /// The whole layout as one drawing sized to the net plus `margin_mm` (no paper).
