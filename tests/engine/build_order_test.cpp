@@ -241,5 +241,37 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
   for (const auto& [p, on] : mapped) EXPECT_EQ(on.size(), 1u) << "P" << p + 1;
 }
 
+// overview no: the sheets alone, from page 1, in build order too; the net JSON has no
+// overview_page.
+TEST(AssemblyAids, WithoutTheOverviewTheSheetsStartAtPageOne) {
+  JobOptions options;
+  options.layout = PageLayoutMode::Fit;
+  options.overview = false;
+  PipelineProgress quiet;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true}, quiet);
+  const NetDocument doc = read_net_json(out.documents.net_json);
+  ASSERT_TRUE(doc.print);
+  EXPECT_EQ(doc.print->overview_page, -1);
+  EXPECT_EQ(out.documents.net_json.find("overview_page"), std::string::npos);
+  const NetCheckReport check = check_pieces(doc.mesh, doc.net, doc.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  const Printed& with = duck();
+  EXPECT_EQ(doc.print->pages + 1, with.doc.print->pages);
+  ASSERT_EQ(static_cast<std::size_t>(doc.print->pages), out.documents.svg_pages.size());
+  for (const std::string& svg : out.documents.svg_pages)
+    EXPECT_EQ(svg.find("overview"), std::string::npos);
+  // The same pieces in the same order, each one page earlier.
+  ASSERT_EQ(doc.pieces.size(), with.doc.pieces.size());
+  EXPECT_EQ(doc.piece, with.doc.piece);
+  for (std::size_t p = 0; p < doc.pieces.size(); ++p)
+    EXPECT_EQ(doc.print->placements[p].page + 1, with.doc.print->placements[p].page);
+  // Sheets in build order: the lowest piece on each page grows with the page.
+  std::vector<int> lowest(static_cast<std::size_t>(doc.print->pages), 1 << 30);
+  for (const PiecePlacement& p : doc.print->placements)
+    lowest[p.page] = std::min(lowest[p.page], p.piece);
+  EXPECT_TRUE(std::is_sorted(lowest.begin(), lowest.end()));
+}
+
 }  // namespace
 }  // namespace papernet::test
