@@ -1,6 +1,7 @@
 #include "print/overview.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -53,8 +54,8 @@ struct Writer {
   void text(Layer layer, Vec2 centre, std::string s, double size) {
     d.shapes.push_back({layer, {centre}, false, std::move(s), size, 0});
   }
-  void line(Layer layer, std::vector<Vec2> points, bool closed = false) {
-    d.shapes.push_back({layer, std::move(points), closed, {}, 0, 0});
+  void line(Layer layer, std::vector<Vec2> points) {
+    d.shapes.push_back({layer, std::move(points), false, {}, 0, 0});
   }
 };
 
@@ -91,12 +92,13 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
     auto map = [&](Vec2 p) {
       return Vec2{x0 + (p.x - page.lo.x) * scale, y0 + (page.hi.y - p.y) * scale};
     };
-    out.line(Layer::Marks,
-             {{x0, y0},
-              {x0 + sw * scale, y0},
-              {x0 + sw * scale, y0 + sh * scale},
-              {x0, y0 + sh * scale}},
-             true);
+    // The printable area, dashed: four lines (the SVG fills the marks layer's shapes for its
+    // text, so no polygon there).
+    const std::array<Vec2, 4> corner{{{x0, y0},
+                                      {x0 + sw * scale, y0},
+                                      {x0 + sw * scale, y0 + sh * scale},
+                                      {x0, y0 + sh * scale}}};
+    for (int k = 0; k < 4; ++k) out.line(Layer::Marks, {corner[k], corner[(k + 1) % 4]});
     for (const Segment& s : layout.cut)
       if (holds(page, s.a) && holds(page, s.b)) out.line(Layer::Cut, {map(s.a), map(s.b)});
     for (const GlueStrip& g : layout.strips)
