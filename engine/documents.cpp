@@ -217,8 +217,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   report(progress, "layout", 0.6);
   PageLayout pages =
       fit ? nest_pages(layout, pieces.piece, page, kCutSpacingMm) : paginate(layout, page);
-  if (fit && options.overview.value_or(pieces.pieces > 1))
+  if (fit && options.overview.value_or(pieces.pieces > 1)) {
     add_overview(pages, layout, pieces.piece, std::move(graph));
+    summary.overview = true;
+  }
   report(progress, "write", 0);
   summary.pages = static_cast<int>(pages.pages.size());
   summary.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));
