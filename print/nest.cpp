@@ -169,14 +169,16 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
   for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
     for (Segment& s : *list)
       if (s.face >= 0) s.a = move(piece[s.face], s.a), s.b = move(piece[s.face], s.b);
-  for (auto* labels : {&layout.labels, &layout.piece_labels})
-    for (Label& l : *labels) {
-      const auto part = static_cast<std::size_t>(piece[l.side.face]);
-      l.at = move(part, l.at);
-      l.angle = std::remainder(l.angle + placed.angle[part], 2 * std::numbers::pi);
-      // Upright on the page: a label turned past a quarter turn reads better turned half round.
-      if (std::cos(l.angle) < -1e-9) l.angle += std::numbers::pi;
-    }
+  for (Label& l : layout.labels) {
+    const auto part = static_cast<std::size_t>(piece[l.side.face]);
+    l.at = move(part, l.at);
+    l.angle = std::remainder(l.angle + placed.angle[part], 2 * std::numbers::pi);
+    // Upright on the page: a label turned past a quarter turn reads better turned half round.
+    if (std::cos(l.angle) < -1e-9) l.angle += std::numbers::pi;
+  }
+  // Piece numbers stay level (any turn of theirs fits their place: print/internal/piece_labels.h).
+  for (Label& l : layout.piece_labels)
+    if (l.side.face >= 0) l.at = move(static_cast<std::size_t>(piece[l.side.face]), l.at);
   int sheets = placed.sheets;
   auto window = [&](int k) {
     return std::pair{Vec2{k * (w + kSheetGap), 0}, Vec2{k * (w + kSheetGap) + w, h}};

@@ -136,14 +136,14 @@ void turn_quarter(PrintLayout& layout) {
     for (Vec2& p : t.corners) turn(p);
   for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
     for (Segment& s : *list) turn(s.a), turn(s.b);
-  for (auto* labels : {&layout.labels, &layout.piece_labels})
-    for (Label& l : *labels) {
-      turn(l.at);
-      // Keep labels reading upright: half a turn more where a quarter turn put them upside
-      // down.
-      l.angle += std::cos(l.angle + std::numbers::pi / 2) < -1e-9 ? 1.5 * std::numbers::pi
-                                                                  : std::numbers::pi / 2;
-    }
+  for (Label& l : layout.labels) {
+    turn(l.at);
+    // Keep labels reading upright: half a turn more where a quarter turn put them upside down.
+    l.angle += std::cos(l.angle + std::numbers::pi / 2) < -1e-9 ? 1.5 * std::numbers::pi
+                                                                : std::numbers::pi / 2;
+  }
+  // Piece numbers stay level (print/internal/piece_labels.h).
+  for (Label& l : layout.piece_labels) turn(l.at);
   layout.size = {layout.size.y, layout.size.x};
 }
 
@@ -294,6 +294,7 @@ void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawin
   for (const Segment& s : layout.mountain) add(Layer::Mountain, {s.a, s.b}, false);
   for (const Segment& s : layout.valley) add(Layer::Valley, {s.a, s.b}, false);
   for (const Label& l : layout.piece_labels) {
+    if (l.text.empty()) continue;
     const auto box = label_box(l);
     if (!box_meets({box.begin(), box.end()}, lo, hi)) continue;
     d.shapes.push_back(

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "print/tabs.h"
 
@@ -25,6 +24,20 @@ Circle incircle(const std::array<Vec2, 3>& t) {
   const Vec2 centre = (1 / perimeter) * (a * t[0] + b * t[1] + c * t[2]);
   const double area = 0.5 * std::abs(cross(t[1] - t[0], t[2] - t[0]));
   return {centre, 2 * area / perimeter};
+}
+
+/// True when the disc of `radius` about `centre` meets the convex polygon `box`.
+bool disc_meets(Vec2 centre, double radius, const std::array<Vec2, 4>& box) {
+  bool inside = true;
+  for (std::size_t k = 0; k < box.size(); ++k) {
+    const Vec2 a = box[k], b = box[(k + 1) % box.size()];
+    inside = inside && cross(b - a, centre - a) >= 0;
+    const Vec2 ab = b - a;
+    const double len2 = dot(ab, ab);
+    const double t = len2 > 0 ? std::clamp(dot(centre - a, ab) / len2, 0.0, 1.0) : 0.0;
+    if (norm(centre - (a + t * ab)) < radius) return true;
+  }
+  return inside;
 }
 
 }  // namespace
@@ -50,27 +63,25 @@ std::vector<Label> place_piece_labels(const std::vector<std::array<Vec2, 3>>& fa
       return circle[a].radius > circle[b].radius || (circle[a].radius == circle[b].radius && a < b);
     });
     if (candidates.size() > kFacesTried) candidates.resize(kFacesTried);
-    // The box's half-diagonal over its height: the box fits the circle when size * this <= r.
+    // The box's half-diagonal over its height: the box, at any turn about its centre, lies in
+    // a disc of radius size * this, which must keep clear of the edge labels and inside the
+    // face's inscribed circle; so the number can be turned to read level on the page (angle 0
+    // here, and wherever nesting or tiling moves the piece).
     const double c = label_chars(label.text);
     const double diagonal = std::sqrt(0.09 * c * c + 0.25);
+    label.angle = 0;
     bool placed = false;
     for (const double least : {kWantedMm, kLegibleLabelMm}) {
       for (std::size_t i = 0; i < candidates.size() && !placed; ++i) {
         const int f = candidates[i];
-        const auto& t = faces[f];
-        int longest = 0;
-        for (int k = 1; k < 3; ++k)
-          if (norm(t[(k + 1) % 3] - t[k]) > norm(t[(longest + 1) % 3] - t[longest])) longest = k;
-        const Vec2 d = t[(longest + 1) % 3] - t[longest];
-        label.angle = std::atan2(d.y, d.x);
-        if (std::cos(label.angle) < -1e-9) label.angle += std::numbers::pi;
         label.at = circle[f].centre;
         label.side = {f, 0};
         for (label.size = std::min(kLargestMm, 0.9 * circle[f].radius / diagonal);
-             label.size >= least && !placed; label.size *= 0.85) {
-          const auto box = label_box(label);
-          placed = std::none_of(boxes[p].begin(), boxes[p].end(),
-                                [&](const auto& other) { return convex_overlap(box, other, 0); });
+             label.size >= least; label.size *= 0.85) {
+          const double reach = label.size * diagonal;
+          placed = std::none_of(boxes[p].begin(), boxes[p].end(), [&](const auto& other) {
+            return disc_meets(label.at, reach, other);
+          });
           if (placed) break;
         }
       }
@@ -81,7 +92,6 @@ std::vector<Label> place_piece_labels(const std::vector<std::array<Vec2, 3>>& fa
       const int f = candidates.front();
       label.at = circle[f].centre;
       label.side = {f, 0};
-      label.angle = 0;
       label.size = std::max(kLegibleLabelMm, circle[f].radius / diagonal);
     }
     out.push_back(std::move(label));
