@@ -69,15 +69,32 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
   const double sw = any.hi.x - any.lo.x, sh = any.hi.y - any.lo.y;
   const double room = limit - top;
   const auto n = static_cast<int>(sheets.size());
-  const double caption = 2 * kLinePitch * kTextMm;
-  double scale = 0;
+  // Each sheet's pieces, and its caption's lines at a thumbnail width.
+  std::vector<std::vector<int>> on_sheet(sheets.size());
+  for (int p = 0; p < count; ++p)
+    for (std::size_t i = 0; i < sheets.size(); ++i)
+      if (overview.page[p] == sheets[i]) on_sheet[i].push_back(p);
+  auto captions = [&](std::size_t i, double cell_w) {
+    const std::string head = std::string("page ") + std::to_string(sheets[i] + 1) + ":";
+    return on_sheet[i].empty() ? std::vector<std::string>{head + " glue strips"}
+                               : wrap(head, on_sheet[i], cell_w, kTextMm);
+  };
+  // The room under a thumbnail: its caption's most lines and one more.
+  auto caption_height = [&](double cell_w) {
+    std::size_t lines = 1;
+    for (std::size_t i = 0; i < sheets.size(); ++i)
+      lines = std::max(lines, captions(i, cell_w).size());
+    return static_cast<double>(lines + 1) * kLinePitch * kTextMm;
+  };
+  double scale = 0, caption = 0;
   int cols = 1;
   for (int c = 1; c <= n; ++c) {
     const int r = (n + c - 1) / c;
     const double cell_w = (width - (c - 1) * kGapMm) / c;
-    const double cell_h = (room - (r - 1) * kGapMm) / r - caption;
+    const double below = caption_height(cell_w);
+    const double cell_h = (room - (r - 1) * kGapMm) / r - below;
     const double s = std::min(cell_w / sw, cell_h / sh);
-    if (s > scale) scale = s, cols = c;
+    if (s > scale) scale = s, cols = c, caption = below;
   }
   if (!(scale > 0)) return top;
   const int grid_rows = (n + cols - 1) / cols;
@@ -105,18 +122,11 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
       if (std::all_of(g.corners.begin(), g.corners.end(), [&](Vec2 p) { return holds(page, p); }))
         out.line(Layer::Cut, {map(g.corners[0]), map(g.corners[1]), map(g.corners[2]),
                               map(g.corners[3]), map(g.corners[0])});
-    std::vector<int> on_page;
-    for (int p = 0; p < count; ++p)
-      if (overview.page[p] == sheets[i]) {
-        on_page.push_back(p);
-        if (p < static_cast<int>(layout.piece_labels.size()))
-          out.text(Layer::Labels, map(layout.piece_labels[p].at), piece_name(p), kPieceMm);
-      }
+    for (const int p : on_sheet[i])
+      if (p < static_cast<int>(layout.piece_labels.size()))
+        out.text(Layer::Labels, map(layout.piece_labels[p].at), piece_name(p), kPieceMm);
     // The caption: "page 3: P1, P4", broken into lines that fit the thumbnail's width.
-    const std::string head = std::string("page ") + std::to_string(sheets[i] + 1) + ":";
-    const std::vector<std::string> lines = on_page.empty()
-                                               ? std::vector<std::string>{head + " glue strips"}
-                                               : wrap(head, on_page, cell_w, kTextMm);
+    const std::vector<std::string> lines = captions(static_cast<std::size_t>(i), cell_w);
     for (std::size_t l = 0; l < lines.size(); ++l)
       out.text(Layer::Labels,
                {x0 + 0.5 * sw * scale,
