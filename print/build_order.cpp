@@ -1,7 +1,10 @@
 #include "print/build_order.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <map>
+#include <unordered_map>
 
 #include "core/mesh/dual_graph.h"
 
@@ -10,14 +13,26 @@ namespace papernet {
 PieceGraph piece_graph(const Mesh& mesh, const std::vector<int>& piece) {
   int count = 0;
   for (int p : piece) count = std::max(count, p + 1);
+  // Each mesh edge (its two vertices, either way round) and the faces on it. Not the dual graph
+  // (core/mesh/dual_graph.h): that refuses faces oriented against each other, which a printed
+  // net of a non-orientable part may have.
+  std::unordered_map<std::uint64_t, std::array<int, 3>> faces_on;  // up to two faces, and a count
+  for (int f = 0; f < static_cast<int>(mesh.faces.size()); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
+      auto& on = faces_on
+                     .try_emplace(half_edge_key(std::min(a, b), std::max(a, b)),
+                                  std::array<int, 3>{-1, -1, 0})
+                     .first->second;
+      if (on[2] < 2) on[on[2]] = f;
+      ++on[2];
+    }
   std::vector<std::map<int, int>> shared(static_cast<std::size_t>(count));
-  const DualGraph dual = build_dual_graph(mesh);
-  for (std::size_t f = 0; f < dual.neighbour.size(); ++f)
-    for (const int g : dual.neighbour[f])
-      if (g > static_cast<int>(f) && piece[f] != piece[g]) {
-        ++shared[piece[f]][piece[g]];
-        ++shared[piece[g]][piece[f]];
-      }
+  for (const auto& [edge, on] : faces_on) {
+    if (on[2] != 2 || piece[on[0]] == piece[on[1]]) continue;
+    ++shared[piece[on[0]]][piece[on[1]]];
+    ++shared[piece[on[1]]][piece[on[0]]];
+  }
   PieceGraph out;
   out.joins.resize(shared.size());
   out.edges.resize(shared.size());

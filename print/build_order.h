@@ -14,7 +14,8 @@ struct PieceGraph {
   std::vector<std::vector<int>> edges;
 };
 
-/// The piece graph of `mesh` with each face's piece in `piece` (pieces 0 .. max + 1).
+/// The piece graph of `mesh` with each face's piece in `piece` (pieces 0 .. max + 1): edges
+/// with exactly two faces, by their vertices.
 PieceGraph piece_graph(const Mesh& mesh, const std::vector<int>& piece);
 
 /// The pieces numbered in a build order (docs/print.md, "Build order"): first the largest
