@@ -31,6 +31,7 @@ const Printed& duck() {
   static const Printed printed = [] {
     JobOptions options;
     options.layout = PageLayoutMode::Fit;
+    options.colour = false;  // the assembly aids are line art; colour is colour_print_test's
     PipelineProgress quiet;
     UnfoldOutcome out =
         run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true, .pdf = true}, quiet);
@@ -247,6 +248,7 @@ TEST(AssemblyAids, WithoutTheOverviewTheSheetsStartAtPageOne) {
   JobOptions options;
   options.layout = PageLayoutMode::Fit;
   options.overview = false;
+  options.colour = false;
   PipelineProgress quiet;
   const UnfoldOutcome out =
       run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true}, quiet);
