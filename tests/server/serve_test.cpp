@@ -430,7 +430,7 @@ TEST_P(ServeTest, EveryErrorCodeFromTheInputThatCausesIt) {
   const std::string obj = test_mesh("sample.obj");  // 1000 faces, 81 KB
   expect_problem(c.Post("/v1/jobs?detail=full&strategy=FAST", obj, "model/obj"), 400,
                  "invalid_option_value");
-  expect_problem(c.Post("/v1/jobs?colour=red", obj, "model/obj"), 400, "unknown_option");
+  expect_problem(c.Post("/v1/jobs?color=red", obj, "model/obj"), 400, "unknown_option");
   expect_problem(c.Post("/v1/jobs?time_limit=100000", obj, "model/obj"), 400,
                  "option_out_of_range");
   expect_problem(c.Get("/v1/jobs/0123456789abcdef0123456789abcdef"), 404, "job_not_found");
