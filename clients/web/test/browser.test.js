@@ -248,10 +248,12 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   const halfPixels = await page.locator("#model canvas").screenshot();
   assert.notDeepEqual(flatPixels, halfPixels, "moving the fold slider changes the 3D view");
   if (duck) {
-    // Folding, the faces keep their texture: the half-folded Duck is yellow too.
+    // Folding, the faces keep their texture: the half-folded Duck is yellow too (less of it:
+    // pieces seen edge on, their backs and the folds between small faces are darker).
     await page.waitForTimeout(100);
     const half = await colours(page, "#model canvas");
-    assert.ok(half.yellow > 0.5 * (half.pixels - half.background), `folding, the net is yellow: ${JSON.stringify(half)}`);
+    const model = half.pixels - half.background;
+    assert.ok(half.yellow > 0.25 * model && half.beige < 0.1 * model, `folding, the net is yellow: ${JSON.stringify(half)}`);
   }
 
   // The download links answer with the files.
