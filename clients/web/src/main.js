@@ -140,14 +140,15 @@ function dominantColour(bitmap) {
 // One material per group of faces (colour.js faceGroups): the material's base colour (linear,
 // as glTF's baseColorFactor) times its texture, mapped by the faces' own coordinates, or times
 // the texture's dominant colour where the faces have none; times the corners' vertex colours. Faces
-// of no material are paper. Resolves `ready` once every texture is in (or failed to load).
+// of no material are paper, or white under vertex colours. Resolves `ready` once every texture
+// is in (or failed to load).
 function faceMaterials(doc, groups, vertexColors, id) {
   const loads = [];
   const materials = groups.map((g) => {
     const info = g.material >= 0 ? doc.materials[g.material] : null;
     const m = new THREE.MeshStandardMaterial({ side: THREE.DoubleSide, flatShading: true, roughness: 0.9, vertexColors });
     if (!info) {
-      m.color.set(paper);
+      m.color.set(vertexColors ? 0xffffff : paper); // vertex colours are the colour
       return m;
     }
     const [r, gr, b] = info.base_color ?? [1, 1, 1];

@@ -83,14 +83,16 @@ async function colours(page, selector) {
 }
 
 // The model as folded in the 3D view against its coordinates in the net JSON: the scene's z
-// must be the model's y for a glTF (y up), and its x the model's x, every corner (up to a shift).
+// must be the model's y for a glTF (y up), and its x the model's x, every corner (up to a shift);
+// `yy`, `zz`: the same for a model drawn as its coordinates say.
 async function uprightness(page) {
   return page.evaluate(() => {
     const { folding, THREE } = window.papernetDemo;
     const { vertices, faces } = folding.doc.mesh;
     const p = folding.mesh.geometry.attributes.position.array;
     folding.mesh.updateMatrixWorld(true);
-    const spread = { zy: [Infinity, -Infinity], xx: [Infinity, -Infinity], ynz: [Infinity, -Infinity] };
+    const range = () => [Infinity, -Infinity];
+    const spread = { zy: range(), xx: range(), ynz: range(), yy: range(), zz: range() };
     const extent = [[Infinity, -Infinity], [Infinity, -Infinity], [Infinity, -Infinity]];
     const v = new THREE.Vector3();
     const grow = (range, x) => ((range[0] = Math.min(range[0], x)), (range[1] = Math.max(range[1], x)));
@@ -102,6 +104,8 @@ async function uprightness(page) {
         grow(spread.zy, v.z - y);
         grow(spread.xx, v.x - x);
         grow(spread.ynz, v.y + z);
+        grow(spread.yy, v.y - y);
+        grow(spread.zz, v.z - z);
         [x, y, z].forEach((c, a) => grow(extent[a], c));
       }),
     );
@@ -115,6 +119,8 @@ async function uprightness(page) {
       zy: width(spread.zy),
       xx: width(spread.xx),
       ynz: width(spread.ynz),
+      yy: width(spread.yy),
+      zz: width(spread.zz),
     };
   });
 }
@@ -373,4 +379,38 @@ test("the demo shows a textured glTF textured and upright, folded, flat and in t
   console.log(`screenshot: ${shot}`);
   assert.deepEqual(problems, []);
   assert.deepEqual(foreign, []);
+});
+
+test("the demo shows a model's vertex colours (a PLY cube, z up as its coordinates say)", async () => {
+  // A unit cube whose corner (x, y, z) is coloured (r, g, b) = (x, y, z).
+  const corners = [0, 1].flatMap((x) => [0, 1].flatMap((y) => [0, 1].map((z) => [x, y, z])));
+  const quads = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]];
+  const ply = [
+    "ply", "format ascii 1.0", "element vertex 8", "property float x", "property float y", "property float z",
+    "property uchar red", "property uchar green", "property uchar blue", "element face 12",
+    "property list uchar int vertex_indices", "end_header",
+    ...corners.map((p) => `${p.join(" ")} ${p.map((c) => 255 * c).join(" ")}`),
+    ...quads.flatMap(([a, b, c, d]) => [`3 ${a} ${b} ${c}`, `3 ${a} ${c} ${d}`]),
+  ].join("\n");
+  const page = await context.newPage();
+  const problems = [];
+  page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
+  await page.goto(`${server.url}/`);
+  await page.waitForSelector("#model canvas");
+  await page.setInputFiles("#file", { name: "cube.ply", mimeType: "application/octet-stream", buffer: Buffer.from(ply) });
+  await page.selectOption("#strategy", "TU");
+  await page.click("#start");
+  await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
+    timeout: 120000,
+  });
+  assert.equal(await page.evaluate(() => document.body.dataset.state), "done", await page.textContent("#status"));
+  const shown = await shownMaterials(page);
+  assert.ok(shown.materials.every((m) => m.vertexColors && m.color === "ffffff" && !m.map), JSON.stringify(shown));
+  // Not turned: the scene's z is the file's z (only glTF is y up).
+  const u = await uprightness(page);
+  assert.ok(Math.max(u.xx, u.yy, u.zz) < 1e-4 * u.diagonal, `the cube as its coordinates say: ${JSON.stringify(u)}`);
+  const c = await colours(page, "#model canvas");
+  const model = c.pixels - c.background;
+  assert.ok(c.saturated > 0.5 * model && c.blue > 0.05 * model && c.beige < 0.05 * model, `the cube's colours: ${JSON.stringify(c)}`);
+  assert.deepEqual(problems, []);
 });
