@@ -28,7 +28,7 @@ export LSAN_OPTIONS ?= suppressions=$(CURDIR)/scripts/lsan.supp:print_suppressio
 export TSAN_OPTIONS ?= halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/scripts/tsan.supp
 # Tests with threads of their own (HTTP server, job service workers); these run under TSan.
 # "Stores/" prefixes the suites that run against both stores (SQLite and PostgreSQL).
-TSAN_TESTS ?= ^(Stores/)?(ServeTest|JobServiceTest|JobStoreTest|StaticFiles)\.
+TSAN_TESTS ?= ^(Stores/)?(ServeTest|JobServiceTest|JobStoreTest|StaticFiles|Streams)\.
 # Left out of the sanitizer runs: tests whose verdict depends on speed. They unfold whole meshes
 # within a time budget (Tabu 30 s, progressive 120 s) or wait a fixed time (60 s) for a full
 # unfold, or expect a net within a 0.5 s limit, or a whole job within its 10 s limit plus a

@@ -157,6 +157,7 @@ nlohmann::json print_to_json(const NetPrint& print) {
       tiles.push_back({{"page", t.page}, {"window_mm", t.window_mm}});
     out["tiles"] = std::move(tiles);
   }
+  if (print.overview_page >= 0) out["overview_page"] = print.overview_page;
   return out;
 }
 
@@ -189,6 +190,10 @@ NetPrint print_from_json(const nlohmann::json& j, std::size_t pieces) {
     for (const auto& t : j["tiles"])
       print.tiles.push_back({field(t, "page", "a tile").get<int>(),
                              field(t, "window_mm", "a tile").get<std::array<double, 4>>()});
+  print.overview_page = j.value("overview_page", -1);
+  if (print.overview_page < -1 || print.overview_page >= print.pages)
+    throw IOException("net JSON: the overview is page " + std::to_string(print.overview_page) +
+                      " of " + std::to_string(print.pages));
   return print;
 }
 

@@ -60,6 +60,9 @@ struct NetPrint {
   std::string layout;                      ///< "fit" or "tile"
   std::vector<PiecePlacement> placements;  ///< one per piece of `pieces`
   std::vector<PageWindow> tiles;           ///< layout tile: what each page shows of the grid
+  /// The overview page (0-based; docs/print.md "The overview page"), -1 without one; written
+  /// only when there is one.
+  int overview_page = -1;
 };
 
 /// A `papernet.net/2` document (README.md "The net"): the pieces and the mesh they fold into.

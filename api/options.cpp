@@ -241,6 +241,10 @@ constexpr Spec kOptions[] = {
      }},
     {"dpi", "N", "resolution of the printed colour, dots per inch (50 to 1200)",
      [](JobOptions& o, const std::string& n, const json& v) { o.dpi = number(n, v); }},
+    {"overview", "",
+     "with layout fit, a first page mapping the sheets, the pieces on each and the build order "
+     "(unset: when there is more than one piece)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.overview = boolean(n, v); }},
     {"components", "all|largest",
      "all: every connected part of the mesh its own piece; largest: only the largest part",
      [](JobOptions& o, const std::string& n, const json& v) {
@@ -493,6 +497,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"labels", o.labels},
               {"colour", o.colour ? "auto" : "none"},
               {"dpi", o.dpi},
+              {"overview", opt(o.overview)},
               {"components", o.components == Components::All ? "all" : "largest"},
               {"strict", o.strict},
               {"callback_url", opt(o.callback_url)}};

@@ -85,6 +85,9 @@ struct JobOptions {
   bool colour = true;
   /// Resolution of the printed colour, dots per inch.
   double dpi = kDefaultColourDpi;
+  /// A first page with a map of the sheets, the pieces on each and the build order (layout fit
+  /// only). Unset: with more than one piece.
+  std::optional<bool> overview;
   /// Every connected part its own piece (all), or only the largest part (the result says what
   /// it dropped).
   Components components = Components::All;

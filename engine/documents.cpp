@@ -1,5 +1,6 @@
 // The pipeline's last steps: the pieces as one net document, and the documents made from it.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 
@@ -8,9 +9,11 @@
 #include "core/unfold/net_metrics.h"
 #include "engine/internal/steps.h"
 #include "print/arrange.h"
+#include "print/build_order.h"
 #include "print/colour.h"
 #include "print/fit.h"
 #include "print/nest.h"
+#include "print/overview.h"
 #include "print/pages.h"
 #include "print/pdf.h"
 #include "print/placements.h"
@@ -84,6 +87,8 @@ void describe_print(NetDocument& doc, const FitPieces& pieces, const PrintLayout
   PiecePlacements placed = place_pieces(doc.net, doc.piece, layout, pages);
   print.placements = std::move(placed.pieces);
   print.tiles = std::move(placed.tiles);
+  for (int k = 0; k < print.pages && print.overview_page < 0; ++k)
+    if (pages.pages[k].overview) print.overview_page = k;
 }
 
 }  // namespace
@@ -183,8 +188,21 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
       layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
     }
   }
+  // Fit: the pieces numbered in a build order, neighbours after each other (docs/print.md).
+  PieceGraph graph;
+  if (fit) {
+    graph = piece_graph(mesh, pieces.piece);
+    std::vector<double> area(static_cast<std::size_t>(pieces.pieces), 0);
+    for (std::size_t f = 0; f < pieces.piece.size(); ++f) {
+      const auto& t = pieces.net.points[f];
+      area[pieces.piece[f]] += 0.5 * std::abs(cross(t[1] - t[0], t[2] - t[0]));
+    }
+    renumber_pieces(pieces.piece, build_order(graph, area));
+    graph = piece_graph(mesh, pieces.piece);
+  }
   report(progress, "layout", 0.3);
-  PrintLayout layout = layout_net(mesh, arrange_pieces(pieces.net, pieces.piece, gap), print);
+  PrintLayout layout =
+      layout_net(mesh, arrange_pieces(pieces.net, pieces.piece, gap), print, pieces.piece);
   // Colour (docs/colour.md, "Printing"): rasterised page by page as the pages are drawn.
   std::optional<PrintColour> colour;
   if (options.colour && !outcome.net.colour.empty()) {
@@ -212,8 +230,12 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   if (request.svg_pages && !has_paper(options))
     docs.svg_pages = {write_net_svg(layout, page.margin_mm, paint)};
   report(progress, "layout", 0.6);
-  const PageLayout pages =
+  PageLayout pages =
       fit ? nest_pages(layout, pieces.piece, page, kCutSpacingMm) : paginate(layout, page);
+  if (fit && options.overview.value_or(pieces.pieces > 1)) {
+    add_overview(pages, layout, pieces.piece, std::move(graph));
+    summary.overview = true;
+  }
   report(progress, "write", 0);
   summary.pages = static_cast<int>(pages.pages.size());
   summary.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));

@@ -74,8 +74,12 @@ class Relay : public Progress {
     outcome.net = assemble(pieces, input_, options_);
     outcome.net.result = "approximate";
     outcome.net.intermediate = true;
-    Progress quiet;  // the run's progress is the unfolder's, not this drawing's
-    write_documents(options_, documents_, outcome, quiet);
+    // The run's progress is the unfolder's, not this drawing's; a preview is line art (colour
+    // is for the final print).
+    Progress quiet;
+    JobOptions line_art = options_;
+    line_art.colour = false;
+    write_documents(line_art, documents_, outcome, quiet);
     to_.intermediate_outcome(outcome);
   }
   bool cancelled() override { return to_.cancelled(); }

@@ -21,9 +21,10 @@ using SurfacePtr = std::shared_ptr<cairo_surface_t>;
 
 SurfacePtr own(cairo_surface_t* s) { return SurfacePtr(s, cairo_surface_destroy); }
 
-// The largest image side drawn, pixels: a piece wider than this at the dpi asked is drawn at a
-// lower resolution (at 300 dpi, 1.4 m).
-constexpr int kMaxImageSide = 16384;
+// The most pixels one image holds (144 MB as ARGB): a piece larger than that at the dpi asked
+// (a whole A3 sheet at 300 dpi is 17 million) is drawn at a lower resolution, so memory stays
+// bounded.
+constexpr double kMaxImagePixels = 36e6;
 
 bool finite(const UV& uv) { return std::isfinite(uv[0]) && std::isfinite(uv[1]); }
 bool finite(const RGBA& c) {
@@ -144,6 +145,27 @@ void trace(cairo_t* cr, const Points& p) {
   cairo_close_path(cr);
 }
 
+// Triangle p grown by `d` on every side: each corner moved out along its bisector by d over the
+// sine of its half angle (at most 4 d, so a sliver's sharp corner stays near). Filled instead of
+// p, it covers the hairline antialiasing leaves between neighbouring triangles and reaches d past
+// the cuts; a stroke would do the same at several times the cost.
+std::vector<Vec2> grown(const std::array<Vec2, 3>& p, double d) {
+  std::vector<Vec2> out(p.begin(), p.end());
+  for (int i = 0; i < 3; ++i) {
+    const Vec2 a = p[(i + 2) % 3], v = p[i], b = p[(i + 1) % 3];
+    const double la = norm(v - a), lb = norm(v - b);
+    if (!(la > 0 && lb > 0)) continue;
+    const Vec2 u = (1 / la) * (v - a), w = (1 / lb) * (v - b);
+    const Vec2 bisector = u + w;
+    const double n = norm(bisector);
+    if (!(n > 1e-12)) continue;
+    // sin(half angle) = |u + w| / 2 for unit u, w pointing out of the corner's sides.
+    const double reach = std::min(4 * d, 2 * d / n);
+    out[i] = v + (reach / n) * bisector;
+  }
+  return out;
+}
+
 // Fills the triangle at page corners p with its colour, and `bleed` millimetres around it; with
 // `area`, that polygon instead, coloured by the triangle's map extended past its sides.
 void paint(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2, 3>& p,
@@ -154,14 +176,10 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2, 3>& p,
   const bool white = uniform && c[0] == std::array<double, 3>{1, 1, 1};
   const PrintTexture* tex = texture_of(t, colour);
   cairo_pattern_t* pattern = tex ? texture_pattern(*tex, p, t.uv) : nullptr;
+  const std::vector<Vec2> outline = area ? *area : grown(p, bleed);
   auto fill_and_bleed = [&] {
-    if (area)
-      trace(cr, *area);
-    else
-      trace(cr, p);
-    cairo_fill_preserve(cr);
-    cairo_set_line_width(cr, 2 * bleed);
-    cairo_stroke(cr);
+    trace(cr, outline);
+    cairo_fill(cr);
   };
   if (tex && !pattern) {  // a texture squeezed to a point or a line: the texel there
     const auto texel = texel_at(*tex, t.uv);
@@ -202,13 +220,9 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2, 3>& p,
   }
   // Texture times colour: the product made in a group over the triangle, then drawn.
   cairo_save(cr);
-  if (area)
-    trace(cr, *area);
-  else
-    trace(cr, p);
-  cairo_set_line_width(cr, 2 * bleed);
+  trace(cr, outline);
   double x0, y0, x1, y1;
-  cairo_stroke_extents(cr, &x0, &y0, &x1, &y1);
+  cairo_fill_extents(cr, &x0, &y0, &x1, &y1);
   cairo_new_path(cr);
   cairo_rectangle(cr, x0, y0, x1 - x0, y1 - y0);
   cairo_clip(cr);
@@ -345,9 +359,9 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
     b.lo = {std::max(b.lo.x - 2 * bleed, clip_lo.x), std::max(b.lo.y - 2 * bleed, clip_lo.y)};
     b.hi = {std::min(b.hi.x + 2 * bleed, clip_hi.x), std::min(b.hi.y + 2 * bleed, clip_hi.y)};
     if (!(b.hi.x > b.lo.x && b.hi.y > b.lo.y)) continue;
-    // Whole pixels from the box's corner, at most kMaxImageSide a side.
+    // Whole pixels from the box's corner, at most kMaxImagePixels.
     const double scale =
-        std::min(px_per_mm, kMaxImageSide / std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y));
+        std::min(px_per_mm, std::sqrt(kMaxImagePixels / ((b.hi.x - b.lo.x) * (b.hi.y - b.lo.y))));
     const int w = std::max(1, static_cast<int>(std::ceil((b.hi.x - b.lo.x) * scale)));
     const int h = std::max(1, static_cast<int>(std::ceil((b.hi.y - b.lo.y) * scale)));
     SurfacePtr surface = own(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h));
@@ -374,16 +388,19 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
       const std::array<Vec2, 3> hinged{hinge(under[0]), hinge(under[1]), hinge(under[2])};
       std::vector<Vec2> tab;
       for (Vec2 q : tu.tab->corners) tab.push_back(map(q));
-      cairo_save(cr);
-      trace(cr, tab);
-      cairo_clip(cr);
-      // The first triangle's map covers the whole tab (a tab can reach past its face); the
-      // others, where a face has several, over it.
+      // The tab shows the under face's triangle nearest the edge's middle, its map extended
+      // over the whole tab (a tab can reach past that triangle, and past its face).
+      const Vec2 middle = 0.5 * (mine[own_side.k] + mine[(own_side.k + 1) % 3]);
       const auto& under_triangles = colour.faces[tu.under];
-      for (std::size_t i = 0; i < under_triangles.size(); ++i)
-        paint(cr, under_triangles[i], place(under_triangles[i], hinged), colour, line,
-              i == 0 ? &tab : nullptr);
-      cairo_restore(cr);
+      std::size_t nearest = 0;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < under_triangles.size(); ++i) {
+        const auto q = place(under_triangles[i], hinged);
+        const double d = norm((1.0 / 3) * (q[0] + q[1] + q[2]) - middle);
+        if (d < best) best = d, nearest = i;
+      }
+      paint(cr, under_triangles[nearest], place(under_triangles[nearest], hinged), colour, line,
+            &tab);
     }
     const cairo_status_t status = cairo_status(cr);
     cairo_destroy(cr);

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "print/internal/piece_labels.h"
 
 namespace papernet {
 
@@ -42,9 +43,27 @@ void PrintOptions::validate() const {
          "tab room budget must be at most " + std::to_string(kMaxTabRoomBudget) + " moves");
 }
 
+double label_chars(const std::string& text) {
+  double width = 0;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x80)
+      width += 1;
+    else if (byte >= 0xC0)  // the first byte of a multi-byte character
+      width += 1.4;
+  }
+  return width;
+}
+
+std::string piece_name(int piece) {
+  std::string name = "P";
+  name += std::to_string(piece + 1);
+  return name;
+}
+
 std::array<Vec2, 4> label_box(const Label& label) {
   const Vec2 d{std::cos(label.angle), std::sin(label.angle)}, up{-d.y, d.x};
-  const double hw = 0.3 * label.size * static_cast<double>(label.text.size());
+  const double hw = 0.3 * label.size * label_chars(label.text);
   const double hh = 0.5 * label.size;
   return {label.at - hw * d - hh * up, label.at + hw * d - hh * up, label.at + hw * d + hh * up,
           label.at - hw * d + hh * up};
@@ -77,7 +96,7 @@ Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text
   const double len = norm(p1 - p0);
   const Vec2 d = len > 0 ? (1 / len) * (p1 - p0) : Vec2{1, 0}, up{-d.y, d.x};
   const double ht = dot(p2 - p0, up), a2 = dot(p2 - p0, d);  // apex height and offset
-  const double chars = static_cast<double>(text.size());
+  const double chars = label_chars(text);
   if (!(len > 0 && ht > 0))  // a degenerate face: an empty label at its centroid
     return {(1.0 / 3) * (p0 + p1 + p2), 0, 0, std::move(text), -1, side};
   Label label{{}, std::atan2(d.y, d.x), std::min(max_size, 0.3 * ht), std::move(text), -1, side};
@@ -149,7 +168,7 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
     by_face[labels[i].side.face].push_back(i);
   for (Label& label : labels) {
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
-    const double chars = static_cast<double>(label.text.size());
+    const double chars = label_chars(label.text);
     const int t = tab_of[label.edge];
     if (t >= 0 && tabs[t].side.face == label.side.face && tabs[t].side.k == label.side.k) {
       const auto& c = tabs[t].corners;
@@ -234,7 +253,8 @@ TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& 
   return clearance;
 }
 
-PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options) {
+PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options,
+                       const std::vector<int>& piece) {
   options.validate();
   if (mesh.faces.empty()) throw InvalidInputException("nothing to print: the mesh has no faces");
   if (net.points.size() != mesh.faces.size() || net.parent.size() != mesh.faces.size())
@@ -250,6 +270,15 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     for (const Vec2 p : net.points[f])
       if (!std::isfinite(p.x) || !std::isfinite(p.y))
         throw InvalidInputException("net face " + std::to_string(f) + " has a non-finite point");
+  if (!piece.empty() && piece.size() != mesh.faces.size())
+    throw InvalidInputException("the net has " + std::to_string(piece.size()) +
+                                " faces with a piece but the mesh has " +
+                                std::to_string(mesh.faces.size()));
+  int pieces = 0;
+  for (const int p : piece) {
+    if (p < 0) throw InvalidInputException("a face has a negative piece");
+    pieces = std::max(pieces, p + 1);
+  }
   PrintLayout out;
   out.metrics = net_metrics(mesh, net);
   out.scale = print_scale(mesh, options);
@@ -289,7 +318,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       // As tall as fits a half of the strip, and as long as fits its length.
       const double length = norm(s.corners[1] - s.corners[0]);
       const double half = 0.5 * norm(s.corners[3] - s.corners[0]);
-      const double chars = static_cast<double>(s.text.size());
+      const double chars = label_chars(s.text);
       s.text_size =
           std::max(kLegibleLabelMm,
                    std::min({options.max_label_mm, 0.6 * half, 0.8 * length / (0.6 * chars)}));
@@ -326,13 +355,49 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
         out.cut.push_back(side_segment(s));
       }
       if (options.labels && edge.cut_index >= 0) {
-        out.labels.push_back({{}, 0, 0, label_text(edge.cut_index + 1), e, s});
+        // Across pieces, the label names the piece its edge glues to (docs/print.md).
+        const int other = s.face == edge.a.face ? edge.b.face : edge.a.face;
+        const bool joins = !piece.empty() && other >= 0 && piece[other] != piece[s.face];
+        out.labels.push_back(
+            {{},
+             0,
+             0,
+             joins ? std::to_string(edge.cut_index + 1) + "→" + piece_name(piece[other])
+                   : label_text(edge.cut_index + 1),
+             e,
+             s});
       }
     }
   }
 
   size_labels(out.faces, out.labels, options.max_label_mm);
   make_labels_legible(out.faces, out.tabs, tab_of, out.labels, options.max_label_mm);
+  // A label naming the piece across ("12→P3") that prints under the legible size even so (a
+  // sliver with two cut edges) becomes the plain number, and its face's labels are placed again:
+  // its twin still names the piece (docs/print.md, "Build order").
+  std::vector<char> again(out.faces.size(), 0);
+  bool shorten = false;
+  for (const Label& l : out.labels) {
+    if (l.size >= kLegibleLabelMm || l.text == label_text(out.edges[l.edge].cut_index + 1))
+      continue;
+    again[l.side.face] = 1;
+    shorten = true;
+  }
+  if (shorten) {
+    std::vector<int> index;
+    std::vector<Label> redo;
+    for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
+      if (!again[out.labels[i].side.face]) continue;
+      Label l = out.labels[i];
+      if (l.size < kLegibleLabelMm) l.text = label_text(out.edges[l.edge].cut_index + 1);
+      index.push_back(i);
+      redo.push_back(std::move(l));
+    }
+    size_labels(out.faces, redo, options.max_label_mm);
+    make_labels_legible(out.faces, out.tabs, tab_of, redo, options.max_label_mm);
+    for (std::size_t j = 0; j < index.size(); ++j) out.labels[index[j]] = std::move(redo[j]);
+  }
+  if (pieces > 1) out.piece_labels = print_detail::place_piece_labels(out.faces, out.labels, piece);
 
   // Translate so that everything starts at the origin.
   Box2 box = Box2::empty();
@@ -353,6 +418,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   for (auto* list : {&out.cut, &out.mountain, &out.valley})
     for (Segment& s : *list) s = {s.a + shift, s.b + shift, s.face};
   for (Label& l : out.labels) l.at = l.at + shift;
+  for (Label& l : out.piece_labels) l.at = l.at + shift;
   out.size = box.size();
   return out;
 }

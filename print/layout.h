@@ -62,6 +62,10 @@ struct Label {
   EdgeSide side;
 };
 
+/// The width of a label's text in average digit widths: 1 for each ASCII character, 1.4 for any
+/// other (UTF-8) character, such as the arrow of "12→P3".
+double label_chars(const std::string& text);
+
 /// Corners (counter-clockwise) of the box a label's text occupies, for an average digit width
 /// of 0.6 of the font size.
 std::array<Vec2, 4> label_box(const Label& label);
@@ -80,6 +84,9 @@ struct PrintLayout {
   std::vector<GlueStrip> strips;  ///< separate glue strips, for cut edges without a tab
   std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) with neither (TabMode::None)
   std::vector<Label> labels;
+  /// With several pieces, each piece's number ("P3", from 1 in build order) inside one of its
+  /// faces (`side.face`; `edge` -1), larger than the edge labels where the face holds it.
+  std::vector<Label> piece_labels;
   Vec2 size;
   NetBoxMetrics metrics;  ///< of the net itself, in model units
   int cut_edges = 0;      ///< interior cut edges (label numbers run 1..cut_edges)
@@ -110,10 +117,17 @@ TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& 
 /// (core/tabs/tab_clearance.h, with tab_clearance_options): tabs auto, tabs at all, a budget.
 bool makes_tab_room(const PrintOptions& options);
 
-/// Lays out a net for printing.
+/// The text of a piece's number: "P" and the piece (0-based) plus one.
+std::string piece_name(int piece);
+
+/// Lays out a net for printing. With `piece` (each face's piece, numbered in build order:
+/// print/build_order.h), the two labels of a cut edge that joins two pieces also name the piece
+/// across it ("12→P3": edge 12 glues to piece 3; docs/print.md, "Build order"), and each piece
+/// of several gets its number (`piece_labels`).
 /// \throw InvalidOptionException for invalid options; InvalidInputException for an empty mesh or
 ///        a net that does not match the mesh (sizes, non-finite points, vertex indices out of
 ///        range).
-PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {});
+PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {},
+                       const std::vector<int>& piece = {});
 
 }  // namespace papernet

@@ -176,6 +176,9 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
     // Upright on the page: a label turned past a quarter turn reads better turned half round.
     if (std::cos(l.angle) < -1e-9) l.angle += std::numbers::pi;
   }
+  // Piece numbers stay level (any turn of theirs fits their place: print/internal/piece_labels.h).
+  for (Label& l : layout.piece_labels)
+    if (l.side.face >= 0) l.at = move(static_cast<std::size_t>(piece[l.side.face]), l.at);
   int sheets = placed.sheets;
   auto window = [&](int k) {
     return std::pair{Vec2{k * (w + kSheetGap), 0}, Vec2{k * (w + kSheetGap) + w, h}};
@@ -227,7 +230,20 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
   out.fitted = true;
   out.rows = 1;
   out.cols = sheets;
-  for (int k = 0; k < sheets; ++k) out.pages.push_back({0, k, window(k).first, window(k).second});
+  // The sheets in the order of the lowest piece each holds (pieces are numbered in build order:
+  // print/build_order.h), so a kit is built page after page; sheets of strips only last.
+  std::vector<int> lowest(static_cast<std::size_t>(sheets), std::numeric_limits<int>::max());
+  for (std::size_t f = 0; f < layout.faces.size(); ++f) {
+    const auto& t = layout.faces[f];
+    const double x = (t[0].x + t[1].x + t[2].x) / 3;
+    const int k = std::clamp(static_cast<int>(std::floor(x / (w + kSheetGap))), 0, sheets - 1);
+    lowest[k] = std::min(lowest[k], piece[f]);
+  }
+  std::vector<int> order(static_cast<std::size_t>(sheets));
+  for (int k = 0; k < sheets; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return lowest[a] < lowest[b]; });
+  for (int i = 0; i < sheets; ++i)
+    out.pages.push_back({0, i, window(order[i]).first, window(order[i]).second});
   return out;
 }
 

@@ -17,7 +17,9 @@ namespace papernet {
 /// `piece` gives each face's piece. Moves everything in `layout` (faces, tabs, strips, lines,
 /// labels) rigidly to its sheet: sheet k is the window [k * (w + gap), (k + 1) * w + k * gap] x
 /// [0, h] of the layout, w x h the printable area, and the PageLayout returned has one page per
-/// sheet, `fitted` set. Labels are turned to read upright after the move.
+/// sheet, `fitted` set, in the order of the lowest piece number each holds (pieces numbered in
+/// build order: print/build_order.h; sheets of glue strips only last). Labels are turned to read
+/// upright after the move.
 /// \throw InvalidOptionException ("face_too_large", "size_mm") when a piece does not fit a page.
 PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
                       const PageOptions& options, double spacing_mm);

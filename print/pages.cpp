@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "print/overview.h"
 
 namespace papernet {
 
@@ -141,6 +142,8 @@ void turn_quarter(PrintLayout& layout) {
     l.angle += std::cos(l.angle + std::numbers::pi / 2) < -1e-9 ? 1.5 * std::numbers::pi
                                                                 : std::numbers::pi / 2;
   }
+  // Piece numbers stay level (print/internal/piece_labels.h).
+  for (Label& l : layout.piece_labels) turn(l.at);
   layout.size = {layout.size.y, layout.size.x};
 }
 
@@ -290,6 +293,13 @@ void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawin
   for (const Segment& s : layout.cut) add(Layer::Cut, {s.a, s.b}, false);
   for (const Segment& s : layout.mountain) add(Layer::Mountain, {s.a, s.b}, false);
   for (const Segment& s : layout.valley) add(Layer::Valley, {s.a, s.b}, false);
+  for (const Label& l : layout.piece_labels) {
+    if (l.text.empty()) continue;
+    const auto box = label_box(l);
+    if (!box_meets({box.begin(), box.end()}, lo, hi)) continue;
+    d.shapes.push_back(
+        {Layer::Labels, {map(l.at)}, false, l.text, l.size, -l.angle * 180 / std::numbers::pi});
+  }
   for (const Label& l : layout.labels) {
     const auto box = label_box(l);
     if (!box_meets({box.begin(), box.end()}, lo, hi)) continue;
@@ -305,8 +315,11 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
   const Page& page = pages.pages.at(static_cast<std::size_t>(index));
   const double m = pages.margin;
   PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}, {}};
-  add_layout(layout, page.lo, page.hi, {m, m}, d);
-  if (colour)
+  if (page.overview && pages.overview)
+    d = draw_overview(layout, pages, index);
+  else
+    add_layout(layout, page.lo, page.hi, {m, m}, d);
+  if (colour && !page.overview)
     d.images = colour_images(layout, *colour, page.lo, page.hi, {m, m}, d.clip_lo, d.clip_hi);
   auto mark = [&](Vec2 a, Vec2 b) { d.shapes.push_back({Layer::Marks, {a, b}, false, {}, 0, 0}); };
   const double ov = pages.overlap, x1 = pages.width - m, y1 = pages.height - m;
@@ -321,6 +334,7 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
   const double fs = std::clamp(0.4 * m, 1.5, 3.5);
   std::string name =
       "page " + std::to_string(index + 1) + " of " + std::to_string(pages.pages.size());
+  if (page.overview) name += ": overview";
   if (!pages.fitted && pages.pages.size() > 1)
     name +=
         " (row " + std::to_string(page.row + 1) + ", column " + std::to_string(page.col + 1) + ")";

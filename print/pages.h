@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,7 +43,12 @@ struct PageOptions {
 struct Page {
   int row = 0, col = 0;  ///< row 0 is the top row
   Vec2 lo, hi;           ///< window in layout coordinates (mm, y up)
+  /// The overview page (print/overview.h): a map of the other pages, no window of the layout
+  /// (lo > hi, so it holds no point).
+  bool overview = false;
 };
+
+struct Overview;
 
 /// How a layout is split onto pages. All pages share one orientation.
 struct PageLayout {
@@ -54,6 +60,8 @@ struct PageLayout {
   bool fitted = false;
   int rows = 1, cols = 1;
   std::vector<Page> pages;  ///< row by row, left to right; empty tiles left out
+  /// With an overview page (add_overview, layout fit): what it shows.
+  std::shared_ptr<const Overview> overview;
 };
 
 /// Splits a layout onto pages, choosing orientation (page portrait or landscape, net turned or
@@ -91,8 +99,9 @@ struct PageDrawing {
   std::vector<PageImage> images;  ///< the pieces' colour, under every layer but faces and tabs
 };
 
-/// The shapes of page `index` of a paginated layout, with tile overlap marks and page number;
-/// with `colour`, the coloured pieces' images on it.
+/// The shapes of page `index` of a paginated layout, with tile overlap marks and page number
+/// ("page k of n"); the overview page's are draw_overview's (print/overview.h). With `colour`,
+/// the coloured pieces' images on it.
 PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index,
                       const PrintColour* colour = nullptr);
 

@@ -147,9 +147,17 @@ const std::vector<Setting>& settings() {
          c.workers = count(w, v, 1, 256);
        }},
       {"http-threads", "PAPERNET_HTTP_THREADS",
-       "threads serving HTTP connections, one per open connection (default 16)",
+       "threads serving HTTP connections, one per open connection, event streams apart "
+       "(default 16)",
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.http_threads = count(w, v, 2, 1024);
+       }},
+      {"max-streams", "PAPERNET_MAX_STREAMS",
+       "live progress streams (GET /v1/jobs/{id}/events) open at once, each on a thread of its "
+       "own beside --http-threads; the next one is answered 429 too_many_streams with "
+       "Retry-After (default 500)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.max_streams = count(w, v, 0, 10'000);
        }},
       {"queue-length", "PAPERNET_QUEUE_LENGTH", "queued jobs before 429 (default 64)",
        [](ServerConfig& c, const std::string& w, const std::string& v) {

@@ -21,7 +21,10 @@ struct ServerConfig {
   double lease = 30;              ///< seconds a running job's lease lasts without renewal
   int max_attempts = 3;           ///< claims of one job before it fails with interrupted_too_often
   std::size_t workers = 0;        ///< geometry threads; 0 = one per core
-  std::size_t http_threads = 16;  ///< threads serving connections (and SSE streams)
+  std::size_t http_threads = 16;  ///< threads serving connections (event streams apart)
+  /// Live progress streams (GET /v1/jobs/{id}/events) open at once; the next one is answered
+  /// 429 too_many_streams. Each holds a thread of its own, beside the http_threads.
+  std::size_t max_streams = 500;
   std::size_t queue_length = 64;  ///< queued jobs before POST answers 429
   std::size_t max_body_bytes = std::size_t{64} << 20;
   std::size_t max_faces = 1'000'000;

@@ -12,6 +12,7 @@
 
 #include "api/openapi.h"
 #include "server/api_keys.h"
+#include "server/event_streams.h"
 #include "server/http_server.h"
 #include "server/job_json.h"
 #include "server/job_store.h"
@@ -50,6 +51,24 @@ void send_problem(httplib::Response& res, const Problem& p, const std::string& i
 void send_json(httplib::Response& res, int status, const json& doc) {
   res.status = status;
   res.set_content(doc.dump(), "application/json");
+}
+
+// Ends a chunked response. cpp-httplib writes the last chunk from a function-local static that
+// it initialises on first use, behind a guard inside the (uninstrumented) library: ThreadSanitizer
+// would report every later end, on other threads, as racing with that first one. The first end
+// is therefore made under a mutex that every end passes, which TSan sees.
+void end_chunked(httplib::DataSink& sink) {
+  static std::mutex first_mutex;
+  static bool first_done = false;
+  {
+    std::lock_guard lock(first_mutex);
+    if (!first_done) {
+      sink.done();
+      first_done = true;
+      return;
+    }
+  }
+  sink.done();
 }
 
 // Every handler runs inside this: whatever it throws becomes a problem, mapped in problem.cpp.
@@ -294,11 +313,12 @@ std::string request_hash(const ParsedUpload& upload) {
 }
 
 struct Api {
-  Api(JobService& s, const ServerConfig& c, HttpMetrics& m) : service(s), config(c), metrics(m) {}
+  Api(JobService& s, const ServerConfig& c, HttpMetrics& m)
+      : service(s), config(c), metrics(m), streams(s, c.max_streams) {}
   JobService& service;
   const ServerConfig& config;
   HttpMetrics& metrics;
-  std::atomic<int>& streams = metrics.open_streams;
+  EventStreams streams;
 
   void submit(const httplib::Request& req, httplib::Response& res,
               const httplib::ContentReader& reader) {
@@ -418,45 +438,39 @@ struct Api {
 
   void events(const httplib::Request& req, httplib::Response& res) {
     const std::string id = find_job(service, req).record.id;
-    if (streams.fetch_add(1) >= static_cast<int>(config.http_threads / 2)) {
-      streams.fetch_sub(1);
-      Problem p = make_problem("too_many_streams", "too many open event streams; poll instead");
+    if (!service.accepting())
+      throw ApiError("shutting_down", "the server is shutting down; try again");
+    std::shared_ptr<EventStreams::Watch> watch = streams.open(id);
+    if (!watch) {
+      Problem p = make_problem("too_many_streams", "the server has its most event streams open (" +
+                                                       std::to_string(streams.max_streams()) +
+                                                       "); poll GET /v1/jobs/" + id +
+                                                       " instead, or retry later");
       p.retry_after = 5;
       throw ApiError(p);
     }
+    ++metrics.open_streams;
     res.set_header("Cache-Control", "no-store");
-    auto last_version = std::make_shared<std::uint64_t>(0);
-    auto last_doc = std::make_shared<std::string>();
+    auto seen = std::make_shared<std::uint64_t>(0);
     auto sequence = std::make_shared<int>(0);
     res.set_chunked_content_provider(
         "text/event-stream",
-        [this, id, last_version, last_doc, sequence](std::size_t, httplib::DataSink& sink) {
-          *last_version = service.wait_for_change(*last_version, std::chrono::seconds(1));
-          std::optional<JobView> view;
-          try {
-            view = service.view(id);
-          } catch (const StoreError&) {  // the store is away for a moment: keep the stream
-            std::this_thread::sleep_for(std::chrono::milliseconds(500));
-            return sink.is_writable();
-          }
-          const bool final = !view || is_final(view->record.status);
-          std::string doc = view ? job_to_json(*view, now_seconds()).dump() : "null";
-          if (doc != *last_doc || final) {
+        [this, watch, seen, sequence](std::size_t, httplib::DataSink& sink) {
+          const EventStreams::State state = streams.next(*watch, *seen, std::chrono::seconds(1));
+          if (state.generation != 0 && state.generation != *seen) {
             const std::string event = std::string("id: ") + std::to_string(++*sequence) +
-                                      "\nevent: " + (final ? "done" : "progress") +
-                                      "\ndata: " + doc + "\n\n";
+                                      "\nevent: " + (state.final ? "done" : "progress") +
+                                      "\ndata: " + state.doc + "\n\n";
             if (!sink.write(event.data(), event.size())) return false;
-            *last_doc = std::move(doc);
+            *seen = state.generation;
           }
-          if (final || !service.accepting()) {
-            sink.done();
+          if (state.final || state.closing) {
+            end_chunked(sink);
             return true;
           }
-          // At most ten events a second, however often the unfolder reports.
-          std::this_thread::sleep_for(std::chrono::milliseconds(100));
-          return sink.is_writable();
+          return !client_closed();
         },
-        [this](bool) { streams.fetch_sub(1); });
+        [this](bool) { --metrics.open_streams; });
   }
 };
 

@@ -9,6 +9,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <deque>
+#include <list>
+#include <mutex>
+#include <system_error>
+#include <thread>
 
 namespace papernet::server {
 namespace {
@@ -96,6 +102,16 @@ class GuardedStream : public httplib::Stream {
     address(::getsockname, ip, port);
   }
   socket_t socket() const override { return sock_; }
+
+  // The client closed or reset the connection (a client of a long response sends nothing).
+  bool peer_closed() const {
+    if (buffered()) return false;
+    pollfd p{sock_, POLLIN | POLLRDHUP, 0};
+    if (::poll(&p, 1, 0) <= 0) return false;
+    if (p.revents & (POLLRDHUP | POLLHUP | POLLERR | POLLNVAL)) return true;
+    char byte = 0;
+    return ::recv(sock_, &byte, 1, MSG_PEEK | MSG_DONTWAIT) == 0;
+  }
 
   // Waits for the next request on an idle connection; false when it is closed, idle too long or
   // the server stops.
@@ -210,33 +226,103 @@ RequestReadState request_read_state() {
   return current_stream ? current_stream->state() : RequestReadState{};
 }
 
+bool client_closed() { return current_stream && current_stream->peer_closed(); }
+
 void close_connection_after_response() { close_after = true; }
 
 namespace {
 
-// httplib's pool, counting the connections that wait for a thread.
-class CountingThreadPool : public httplib::ThreadPool {
+// httplib's pool made elastic: `base` threads always, up to `most` while connections wait
+// for one (the extra ones end after kIdleExtra without work); counts the connections that
+// wait for a thread.
+class ConnectionThreadPool : public httplib::TaskQueue {
  public:
-  CountingThreadPool(std::size_t threads, std::shared_ptr<std::atomic<int>> waiting)
-      : httplib::ThreadPool(threads), waiting_(std::move(waiting)) {}
+  ConnectionThreadPool(std::size_t base, std::size_t most,
+                       std::shared_ptr<std::atomic<int>> waiting)
+      : base_(base), most_(std::max(base, most)), waiting_(std::move(waiting)) {
+    std::lock_guard lock(mutex_);
+    while (threads_.size() < base_) start();
+  }
+  ~ConnectionThreadPool() override { ConnectionThreadPool::shutdown(); }
+
   void enqueue(std::function<void()> fn) override {
     ++*waiting_;
-    httplib::ThreadPool::enqueue([waiting = waiting_, fn = std::move(fn)] {
-      --*waiting;
-      fn();
-    });
+    std::list<std::thread> ended;
+    {
+      std::lock_guard lock(mutex_);
+      jobs_.push_back(std::move(fn));
+      if (idle_ < jobs_.size() && threads_.size() < most_) start();
+      ended.swap(ended_);
+    }
+    work_.notify_one();
+    for (std::thread& t : ended) t.join();
+  }
+
+  void shutdown() override {
+    std::unique_lock lock(mutex_);
+    shutdown_ = true;
+    work_.notify_all();
+    gone_.wait(lock, [&] { return threads_.empty(); });
+    std::list<std::thread> ended;
+    ended.swap(ended_);
+    lock.unlock();
+    for (std::thread& t : ended) t.join();
   }
 
  private:
+  static constexpr auto kIdleExtra = std::chrono::seconds(10);
+
+  // Under mutex_. A thread the system refuses (a container's pids limit) is not fatal: the
+  // connection waits for a thread that frees up, as in a fixed pool.
+  void start() {
+    threads_.emplace_back();
+    const auto self = std::prev(threads_.end());
+    try {
+      *self = std::thread([this, self] { run(self); });
+    } catch (const std::system_error&) {
+      threads_.erase(self);
+      if (threads_.empty()) throw;  // not even one: nothing could be served
+    }
+  }
+
+  void run(std::list<std::thread>::iterator self) {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+      ++idle_;
+      const bool woken =
+          work_.wait_for(lock, kIdleExtra, [&] { return shutdown_ || !jobs_.empty(); });
+      --idle_;
+      if (jobs_.empty() && (shutdown_ || (!woken && threads_.size() > base_))) break;
+      if (jobs_.empty()) continue;
+      std::function<void()> fn = std::move(jobs_.front());
+      jobs_.pop_front();
+      lock.unlock();
+      --*waiting_;
+      fn();
+      lock.lock();
+    }
+    // A thread cannot join itself: the next enqueue or shutdown does.
+    ended_.splice(ended_.end(), threads_, self);
+    gone_.notify_all();
+  }
+
+  const std::size_t base_, most_;
   std::shared_ptr<std::atomic<int>> waiting_;
+  std::mutex mutex_;
+  std::condition_variable work_, gone_;
+  std::deque<std::function<void()>> jobs_;
+  std::list<std::thread> threads_, ended_;
+  std::size_t idle_ = 0;
+  bool shutdown_ = false;
 };
 
 }  // namespace
 
-GuardedHttpServer::GuardedHttpServer(const HttpLimits& limits, std::size_t threads)
+GuardedHttpServer::GuardedHttpServer(const HttpLimits& limits, std::size_t threads,
+                                     std::size_t extra_threads)
     : limits_(limits), waiting_(std::make_shared<std::atomic<int>>(0)) {
-  new_task_queue = [threads, waiting = waiting_] {
-    return new CountingThreadPool(threads, waiting);
+  new_task_queue = [threads, extra_threads, waiting = waiting_] {
+    return new ConnectionThreadPool(threads, threads + extra_threads, waiting);
   };
 }
 

@@ -39,8 +39,11 @@ struct RequestReadState {
 /// the connection is closed.
 class GuardedHttpServer : public httplib::Server {
  public:
-  /// `threads` serve connections, one each; further connections wait for a free thread.
-  GuardedHttpServer(const HttpLimits& limits, std::size_t threads);
+  /// `threads` serve connections, one each; while all are busy, up to `extra_threads` more are
+  /// started (and end again after 10 s without work); further connections wait for a free
+  /// thread. A server whose handlers hold a connection long (event streams, at most N at once)
+  /// gets N extra threads, so that they never take the `threads` other requests need.
+  GuardedHttpServer(const HttpLimits& limits, std::size_t threads, std::size_t extra_threads = 0);
   const HttpLimits& limits() const { return limits_; }
   /// Call after binding: cpp-httplib listens with a backlog of 5, so a burst of connections
   /// overflows it and the kernel resets them. \return false when listen() fails.
@@ -54,6 +57,10 @@ class GuardedHttpServer : public httplib::Server {
 
 /// The read state of the request being handled on this thread (all false outside a request).
 RequestReadState request_read_state();
+
+/// Whether the client of the connection being served on this thread has closed it (or reset
+/// it), without waiting: a long response (an event stream) ends early then.
+bool client_closed();
 
 /// Called by a handler that answers without reading the whole body: the connection is closed
 /// after the response (what is left of the body is discarded for at most HttpLimits::linger).

@@ -43,11 +43,12 @@ int run_service(const ServerConfig& config) {
     }
   }
 
-  // Every worker and HTTP thread may use a database connection at once, and the lease keeper
-  // and the two webhook threads.
+  // Every worker and HTTP thread may use a database connection at once, and the lease keeper,
+  // the two webhook threads and the reader of the event streams (a stream's own thread reads
+  // the job once, when it opens, as a status poll does).
   std::unique_ptr<JobStore> store;
   try {
-    store = open_job_store(config.store, config.data_dir, config.workers + config.http_threads + 3);
+    store = open_job_store(config.store, config.data_dir, config.workers + config.http_threads + 4);
   } catch (const std::exception& e) {
     std::cerr << "papernet serve: " << e.what() << "\n";
     return 1;
@@ -88,7 +89,9 @@ int run_service(const ServerConfig& config) {
   http_limits.header_timeout = config.header_timeout;
   http_limits.request_timeout = config.request_timeout;
   http_limits.keep_alive_timeout = config.read_timeout;
-  GuardedHttpServer http(http_limits, config.http_threads);
+  // Each event stream holds a thread of its own, beside the http_threads the other requests
+  // have (docs/reliability.md).
+  GuardedHttpServer http(http_limits, config.http_threads, config.max_streams);
   http.set_tcp_nodelay(true);  // small JSON answers must not wait for delayed ACKs
   install_routes(http, service, config, metrics, keys.get());
   const std::string& web_root = config.web_root;

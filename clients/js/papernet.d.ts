@@ -37,6 +37,9 @@ export interface Options {
   flat_fold_degrees?: number;
   /** Matching numbers on both sides of each cut edge (default true). */
   labels?: boolean;
+  /** Layout fit: a first page mapping the sheets, the pieces on each and the build order
+   *  (default: when the print has more than one piece). */
+  overview?: boolean;
   /** "all" (default): every connected part its own piece; "largest": only the largest part. */
   components?: "all" | "largest";
   /** Refuse a mesh that needs repair instead of repairing it (default false). */
@@ -189,6 +192,8 @@ export interface NetPrint {
   placements: Array<{ piece: number; page: number; transform: [number, number, number, number, number, number] }>;
   /** Layout tile: the window [x, y, width, height] of the tile grid's frame each page shows. */
   tiles?: Array<{ page: number; window_mm: [number, number, number, number] }>;
+  /** The overview page (0-based; absent without one): the pieces then lie on pages 1 and on. */
+  overview_page?: number;
 }
 
 export interface SseEvent {

@@ -97,7 +97,11 @@ TEST(OptionsTest, ColourAndItsResolutionAreParsedAndChecked) {
   EXPECT_FALSE(parse_options_json(R"({"colour":false})").colour);
   EXPECT_EQ(error_code([] { parse_options_query({{"colour", "sepia"}}); }), "invalid_option_value");
   std::string option;
-  EXPECT_EQ(error_code([] { parse_options_query({{"dpi", "20"}}); }, &option),
+  EXPECT_EQ(error_code(
+                [] {
+                  parse_options_query({{"dpi", "20"}});
+                },
+                &option),
             "option_out_of_range");
   EXPECT_EQ(option, "dpi");
   EXPECT_EQ(error_code([] { parse_options_json(R"({"dpi":5000})"); }), "option_out_of_range");

@@ -163,11 +163,24 @@ TEST_P(FitPlacements, TheNetAsPrintedPassesTheNetCheckerOneRootPerPiece) {
   ASSERT_TRUE(doc.print);
   EXPECT_GT(doc.pieces.size(), doc.input.components) << "nothing was cut to fit";
   expect_pieces_check(doc);
-  // Pieces cut off are numbered after the parts', which keep their numbers.
-  for (std::size_t c = 0; c < doc.input.components; ++c) EXPECT_EQ(doc.pieces[c].component, c);
+  // Pieces are numbered in build order (docs/print.md): a part's pieces one after another,
+  // every part printed.
+  std::set<std::size_t> parts_done;
+  for (std::size_t p = 0; p < doc.pieces.size(); ++p) {
+    const std::size_t c = doc.pieces[p].component;
+    if (p > 0 && c != doc.pieces[p - 1].component) {
+      EXPECT_TRUE(parts_done.insert(doc.pieces[p - 1].component).second) << "piece " << p;
+    }
+    EXPECT_FALSE(parts_done.count(c)) << "piece " << p << ": its part came before";
+  }
+  parts_done.insert(doc.pieces.back().component);
+  EXPECT_EQ(parts_done.size(), doc.input.components);
+  // Each piece inherits its part's result and distance: the same for all pieces of a part.
+  std::map<std::size_t, const NetPiece*> first_of_part;
   for (const NetPiece& p : doc.pieces) {
-    EXPECT_EQ(p.result, doc.pieces[p.component].result);
-    EXPECT_EQ(p.hausdorff, doc.pieces[p.component].hausdorff);
+    const NetPiece& first = *first_of_part.emplace(p.component, &p).first->second;
+    EXPECT_EQ(p.result, first.result);
+    EXPECT_EQ(p.hausdorff, first.hausdorff);
   }
 }
 

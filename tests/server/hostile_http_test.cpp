@@ -305,9 +305,10 @@ TEST_P(HostileHttp, TruncatedUploadsCreateNoJob) {
 // Slow clients: headers trickled past --header-timeout, a body that stops (read timeout), a body
 // trickled past --request-timeout, and more silent connections than HTTP threads. Each is cut
 // off; everyone else is served meanwhile.
+// (--max-streams 0: no threads beside the four, which the silent connections outnumber.)
 TEST_P(HostileHttp, SlowClientsAreTimedOutAndOthersAreServed) {
-  Server s({"--workers", "1", "--http-threads", "4", "--read-timeout", "1", "--header-timeout", "2",
-            "--request-timeout", "4", "--reuse-results", "false"});
+  Server s({"--workers", "1", "--http-threads", "4", "--max-streams", "0", "--read-timeout", "1",
+            "--header-timeout", "2", "--request-timeout", "4", "--reuse-results", "false"});
   std::atomic<bool> stop{false};
   auto trickle = [&](RawConnection& c, const std::string& bytes, std::chrono::milliseconds gap) {
     for (char ch : bytes) {

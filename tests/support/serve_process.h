@@ -94,6 +94,23 @@ class Server {
     pid_ = -1;
     return status;
   }
+  /// Sends `sig` and waits at most `seconds` for the process (then kills it); returns its exit
+  /// status, or -1 when it had to be killed.
+  int stop_within(int sig, double seconds) {
+    if (pid_ <= 0) return -1;
+    kill(pid_, sig);
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    int status = 0;
+    while (waitpid(pid_, &status, WNOHANG) == 0) {
+      if (std::chrono::steady_clock::now() > end) {
+        stop(SIGKILL);
+        return -1;
+      }
+      std::this_thread::sleep_for(10ms);
+    }
+    pid_ = -1;
+    return status;
+  }
   void signal(int sig) { kill(pid_, sig); }
   httplib::Client client() const {
     httplib::Client c("127.0.0.1", port_);
@@ -185,6 +202,14 @@ inline std::size_t proc_status_kb(pid_t pid, const std::string& field) {
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
 #define PAPERNET_TEST_ASAN 1
+#endif
+#endif
+
+#if defined(PAPERNET_TEST_ASAN) || defined(__SANITIZE_THREAD__)
+#define PAPERNET_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define PAPERNET_TEST_SANITIZED 1
 #endif
 #endif
 

@@ -6,12 +6,16 @@ import { prepareFold, foldPositions } from "./fold.js";
 import { sceneFrame, cornerUvs, cornerColors, faceGroups } from "./colour.js";
 
 const $ = (id) => document.getElementById(id);
-const client = new PapernetClient("");
+// The API key of a server started with --api-keys, kept for this tab (sessionStorage): the
+// client sends it as Authorization: Bearer on every request, the event stream included (it
+// reads the stream with fetch: EventSource cannot send headers).
+const keyStore = "papernet.apiKey";
+const client = new PapernetClient("", { apiKey: sessionStorage.getItem(keyStore) || undefined });
 const ui = {
   drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
   paper: $("paper"), detail: $("detail"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
   model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
-  sheet: $("sheet"),
+  sheet: $("sheet"), keyBox: $("key-box"), key: $("api-key"),
   downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
 };
 
@@ -339,7 +343,10 @@ async function showResult(id, final, format) {
   showSvg(svg);
   offerSheets(id, final ? doc.print?.pages ?? 0 : 0);
   showNet3d(doc, id, format);
-  for (const [name, a] of Object.entries(ui.downloads)) a.href = client.url(`/v1/jobs/${id}/${name}`);
+  for (const [name, a] of Object.entries(ui.downloads)) {
+    a.href = client.url(`/v1/jobs/${id}/${name}`);
+    a.dataset.job = id;
+  }
   document.body.dataset.level = doc.level?.kind ?? doc.result;
 }
 
@@ -413,6 +420,11 @@ async function run() {
     }
   } catch (err) {
     if (abort.signal.aborted) return;
+    if (KEY_CODES.includes(err?.code)) {
+      askForKey(err.code);
+      document.body.dataset.state = "key";
+      return;
+    }
     setStatus(err instanceof PapernetError ? `${err.code}: ${err.detail ?? err.message}` : String(err), true);
     document.body.dataset.state = "error";
   } finally {
@@ -421,6 +433,56 @@ async function run() {
   }
 }
 ui.start.addEventListener("click", run);
+
+// ---- API key -------------------------------------------------------------------------------
+const KEY_CODES = ["missing_api_key", "invalid_api_key"];
+function askForKey(code) {
+  ui.keyBox.hidden = false;
+  ui.key.value = client.apiKey ?? "";
+  setStatus(
+    code === "invalid_api_key"
+      ? "This server did not accept the API key: enter another one."
+      : "This server needs an API key: enter yours, then choose a mesh.",
+    code === "invalid_api_key",
+  );
+  ui.key.focus();
+}
+ui.key.addEventListener("change", () => {
+  const key = ui.key.value.trim();
+  client.apiKey = key || undefined;
+  if (key) sessionStorage.setItem(keyStore, key);
+  else sessionStorage.removeItem(keyStore);
+  setStatus(files.length ? "Ready to unfold." : "Choose a mesh.");
+});
+// A link cannot send the key: with one, a download is fetched (with the header) and saved.
+for (const [name, a] of Object.entries(ui.downloads)) {
+  a.addEventListener("click", async (e) => {
+    if (!client.apiKey || !a.dataset.job) return; // an open server: the plain link
+    e.preventDefault();
+    try {
+      const res = await client.result(a.dataset.job, name);
+      const url = URL.createObjectURL(await res.blob());
+      const save = document.createElement("a");
+      save.href = url;
+      save.download = name;
+      save.click();
+      setTimeout(() => URL.revokeObjectURL(url), 60000);
+    } catch (err) {
+      setStatus(`${err.code ?? "error"}: ${err.detail ?? err.message}`, true);
+    }
+  });
+}
+// Does the server ask for a key (or refuse the one kept)? One small request tells.
+client.jobs({ limit: 1 }).then(
+  () => {
+    if (!client.apiKey) return;
+    ui.keyBox.hidden = false; // the kept key works: it stays in view, changeable
+    ui.key.value = client.apiKey;
+  },
+  (err) => {
+    if (KEY_CODES.includes(err?.code)) askForKey(err.code);
+  },
+);
 ui.cancel.addEventListener("click", async () => {
   if (!current) return;
   try {

@@ -1,0 +1,230 @@
+#include "print/overview.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+
+namespace papernet {
+namespace {
+
+constexpr double kTextMm = 3;      // captions and the build order
+constexpr double kSmallestMm = 2;  // they shrink to this at most, on a crowded overview
+constexpr double kTitleMm = 5;
+constexpr double kPieceMm = 4;      // a piece's number on its sheet's thumbnail
+constexpr double kGapMm = 6;        // between thumbnails
+constexpr double kLinePitch = 1.5;  // line spacing, in text heights
+
+bool holds(const Page& page, Vec2 p) {
+  return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
+}
+
+/// The estimated printed width of `text` at `size` mm (as label_box: 0.6 of the size a digit).
+double text_width(const std::string& text, double size) { return 0.6 * size * label_chars(text); }
+
+/// "P1, P4, P5".
+std::string names(const std::vector<int>& pieces) {
+  std::string out;
+  for (const int p : pieces) {
+    if (!out.empty()) out += ", ";
+    out += piece_name(p);
+  }
+  return out;
+}
+
+/// `head` then the names of `pieces`, broken into lines no wider than `width` at `size`.
+std::vector<std::string> wrap(const std::string& head, const std::vector<int>& pieces, double width,
+                              double size) {
+  std::vector<std::string> lines{head};
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const std::string name = piece_name(pieces[i]) + (i + 1 < pieces.size() ? "," : "");
+    std::string& line = lines.back();
+    const std::string longer = line + " " + name;
+    if (line.size() > head.size() && text_width(longer, size) > width)
+      lines.push_back(name);
+    else
+      line = longer;
+  }
+  return lines;
+}
+
+struct Writer {
+  PageDrawing& d;
+  void text(Layer layer, Vec2 centre, std::string s, double size) {
+    d.shapes.push_back({layer, {centre}, false, std::move(s), size, 0});
+  }
+  void line(Layer layer, std::vector<Vec2> points) {
+    d.shapes.push_back({layer, std::move(points), false, {}, 0, 0});
+  }
+};
+
+/// Draws the sheets of `sheets` (indices into pages.pages) as thumbnails in a grid from `top`
+/// down to at most `limit`, as large as fits; returns the grid's foot.
+double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Overview& overview,
+                   const std::vector<int>& sheets, double top, double limit, Writer& out) {
+  const double m = pages.margin, width = pages.width - 2 * m;
+  const int count = static_cast<int>(overview.page.size());
+  const Page& any = pages.pages[sheets.front()];
+  const double sw = any.hi.x - any.lo.x, sh = any.hi.y - any.lo.y;
+  const double room = limit - top;
+  const auto n = static_cast<int>(sheets.size());
+  // Each sheet's pieces, and its caption's lines at a thumbnail width.
+  std::vector<std::vector<int>> on_sheet(sheets.size());
+  for (int p = 0; p < count; ++p)
+    for (std::size_t i = 0; i < sheets.size(); ++i)
+      if (overview.page[p] == sheets[i]) on_sheet[i].push_back(p);
+  auto captions = [&](std::size_t i, double cell_w) {
+    const std::string head = std::string("page ") + std::to_string(sheets[i] + 1) + ":";
+    return on_sheet[i].empty() ? std::vector<std::string>{head + " glue strips"}
+                               : wrap(head, on_sheet[i], cell_w, kTextMm);
+  };
+  // The room under a thumbnail: its caption's most lines and one more.
+  auto caption_height = [&](double cell_w) {
+    std::size_t lines = 1;
+    for (std::size_t i = 0; i < sheets.size(); ++i)
+      lines = std::max(lines, captions(i, cell_w).size());
+    return static_cast<double>(lines + 1) * kLinePitch * kTextMm;
+  };
+  double scale = 0, caption = 0;
+  int cols = 1;
+  for (int c = 1; c <= n; ++c) {
+    const int r = (n + c - 1) / c;
+    const double cell_w = (width - (c - 1) * kGapMm) / c;
+    const double below = caption_height(cell_w);
+    const double cell_h = (room - (r - 1) * kGapMm) / r - below;
+    const double s = std::min(cell_w / sw, cell_h / sh);
+    if (s > scale) scale = s, cols = c, caption = below;
+  }
+  if (!(scale > 0)) return top;
+  const int grid_rows = (n + cols - 1) / cols;
+  const double cell_w = (width - (cols - 1) * kGapMm) / cols;
+  const double cell_h = sh * scale + caption;
+  const double left = m + 0.5 * (width - cols * cell_w - (cols - 1) * kGapMm);
+  const double first_y = top;
+  for (int i = 0; i < n; ++i) {
+    const Page& page = pages.pages[sheets[i]];
+    const double x0 = left + (i % cols) * (cell_w + kGapMm) + 0.5 * (cell_w - sw * scale);
+    const double y0 = first_y + (i / cols) * (cell_h + kGapMm);
+    auto map = [&](Vec2 p) {
+      return Vec2{x0 + (p.x - page.lo.x) * scale, y0 + (page.hi.y - p.y) * scale};
+    };
+    // The printable area, dashed: four lines (the SVG fills the marks layer's shapes for its
+    // text, so no polygon there).
+    const std::array<Vec2, 4> corner{{{x0, y0},
+                                      {x0 + sw * scale, y0},
+                                      {x0 + sw * scale, y0 + sh * scale},
+                                      {x0, y0 + sh * scale}}};
+    for (int k = 0; k < 4; ++k) out.line(Layer::Marks, {corner[k], corner[(k + 1) % 4]});
+    for (const Segment& s : layout.cut)
+      if (holds(page, s.a) && holds(page, s.b)) out.line(Layer::Cut, {map(s.a), map(s.b)});
+    for (const GlueStrip& g : layout.strips)
+      if (std::all_of(g.corners.begin(), g.corners.end(), [&](Vec2 p) { return holds(page, p); }))
+        out.line(Layer::Cut, {map(g.corners[0]), map(g.corners[1]), map(g.corners[2]),
+                              map(g.corners[3]), map(g.corners[0])});
+    for (const int p : on_sheet[i])
+      if (p < static_cast<int>(layout.piece_labels.size()))
+        out.text(Layer::Labels, map(layout.piece_labels[p].at), piece_name(p), kPieceMm);
+    // The caption: "page 3: P1, P4", broken into lines that fit the thumbnail's width.
+    const std::vector<std::string> lines = captions(static_cast<std::size_t>(i), cell_w);
+    for (std::size_t l = 0; l < lines.size(); ++l)
+      out.text(Layer::Labels,
+               {x0 + 0.5 * sw * scale,
+                y0 + sh * scale + (static_cast<double>(l) + 1) * kLinePitch * kTextMm},
+               lines[l], kTextMm);
+  }
+  return first_y + grid_rows * cell_h + (grid_rows - 1) * kGapMm + kGapMm;
+}
+
+}  // namespace
+
+void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vector<int>& piece,
+                  PieceGraph graph) {
+  auto overview = std::make_shared<Overview>();
+  int count = 0;
+  for (const int p : piece) count = std::max(count, p + 1);
+  overview->page.assign(static_cast<std::size_t>(count), -1);
+  for (std::size_t f = 0; f < piece.size() && f < layout.faces.size(); ++f) {
+    int& page = overview->page[piece[f]];
+    if (page >= 0) continue;
+    const auto& t = layout.faces[f];
+    const Vec2 centre = (1.0 / 3) * (t[0] + t[1] + t[2]);
+    for (int k = 0; k < static_cast<int>(pages.pages.size()) && page < 0; ++k)
+      if (holds(pages.pages[k], centre)) page = k + 1;  // + 1: the overview goes first
+  }
+  overview->graph = std::move(graph);
+  Page first;
+  first.overview = true;
+  first.lo = {0, 0};
+  first.hi = {-1, -1};
+  pages.pages.insert(pages.pages.begin(), first);
+  pages.overview = std::move(overview);
+}
+
+PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, int index) {
+  const double m = pages.margin, width = pages.width - 2 * m;
+  PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}, {}};
+  Writer out{d};
+  const Overview& overview = *pages.overview;
+  const int count = static_cast<int>(overview.page.size());
+  std::vector<int> sheets;  // the pages of pieces and strips
+  for (int k = 0; k < static_cast<int>(pages.pages.size()); ++k)
+    if (k != index && !pages.pages[k].overview) sheets.push_back(k);
+
+  // The title and how to read the labels.
+  double y = m + 0.5 * kTitleMm;
+  out.text(Layer::Labels, {0.5 * pages.width, y},
+           std::string("Overview: ") + std::to_string(count) +
+               (count == 1 ? " piece on " : " pieces on ") + std::to_string(sheets.size()) +
+               (sheets.size() == 1 ? " sheet" : " sheets"),
+           kTitleMm);
+  y += kTitleMm;
+  for (const char* line :
+       {"Cut out each piece along its solid lines; build in order P1, P2, P3, ...",
+        "An edge labelled 12\u2192P3 glues to edge 12 of piece P3."}) {
+    y += kLinePitch * kTextMm;
+    out.text(Layer::Labels, {0.5 * pages.width, y}, line, kTextMm);
+  }
+  const double top = y + kTextMm + 2;
+
+  // The build order, in columns under the sheets, as small as it must be to take at most 40 %
+  // of the page.
+  std::vector<std::string> steps;
+  for (int p = 0; p < count; ++p) {
+    std::vector<int> earlier;
+    for (const int q : overview.graph.joins[p])
+      if (q < p) earlier.push_back(q);
+    steps.push_back(p == 0            ? piece_name(p) + ": start here"
+                    : earlier.empty() ? piece_name(p) + ": start a new part"
+                                      : piece_name(p) + " glues to " + names(earlier));
+  }
+  double size = kTextMm, block = 0;
+  int columns = 1, rows = 0;
+  for (;; size = std::max(kSmallestMm, size - 0.25)) {
+    double widest = 0;
+    for (const std::string& s : steps) widest = std::max(widest, text_width(s, size));
+    columns = std::clamp(static_cast<int>(width / (widest + 4 * size)), 1, std::max(1, count));
+    rows = (count + columns - 1) / columns;
+    block = (rows + 2) * kLinePitch * size;
+    if (block <= 0.4 * (pages.height - 2 * m) || size <= kSmallestMm) break;
+  }
+  // The sheets as thumbnails, as large as the room above the build order holds them, each
+  // captioned with its pieces (the sheet list).
+  double bottom = top;  // where the build order starts
+  if (!sheets.empty())
+    bottom =
+        draw_sheets(layout, pages, overview, sheets, top, pages.height - m - block - kGapMm, out);
+
+  out.text(Layer::Labels, {0.5 * pages.width, bottom + 0.5 * kLinePitch * size + 1}, "Build order",
+           1.3 * size);
+  const double column_width = width / columns;
+  for (int i = 0; i < count; ++i) {
+    const int c = i / rows, r = i % rows;
+    out.text(Layer::Labels, {m + (c + 0.5) * column_width, bottom + (r + 2) * kLinePitch * size},
+             steps[i], size);
+  }
+
+  return d;
+}
+
+}  // namespace papernet

@@ -1,0 +1,277 @@
+// Assembly aids (docs/print.md, "Build order" and "The overview page"), on the Duck at the
+// defaults (detail auto, 200 mm, A4, layout fit): pieces numbered so that each glues to one
+// before it, labels across pieces naming the piece they join, and the overview page listing
+// every piece with its sheet. Checked against an adjacency built here from the net JSON's mesh
+// and pieces, and against the drawn pages, not against the print's own data.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "api/net_json.h"
+#include "core/unfold/net_check.h"
+#include "engine/pipeline.h"
+#include "tests/support/job_input.h"
+#include "tests/support/svg.h"
+
+namespace papernet::test {
+namespace {
+
+struct Printed {
+  NetDocument doc;
+  std::vector<std::string> pages;  ///< each page's SVG
+  std::string pdf;
+};
+
+const Printed& duck() {
+  static const Printed printed = [] {
+    JobOptions options;
+    options.layout = PageLayoutMode::Fit;
+    PipelineProgress quiet;
+    UnfoldOutcome out =
+        run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true, .pdf = true}, quiet);
+    return Printed{read_net_json(out.documents.net_json), out.documents.svg_pages,
+                   out.documents.pdf};
+  }();
+  return printed;
+}
+
+/// Which pieces share a mesh edge, from the mesh's faces (edges by their two vertices) and each
+/// face's piece; `cross_edges` counts the edges between different pieces.
+struct Adjacency {
+  std::vector<std::set<int>> joins;
+  std::size_t cross_edges = 0;
+};
+
+Adjacency adjacency(const NetDocument& doc) {
+  std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
+  for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = doc.mesh.faces[f][k], b = doc.mesh.faces[f][(k + 1) % 3];
+      faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
+    }
+  Adjacency out;
+  out.joins.resize(doc.pieces.size());
+  for (const auto& [edge, faces] : faces_of_edge) {
+    if (faces.size() != 2) continue;
+    const int p = doc.piece[faces[0]], q = doc.piece[faces[1]];
+    if (p == q) continue;
+    out.joins[p].insert(q);
+    out.joins[q].insert(p);
+    ++out.cross_edges;
+  }
+  return out;
+}
+
+/// The texts of one SVG group, in order.
+std::vector<std::string> texts(const std::string& svg, const std::string& group) {
+  std::vector<std::string> out;
+  const std::string g = svg_group(svg, group);
+  static const std::regex text("<text [^>]*>([^<]*)</text>");
+  for (auto it = std::sregex_iterator(g.begin(), g.end(), text); it != std::sregex_iterator(); ++it)
+    out.push_back((*it)[1].str());
+  return out;
+}
+
+TEST(AssemblyAids, TheNetAsPrintedPassesTheNetChecker) {
+  const NetDocument& doc = duck().doc;
+  ASSERT_TRUE(doc.print);
+  const NetCheckReport check = check_pieces(doc.mesh, doc.net, doc.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+}
+
+// Piece k glues to a piece before it whenever any piece not yet numbered does.
+TEST(AssemblyAids, EachPieceGluesToAnEarlierOneWheneverTheGraphAllows) {
+  const NetDocument& doc = duck().doc;
+  const Adjacency adj = adjacency(doc);
+  const int n = static_cast<int>(doc.pieces.size());
+  ASSERT_GT(n, 2) << "the Duck should print as several pieces";
+  std::size_t glued = 0;
+  for (int k = 1; k < n; ++k) {
+    auto earlier = [&](int p) {
+      return std::any_of(adj.joins[p].begin(), adj.joins[p].end(), [k](int q) { return q < k; });
+    };
+    bool possible = false;
+    for (int p = k; p < n; ++p) possible = possible || earlier(p);
+    if (possible) {
+      EXPECT_TRUE(earlier(k)) << "piece " << k << " glues to no earlier piece";
+      ++glued;
+    }
+  }
+  EXPECT_EQ(glued, static_cast<std::size_t>(n - 1)) << "the Duck is one part: all glue on";
+}
+
+// Every cut edge between two pieces has its number on both sides, each naming the other side's
+// piece ("12→P3"), on the page of its own piece (but for the rare side where that would print
+// under 1.5 mm: there the plain number); each piece's number prints once, on its page.
+TEST(AssemblyAids, EveryLabelAcrossPiecesNamesThePieceItJoins) {
+  const Printed& printed = duck();
+  const NetDocument& doc = printed.doc;
+  ASSERT_TRUE(doc.print);
+  const Adjacency adj = adjacency(doc);
+  static const std::regex across("^(\\d+)\u2192P(\\d+)$"), plain("^(\\d+)\\.?$"),
+      piece_number("^P(\\d+)$");
+  std::map<int, std::vector<std::pair<int, int>>> by_number;  // number -> (page, piece named)
+  std::set<int> plain_numbers;
+  std::map<int, std::vector<int>> piece_pages;  // piece -> pages its number is on
+  for (int k = 0; k < static_cast<int>(printed.pages.size()); ++k) {
+    if (k == doc.print->overview_page) continue;
+    for (const std::string& t : texts(printed.pages[k], "labels")) {
+      std::smatch m;
+      if (std::regex_match(t, m, across))
+        by_number[std::stoi(m[1])].push_back({k, std::stoi(m[2]) - 1});
+      else if (std::regex_match(t, m, plain))
+        plain_numbers.insert(std::stoi(m[1]));
+      else if (std::regex_match(t, m, piece_number))
+        piece_pages[std::stoi(m[1]) - 1].push_back(k);
+      else
+        ADD_FAILURE() << "label '" << t << "' on page " << k + 1;
+    }
+  }
+  EXPECT_EQ(by_number.size(), adj.cross_edges) << "edges between pieces with named labels";
+  std::size_t shortened = 0;
+  for (const auto& [number, sides] : by_number) {
+    ASSERT_LE(sides.size(), 2u) << "edge " << number;
+    if (sides.size() == 1) {
+      // A label that would print under 1.5 mm naming the piece is the plain number; its twin
+      // names the piece across, from a piece on its page.
+      ++shortened;
+      EXPECT_EQ(plain_numbers.count(number), 1u) << "edge " << number << " has one label";
+      const auto [page, b] = sides[0];
+      bool beside = false;
+      for (std::size_t a = 0; a < doc.pieces.size(); ++a)
+        beside = beside || (doc.print->placements[a].page == page && adj.joins[a].count(b));
+      EXPECT_TRUE(beside) << "edge " << number << " names P" << b + 1;
+      continue;
+    }
+    EXPECT_EQ(plain_numbers.count(number), 0u) << "edge " << number << " also printed plain";
+    const int a = sides[1].second, b = sides[0].second;  // sides[0] lies on a, names b
+    ASSERT_GE(a, 0);
+    ASSERT_LT(a, static_cast<int>(doc.pieces.size()));
+    ASSERT_GE(b, 0);
+    ASSERT_LT(b, static_cast<int>(doc.pieces.size()));
+    EXPECT_NE(a, b) << "edge " << number;
+    EXPECT_TRUE(adj.joins[a].count(b))
+        << "edge " << number << ": P" << a + 1 << " and P" << b + 1 << " share no edge";
+    EXPECT_EQ(sides[0].first, doc.print->placements[a].page) << "edge " << number;
+    EXPECT_EQ(sides[1].first, doc.print->placements[b].page) << "edge " << number;
+  }
+  EXPECT_LE(shortened, std::max<std::size_t>(1, adj.cross_edges / 100))
+      << "of " << adj.cross_edges << " edges between pieces, shortened on one side";
+  ASSERT_EQ(piece_pages.size(), doc.pieces.size());
+  for (const auto& [p, pages] : piece_pages) {
+    ASSERT_EQ(pages.size(), 1u) << "P" << p + 1;
+    EXPECT_EQ(pages[0], doc.print->placements[p].page) << "P" << p + 1;
+  }
+}
+
+// The overview is page 1: every piece on it once, captioned with the page the placements put it
+// on; its build order names each piece's earlier neighbours; every page says "page k of n".
+TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
+  const Printed& printed = duck();
+  const NetDocument& doc = printed.doc;
+  ASSERT_TRUE(doc.print);
+  ASSERT_EQ(doc.print->overview_page, 0);
+  const int n = doc.print->pages;
+  ASSERT_EQ(static_cast<std::size_t>(n), printed.pages.size());
+  for (int k = 0; k < n; ++k) {
+    const std::string mark =
+        std::string("page ") + std::to_string(k + 1) + " of " + std::to_string(n);
+    EXPECT_NE(printed.pages[k].find(mark), std::string::npos) << mark;
+  }
+  EXPECT_NE(printed.pages[0].find("overview"), std::string::npos);
+  for (const PiecePlacement& p : doc.print->placements) EXPECT_GT(p.page, 0) << "P" << p.piece + 1;
+  // The PDF has the same pages.
+  std::size_t pdf_pages = 0;
+  static const std::regex page_object("/Type\\s*/Page[^s]");
+  for (auto it = std::sregex_iterator(printed.pdf.begin(), printed.pdf.end(), page_object);
+       it != std::sregex_iterator(); ++it)
+    ++pdf_pages;
+  EXPECT_EQ(pdf_pages, static_cast<std::size_t>(n));
+
+  // The sheet list: captions "page k: P1, P4" (on the Duck none needs a second line).
+  const std::vector<std::string> overview = texts(printed.pages[0], "labels");
+  std::map<int, std::vector<int>> listed;  // piece -> pages it is listed on
+  std::map<int, std::vector<int>> mapped;  // piece -> thumbnails its number is on (by count)
+  static const std::regex caption("^page (\\d+):(.*)$"), names("P(\\d+)"),
+      step("^P(\\d+) glues to (.*)$"), start("^P(\\d+): start (here|a new part)$"),
+      alone("^P(\\d+)$");
+  const Adjacency adj = adjacency(doc);
+  std::set<int> steps;
+  int caption_page = -1;
+  for (const std::string& t : overview) {
+    std::smatch m;
+    if (std::regex_match(t, m, caption)) {
+      caption_page = std::stoi(m[1]) - 1;
+      const std::string rest = m[2];
+      for (auto it = std::sregex_iterator(rest.begin(), rest.end(), names);
+           it != std::sregex_iterator(); ++it)
+        listed[std::stoi((*it)[1]) - 1].push_back(caption_page);
+    } else if (std::regex_match(t, m, step)) {
+      const int p = std::stoi(m[1]) - 1;
+      steps.insert(p);
+      std::set<int> named;
+      const std::string rest = m[2];
+      for (auto it = std::sregex_iterator(rest.begin(), rest.end(), names);
+           it != std::sregex_iterator(); ++it)
+        named.insert(std::stoi((*it)[1]) - 1);
+      std::set<int> earlier;
+      for (int q : adj.joins.at(p))
+        if (q < p) earlier.insert(q);
+      EXPECT_EQ(named, earlier) << t;
+    } else if (std::regex_match(t, m, start)) {
+      const int p = std::stoi(m[1]) - 1;
+      steps.insert(p);
+      for (int q : adj.joins.at(p)) EXPECT_GT(q, p) << t;
+    } else if (std::regex_match(t, m, alone)) {
+      mapped[std::stoi(m[1]) - 1].push_back(caption_page);
+    }
+  }
+  ASSERT_EQ(listed.size(), doc.pieces.size());
+  for (const auto& [p, pages] : listed) {
+    ASSERT_EQ(pages.size(), 1u) << "P" << p + 1 << " listed more than once";
+    EXPECT_EQ(pages[0], doc.print->placements.at(p).page) << "P" << p + 1;
+  }
+  EXPECT_EQ(steps.size(), doc.pieces.size()) << "one build step per piece";
+  EXPECT_EQ(mapped.size(), doc.pieces.size()) << "each piece's number on its thumbnail";
+  for (const auto& [p, on] : mapped) EXPECT_EQ(on.size(), 1u) << "P" << p + 1;
+}
+
+// overview no: the sheets alone, from page 1, in build order too; the net JSON has no
+// overview_page.
+TEST(AssemblyAids, WithoutTheOverviewTheSheetsStartAtPageOne) {
+  JobOptions options;
+  options.layout = PageLayoutMode::Fit;
+  options.overview = false;
+  PipelineProgress quiet;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true}, quiet);
+  const NetDocument doc = read_net_json(out.documents.net_json);
+  ASSERT_TRUE(doc.print);
+  EXPECT_EQ(doc.print->overview_page, -1);
+  EXPECT_EQ(out.documents.net_json.find("overview_page"), std::string::npos);
+  const NetCheckReport check = check_pieces(doc.mesh, doc.net, doc.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  const Printed& with = duck();
+  EXPECT_EQ(doc.print->pages + 1, with.doc.print->pages);
+  ASSERT_EQ(static_cast<std::size_t>(doc.print->pages), out.documents.svg_pages.size());
+  for (const std::string& svg : out.documents.svg_pages)
+    EXPECT_EQ(svg.find("overview"), std::string::npos);
+  // The same pieces in the same order, each one page earlier.
+  ASSERT_EQ(doc.pieces.size(), with.doc.pieces.size());
+  EXPECT_EQ(doc.piece, with.doc.piece);
+  for (std::size_t p = 0; p < doc.pieces.size(); ++p)
+    EXPECT_EQ(doc.print->placements[p].page + 1, with.doc.print->placements[p].page);
+  // Sheets in build order: the lowest piece on each page grows with the page.
+  std::vector<int> lowest(static_cast<std::size_t>(doc.print->pages), 1 << 30);
+  for (const PiecePlacement& p : doc.print->placements)
+    lowest[p.page] = std::min(lowest[p.page], p.piece);
+  EXPECT_TRUE(std::is_sorted(lowest.begin(), lowest.end()));
+}
+
+}  // namespace
+}  // namespace papernet::test

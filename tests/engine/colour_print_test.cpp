@@ -1,0 +1,490 @@
+// The printed colour, checked as a person would see it (issue "Colour kits"): each PDF page is
+// rendered by poppler (pdftoppm) at the print's dpi, and every face placed on it (by the net
+// JSON's `print` placements, not by the print's own drawing) whose inscribed circle is at least
+// 3 px is sampled at interior points and compared with the model's own colour at the same
+// barycentric point: its texture (decoded here, sampled bilinearly), times the material's
+// factor and the vertex colours (linear, so turned into sRGB as the page is).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "api/net_json.h"
+#include "core/io/image.h"
+#include "core/io/internal/load_formats.h"
+#include "core/io/load.h"
+#include "core/unfold/net_check.h"
+#include "engine/pipeline.h"
+#include "tests/support/job_input.h"
+
+namespace papernet::test {
+namespace {
+
+constexpr double kDpi = 100;
+// A face matches when the mean over its sample points of the largest channel difference is at
+// most this (0..1): 0.1 is 26 of 255 levels, room for filtering, antialiasing and JPEG.
+constexpr double kTolerance = 0.1;
+
+struct Raster {
+  int width = 0, height = 0;
+  std::string rgb;
+  std::array<double, 3> at(int x, int y) const {
+    const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 3;
+    return {static_cast<unsigned char>(rgb[i]) / 255.0,
+            static_cast<unsigned char>(rgb[i + 1]) / 255.0,
+            static_cast<unsigned char>(rgb[i + 2]) / 255.0};
+  }
+};
+
+bool has_pdftoppm() { return std::system("command -v pdftoppm >/dev/null 2>&1") == 0; }
+
+// Page `page` (1-based) of the PDF at `path`, rendered by pdftoppm as PPM (P6).
+Raster render(const std::string& path, int page) {
+  const std::string command = "pdftoppm -r " + std::to_string(static_cast<int>(kDpi)) + " -f " +
+                              std::to_string(page) + " -l " + std::to_string(page) + " " + path;
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  std::string out;
+  char buf[65536];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe.get())) out.append(buf, n);
+  Raster r;
+  int maxval = 0, consumed = 0;
+  if (std::sscanf(out.c_str(), "P6 %d %d %d%n", &r.width, &r.height, &maxval, &consumed) != 3)
+    return r;
+  r.rgb = out.substr(static_cast<std::size_t>(consumed) + 1);
+  if (r.rgb.size() < static_cast<std::size_t>(r.width) * r.height * 3) r.width = r.height = 0;
+  return r;
+}
+
+double srgb(double linear) {
+  const double c = std::clamp(linear, 0.0, 1.0);
+  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
+}
+
+// Bilinear sample at (u, v), repeating, texel centres at half-integers.
+std::array<double, 3> sample(const Image& image, double u, double v) {
+  const double x = u * image.width - 0.5, y = v * image.height - 0.5;
+  const double fx = std::floor(x), fy = std::floor(y);
+  auto texel = [&](double tx, double ty, int c) {
+    const int ix = ((static_cast<int>(tx) % image.width) + image.width) % image.width;
+    const int iy = ((static_cast<int>(ty) % image.height) + image.height) % image.height;
+    return image.rgba[(static_cast<std::size_t>(iy) * image.width + ix) * 4 + c] / 255.0;
+  };
+  std::array<double, 3> out{};
+  for (int c = 0; c < 3; ++c)
+    out[c] = (1 - (x - fx)) * (1 - (y - fy)) * texel(fx, fy, c) +
+             (x - fx) * (1 - (y - fy)) * texel(fx + 1, fy, c) +
+             (1 - (x - fx)) * (y - fy) * texel(fx, fy + 1, c) +
+             (x - fx) * (y - fy) * texel(fx + 1, fy + 1, c);
+  return out;
+}
+
+// The model's colour of face f at barycentric w: texture x factor x vertex colour (sRGB).
+std::array<double, 3> model_colour(const NetDocument& doc, const std::vector<Image>& textures,
+                                   std::size_t f, const std::array<double, 3>& w) {
+  const int material = f < doc.colour.face_materials.size() ? doc.colour.face_materials[f] : -1;
+  std::array<double, 3> c{1, 1, 1};
+  if (material >= 0) {
+    const Material& m = doc.colour.materials[material];
+    for (int i = 0; i < 3; ++i) c[i] = srgb(m.base_color[i]);
+    if (m.texture >= 0 && f < doc.colour.uvs.size()) {
+      const auto& uv = doc.colour.uvs[f];
+      const auto s =
+          sample(textures[m.texture], w[0] * uv[0][0] + w[1] * uv[1][0] + w[2] * uv[2][0],
+                 w[0] * uv[0][1] + w[1] * uv[1][1] + w[2] * uv[2][1]);
+      for (int i = 0; i < 3; ++i) c[i] *= s[i];
+    }
+  }
+  if (f < doc.colour.colours.size()) {
+    const auto& vc = doc.colour.colours[f];
+    for (int i = 0; i < 3; ++i) c[i] *= srgb(w[0] * vc[0][i] + w[1] * vc[1][i] + w[2] * vc[2][i]);
+  }
+  return c;
+}
+
+double difference(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
+}
+
+struct Check {
+  std::size_t faces = 0;    ///< faces large enough to sample
+  std::size_t matched = 0;  ///< of those, within kTolerance
+  double worst = 0;
+  /// Cut edges of 4 mm or more, both faces on the page, with paper printed on at least one side
+  /// (a tab; an edge with a glue strip instead has none, unless another face lies there).
+  std::size_t cut_edges = 0;
+  std::size_t tabbed = 0;  ///< of those, one side shows the other face's colour (its tab)
+  std::size_t strips = 0;  ///< glue strips printed
+};
+
+// Glue tabs: for each cut edge of 4 mm or more, the point 0.8 mm outside each of its two faces'
+// sides at the edge's middle lies on the tab when that side has it (tabs are at least 2 mm
+// tall). A tab shows the face it glues under as if folded out about the edge: that face's colour
+// at the same point of its own plane (0.8 mm from the edge, at its middle). Counts the edges
+// where one side shows it, of those where one side is printed at all.
+void check_tabs(const NetDocument& doc, const std::vector<Image>& textures, const Raster& raster,
+                int page, Check& check) {
+  const double px = kDpi / 25.4, mm = doc.print->mm_per_unit;
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> sides;  // edge -> (face, k)
+  for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = doc.mesh.faces[f][k], b = doc.mesh.faces[f][(k + 1) % 3];
+      sides[{std::min(a, b), std::max(a, b)}].push_back({static_cast<int>(f), k});
+    }
+  auto page_point = [&](int f, int k) {
+    const auto& t = doc.print->placements.at(doc.piece[f]).transform;
+    const Vec2 q = doc.net.points[f][k];
+    return px * Vec2{t[0] * q.x + t[2] * q.y + t[4], t[1] * q.x + t[3] * q.y + t[5]};
+  };
+  for (const auto& [edge, faces] : sides) {
+    if (faces.size() != 2) continue;
+    const auto [f, kf] = faces[0];
+    const auto [g, kg] = faces[1];
+    if (doc.print->placements.at(doc.piece[f]).page != page ||
+        doc.print->placements.at(doc.piece[g]).page != page)
+      continue;
+    const Vec2 fa = page_point(f, kf), fb = page_point(f, (kf + 1) % 3);
+    const Vec2 ga = page_point(g, (kg + 1) % 3), gb = page_point(g, kg);   // the same vertices
+    if (norm(fa - ga) < 0.05 * px && norm(fb - gb) < 0.05 * px) continue;  // a fold
+    if (norm(fb - fa) < 4 * px) continue;
+    bool shown = false, present = false;
+    // Side of face `own` (placed at own_a, own_b, apex `own_c`); `under` glues there.
+    auto side = [&](int own, int k_own, int under, int k_under) {
+      const Vec2 a = page_point(own, k_own), b = page_point(own, (k_own + 1) % 3);
+      const Vec2 apex = page_point(own, (k_own + 2) % 3);
+      const Vec2 along = (1 / norm(b - a)) * (b - a);
+      Vec2 out{-along.y, along.x};
+      if (dot(out, apex - a) > 0) out = -1 * out;
+      const auto& tri = doc.mesh.faces[under];
+      const Vec3 u0 = doc.mesh.vertices[tri[k_under]],
+                 u1 = doc.mesh.vertices[tri[(k_under + 1) % 3]];
+      const Vec3 u2 = doc.mesh.vertices[tri[(k_under + 2) % 3]];
+      const Vec3 e = u1 - u0;
+      Vec3 inward = (u2 - u0) - (dot(u2 - u0, e) / dot(e, e)) * e;
+      inward = (1 / norm(inward)) * inward;
+      const Vec3 v0 = doc.mesh.vertices[tri[0]], v1 = doc.mesh.vertices[tri[1]];
+      const Vec3 v2 = doc.mesh.vertices[tri[2]];
+      const Vec3 n = cross(v1 - v0, v2 - v0);
+      // Three points along the edge (a line of the drawing may cross one), each 0.8 mm out on
+      // the page and 0.8 mm into the under face's plane in 3D; own's a is under's u1.
+      for (double t : {0.5, 0.35, 0.65}) {
+        const Vec2 at = a + t * (b - a) + (0.8 * px) * out;
+        const Vec3 q = u1 + t * (u0 - u1) + (0.8 / mm) * inward;
+        const double w1 = dot(cross(q - v0, v2 - v0), n) / dot(n, n);
+        const double w2 = dot(cross(v1 - v0, q - v0), n) / dot(n, n);
+        const auto want = model_colour(doc, textures, under, {1 - w1 - w2, w1, w2});
+        const int x = static_cast<int>(at.x), y = static_cast<int>(at.y);
+        if (x < 0 || y < 0 || x >= raster.width || y >= raster.height) continue;
+        const auto printed = raster.at(x, y);
+        // Paper, or a glue strip's pale yellow (strips lie beside their edges, uncoloured).
+        const bool strip = difference(printed, {0xfb / 255.0, 0xf1 / 255.0, 0xd3 / 255.0}) < 0.03;
+        if (t == 0.5)
+          present = present || (std::min({printed[0], printed[1], printed[2]}) < 0.95 && !strip);
+        shown = shown || difference(printed, want) <= kTolerance;
+      }
+    };
+    side(f, kf, g, kg);
+    side(g, kg, f, kf);
+    check.cut_edges += present;
+    check.tabbed += shown;
+  }
+}
+
+// Prints `file` to PDF at `size_mm` with colour at kDpi and compares every page.
+Check check_colour(const std::string& file, double size_mm) {
+  JobOptions options;
+  options.strategy = Strategy::TU;
+  options.detail = {DetailMode::Full, 0};
+  options.size_mm = size_mm;
+  options.dpi = kDpi;
+  options.layout = PageLayoutMode::Fit;
+  options.labels = false;  // line art over the colour: numbers cover small faces' centres
+  options.tab_room_budget = 2000;
+  PipelineProgress quiet;
+  const UnfoldOutcome out = run_pipeline(data_file(file), options, {}, {.pdf = true}, quiet);
+  const NetDocument& doc = out.net;
+  EXPECT_TRUE(check_pieces(doc.mesh, doc.net, doc.piece).ok());
+  Check check;
+  if (!doc.print) {
+    ADD_FAILURE() << file << ": no print placements";
+    return check;
+  }
+  std::vector<Image> textures;
+  for (const Texture& t : doc.colour.textures) textures.push_back(decode_image(t.bytes));
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("papernet_colour_" + file + ".pdf")).string();
+  {
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), std::fclose);
+    std::fwrite(out.documents.pdf.data(), 1, out.documents.pdf.size(), f.get());
+  }
+  const double px = kDpi / 25.4;
+  for (int page = 0; page < doc.print->pages; ++page) {
+    const Raster raster = render(path, page + 1);
+    if (raster.width == 0) {
+      ADD_FAILURE() << "pdftoppm could not render page " << page + 1 << " of " << path;
+      continue;
+    }
+    for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
+      const PiecePlacement& placed = doc.print->placements.at(doc.piece[f]);
+      if (placed.page != page) continue;
+      const auto& t = placed.transform;
+      std::array<Vec2, 3> p;
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 q = doc.net.points[f][k];
+        p[k] = px * Vec2{t[0] * q.x + t[2] * q.y + t[4], t[1] * q.x + t[3] * q.y + t[5]};
+      }
+      const double perimeter = norm(p[1] - p[0]) + norm(p[2] - p[1]) + norm(p[0] - p[2]);
+      const double inradius = std::abs(cross(p[1] - p[0], p[2] - p[0])) / perimeter;
+      if (!(inradius >= 3)) continue;
+      auto expected = [&](const std::array<double, 3>& w) {
+        return model_colour(doc, textures, f, w);
+      };
+      const std::array<std::array<double, 3>, 4> samples{
+          {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.25, 0.25}, {0.25, 0.5, 0.25}, {0.25, 0.25, 0.5}}};
+      double error = 0;
+      for (const auto& w : samples) {
+        const Vec2 at = w[0] * p[0] + w[1] * p[1] + w[2] * p[2];
+        const int x = static_cast<int>(at.x), y = static_cast<int>(at.y);
+        if (x < 0 || y < 0 || x >= raster.width || y >= raster.height) {
+          error += 1;
+          continue;
+        }
+        const auto printed = raster.at(x, y), want = expected(w);
+        error += std::max({std::abs(printed[0] - want[0]), std::abs(printed[1] - want[1]),
+                           std::abs(printed[2] - want[2])});
+      }
+      error /= samples.size();
+      ++check.faces;
+      check.matched += error <= kTolerance;
+      check.worst = std::max(check.worst, error);
+    }
+    check_tabs(doc, textures, raster, page, check);
+  }
+  check.strips = out.print->strips;
+  std::filesystem::remove(path);
+  return check;
+}
+
+class ColourPrint : public ::testing::TestWithParam<std::pair<const char*, double>> {};
+
+INSTANTIATE_TEST_SUITE_P(Models, ColourPrint,
+                         ::testing::Values(std::pair{"Duck.glb", 150.0},
+                                           std::pair{"BoxTextured.glb", 80.0},
+                                           std::pair{"cubevc.glb", 80.0},
+                                           std::pair{"rgb_cube.gltf", 80.0}),
+                         [](const auto& info) {
+                           std::string name = info.param.first;
+                           return name.substr(0, name.find('.'));
+                         });
+
+// At least 98 % of the faces large enough to sample print the model's colour.
+TEST_P(ColourPrint, PagesShowTheModelsColourOnEveryFace) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  const auto [file, size] = GetParam();
+  const Check check = check_colour(file, size);
+  ASSERT_GT(check.faces, 0u) << file;
+  EXPECT_GE(static_cast<double>(check.matched), 0.98 * check.faces)
+      << file << ": " << check.matched << " of " << check.faces
+      << " faces print their colour; worst mean difference " << check.worst;
+  std::printf("%s: %zu of %zu faces within %.2f (worst %.3f)\n", file, check.matched, check.faces,
+              kTolerance, check.worst);
+  // Every cut edge has a tab or a glue strip; the tabs show the colour of the face they glue
+  // under.
+  // The Duck at 150 mm is dense: beside many short edges the point 0.8 mm out meets a tab's
+  // outline, a partial tab (one over a stretch of its edge) or a neighbour face; 89.6 % of its
+  // edges show the tab's colour there. The cubes' tabs are whole trapezoids on long edges.
+  const double share = std::string(file) == "Duck.glb" ? 0.85 : 0.98;
+  EXPECT_GE(static_cast<double>(check.tabbed), share * check.cut_edges)
+      << file << ": " << check.tabbed << " of " << check.cut_edges
+      << " cut edges show a coloured tab, " << check.strips << " glue strips";
+  std::printf(
+      "%s: %zu of %zu cut edges (4 mm or more) show a tab in the colour of the face it "
+      "glues under; %zu glue strips\n",
+      file, check.tabbed, check.cut_edges, check.strips);
+}
+
+// Closest point of triangle abc to p, as barycentric coordinates (Ericson, Real-Time Collision
+// Detection, 5.1.5), and its squared distance: the test's own, brute force over every face.
+std::pair<double, std::array<double, 3>> closest_on_triangle(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  auto result = [&](double u, double v, double w) {
+    const Vec3 q = u * a + v * b + w * c;
+    return std::pair{dot(p - q, p - q), std::array<double, 3>{u, v, w}};
+  };
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return result(1, 0, 0);
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return result(0, 1, 0);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return result(1 - v, v, 0);
+  }
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return result(0, 0, 1);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return result(1 - w, 0, w);
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return result(0, 1 - w, w);
+  }
+  const double denom = va + vb + vc;
+  if (!(denom > 0)) return result(1, 0, 0);
+  return result(1 - (vb + vc) / denom, vb / denom, vc / denom);
+}
+
+// The Duck at detail auto folds into a coarser mesh, whose faces have no texture coordinates of
+// their own: the print colours them from the input surface nearest to them. Checked against
+// the input itself: each sample point of a coarse face (its 3D position), the nearest point of
+// the input Duck found by brute force, the input's texture at that point's texture coordinates.
+TEST(ColourPrintApproximate, CoarserFacesPrintTheColourOfTheNearestInputSurface) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  JobOptions options;
+  options.dpi = kDpi;
+  options.labels = false;
+  options.tab_room_budget = 2000;
+  PipelineProgress quiet;
+  const JobInput input = data_file("Duck.glb");
+  const UnfoldOutcome out = run_pipeline(input, options, {}, {.pdf = true}, quiet);
+  const NetDocument& doc = out.net;
+  ASSERT_EQ(doc.result, "approximate");
+  ASSERT_TRUE(doc.print);
+  const LoadedMesh duck = load_mesh(input.mesh, input.format);
+  ASSERT_EQ(duck.colour.uvs.size(), duck.mesh.faces.size());
+  const Material& material = duck.colour.materials.at(duck.colour.face_materials.at(0));
+  const Image texture = decode_image(duck.colour.textures.at(material.texture).bytes);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "papernet_colour_auto.pdf").string();
+  {
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), std::fclose);
+    std::fwrite(out.documents.pdf.data(), 1, out.documents.pdf.size(), f.get());
+  }
+  const double px = kDpi / 25.4;
+  Check check;
+  for (int page = 0; page < doc.print->pages; ++page) {
+    const Raster raster = render(path, page + 1);
+    ASSERT_GT(raster.width, 0);
+    for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
+      const PiecePlacement& placed = doc.print->placements.at(doc.piece[f]);
+      if (placed.page != page) continue;
+      const auto& t = placed.transform;
+      std::array<Vec2, 3> p;
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 q = doc.net.points[f][k];
+        p[k] = px * Vec2{t[0] * q.x + t[2] * q.y + t[4], t[1] * q.x + t[3] * q.y + t[5]};
+      }
+      const double perimeter = norm(p[1] - p[0]) + norm(p[2] - p[1]) + norm(p[0] - p[2]);
+      if (!(std::abs(cross(p[1] - p[0], p[2] - p[0])) / perimeter >= 3)) continue;
+      const auto& face = doc.mesh.faces[f];
+      double error = 0;
+      const std::array<std::array<double, 3>, 4> samples{
+          {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.25, 0.25}, {0.25, 0.5, 0.25}, {0.25, 0.25, 0.5}}};
+      for (const auto& w : samples) {
+        const Vec3 point = w[0] * doc.mesh.vertices[face[0]] + w[1] * doc.mesh.vertices[face[1]] +
+                           w[2] * doc.mesh.vertices[face[2]];
+        double best = std::numeric_limits<double>::infinity();
+        std::size_t nearest = 0;
+        std::array<double, 3> at{};
+        for (std::size_t g = 0; g < duck.mesh.faces.size(); ++g) {
+          const auto& s = duck.mesh.faces[g];
+          const auto [d2, bary] = closest_on_triangle(
+              point, duck.mesh.vertices[s[0]], duck.mesh.vertices[s[1]], duck.mesh.vertices[s[2]]);
+          if (d2 < best) best = d2, nearest = g, at = bary;
+        }
+        const auto& uv = duck.colour.uvs[nearest];
+        const auto want = sample(texture, at[0] * uv[0][0] + at[1] * uv[1][0] + at[2] * uv[2][0],
+                                 at[0] * uv[0][1] + at[1] * uv[1][1] + at[2] * uv[2][1]);
+        const Vec2 q = w[0] * p[0] + w[1] * p[1] + w[2] * p[2];
+        const auto printed = raster.at(static_cast<int>(q.x), static_cast<int>(q.y));
+        error += std::max({std::abs(printed[0] - want[0]), std::abs(printed[1] - want[1]),
+                           std::abs(printed[2] - want[2])});
+      }
+      error /= samples.size();
+      ++check.faces;
+      check.matched += error <= kTolerance;
+      check.worst = std::max(check.worst, error);
+    }
+  }
+  std::filesystem::remove(path);
+  ASSERT_GT(check.faces, 300u);
+  EXPECT_GE(static_cast<double>(check.matched), 0.98 * check.faces)
+      << check.matched << " of " << check.faces << "; worst " << check.worst;
+  std::printf(
+      "Duck (detail auto, approximate): %zu of %zu faces within %.2f of the input's "
+      "nearest colour (worst %.3f)\n",
+      check.matched, check.faces, kTolerance, check.worst);
+}
+
+// SVG pages carry each coloured piece as a PNG in a group "colour" drawn over the faces and tabs
+// and under the line art; the PNG decodes to the image's size.
+TEST(ColourPrintSvg, PagesHoldOnePngPerPieceBetweenFillsAndLines) {
+  JobOptions options;
+  options.size_mm = 80;
+  options.dpi = kDpi;
+  PipelineProgress quiet;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("rgb_cube.gltf"), options, {}, {.svg_pages = true}, quiet);
+  ASSERT_FALSE(out.documents.svg_pages.empty());
+  std::size_t images = 0;
+  for (const std::string& svg : out.documents.svg_pages) {
+    const auto colour = svg.find("<g id=\"colour\"");
+    ASSERT_NE(colour, std::string::npos);
+    EXPECT_LT(svg.find("<g id=\"tabs\""), colour);
+    EXPECT_GT(svg.find("<g id=\"cut\""), colour);
+    const std::string prefix = "href=\"data:image/png;base64,";
+    for (auto at = svg.find(prefix, colour); at != std::string::npos; at = svg.find(prefix, at)) {
+      at += prefix.size();
+      const std::string png = detail::decode_base64(svg.substr(at, svg.find('"', at) - at));
+      const Image image = decode_image(png);
+      EXPECT_GT(image.width, 0);
+      EXPECT_GT(image.height, 0);
+      ++images;
+    }
+  }
+  // Two pieces (the cube's two printed pieces), one image each.
+  EXPECT_EQ(images, out.print->pieces);
+}
+
+// With colour none the same pages are line art: the faces print in the pale face fill, not the
+// model's colour (the check above would fail on them).
+TEST(ColourPrintNone, LineArtLeavesTheFacesUncoloured) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  JobOptions options;
+  options.colour = false;
+  options.size_mm = 80;
+  PipelineProgress quiet;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("rgb_cube.gltf"), options, {}, {.pdf = true}, quiet);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "papernet_colour_none.pdf").string();
+  {
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), std::fclose);
+    std::fwrite(out.documents.pdf.data(), 1, out.documents.pdf.size(), f.get());
+  }
+  const Raster raster = render(path, 1);
+  std::filesystem::remove(path);
+  ASSERT_GT(raster.width, 0);
+  std::size_t saturated = 0;
+  for (int y = 0; y < raster.height; ++y)
+    for (int x = 0; x < raster.width; ++x) {
+      const auto c = raster.at(x, y);
+      saturated += std::max({c[0], c[1], c[2]}) - std::min({c[0], c[1], c[2]}) > 0.5;
+    }
+  EXPECT_LT(saturated, static_cast<std::size_t>(raster.width) * raster.height / 100);
+}
+
+}  // namespace
+}  // namespace papernet::test
