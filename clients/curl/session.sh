@@ -82,7 +82,7 @@ ls -l net.json net.svg net.pdf mesh.glb
 
 # 4. Errors are problem documents with a stable code.
 show curl -sS -o problem.json -w '%{http_code}\n' -H 'Content-Type: model/obj' \
-  --data-binary "@$mesh" "$url/v1/jobs?colour=red" | tee code.txt
+  --data-binary "@$mesh" "$url/v1/jobs?color=red" | tee code.txt
 cat problem.json; echo
 [ "$(cat code.txt)" = 400 ] || fail "an unknown option answered $(cat code.txt)"
 grep -q '"code":"unknown_option"' problem.json || fail "no unknown_option code"

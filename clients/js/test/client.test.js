@@ -158,8 +158,8 @@ test("a .gltf whose buffer file is missing fails with a problem code", async () 
 
 test("typed errors carry the server's problem code and status", async () => {
   await assert.rejects(
-    client.submit(sample("sample.obj"), { filename: "sample.obj", options: { colour: "red" } }),
-    (e) => e instanceof PapernetError && e.code === "unknown_option" && e.status === 400 && e.problem.option === "colour",
+    client.submit(sample("sample.obj"), { filename: "sample.obj", options: { color: "red" } }),
+    (e) => e instanceof PapernetError && e.code === "unknown_option" && e.status === 400 && e.problem.option === "color",
   );
   await assert.rejects(
     client.submit(sample("sample.obj"), { filename: "sample.obj", options: { strategy: "XYZ" } }),

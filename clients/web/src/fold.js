@@ -2,10 +2,10 @@
 // tested in Node). Every face hangs from its parent by the mesh edge they share; folding by t
 // rotates each face's subtree about that edge by t × its fold angle, composed from the root down.
 // At t = 0 every piece lies flat in z = 0 as drawn (x, y = its 2D points, y mirrored when the
-// piece is drawn clockwise), the pieces side by side in a row; at t = 1 the first piece is its
-// part of the mesh, moved rigidly so its root face stays put, and every other piece is where its
-// part is in the model next to it (a model in parts is seen whole), each piece turning and moving
-// there steadily as t grows.
+// piece is drawn clockwise), the pieces side by side in a row; at t = 1 every piece is where its
+// part is in the model (a model in parts is seen whole), in the frame prepareFold is given (the
+// model's coordinates turned so that the model stands up: colour.js sceneFrame), each piece
+// turning and moving there steadily as t grows.
 
 const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -62,13 +62,6 @@ function rigidOnto(a, b) {
   return [r[0], r[1], r[2], t[0], r[3], r[4], r[5], t[1], r[6], r[7], r[8], t[2]];
 }
 
-/** The inverse of a rigid motion. */
-function inverseRigid(m) {
-  const r = [m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]];  // transposed
-  const t = [0, 1, 2].map((i) => -(r[i * 3] * m[3] + r[i * 3 + 1] * m[7] + r[i * 3 + 2] * m[11]));
-  return [r[0], r[1], r[2], t[0], r[3], r[4], r[5], t[1], r[6], r[7], r[8], t[2]];
-}
-
 /** The rotation of a rigid motion as a unit axis and an angle in [0, π]. */
 function axisAngle(m) {
   const angle = Math.acos(Math.min(1, Math.max(-1, (m[0] + m[5] + m[10] - 1) / 2)));
@@ -89,12 +82,16 @@ function transform(m, p) {
   ];
 }
 
+const IDENTITY = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0];
+
 /**
  * Prepares a net document (papernet.net/2) for folding: the tree order from each piece's root,
  * and per face its hinge (a point and direction in the flat net) and fold angle (radians,
- * signed). Throws an Error naming the face when the document breaks the format's promises.
+ * signed). `frame` (a rigid 3×4 matrix, default none) turns the model's coordinates into those
+ * the folded model is shown in. Throws an Error naming the face when the document breaks the
+ * format's promises.
  */
-export function prepareFold(doc) {
+export function prepareFold(doc, { frame = IDENTITY } = {}) {
   const vertices = doc.mesh.vertices;
   const faces = doc.mesh.faces;
   const netFaces = doc.net.faces;
@@ -168,13 +165,12 @@ export function prepareFold(doc) {
     }
   }
   if (order.length !== n) throw new Error(`${n - order.length} faces are not connected to a root`);
-  // Folded, a piece's root face stays where it lies flat; `place[p]` takes piece p from there to
-  // where its part is beside the first piece's, as a turn about an axis through the root face's
-  // centre and a move of that centre.
+  // Folded, a piece's root face would stay where it lies flat; `place[p]` takes piece p from
+  // there to where its part is in the model (in `frame`), as a turn about an axis through the
+  // root face's centre and a move of that centre.
   const onto = roots.map((root) => rigidOnto(flat[root], faces[root].map((v) => vertices[v])));
-  const intoFirst = inverseRigid(onto[0]);
   const place = roots.map((root, p) => {
-    const motion = multiply(intoFirst, onto[p]);
+    const motion = multiply(frame, onto[p]);
     const centre = [0, 1, 2].map((k) => (flat[root][0][k] + flat[root][1][k] + flat[root][2][k]) / 3);
     return { centre, target: transform(motion, centre), ...axisAngle(motion) };
   });

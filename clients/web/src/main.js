@@ -3,6 +3,7 @@ import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { PapernetClient, PapernetError, isFinal, formatOfFileName, progressFraction } from "../../js/papernet.js";
 import { prepareFold, foldPositions } from "./fold.js";
+import { sceneFrame, cornerUvs, cornerColors, faceGroups } from "./colour.js";
 
 const $ = (id) => document.getElementById(id);
 // The API key of a server started with --api-keys, kept for this tab (sessionStorage): the
@@ -37,9 +38,11 @@ scene.add(new THREE.HemisphereLight(0xffffff, 0x8890a0, 1.6));
 const sun = new THREE.DirectionalLight(0xffffff, 1.4);
 sun.position.set(2, -3, 4);
 scene.add(sun);
-const material = new THREE.MeshStandardMaterial({ color: 0xf2e6c9, side: THREE.DoubleSide, flatShading: true, roughness: 0.9 });
+const paper = 0xf2e6c9; // a model without colour is drawn as plain paper
 const lineMaterial = new THREE.LineBasicMaterial({ color: 0x6b5b3e });
-let folding = null; // {prepared, mesh, lines, positions, linePositions}
+// Over a coloured model the folds are drawn faintly, so that the colour shows.
+const faintLineMaterial = new THREE.LineBasicMaterial({ color: 0x3a3020, transparent: true, opacity: 0.22 });
+let folding = null; // {prepared, mesh, lines, positions, linePositions, ready}
 
 // Render on demand (orbiting, folding, resizing), not in a loop: the page stays idle otherwise.
 let frameRequested = false;
@@ -67,29 +70,156 @@ function resize() {
 new ResizeObserver(resize).observe(ui.model);
 resize();
 
-function showNet3d(doc) {
-  const prepared = prepareFold(doc);
+// ---- colour: the job's textures and the materials of the net's faces ------------------------
+// glTF sampler codes to three.js's.
+const WRAP = { 33071: THREE.ClampToEdgeWrapping, 33648: THREE.MirroredRepeatWrapping, 10497: THREE.RepeatWrapping };
+const FILTER = {
+  9728: THREE.NearestFilter, 9729: THREE.LinearFilter,
+  9984: THREE.NearestMipmapNearestFilter, 9985: THREE.LinearMipmapNearestFilter,
+  9986: THREE.NearestMipmapLinearFilter, 9987: THREE.LinearMipmapLinearFilter,
+};
+let textures = { job: null, byIndex: new Map() }; // texture k of job `job`: a promise of a THREE.Texture
+
+// Texture k of job `id` (README "The net": GET /v1/jobs/{id}/textures/{k}), fetched through the
+// client (so it carries what every other request does) and loaded once per job. glTF's texture
+// coordinates have their origin at the image's top left, as the image's rows come: no flipY.
+function jobTexture(id, k, info) {
+  if (textures.job !== id) {
+    for (const t of textures.byIndex.values()) t.then((texture) => texture?.dispose(), () => {});
+    textures = { job: id, byIndex: new Map() };
+  }
+  if (!textures.byIndex.has(k)) {
+    const load = (async () => {
+      const { bytes, contentType } = await client.texture(id, k);
+      const bitmap = await createImageBitmap(new Blob([bytes], { type: contentType ?? info?.mime_type }), {
+        premultiplyAlpha: "none",
+      });
+      const texture = new THREE.Texture(bitmap);
+      texture.flipY = false;
+      texture.colorSpace = THREE.SRGBColorSpace;
+      const sampler = info?.sampler ?? {};
+      texture.wrapS = WRAP[sampler.wrap_s] ?? THREE.RepeatWrapping;
+      texture.wrapT = WRAP[sampler.wrap_t] ?? THREE.RepeatWrapping;
+      texture.magFilter = sampler.mag_filter === 9728 ? THREE.NearestFilter : THREE.LinearFilter;
+      texture.minFilter = FILTER[sampler.min_filter] ?? THREE.LinearMipmapLinearFilter;
+      texture.anisotropy = renderer.capabilities.getMaxAnisotropy();
+      texture.needsUpdate = true;
+      texture.userData.dominant = dominantColour(bitmap);
+      return texture;
+    })();
+    textures.byIndex.set(k, load);
+  }
+  return textures.byIndex.get(k);
+}
+
+// An image's dominant colour (linear): the mean of the pixels in the most common of 512 colour
+// bins, for faces of a textured material that have no texture coordinates (an approximate
+// piece's): the Duck's yellow, where a mean would be darkened by its eyes.
+function dominantColour(bitmap) {
+  const size = 32;
+  const canvas = document.createElement("canvas");
+  canvas.width = canvas.height = size;
+  const context = canvas.getContext("2d", { willReadFrequently: true });
+  context.drawImage(bitmap, 0, 0, size, size);
+  const pixels = context.getImageData(0, 0, size, size).data;
+  const bins = new Map(); // bin -> [weight, r, g, b]
+  const colour = new THREE.Color();
+  for (let i = 0; i < pixels.length; i += 4) {
+    const a = pixels[i + 3] / 255;
+    if (a === 0) continue;
+    const bin = ((pixels[i] >> 5) << 6) | ((pixels[i + 1] >> 5) << 3) | (pixels[i + 2] >> 5);
+    colour.setRGB(pixels[i] / 255, pixels[i + 1] / 255, pixels[i + 2] / 255, THREE.SRGBColorSpace); // to linear
+    const sum = bins.get(bin) ?? [0, 0, 0, 0];
+    sum[0] += a;
+    sum[1] += a * colour.r;
+    sum[2] += a * colour.g;
+    sum[3] += a * colour.b;
+    bins.set(bin, sum);
+  }
+  let best = null;
+  for (const sum of bins.values()) if (!best || sum[0] > best[0]) best = sum;
+  return best ? new THREE.Color(best[1] / best[0], best[2] / best[0], best[3] / best[0]) : new THREE.Color(1, 1, 1);
+}
+
+// One material per group of faces (colour.js faceGroups): the material's base colour (linear,
+// as glTF's baseColorFactor) times its texture, mapped by the faces' own coordinates, or times
+// the texture's dominant colour where the faces have none; times the corners' vertex colours. Faces
+// of no material are paper, or white under vertex colours. Resolves `ready` once every texture
+// is in (or failed to load).
+function faceMaterials(doc, groups, vertexColors, id) {
+  const loads = [];
+  const materials = groups.map((g) => {
+    const info = g.material >= 0 ? doc.materials[g.material] : null;
+    const m = new THREE.MeshStandardMaterial({ side: THREE.DoubleSide, flatShading: true, roughness: 0.9, vertexColors });
+    if (!info) {
+      m.color.set(vertexColors ? 0xffffff : paper); // vertex colours are the colour
+      return m;
+    }
+    const [r, gr, b] = info.base_color ?? [1, 1, 1];
+    m.color.setRGB(r, gr, b, THREE.LinearSRGBColorSpace);
+    m.name = info.name ?? "";
+    if (Number.isInteger(info.texture) && info.texture >= 0 && id) {
+      loads.push(
+        jobTexture(id, info.texture, doc.textures?.[info.texture]).then((texture) => {
+          if (g.textured) m.map = texture;
+          else m.color.multiply(texture.userData.dominant);
+          m.needsUpdate = true;
+          requestRender();
+        }),
+      );
+    }
+    return m;
+  });
+  const ready = Promise.allSettled(loads).then((results) => {
+    const failed = results.filter((r) => r.status === "rejected");
+    if (failed.length > 0) console.warn(`texture not shown: ${failed[0].reason}`);
+    return loads.length - failed.length;
+  });
+  return { materials, ready };
+}
+
+// The net of `doc` (job `id`, its input in `format`: glTF is y up) folded in the 3D view.
+function showNet3d(doc, id, format) {
+  const prepared = prepareFold(doc, { frame: sceneFrame(format) });
   if (folding) {
     group.remove(folding.mesh, folding.lines);
     folding.mesh.geometry.dispose();
+    for (const m of folding.mesh.material) m.dispose();
     folding.lines.geometry.dispose();
   }
   const n = prepared.faces.length;
   const geometry = new THREE.BufferGeometry();
   const positions = new Float32Array(n * 9);
   geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
+  // Corner k of face i is vertex 3i + k (foldPositions' order); drawn grouped by material.
+  geometry.setAttribute("uv", new THREE.BufferAttribute(cornerUvs(doc), 2));
+  const colors = cornerColors(doc);
+  if (colors) geometry.setAttribute("color", new THREE.BufferAttribute(colors, 3));
+  const groups = faceGroups(doc);
+  const index = new Uint32Array(n * 3);
+  let at = 0;
+  groups.forEach((g, m) => {
+    geometry.addGroup(at, g.faces.length * 3, m);
+    for (const i of g.faces) index.set([3 * i, 3 * i + 1, 3 * i + 2], (at += 3) - 3);
+  });
+  geometry.setIndex(new THREE.BufferAttribute(index, 1));
+  const { materials, ready } = faceMaterials(doc, groups, !!colors, id);
+  const coloured = !!colors || groups.some((g) => g.material >= 0);
   const lineGeometry = new THREE.BufferGeometry();
   const linePositions = new Float32Array(n * 18);
   lineGeometry.setAttribute("position", new THREE.BufferAttribute(linePositions, 3));
   folding = {
     prepared,
-    mesh: new THREE.Mesh(geometry, material),
-    lines: new THREE.LineSegments(lineGeometry, lineMaterial),
+    doc,
+    mesh: new THREE.Mesh(geometry, materials),
+    lines: new THREE.LineSegments(lineGeometry, coloured ? faintLineMaterial : lineMaterial),
     positions,
     linePositions,
+    ready,
   };
   group.add(folding.mesh, folding.lines);
-  // A new model: look at it from the front, a little from above (z is the net's normal).
+  // A new model: look at it from the front, a little from above (z is up: the folded model
+  // stands as it does in its file, the flat net lies in z = 0).
   camera.up.set(0, 0, 1);
   camera.position.set(0.35, -1.1, 0.9);
   controls.target.set(0, 0, 0);
@@ -205,14 +335,14 @@ function offerSheets(id, pages) {
   };
 }
 
-async function showResult(id, final) {
+async function showResult(id, final, format) {
   const [doc, svg] = await Promise.all([client.netJson(id), client.netSvg(id)]);
   const faces = doc.mesh.faces.length;
   if (!final && faces === shownFaces) return;
   shownFaces = faces;
   showSvg(svg);
   offerSheets(id, final ? doc.print?.pages ?? 0 : 0);
-  showNet3d(doc);
+  showNet3d(doc, id, format);
   for (const [name, a] of Object.entries(ui.downloads)) {
     a.href = client.url(`/v1/jobs/${id}/${name}`);
     a.dataset.job = id;
@@ -253,13 +383,13 @@ async function run() {
         if (!isFinal(update.status) && update.intermediate && !pending && update.intermediate.faces !== shownFaces && Date.now() - lastShown > 2000) {
           pending = true;
           lastShown = Date.now();
-          showResult(job.id, false).catch(() => {}).finally(() => (pending = false));
+          showResult(job.id, false, job.input?.format).catch(() => {}).finally(() => (pending = false));
         }
       },
     });
     showProgress(final);
     if (final.status === "succeeded" || final.status === "approximated") {
-      await showResult(job.id, true);
+      await showResult(job.id, true, job.input?.format);
       const r = final.result ?? {};
       const m = r.metrics ?? {};
       const glue = m.glue_tabs === undefined ? "" : ` · ${m.glue_tabs} glue tabs, ${m.glue_strips} glue strips, ${m.pages} pages`;
@@ -362,5 +492,6 @@ ui.cancel.addEventListener("click", async () => {
   }
 });
 document.body.dataset.state = "idle";
-// For tests and the console: the three.js objects and the current fold.
-window.papernetDemo = { scene, camera, renderer, get folding() { return folding; } };
+// For tests and the console: the three.js objects (and two of its classes) and the current
+// fold (with its net document and `ready`, a promise of the textures shown).
+window.papernetDemo = { THREE: { Vector3: THREE.Vector3, Box3: THREE.Box3 }, scene, camera, renderer, get folding() { return folding; } };

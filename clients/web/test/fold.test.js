@@ -2,6 +2,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { prepareFold, foldPositions } from "../src/fold.js";
+import { sceneFrame, cornerUvs, cornerColors, faceGroups } from "../src/colour.js";
 
 /** Every corner of vertex v lands on one point, and edge lengths are the mesh's. */
 function assertFoldsIntoMesh(doc, positions, tolerance) {
@@ -64,6 +65,49 @@ test("a tetrahedron folds from flat to the mesh", () => {
       }
     }
   }
+});
+
+test("folded, the net is the model where it is, turned by the frame: glTF stands up", () => {
+  const doc = tetrahedron(false);
+  const { vertices, faces } = doc.mesh;
+  for (const format of ["obj", "glb", "gltf"]) {
+    const m = sceneFrame(format);
+    const folded = foldPositions(prepareFold(doc, { frame: m }), 1);
+    faces.forEach((f, i) =>
+      f.forEach((v, k) => {
+        const [x, y, z] = vertices[v];
+        const want = [0, 1, 2].map((r) => m[r * 4] * x + m[r * 4 + 1] * y + m[r * 4 + 2] * z + m[r * 4 + 3]);
+        for (let c = 0; c < 3; ++c) assert.ok(Math.abs(folded[i * 9 + k * 3 + c] - want[c]) < 1e-6, `${format} face ${i} corner ${k}`);
+        // glTF's up (y) is the scene's z.
+        if (format !== "obj") assert.ok(Math.abs(folded[i * 9 + k * 3 + 2] - y) < 1e-6);
+      }),
+    );
+  }
+});
+
+test("colour: corner coordinates and colours, faces grouped by material and mapping", () => {
+  const doc = tetrahedron(false);
+  doc.mesh.uvs = [[[0, 0], [1, 0], [0, 1]], null, [[0.5, 0.5], [1, 1], [0, 1]], null];
+  doc.mesh.face_materials = [0, 0, 1, -1];
+  doc.materials = [
+    { name: "a", base_color: [1, 1, 1, 1], texture: 0 },
+    { name: "b", base_color: [1, 0, 0, 1], texture: null },
+  ];
+  const uvs = cornerUvs(doc);
+  assert.deepEqual(Array.from(uvs.subarray(0, 6)), [0, 0, 1, 0, 0, 1]);
+  assert.deepEqual(Array.from(uvs.subarray(6, 12)), [0, 0, 0, 0, 0, 0]);
+  assert.equal(cornerColors(doc), null);
+  // Face 3 has no material: it takes the most common one (0); faces 1 and 3 have no coordinates.
+  assert.deepEqual(faceGroups(doc), [
+    { material: 0, textured: true, faces: [0] },
+    { material: 0, textured: false, faces: [1, 3] },
+    { material: 1, textured: false, faces: [2] },
+  ]);
+  doc.mesh.colors = [null, [[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 0.5]], null, null];
+  const colors = cornerColors(doc);
+  assert.deepEqual(Array.from(colors.subarray(0, 18)), [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 0, 1, 0, 0, 0, 1]);
+  // Without materials every face is one untextured group of no material.
+  assert.deepEqual(faceGroups(tetrahedron(false)), [{ material: -1, textured: false, faces: [0, 1, 2, 3] }]);
 });
 
 test("broken trees are refused with the face named", () => {
