@@ -35,21 +35,18 @@
 #include <thread>
 #include <vector>
 
+#include "bench/serve_node.h"
 #include "server/api_keys.h"
 
 namespace {
 
+using papernet::bench::cpu_seconds;
+using papernet::bench::read_file;
+using papernet::bench::ServeNode;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 using namespace std::chrono_literals;
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -67,17 +64,6 @@ std::string proc_status(pid_t pid, const std::string& field) {
   return "?";
 }
 
-// CPU seconds a process used (user + system).
-double cpu_seconds(pid_t pid) {
-  const std::string stat = read_file("/proc/" + std::to_string(pid) + "/stat");
-  const auto paren = stat.rfind(')');
-  if (paren == std::string::npos) return 0;
-  std::istringstream fields(stat.substr(paren + 2));
-  std::vector<std::string> f{std::istream_iterator<std::string>(fields), {}};
-  if (f.size() < 13) return 0;
-  return (std::stod(f[11]) + std::stod(f[12])) / static_cast<double>(sysconf(_SC_CLK_TCK));
-}
-
 struct Settings {
   std::vector<std::size_t> streams = {0, 50, 200, 500};
   int polls = 500, connections = 4, repeat = 3;
@@ -85,58 +71,20 @@ struct Settings {
   std::string program = PAPERNET_PROGRAM, data;
 };
 
-// One `papernet serve` on a free loopback port; SIGTERM when it goes.
-class Node {
+// One `papernet serve` of the benchmark's settings (one worker), data under `name`.
+class Node : public ServeNode {
  public:
   Node(const Settings& settings, const std::string& name, std::vector<std::string> flags)
-      : dir_(fs::path(settings.data) / name) {
-    fs::create_directories(dir_);
-    std::vector<std::string> args = {
-        settings.program, "serve",        "--port", "0",         "--data",
-        dir_.string(),    "--access-log", "false",  "--workers", "1"};
-    args.insert(args.end(), flags.begin(), flags.end());
-    const fs::path out = dir_ / "stdout.txt";
-    std::cout.flush();  // the child must not print what this process buffered
-    std::fflush(nullptr);
-    pid_ = fork();
-    if (pid_ == 0) {
-      freopen((dir_ / "server.log").c_str(), "a", stderr);
-      freopen(out.c_str(), "w", stdout);
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      execv(argv[0], argv.data());
-      _exit(127);
-    }
-    const std::string prefix = "listening on http://127.0.0.1:";
-    for (int i = 0; i < 400 && port_ == 0; ++i) {
-      const std::string text = read_file(out);
-      if (const auto at = text.find(prefix);
-          at != std::string::npos && text.find('\n', at) != std::string::npos)
-        port_ = std::stoi(text.substr(at + prefix.size()));
-      std::this_thread::sleep_for(25ms);
-    }
-    if (port_ == 0) throw std::runtime_error("papernet serve did not start:\n" + log());
-  }
-  ~Node() {
-    kill(pid_, SIGTERM);
-    waitpid(pid_, nullptr, 0);
-  }
-  httplib::Client client() const {
-    httplib::Client c("127.0.0.1", port_);
-    c.set_read_timeout(60, 0);
-    c.set_keep_alive(true);
-    c.set_tcp_nodelay(true);
-    return c;
-  }
-  std::string log() const { return read_file(dir_ / "server.log"); }
-  pid_t pid() const { return pid_; }
-  int port() const { return port_; }
+      : ServeNode(settings.program, fs::path(settings.data) / name,
+                  arguments(fs::path(settings.data) / name, std::move(flags))) {}
 
  private:
-  fs::path dir_;
-  pid_t pid_ = -1;
-  int port_ = 0;
+  static std::vector<std::string> arguments(const fs::path& dir, std::vector<std::string> flags) {
+    std::vector<std::string> args = {"--port",       "0",     "--data",    dir.string(),
+                                     "--access-log", "false", "--workers", "1"};
+    args.insert(args.end(), flags.begin(), flags.end());
+    return args;
+  }
 };
 
 std::string submit(const Node& node, const std::string& mesh, const std::string& query,
