@@ -109,6 +109,22 @@ std::array<double, 3> model_colour(const NetDocument& doc, const std::vector<Ima
   return c;
 }
 
+// Face f's corners on its page in pixels at kDpi, by its piece's placement (net JSON `print`).
+std::array<Vec2, 3> page_pixels(const NetDocument& doc, std::size_t f) {
+  const auto& t = doc.print->placements.at(doc.piece[f]).transform;
+  std::array<Vec2, 3> p;
+  for (int k = 0; k < 3; ++k) {
+    const Vec2 q = doc.net.points[f][k];
+    p[k] = (kDpi / 25.4) * Vec2{t[0] * q.x + t[2] * q.y + t[4], t[1] * q.x + t[3] * q.y + t[5]};
+  }
+  return p;
+}
+
+double inradius(const std::array<Vec2, 3>& p) {
+  const double perimeter = norm(p[1] - p[0]) + norm(p[2] - p[1]) + norm(p[0] - p[2]);
+  return std::abs(cross(p[1] - p[0], p[2] - p[0])) / perimeter;
+}
+
 double difference(const std::array<double, 3>& a, const std::array<double, 3>& b) {
   return std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
 }
@@ -153,11 +169,7 @@ void check_tabs(const NetDocument& doc, const std::vector<Image>& textures, cons
       const int a = doc.mesh.faces[f][k], b = doc.mesh.faces[f][(k + 1) % 3];
       sides[{std::min(a, b), std::max(a, b)}].push_back({static_cast<int>(f), k});
     }
-  auto page_point = [&](int f, int k) {
-    const auto& t = doc.print->placements.at(doc.piece[f]).transform;
-    const Vec2 q = doc.net.points[f][k];
-    return px * Vec2{t[0] * q.x + t[2] * q.y + t[4], t[1] * q.x + t[3] * q.y + t[5]};
-  };
+  auto page_point = [&](int f, int k) { return page_pixels(doc, f)[k]; };
   for (const auto& [edge, faces] : sides) {
     if (faces.size() != 2) continue;
     const auto [f, kf] = faces[0];
@@ -239,7 +251,6 @@ Check check_colour(const std::string& file, double size_mm) {
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), std::fclose);
     std::fwrite(out.documents.pdf.data(), 1, out.documents.pdf.size(), f.get());
   }
-  const double px = kDpi / 25.4;
   for (int page = 0; page < doc.print->pages; ++page) {
     const Raster raster = render(path, page + 1);
     if (raster.width == 0) {
@@ -249,15 +260,8 @@ Check check_colour(const std::string& file, double size_mm) {
     for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
       const PiecePlacement& placed = doc.print->placements.at(doc.piece[f]);
       if (placed.page != page) continue;
-      const auto& t = placed.transform;
-      std::array<Vec2, 3> p;
-      for (int k = 0; k < 3; ++k) {
-        const Vec2 q = doc.net.points[f][k];
-        p[k] = px * Vec2{t[0] * q.x + t[2] * q.y + t[4], t[1] * q.x + t[3] * q.y + t[5]};
-      }
-      const double perimeter = norm(p[1] - p[0]) + norm(p[2] - p[1]) + norm(p[0] - p[2]);
-      const double inradius = std::abs(cross(p[1] - p[0], p[2] - p[0])) / perimeter;
-      if (!(inradius >= 3)) continue;
+      const std::array<Vec2, 3> p = page_pixels(doc, f);
+      if (!(inradius(p) >= 3)) continue;
       auto expected = [&](const std::array<double, 3>& w) {
         return model_colour(doc, textures, f, w);
       };
@@ -383,7 +387,6 @@ TEST(ColourPrintApproximate, CoarserFacesPrintTheColourOfTheNearestInputSurface)
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), std::fclose);
     std::fwrite(out.documents.pdf.data(), 1, out.documents.pdf.size(), f.get());
   }
-  const double px = kDpi / 25.4;
   Check check;
   for (int page = 0; page < doc.print->pages; ++page) {
     const Raster raster = render(path, page + 1);
@@ -391,14 +394,8 @@ TEST(ColourPrintApproximate, CoarserFacesPrintTheColourOfTheNearestInputSurface)
     for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
       const PiecePlacement& placed = doc.print->placements.at(doc.piece[f]);
       if (placed.page != page) continue;
-      const auto& t = placed.transform;
-      std::array<Vec2, 3> p;
-      for (int k = 0; k < 3; ++k) {
-        const Vec2 q = doc.net.points[f][k];
-        p[k] = px * Vec2{t[0] * q.x + t[2] * q.y + t[4], t[1] * q.x + t[3] * q.y + t[5]};
-      }
-      const double perimeter = norm(p[1] - p[0]) + norm(p[2] - p[1]) + norm(p[0] - p[2]);
-      if (!(std::abs(cross(p[1] - p[0], p[2] - p[0])) / perimeter >= 3)) continue;
+      const std::array<Vec2, 3> p = page_pixels(doc, f);
+      if (!(inradius(p) >= 3)) continue;
       const auto& face = doc.mesh.faces[f];
       std::vector<double> errors;
       for (const auto& w : kSamples) {
