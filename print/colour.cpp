@@ -371,7 +371,6 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
     cairo_t* cr = cairo_create(surface.get());
     cairo_scale(cr, scale, scale);
     cairo_translate(cr, -b.lo.x, -b.lo.y);
-    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     const double line = 1 / scale;  // the bleed: a pixel at the resolution drawn
     for (int f : members[r]) {
       const auto corners = page_face(f);
