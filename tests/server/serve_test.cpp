@@ -241,14 +241,14 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
   Server s({"--workers", "1"});
   auto c = s.client();
   const std::string box =
-      submit(s, test_mesh("BoxTextured.glb"), "model/gltf-binary", "?strategy=TU");
+      submit(s, test_mesh("BoxTextured.glb"), "model/gltf-binary", "?strategy=TU&size_mm=80");
   // A .gltf with its buffer and its image uploaded as parts, and once without the image.
   const std::string truck = "CesiumMilkTruck/CesiumMilkTruck";
   httplib::MultipartFormDataItems items = {
       {"mesh", test_mesh(truck + ".gltf"), "CesiumMilkTruck.gltf", "model/gltf+json"},
       {"buffers", test_mesh(truck + "0.bin"), "CesiumMilkTruck0.bin", "application/octet-stream"},
       {"buffers", test_mesh(truck + ".png"), "CesiumMilkTruck.png", "image/png"},
-      {"options", R"({"strategy":"TU","tab_room_budget":0,"detail":"full"})", "",
+      {"options", R"({"strategy":"TU","tab_room_budget":0,"detail":"full","colour":"none"})", "",
        "application/json"}};
   const std::string with_image = body(c.Post("/v1/jobs", items))["id"];
   items.erase(items.begin() + 2);
