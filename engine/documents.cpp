@@ -25,6 +25,9 @@ namespace {
 // Millimetres between pieces set side by side: room for a glue tab on each, and a cut between.
 double piece_gap_mm(const JobOptions& options) { return 2 * options.tab_height_mm + 4; }
 
+// The colour resolution of the whole net's SVG beside paged prints (a preview), dots per inch.
+constexpr double kPreviewDpi = 96;
+
 // Paper left between nested pieces (with their tabs) on a sheet, to cut along.
 constexpr double kCutSpacingMm = 2;
 
@@ -217,6 +220,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     if (!colour->any()) colour.reset();
   }
   const PrintColour* paint = colour ? &*colour : nullptr;
+  // The whole net in one SVG beside paged prints is a preview (the pages are the print): its
+  // colour at screen resolution, not the print's.
+  std::optional<PrintColour> preview = colour;
+  if (preview) preview->dpi = std::min(preview->dpi, kPreviewDpi);
   PrintSummary& summary = outcome.print.emplace();
   summary.cut_edges = static_cast<std::size_t>(layout.cut_edges);
   summary.tabs = layout.tabs.size();
@@ -250,7 +257,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   if (request.svg)
     docs.svg = has_paper(options) && pages.pages.size() == 1
                    ? write_page_svgs(layout, pages, paint).front()
-                   : write_net_svg(layout, page.margin_mm, paint);
+                   : write_net_svg(layout, page.margin_mm, preview ? &*preview : nullptr);
 }
 
 }  // namespace
