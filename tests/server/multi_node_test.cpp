@@ -251,7 +251,8 @@ TEST_F(MultiNode, AJobThatKillsEveryNodeFailsAfterItsAttempts) {
   for (int attempt = 1; attempt <= 2; ++attempt) {
     Server victim(flags);
     if (id.empty())
-      id = submit(victim, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&strategy=TU");
+      id = submit(victim, test_mesh("Duck.glb"), "model/gltf-binary",
+                  "?detail=full&strategy=TU&colour=none");
     ASSERT_TRUE(wait_until([&] { return runs(victim, id); }, 30s)) << victim.log();
     EXPECT_TRUE(WIFSIGNALED(victim.stop(SIGKILL)));
   }

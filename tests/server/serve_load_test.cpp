@@ -66,7 +66,7 @@ TEST_P(ServeLoad, TwoHundredClientsAgainstABusyWorkerAndABoundedQueue) {
             "false"});
   const std::size_t rss_before = proc_status_kb(s.pid(), "VmRSS");
   const std::string busy = submit(s, test_mesh("Duck.glb"), "model/gltf-binary",
-                                  "?detail=full&strategy=TU&time_limit=60");
+                                  "?detail=full&strategy=TU&time_limit=60&colour=none");
   wait_running(s, busy);
 
   constexpr int kClients = 200, kPolls = 3;
@@ -126,8 +126,8 @@ TEST_P(ServeLoad, KillNineDuringABurstLosesNoAcceptedJob) {
   auto server = std::make_unique<Server>(std::vector<std::string>{
       "--workers", "1", "--queue-length", "1000", "--reuse-results", "false"});
   const fs::path data = server->data();
-  const std::string running =
-      submit(*server, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&strategy=TU");
+  const std::string running = submit(*server, test_mesh("Duck.glb"), "model/gltf-binary",
+                                     "?detail=full&strategy=TU&colour=none");
   wait_running(*server, running);
 
   constexpr int kClients = 8, kEach = 15;
