@@ -77,9 +77,6 @@ std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& p
         tri.material = static_cast<std::size_t>(g) < colour.face_materials.size()
                            ? colour.face_materials[g]
                            : -1;
-        constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-        tri.uv.fill({kNaN, kNaN});
-        tri.rgba.fill({kNaN, kNaN, kNaN, kNaN});
         for (int k = 0; k < 3; ++k) {
           const auto w = plane_barycentric(point(at[k]), part.vertices[s[0]], part.vertices[s[1]],
                                            part.vertices[s[2]]);

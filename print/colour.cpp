@@ -301,9 +301,6 @@ PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi
   out.faces.resize(faces);
   for (std::size_t f = 0; f < faces; ++f) {
     ColourTriangle t;
-    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-    t.uv.fill({kNaN, kNaN});
-    t.rgba.fill({kNaN, kNaN, kNaN, kNaN});
     if (f < colour.uvs.size()) t.uv = colour.uvs[f];
     if (f < colour.colours.size()) t.rgba = colour.colours[f];
     if (f < colour.face_materials.size()) t.material = colour.face_materials[f];

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,8 +24,11 @@ namespace papernet {
 /// (1,0,0), (0,1,0), (0,0,1)); a face coloured from a surface it approximates has many.
 struct ColourTriangle {
   std::array<std::array<double, 3>, 3> at{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  std::array<UV, 3> uv;      ///< NaN: no texture coordinates
-  std::array<RGBA, 3> rgba;  ///< vertex colours (linear); NaN: none
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  std::array<UV, 3> uv{{{kNone, kNone}, {kNone, kNone}, {kNone, kNone}}};  ///< NaN: none
+  /// Vertex colours (linear); NaN: none.
+  std::array<RGBA, 3> rgba{
+      {{kNone, kNone, kNone, kNone}, {kNone, kNone, kNone, kNone}, {kNone, kNone, kNone, kNone}}};
   int material = -1;
 };
 
