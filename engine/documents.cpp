@@ -250,14 +250,26 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.cut_links = pieces.cut_links;
   summary.layout_note = std::move(layout_note);
   if (has_paper(options)) describe_print(outcome.net, pieces, layout, pages, page, fit);
-  if (request.pdf) docs.pdf = write_pdf(layout, pages, paint);
-  report(progress, "write", 0.5);
-  if (request.svg_pages && has_paper(options))
-    docs.svg_pages = write_page_svgs(layout, pages, paint);
+  // Each page drawn (and coloured) once for the PDF and its SVG; a cancelled job, a stopping
+  // node or the time limit stops between pages.
+  const bool paged = has_paper(options);
+  const bool svg_pages = paged && (request.svg_pages || (request.svg && pages.pages.size() == 1));
+  std::optional<PdfWriter> pdf;
+  if (request.pdf) pdf.emplace(layout, pages.width, pages.height);
+  const int n = static_cast<int>(pages.pages.size());
+  for (int i = 0; (pdf || svg_pages) && i < n; ++i) {
+    if (progress.cancelled()) throw CancelledException();
+    const PageDrawing drawing = draw_page(layout, pages, i, paint);
+    if (pdf) pdf->add_page(drawing);
+    if (svg_pages) docs.svg_pages.push_back(write_page_svg(layout, drawing, i, n));
+    report(progress, "write", 0.8 * (i + 1) / n);
+  }
+  if (pdf) docs.pdf = pdf->finish();
   if (request.svg)
-    docs.svg = has_paper(options) && pages.pages.size() == 1
-                   ? write_page_svgs(layout, pages, paint).front()
+    docs.svg = paged && n == 1
+                   ? docs.svg_pages.front()
                    : write_net_svg(layout, page.margin_mm, preview ? &*preview : nullptr);
+  if (!request.svg_pages && paged) docs.svg_pages.clear();
 }
 
 }  // namespace

@@ -104,13 +104,17 @@ void draw(cairo_t* cr, const PageDrawing& d) {
 
 }  // namespace
 
-std::string write_pdf(const PrintLayout& layout, const PageLayout& pages,
-                      const PrintColour* colour) {
-  std::string bytes;
+struct PdfWriter::Cairo {
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface{nullptr,
+                                                                             cairo_surface_destroy};
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr{nullptr, cairo_destroy};
+};
+
+PdfWriter::PdfWriter(const PrintLayout& layout, double width_mm, double height_mm)
+    : cairo_(std::make_unique<Cairo>()) {
   cairo_surface_t* surface =
-      cairo_pdf_surface_create_for_stream(append, &bytes, pages.width * kPt, pages.height * kPt);
-  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> own_surface(
-      surface, cairo_surface_destroy);
+      cairo_pdf_surface_create_for_stream(append, &bytes_, width_mm * kPt, height_mm * kPt);
+  cairo_->surface.reset(surface);
   if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS)
     throw IOException(std::string("cannot create PDF: ") +
                       cairo_status_to_string(cairo_surface_status(surface)));
@@ -123,19 +127,34 @@ std::string write_pdf(const PrintLayout& layout, const PageLayout& pages,
                               std::to_string(layout.strips.size()) + " glue strips, " +
                               std::to_string(layout.omitted_tabs.size()) + " tabs omitted";
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, subject.c_str());
-  cairo_t* cr = cairo_create(surface);
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> own_cr(cr, cairo_destroy);
-  cairo_scale(cr, kPt, kPt);  // draw in millimetres
-  for (int i = 0; i < static_cast<int>(pages.pages.size()); ++i) {
-    draw(cr, draw_page(layout, pages, i, colour));
-    cairo_show_page(cr);
-  }
-  own_cr.reset();
+  cairo_->cr.reset(cairo_create(surface));
+  cairo_scale(cairo_->cr.get(), kPt, kPt);  // draw in millimetres
+}
+
+PdfWriter::~PdfWriter() = default;
+
+void PdfWriter::add_page(const PageDrawing& page) {
+  draw(cairo_->cr.get(), page);
+  cairo_show_page(cairo_->cr.get());
+}
+
+std::string PdfWriter::finish() {
+  cairo_->cr.reset();
+  cairo_surface_t* surface = cairo_->surface.get();
   cairo_surface_finish(surface);
   if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS)
     throw IOException(std::string("writing PDF failed: ") +
                       cairo_status_to_string(cairo_surface_status(surface)));
-  return bytes;
+  cairo_->surface.reset();
+  return std::move(bytes_);
+}
+
+std::string write_pdf(const PrintLayout& layout, const PageLayout& pages,
+                      const PrintColour* colour) {
+  PdfWriter pdf(layout, pages.width, pages.height);
+  for (int i = 0; i < static_cast<int>(pages.pages.size()); ++i)
+    pdf.add_page(draw_page(layout, pages, i, colour));
+  return pdf.finish();
 }
 
 }  // namespace papernet

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "print/layout.h"
@@ -14,5 +15,27 @@ namespace papernet {
 /// \throw IOException when cairo fails.
 std::string write_pdf(const PrintLayout& layout, const PageLayout& pages,
                       const PrintColour* colour = nullptr);
+
+/// A PDF written a page at a time, each page drawn as write_pdf draws it: a caller that also
+/// writes each page's SVG draws (and colours) every page once, and can stop between pages.
+class PdfWriter {
+ public:
+  /// Pages of `width_mm` x `height_mm`; the document's metadata counts `layout`'s parts.
+  /// \throw IOException when cairo cannot create the document.
+  PdfWriter(const PrintLayout& layout, double width_mm, double height_mm);
+  ~PdfWriter();
+  PdfWriter(const PdfWriter&) = delete;
+  PdfWriter& operator=(const PdfWriter&) = delete;
+
+  void add_page(const PageDrawing& page);
+  /// The PDF's bytes; no page can be added afterwards.
+  /// \throw IOException when cairo failed.
+  std::string finish();
+
+ private:
+  struct Cairo;
+  std::string bytes_;  // where cairo's stream writes
+  std::unique_ptr<Cairo> cairo_;
+};
 
 }  // namespace papernet

@@ -159,12 +159,16 @@ std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLa
                                          const PrintColour* colour) {
   std::vector<std::string> out;
   const int n = static_cast<int>(pages.pages.size());
-  for (int i = 0; i < n; ++i) {
-    auto meta = layout_metadata(layout, n);
-    meta.emplace_back("page", std::to_string(i + 1));
-    out.push_back(write_svg(draw_page(layout, pages, i, colour), meta));
-  }
+  for (int i = 0; i < n; ++i)
+    out.push_back(write_page_svg(layout, draw_page(layout, pages, i, colour), i, n));
   return out;
+}
+
+std::string write_page_svg(const PrintLayout& layout, const PageDrawing& page, int index,
+                           int pages) {
+  auto meta = layout_metadata(layout, pages);
+  meta.emplace_back("page", std::to_string(index + 1));
+  return write_svg(page, meta);
 }
 
 }  // namespace papernet

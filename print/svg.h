@@ -33,4 +33,8 @@ std::string write_net_svg(const PrintLayout& layout, double margin_mm = 5,
 std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLayout& pages,
                                          const PrintColour* colour = nullptr);
 
+/// The SVG of page `index` (from 0) of `pages`, drawn already (draw_page).
+std::string write_page_svg(const PrintLayout& layout, const PageDrawing& page, int index,
+                           int pages);
+
 }  // namespace papernet

@@ -100,9 +100,9 @@ TEST_F(MultiNode, KillNineMidJobAndTheOtherNodeFinishesEveryJob) {
   std::vector<std::string> ids, large;
   for (int i = 0; i < 20; ++i) {
     if (i % 5 == 0) {  // 4,212 faces
-      large.push_back(
-          submit(*a, test_mesh("Duck.glb"), "model/gltf-binary",
-                 "?detail=full&strategy=TU&tab_room_budget=0&seed=" + std::to_string(i + 1)));
+      large.push_back(submit(
+          *a, test_mesh("Duck.glb"), "model/gltf-binary",
+          "?detail=full&strategy=TU&tab_room_budget=0&colour=none&seed=" + std::to_string(i + 1)));
       ids.push_back(large.back());
     } else if (i % 5 == 1) {
       ids.push_back(submit(*a, test_mesh("sample.obj"), "model/obj",
@@ -177,7 +177,7 @@ TEST_F(MultiNode, KillNineMidJobAndTheOtherNodeFinishesEveryJob) {
 TEST_F(MultiNode, OtherNodesShowProgressServeIntermediatesAndCancelWithinASecond) {
   Server a(node({"--workers", "1"}));
   const std::string id =
-      submit(a, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&strategy=QQ");
+      submit(a, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&strategy=QQ&colour=none");
   wait_running(a, id);
   Server b(node({"--workers", "1"}));
   auto c = b.client();
@@ -220,7 +220,7 @@ TEST_F(MultiNode, TheQueueLimitAndResultReuseSpanNodes) {
   std::vector<std::string> busy;
   for (int seed = 1; seed <= 2; ++seed)
     busy.push_back(submit(a, test_mesh("Duck.glb"), "model/gltf-binary",
-                          "?detail=full&strategy=TU&seed=" + std::to_string(seed)));
+                          "?detail=full&strategy=TU&colour=none&seed=" + std::to_string(seed)));
   ASSERT_TRUE(wait_until(
       [&] {
         return body(b.client().Get("/v1/jobs/" + busy[0]))["status"] == "running" &&
@@ -307,10 +307,10 @@ TEST(MultiNodeRestart, ThePostgresServerRestartsUnderRunningJobsAndNoJobIsLost) 
   Server a(flags), b(flags);
   std::vector<std::string> ids;
   for (int i = 0; i < 8; ++i)
-    ids.push_back(
-        i < 2 ? submit(a, test_mesh("Duck.glb"), "model/gltf-binary",
-                       "?detail=full&strategy=TU&tab_room_budget=0&seed=" + std::to_string(i + 1))
-              : submit(i % 2 ? a : b, tetra(i), "model/obj", "?strategy=TU"));
+    ids.push_back(i < 2 ? submit(a, test_mesh("Duck.glb"), "model/gltf-binary",
+                                 "?detail=full&strategy=TU&tab_room_budget=0&colour=none&seed=" +
+                                     std::to_string(i + 1))
+                        : submit(i % 2 ? a : b, tetra(i), "model/obj", "?strategy=TU"));
   ASSERT_TRUE(wait_until(
       [&] {
         return body(a.client().Get("/v1/jobs/" + ids[0]))["status"] == "running" &&

@@ -142,8 +142,8 @@ TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
   Server s({"--workers", "1"});
   // No tab-room pass: this is about the unfolding's intermediates, and on a loaded machine the
   // pass alone can take a minute after them.
-  const std::string id =
-      submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&tab_room_budget=0");
+  const std::string id = submit(s, test_mesh("Duck.glb"), "model/gltf-binary",
+                                "?detail=full&tab_room_budget=0&colour=none");
   auto c = s.client();
   bool intermediate = false, not_ready = false;
   // A deadline rather than a count of polls: on a loaded machine (CI runs this beside the other
@@ -190,8 +190,8 @@ TEST_P(ServeTest, ProgressiveJobServesIntermediatesThenTheResult) {
 // coarsest mesh the collapses reach, still an approximation.)
 TEST_P(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
   Server s({"--workers", "1"});
-  const json job = wait_final(
-      s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary", "?detail=full&time_limit=0.1"));
+  const json job = wait_final(s, submit(s, test_mesh("Duck.glb"), "model/gltf-binary",
+                                        "?detail=full&time_limit=0.1&colour=none"));
   ASSERT_EQ(job["status"], "approximated") << job.dump();
   EXPECT_EQ(job["result"]["kind"], "approximate");
   EXPECT_LT(job["result"]["faces"].get<int>(), 4212);
@@ -514,11 +514,24 @@ TEST_P(ServeTest, QueueFullCancelAndShutdown) {
   expect_problem(s.client().Get("/readyz"), 503, "shutting_down");
 }
 
+// The pages of a coloured print take seconds (the Duck: several pages, here at 600 dpi); a cancel
+// stops the job between pages rather than after the last.
+TEST_P(ServeTest, CancellingWhileThePagesAreWrittenStopsThePrint) {
+  Server s({});
+  const std::string id = submit(s, test_mesh("Duck.glb"), "", "?colour=auto&dpi=600");
+  wait_phase(s, id, "write");
+  EXPECT_EQ(s.client().Delete("/v1/jobs/" + id)->status, 202);
+  const json job = wait_final(s, id);
+  EXPECT_EQ(job["status"], "cancelled") << job.dump();
+  expect_problem(s.client().Get("/v1/jobs/" + id + "/net.json"), 410, "job_cancelled");
+}
+
 // SIGTERM with no grace: the running job is stopped, stays queued, and runs after a restart.
 TEST_P(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
   auto server = std::make_unique<Server>(std::vector<std::string>{"--shutdown-grace", "0"});
   const fs::path data = server->data();
-  const std::string id = submit(*server, test_mesh("Duck.glb"), "", "?detail=full&strategy=TU");
+  const std::string id =
+      submit(*server, test_mesh("Duck.glb"), "", "?detail=full&strategy=TU&colour=none");
   wait_running(*server, id);
   server->keep_data();
   const int status = server->stop(SIGTERM);
@@ -541,7 +554,7 @@ TEST_P(ServeTest, KillNineThenRestartFinishesEveryJob) {
 
   std::vector<std::string> ids = {finished};
   for (const char* name : {"Duck.glb", "testplate.glb", "Box_Draco.glb"})
-    ids.push_back(submit(*server, test_mesh(name), "", "?detail=full&strategy=TU"));
+    ids.push_back(submit(*server, test_mesh(name), "", "?detail=full&strategy=TU&colour=none"));
   wait_running(*server, ids[1]);
   EXPECT_EQ(body(server->client().Get("/v1/jobs/" + ids[3]))["status"], "queued");
   server->keep_data();

@@ -131,7 +131,7 @@ long wait_open_streams(const Server& s, long n) {
 
 std::string long_job(const Server& s) {
   const std::string id = submit(s, test_mesh("Duck.glb"), "model/gltf-binary",
-                                "?detail=full&strategy=TU&time_limit=60");
+                                "?detail=full&strategy=TU&time_limit=60&colour=none");
   wait_running(s, id);
   return id;
 }

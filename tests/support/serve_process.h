@@ -176,6 +176,19 @@ inline void wait_running(const Server& s, const std::string& id) {
   ASSERT_EQ(st, "running") << "the test needs a job that runs for a while";
 }
 
+// Polls until the running job reports `phase` (its progress), or it ends.
+inline void wait_phase(const Server& s, const std::string& id, const std::string& phase) {
+  const auto end = std::chrono::steady_clock::now() + 60s;
+  json job;
+  while (std::chrono::steady_clock::now() < end) {
+    job = body(s.client().Get("/v1/jobs/" + id));
+    if (job["status"] != "queued" && job["status"] != "running") break;
+    if (job["progress"].value("phase", "") == phase) return;
+    std::this_thread::sleep_for(5ms);
+  }
+  FAIL() << "the test needs a job caught in its " << phase << " phase: " << job.dump();
+}
+
 inline void expect_problem(const httplib::Result& res, int status, const std::string& code) {
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, status) << res->body;
