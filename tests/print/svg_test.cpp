@@ -20,12 +20,14 @@
 #include "print/tabs.h"
 #include "tests/support/meshes.h"
 #include "tests/support/polygons.h"
+#include "tests/support/sanitized.h"
 
 namespace papernet {
 namespace {
 
 using test::boxes_apart;
 using test::intersection_area;
+using test::near_pairs;
 using test::overlap_thickness;
 using test::signed_area;
 
@@ -43,6 +45,18 @@ struct NamedNet {
   Net net;
 };
 
+// Sanitized (make sanitize), where unfolding and the tab clearance pass run 20 times slower,
+// the fixture leaves out the meshes of more than 1,000 faces and gives the pass a tenth of its
+// budget on nets of more than 900: the same code on smaller nets, so that the run tests the
+// build's correctness, not its speed. Release builds (make check) test every mesh and budget.
+#ifdef PAPERNET_TEST_SANITIZED
+constexpr std::size_t kLargeNetShare = 10;
+constexpr std::size_t kMostFaces = 1000;
+#else
+constexpr std::size_t kLargeNetShare = 1;
+constexpr std::size_t kMostFaces = std::numeric_limits<std::size_t>::max();
+#endif
+
 /// Nets to check: breadth-first nets (overlapping, crowded) of the cube, octahedron,
 /// tetrahedron and every mesh of tests/data, the Tabu Unfolder's overlap-free nets (TU) of the
 /// tests/data meshes, and the progressive unfolder's (QQ, SEMP, SEQ) of those under 2000 faces
@@ -51,6 +65,7 @@ const std::vector<NamedNet>& all_nets() {
   static const std::vector<NamedNet> nets = [] {
     std::vector<NamedNet> out;
     auto meshes = test::test_data_meshes();
+    std::erase_if(meshes, [](const auto& named) { return named.second.faces.size() > kMostFaces; });
     for (const auto& [name, mesh] : meshes) {
       Progress quiet;
       // A clock limit only against a hang: the Duck's TU net takes ~1 s, but 30 s were not
@@ -92,11 +107,14 @@ const std::vector<TabClearanceResult>& all_print_nets() {
     for (const auto& [name, mesh, net] : all_nets()) {
       Progress quiet;
       // The pass as the engine runs it by default (budget 100,000 candidate moves: about
-      // 3 s on the Duck, 1-2 s on reference.obj and sample.obj, less on the others) on the TU
-      // nets; on the progressive ones a fifth of it, so that the test stays fast.
+      // 6 s on the Duck, 2-4 s on reference.obj, sample.obj and thingi10k_65004.stl, less on
+      // the others) on the TU nets; on the progressive ones a fifth of it, so that the test
+      // stays fast. Sanitized, where the pass runs 20 times slower, the nets of more than 900
+      // faces get a tenth of that (kLargeNetShare, above).
       TabClearanceOptions options;
       options.min_height = PrintOptions{}.min_tab_height_mm / print_scale(mesh, {});
       if (name.find("(TU)") == std::string::npos) options.max_evaluations = 20'000;
+      if (mesh.faces.size() > 900) options.max_evaluations /= kLargeNetShare;
       out.push_back(unfolded(name) ? clear_tab_room(mesh, net, options, quiet)
                                    : TabClearanceResult{net, 0, 0, 0, 0});
     }
@@ -200,7 +218,10 @@ void expect_clearance_pass_makes_room() {
   }
   // With the test's budgets 30 % of the blocked edges remain (37 % without the pass's second
   // round, its kicks or more search: 3,937 -> 1,179 against 1,445 at de12866).
-  EXPECT_LT(3 * after, before) << "the pass should open most near-slits";
+  if (kLargeNetShare == 1) {
+    EXPECT_LT(3 * after, before) << "the pass should open most near-slits";
+  }
+  std::printf("all nets: %zu -> %zu cut edges without tab room\n", before, after);
   // Meshes where the pass reaches exactly one tab per cut edge and no strip (figures in
   // docs/tabs.md). Which single net keeps a last blocked edge moves with every change to the
   // unfolders (their nets are chaotic in the search's order), so the crowded two are asserted
@@ -241,34 +262,36 @@ TEST(Tabs, EveryCutEdgeGetsOneTabOrStripAndNothingOverlaps) {
     for (const auto& f : layout.faces) faces.push_back({f.begin(), f.end()});
     for (const Tab& t : layout.tabs) tabs.push_back({t.corners.begin(), t.corners.end()});
     for (const GlueStrip& t : layout.strips) strips.push_back({t.corners.begin(), t.corners.end()});
-    for (std::size_t t = 0; t < tabs.size(); ++t) {
+    // Pairs checked where their boxes meet (near_pairs); the first few overlaps are named.
+    std::vector<std::string> overlaps;
+    auto check = [&](const std::vector<std::vector<Vec2>>& a, const char* what_a,
+                     const std::vector<std::vector<Vec2>>& b, const char* what_b, bool same) {
+      near_pairs(a, b, 0, [&](std::size_t i, std::size_t j) {
+        if ((same && j <= i) || overlaps.size() >= 5) return;
+        if (overlap_thickness(a[i], b[j]) > tol)
+          overlaps.push_back(std::string(what_a) + " " + std::to_string(i) + " overlaps " + what_b +
+                             " " + std::to_string(j));
+      });
+    };
+    for (std::size_t t = 0; t < tabs.size(); ++t)
       EXPECT_GT(signed_area(tabs[t]), 0) << name << " tab " << t;
-      for (std::size_t f = 0; f < faces.size(); ++f)
-        ASSERT_LE(overlap_thickness(tabs[t], faces[f]), tol)
-            << name << ": tab " << t << " overlaps face " << f;
-      for (std::size_t u = t + 1; u < tabs.size(); ++u)
-        ASSERT_LE(overlap_thickness(tabs[t], tabs[u]), tol)
-            << name << ": tabs " << t << " and " << u << " overlap";
-    }
+    check(tabs, "tab", faces, "face", false);
+    check(tabs, "tab", tabs, "tab", true);
     // Strips keep a millimetre of free paper around them (0.5 mm checked) so they can be cut.
+    std::vector<std::vector<Vec2>> around;
     for (std::size_t t = 0; t < strips.size(); ++t) {
       EXPECT_GT(signed_area(strips[t]), 0) << name << " strip " << t;
-      const std::vector<Vec2> around = grown(layout.strips[t], 0.5);
-      for (std::size_t f = 0; f < faces.size(); ++f)
-        ASSERT_LE(overlap_thickness(around, faces[f]), tol)
-            << name << ": strip " << t << " overlaps (or touches) face " << f;
-      for (std::size_t u = 0; u < tabs.size(); ++u)
-        ASSERT_LE(overlap_thickness(around, tabs[u]), tol)
-            << name << ": strip " << t << " overlaps (or touches) tab " << u;
-      for (std::size_t u = t + 1; u < strips.size(); ++u)
-        ASSERT_LE(overlap_thickness(around, strips[u]), tol)
-            << name << ": strips " << t << " and " << u << " overlap";
+      around.push_back(grown(layout.strips[t], 0.5));
       for (Vec2 p : strips[t]) {
         EXPECT_GE(std::min(p.x, p.y), -1e-9) << name << ": strip outside the layout";
         EXPECT_LE(p.x, layout.size.x + 1e-9) << name;
         EXPECT_LE(p.y, layout.size.y + 1e-9) << name;
       }
     }
+    check(around, "the 0.5 mm around strip", faces, "face", false);
+    check(around, "the 0.5 mm around strip", tabs, "tab", false);
+    check(around, "the 0.5 mm around strip", strips, "strip", true);
+    for (std::size_t k = 0; k < overlaps.size(); ++k) ADD_FAILURE() << name << ": " << overlaps[k];
     std::map<int, int> glue_per_edge;
     double lowest = std::numeric_limits<double>::infinity();
     std::size_t low = 0;

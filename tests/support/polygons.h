@@ -59,14 +59,55 @@ inline double intersection_area(std::vector<Vec2> a, std::vector<Vec2> b) {
 
 /// Mean thickness of the intersection of two convex polygons (area / longest extent): how deep
 /// they really overlap. Shapes that only touch give 0 up to rounding.
-inline double overlap_thickness(std::vector<Vec2> a, std::vector<Vec2> b) {
+inline double overlap_thickness(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   if (boxes_apart(a, b, 0)) return 0;
-  const auto p = intersection(std::move(a), std::move(b));
+  const auto p = intersection(a, b);
   if (p.size() < 3) return 0;
   double extent = 0;
   for (Vec2 u : p)
     for (Vec2 v : p) extent = std::max(extent, norm(u - v));
   return extent > 0 ? std::abs(signed_area(p)) / extent : 0;
+}
+
+/// Calls f(i, j) for each polygon a[i] and b[j] whose bounding boxes are within `gap` of each
+/// other: the only pairs that can overlap (or come within `gap`). A sweep over the boxes sorted
+/// by their left side, so that checks of every pair of a large net stay fast in sanitized
+/// builds.
+template <class F>
+void near_pairs(const std::vector<std::vector<Vec2>>& a, const std::vector<std::vector<Vec2>>& b,
+                double gap, F&& f) {
+  struct Box {
+    Vec2 lo, hi;
+  };
+  auto boxes = [](const std::vector<std::vector<Vec2>>& polygons) {
+    std::vector<Box> out;
+    for (const auto& p : polygons) {
+      Box box{p[0], p[0]};
+      for (Vec2 q : p)
+        box.lo = {std::min(box.lo.x, q.x), std::min(box.lo.y, q.y)},
+        box.hi = {std::max(box.hi.x, q.x), std::max(box.hi.y, q.y)};
+      out.push_back(box);
+    }
+    return out;
+  };
+  const std::vector<Box> ba = boxes(a), bb = boxes(b);
+  std::vector<std::size_t> order(b.size());
+  double widest = 0;
+  for (std::size_t j = 0; j < b.size(); ++j)
+    order[j] = j, widest = std::max(widest, bb[j].hi.x - bb[j].lo.x);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t i, std::size_t j) { return bb[i].lo.x < bb[j].lo.x; });
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Box& x = ba[i];
+    // Boxes of b that can reach x start at most `widest` left of it.
+    auto first = std::lower_bound(order.begin(), order.end(), x.lo.x - gap - widest,
+                                  [&](std::size_t j, double v) { return bb[j].lo.x < v; });
+    for (auto it = first; it != order.end() && bb[*it].lo.x <= x.hi.x + gap; ++it) {
+      const Box& y = bb[*it];
+      if (y.hi.x + gap < x.lo.x || y.lo.y > x.hi.y + gap || x.lo.y > y.hi.y + gap) continue;
+      f(i, *it);
+    }
+  }
 }
 
 }  // namespace papernet::test

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "tests/support/postgres.h"
+#include "tests/support/sanitized.h"
 
 namespace papernet::test {
 
@@ -209,22 +210,6 @@ inline std::size_t proc_status_kb(pid_t pid, const std::string& field) {
   ADD_FAILURE() << "no " << field << " in /proc/" << pid << "/status";
   return 0;
 }
-
-#if defined(__SANITIZE_ADDRESS__)
-#define PAPERNET_TEST_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define PAPERNET_TEST_ASAN 1
-#endif
-#endif
-
-#if defined(PAPERNET_TEST_ASAN) || defined(__SANITIZE_THREAD__)
-#define PAPERNET_TEST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-#define PAPERNET_TEST_SANITIZED 1
-#endif
-#endif
 
 /// Checks that a server's memory figure (kB) grew by less than `bound_kb`. Under
 /// AddressSanitizer (`make sanitize`) the figures measure ASan's allocator, which keeps freed
