@@ -41,7 +41,7 @@ FUZZ_SMOKE_SECONDS ?= 20
 FUZZ_SECONDS ?= 300
 
 .PHONY: all deps build test check run format format-check clean sanitize build-asan \
-	sanitize-address sanitize-thread fuzz-smoke fuzz benchmarks
+	sanitize-address sanitize-thread fuzz-smoke fuzz benchmarks print-benchmark
 
 all: build
 
@@ -102,6 +102,11 @@ run: build
 # (1,080 runs, 60 s limit each; about 8 min on 2 idle cores). Needs ../shared/data.
 benchmarks: deps
 	bash scripts/benchmarks.sh
+
+# Regenerates docs/print.md's comparison with Blender's exporter (about 12 min; installs
+# Blender when missing). Needs ../shared/data.
+print-benchmark: deps
+	bash scripts/print-benchmark.sh
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

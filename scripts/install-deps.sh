@@ -5,6 +5,7 @@
 #   scripts/install-deps.sh runtime  only what the papernet binary needs to run
 #   scripts/install-deps.sh postgres the database of several nodes (docker/compose.yaml)
 #   scripts/install-deps.sh nginx    the load balancer in front of them (docker/compose.yaml)
+#   scripts/install-deps.sh blender  the peer of `make print-benchmark` (docs/print.md)
 set -euo pipefail
 
 runtime=(libdraco7 libsqlite3-0 libpq5 libcairo2 libcpp-httplib0.11 libssl3 libpolyclipping22
@@ -34,7 +35,8 @@ case "${1:-all}" in
   all) wanted=("${runtime[@]}" "${build[@]}" "${test_tools[@]}") ;;
   postgres) wanted=(postgresql) ;;
   nginx) wanted=(nginx) ;;
-  *) echo "usage: $0 [runtime|build|all|postgres|nginx]" >&2; exit 2 ;;
+  blender) wanted=(blender) ;;
+  *) echo "usage: $0 [runtime|build|all|postgres|nginx|blender]" >&2; exit 2 ;;
 esac
 
 missing=()

@@ -11,9 +11,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -109,6 +112,10 @@ std::array<double, 3> model_colour(const NetDocument& doc, const std::vector<Ima
   return c;
 }
 
+// The colour face f of the printed net should show at barycentric point w.
+using Expected = std::function<std::array<double, 3>(const NetDocument& doc, std::size_t f,
+                                                     const std::array<double, 3>& w)>;
+
 // Face f's corners on its page in pixels at kDpi, by its piece's placement (net JSON `print`).
 std::array<Vec2, 3> page_pixels(const NetDocument& doc, std::size_t f) {
   const auto& t = doc.print->placements.at(doc.piece[f]).transform;
@@ -160,8 +167,8 @@ struct Check {
 // tall). A tab shows the face it glues under as if folded out about the edge: that face's colour
 // at the same point of its own plane (0.8 mm from the edge, at its middle). Counts the edges
 // where one side shows it, of those where one side is printed at all.
-void check_tabs(const NetDocument& doc, const std::vector<Image>& textures, const Raster& raster,
-                int page, Check& check) {
+void check_tabs(const NetDocument& doc, const Expected& model, const Raster& raster, int page,
+                Check& check) {
   const double px = kDpi / 25.4, mm = doc.print->mm_per_unit;
   std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> sides;  // edge -> (face, k)
   for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f)
@@ -206,7 +213,7 @@ void check_tabs(const NetDocument& doc, const std::vector<Image>& textures, cons
         const Vec3 q = u1 + t * (u0 - u1) + (0.8 / mm) * inward;
         const double w1 = dot(cross(q - v0, v2 - v0), n) / dot(n, n);
         const double w2 = dot(cross(v1 - v0, q - v0), n) / dot(n, n);
-        const auto want = model_colour(doc, textures, under, {1 - w1 - w2, w1, w2});
+        const auto want = model(doc, under, {1 - w1 - w2, w1, w2});
         const int x = static_cast<int>(at.x), y = static_cast<int>(at.y);
         if (x < 0 || y < 0 || x >= raster.width || y >= raster.height) continue;
         const auto printed = raster.at(x, y);
@@ -224,8 +231,10 @@ void check_tabs(const NetDocument& doc, const std::vector<Image>& textures, cons
   }
 }
 
-// Prints `file` to PDF at `size_mm` with colour at kDpi and compares every page.
-Check check_colour(const std::string& file, double size_mm) {
+// Prints `input` to PDF at `size_mm` with colour at kDpi and compares every page with
+// `expected` (by default the net JSON's own colour data: model_colour).
+Check check_colour(const std::string& file, double size_mm, const JobInput& input,
+                   Expected expected = nullptr) {
   JobOptions options;
   options.strategy = Strategy::TU;
   options.detail = {DetailMode::Full, 0};
@@ -235,7 +244,7 @@ Check check_colour(const std::string& file, double size_mm) {
   options.labels = false;  // line art over the colour: numbers cover small faces' centres
   options.tab_room_budget = 2000;
   PipelineProgress quiet;
-  const UnfoldOutcome out = run_pipeline(data_file(file), options, {}, {.pdf = true}, quiet);
+  const UnfoldOutcome out = run_pipeline(input, options, {}, {.pdf = true}, quiet);
   const NetDocument& doc = out.net;
   EXPECT_TRUE(check_pieces(doc.mesh, doc.net, doc.piece).ok());
   Check check;
@@ -245,6 +254,10 @@ Check check_colour(const std::string& file, double size_mm) {
   }
   std::vector<Image> textures;
   for (const Texture& t : doc.colour.textures) textures.push_back(decode_image(t.bytes));
+  if (!expected)
+    expected = [&](const NetDocument& d, std::size_t f, const std::array<double, 3>& w) {
+      return model_colour(d, textures, f, w);
+    };
   const std::string path =
       (std::filesystem::temp_directory_path() / ("papernet_colour_" + file + ".pdf")).string();
   {
@@ -262,9 +275,6 @@ Check check_colour(const std::string& file, double size_mm) {
       if (placed.page != page) continue;
       const std::array<Vec2, 3> p = page_pixels(doc, f);
       if (!(inradius(p) >= 3)) continue;
-      auto expected = [&](const std::array<double, 3>& w) {
-        return model_colour(doc, textures, f, w);
-      };
       std::vector<double> errors;
       for (const auto& w : kSamples) {
         const Vec2 at = w[0] * p[0] + w[1] * p[1] + w[2] * p[2];
@@ -273,14 +283,14 @@ Check check_colour(const std::string& file, double size_mm) {
           errors.push_back(1);
           continue;
         }
-        errors.push_back(difference(raster.at(x, y), expected(w)));
+        errors.push_back(difference(raster.at(x, y), expected(doc, f, w)));
       }
       const double error = median(errors);
       ++check.faces;
       check.matched += error <= kTolerance;
       check.worst = std::max(check.worst, error);
     }
-    check_tabs(doc, textures, raster, page, check);
+    check_tabs(doc, expected, raster, page, check);
   }
   check.strips = out.print->strips;
   std::filesystem::remove(path);
@@ -303,7 +313,7 @@ INSTANTIATE_TEST_SUITE_P(Models, ColourPrint,
 TEST_P(ColourPrint, PagesShowTheModelsColourOnEveryFace) {
   if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
   const auto [file, size] = GetParam();
-  const Check check = check_colour(file, size);
+  const Check check = check_colour(file, size, data_file(file));
   ASSERT_GT(check.faces, 0u) << file;
   EXPECT_GE(static_cast<double>(check.matched), 0.98 * check.faces)
       << file << ": " << check.matched << " of " << check.faces
@@ -323,6 +333,174 @@ TEST_P(ColourPrint, PagesShowTheModelsColourOnEveryFace) {
       "%s: %zu of %zu cut edges (4 mm or more) show a tab in the colour of the face it "
       "glues under; %zu glue strips\n",
       file, check.tabbed, check.cut_edges, check.strips);
+}
+
+// BoxTextured written again by the test in another form (issue "Colour kits": an OBJ with MTL,
+// and a glTF with KHR_texture_transform): each face's corners with their positions and texture
+// coordinates as the test wrote them, so that the colour a printed face should show is looked
+// up by its corners' positions, whatever the loader made of the file.
+struct SourceModel {
+  std::vector<std::array<Vec3, 3>> corners;
+  std::vector<std::array<UV, 3>> uvs;  // glTF's convention (v down), before any transform
+  Texture texture;
+  RGBA factor{1, 1, 1, 1};  // linear
+};
+
+SourceModel box_textured() {
+  const LoadedMesh box = load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/BoxTextured.glb");
+  SourceModel m;
+  for (std::size_t f = 0; f < box.mesh.faces.size(); ++f) {
+    std::array<Vec3, 3> corners;
+    for (int k = 0; k < 3; ++k) corners[k] = box.mesh.vertices[box.mesh.faces[f][k]];
+    m.corners.push_back(corners);
+    m.uvs.push_back(box.colour.uvs.at(f));
+  }
+  const Material& material = box.colour.materials.at(box.colour.face_materials.at(0));
+  m.texture = box.colour.textures.at(material.texture);
+  m.factor = material.base_color;
+  return m;
+}
+
+// The source's colour at barycentric w of the printed face f: the source face with the same
+// corner positions, its texture sampled at w of its corners' texture coordinates.
+Expected source_colour(const SourceModel& m, const Image& texture) {
+  return [&m, &texture](const NetDocument& doc, std::size_t f, const std::array<double, 3>& w) {
+    const auto& tri = doc.mesh.faces[f];
+    for (std::size_t i = 0; i < m.corners.size(); ++i) {
+      std::array<int, 3> corner{-1, -1, -1};
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+          if (norm(m.corners[i][j] - doc.mesh.vertices[tri[k]]) < 1e-6) corner[k] = j;
+      if (std::count(corner.begin(), corner.end(), -1) > 0) continue;
+      double u = 0, v = 0;
+      for (int k = 0; k < 3; ++k)
+        u += w[k] * m.uvs[i][corner[k]][0], v += w[k] * m.uvs[i][corner[k]][1];
+      std::array<double, 3> c = sample(texture, u, v);
+      for (int k = 0; k < 3; ++k) c[k] *= srgb(m.factor[k]);
+      return c;
+    }
+    return std::array<double, 3>{-1, -1, -1};  // no such face in the source: never matches
+  };
+}
+
+// The source as an OBJ (vt's v up, as OBJ has it) with an MTL naming the texture (map_Kd).
+JobInput as_obj_with_mtl(const SourceModel& m) {
+  std::ostringstream obj, faces, mtl;
+  obj.precision(9);
+  mtl.precision(9);
+  obj << "mtllib box.mtl\nusemtl logo\n";
+  int corner = 0;
+  for (std::size_t f = 0; f < m.corners.size(); ++f) {
+    faces << "f";
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = m.corners[f][k];
+      obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+      obj << "vt " << m.uvs[f][k][0] << ' ' << 1 - m.uvs[f][k][1] << '\n';
+      ++corner;
+      faces << ' ' << corner << '/' << corner;
+    }
+    faces << '\n';
+  }
+  mtl << "newmtl logo\nKd " << m.factor[0] << ' ' << m.factor[1] << ' ' << m.factor[2]
+      << "\nmap_Kd box.png\n";
+  JobInput input;
+  input.mesh = obj.str() + faces.str();
+  input.format = MeshFormat::Obj;
+  input.external_files["box.mtl"] = mtl.str();
+  input.external_files["box.png"] = m.texture.bytes;
+  return input;
+}
+
+// The source as a glTF whose material's texture reference has a KHR_texture_transform (offset,
+// rotation, scale): the file's texture coordinates are the source's under the inverse of that
+// transform, so printed through it they show the source's colours. The transform as the
+// extension's specification defines it: uv' = T R S uv, R = [cos r, sin r; -sin r, cos r].
+JobInput as_gltf_with_texture_transform(const SourceModel& m) {
+  const double ox = 0.25, oy = -0.125, r = 0.5, sx = 2, sy = 0.5;
+  const double a = std::cos(r) * sx, c = std::sin(r) * sy;   // u' = a u + c v + ox
+  const double b = -std::sin(r) * sx, d = std::cos(r) * sy;  // v' = b u + d v + oy
+  const double det = a * d - b * c;
+  std::vector<float> positions, uvs;
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (std::size_t f = 0; f < m.corners.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = m.corners[f][k];
+      const std::array<double, 3> xyz{p.x, p.y, p.z};
+      for (int i = 0; i < 3; ++i) {
+        positions.push_back(static_cast<float>(xyz[i]));
+        lo[i] = std::min(lo[i], static_cast<double>(positions.back()));
+        hi[i] = std::max(hi[i], static_cast<double>(positions.back()));
+      }
+      const double u = m.uvs[f][k][0] - ox, v = m.uvs[f][k][1] - oy;
+      uvs.push_back(static_cast<float>((d * u - c * v) / det));
+      uvs.push_back(static_cast<float>((-b * u + a * v) / det));
+    }
+  std::string buffer(reinterpret_cast<const char*>(positions.data()),
+                     positions.size() * sizeof(float));
+  const std::size_t uv_offset = buffer.size();
+  buffer.append(reinterpret_cast<const char*>(uvs.data()), uvs.size() * sizeof(float));
+  const std::size_t count = m.corners.size() * 3;
+  const nlohmann::json transform = {{"offset", {ox, oy}}, {"rotation", r}, {"scale", {sx, sy}}};
+  const nlohmann::json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"KHR_texture_transform"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"material", 0}}}}}}},
+      {"materials",
+       {{{"pbrMetallicRoughness",
+          {{"baseColorFactor", {m.factor[0], m.factor[1], m.factor[2], 1.0}},
+           {"baseColorTexture",
+            {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}}}}}}},
+      {"textures", {{{"source", 0}}}},
+      {"images", {{{"uri", "box.png"}}}},
+      {"buffers",
+       {{{"byteLength", buffer.size()},
+         {"uri", "data:application/octet-stream;base64," + encode_base64(buffer)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", uv_offset}},
+        {{"buffer", 0}, {"byteOffset", uv_offset}, {"byteLength", buffer.size() - uv_offset}}}},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", count},
+         {"type", "VEC3"},
+         {"min", lo},
+         {"max", hi}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", count}, {"type", "VEC2"}}}}};
+  JobInput input;
+  input.mesh = gltf.dump();
+  input.format = MeshFormat::Gltf;
+  input.external_files["box.png"] = m.texture.bytes;
+  return input;
+}
+
+// The textured box as an OBJ with MTL and as a glTF with KHR_texture_transform prints the
+// colours of the box it was written from, face by face (found by position), tabs included.
+TEST(ColourPrintForms, ObjWithMtlAndTextureTransformPrintTheSourcesColours) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  const SourceModel box = box_textured();
+  ASSERT_EQ(box.corners.size(), 12u);
+  const Image texture = decode_image(box.texture.bytes);
+  for (const auto& [name, input] : {std::pair{std::string("box.obj"), as_obj_with_mtl(box)},
+                                    std::pair{std::string("box_texture_transform.gltf"),
+                                              as_gltf_with_texture_transform(box)}}) {
+    const Check check = check_colour(name, 80, input, source_colour(box, texture));
+    EXPECT_EQ(check.faces, 12u) << name;
+    EXPECT_GE(static_cast<double>(check.matched), 0.98 * check.faces)
+        << name << ": " << check.matched << " of " << check.faces
+        << " faces print the source's colour; worst mean difference " << check.worst;
+    EXPECT_GE(static_cast<double>(check.tabbed), 0.98 * check.cut_edges)
+        << name << ": " << check.tabbed << " of " << check.cut_edges;
+    std::printf(
+        "%s: %zu of %zu faces within %.2f (worst %.3f); %zu of %zu cut edges show a "
+        "coloured tab\n",
+        name.c_str(), check.matched, check.faces, kTolerance, check.worst, check.tabbed,
+        check.cut_edges);
+  }
 }
 
 // Closest point of triangle abc to p, as barycentric coordinates (Ericson, Real-Time Collision

@@ -127,7 +127,7 @@ TEST_P(ServeLoad, KillNineDuringABurstLosesNoAcceptedJob) {
       "--workers", "1", "--queue-length", "1000", "--reuse-results", "false"});
   const fs::path data = server->data();
   const std::string running = submit(*server, test_mesh("Duck.glb"), "model/gltf-binary",
-                                     "?detail=full&strategy=TU&colour=none");
+                                     "?detail=full&strategy=TU&colour=none" + kTabRoomQuery);
   wait_running(*server, running);
 
   constexpr int kClients = 8, kEach = 15;

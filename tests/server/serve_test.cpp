@@ -24,15 +24,6 @@ constexpr const char* kNonManifoldObj =
 
 }  // namespace
 
-// The tab room pass runs 10-20 times slower sanitized: there, sample.obj's jobs give it a tenth
-// of its default budget (tabs still outnumber strips 12 to 1 on its net), so that a job takes
-// seconds, not minutes.
-#ifdef PAPERNET_TEST_SANITIZED
-const std::string kTabRoom = "&tab_room_budget=10000";
-#else
-const std::string kTabRoom;
-#endif
-
 TEST_P(ServeTest, HealthReadinessMetricsAndOpenApi) {
   Server s({"--workers", "1"});
   auto c = s.client();
@@ -52,8 +43,8 @@ TEST_P(ServeTest, HealthReadinessMetricsAndOpenApi) {
 
 TEST_P(ServeTest, SubmitPollAndFetchObj) {
   Server s({"--workers", "1"});
-  const std::string id =
-      submit(s, test_mesh("sample.obj"), "model/obj", "?detail=full&strategy=TU&seed=3" + kTabRoom);
+  const std::string id = submit(s, test_mesh("sample.obj"), "model/obj",
+                                "?detail=full&strategy=TU&seed=3" + kTabRoomQuery);
   const json job = wait_final(s, id);
   EXPECT_EQ(job["options"]["strategy"], "TU");
   EXPECT_EQ(job["input"]["format"], "obj");
@@ -73,8 +64,8 @@ TEST_P(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
 
   // The same mesh with the same options is answered from the stored result at once.
-  auto again = c.Post("/v1/jobs?detail=full&strategy=TU&seed=3" + kTabRoom, test_mesh("sample.obj"),
-                      "model/obj");
+  auto again = c.Post("/v1/jobs?detail=full&strategy=TU&seed=3" + kTabRoomQuery,
+                      test_mesh("sample.obj"), "model/obj");
   ASSERT_EQ(again->status, 202);
   EXPECT_EQ(body(again)["status"], "succeeded");
   EXPECT_EQ(body(again)["result"]["metrics"]["reused_from"], id);
@@ -109,9 +100,9 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   Server s({"--workers", "1"});
   auto c = s.client();
   const std::string strips = submit(s, test_mesh("sample.obj"), "model/obj",
-                                    "?detail=full&strategy=TU&seed=3&tabs=strips" + kTabRoom);
+                                    "?detail=full&strategy=TU&seed=3&tabs=strips" + kTabRoomQuery);
   const std::string yes = submit(s, test_mesh("sample.obj"), "model/obj",
-                                 "?detail=full&strategy=TU&seed=3&tabs=true" + kTabRoom);
+                                 "?detail=full&strategy=TU&seed=3&tabs=true" + kTabRoomQuery);
   const json a = wait_final(s, strips), b = wait_final(s, yes);
   ASSERT_EQ(a["status"], "succeeded") << a.dump();
   ASSERT_EQ(b["status"], "succeeded") << b.dump();
@@ -137,7 +128,7 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   const json u = wait_final(s, unchanged);
   ASSERT_EQ(u["status"], "succeeded") << u.dump();
   EXPECT_EQ(u["options"]["tab_room_budget"], 0);
-  EXPECT_EQ(b["options"]["tab_room_budget"], kTabRoom.empty() ? 100000 : 10000);
+  EXPECT_EQ(b["options"]["tab_room_budget"], kTabRoomQuery.empty() ? 100000 : 10000);
   const std::string svg_u = c.Get("/v1/jobs/" + unchanged + "/net.svg")->body;
   EXPECT_GT(std::stoi(svg_data(svg_u, "strips")), 2 * std::stoi(svg_data(svg_b, "strips")));
   expect_problem(c.Post("/v1/jobs?tab_room_budget=-5", test_mesh("sample.obj"), "model/obj"), 400,
@@ -409,7 +400,7 @@ TEST_P(ServeTest, AnImageOverThePixelLimitIs413) {
 TEST_P(ServeTest, EventStreamEndsWithTheFinalState) {
   Server s({"--workers", "1"});
   const std::string id =
-      submit(s, test_mesh("sample.obj"), "model/obj", "?detail=full&strategy=TU" + kTabRoom);
+      submit(s, test_mesh("sample.obj"), "model/obj", "?detail=full&strategy=TU" + kTabRoomQuery);
   std::string stream;
   auto res = s.client().Get("/v1/jobs/" + id + "/events", [&](const char* data, size_t n) {
     stream.append(data, n);
