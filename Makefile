@@ -103,7 +103,7 @@ run: build
 benchmarks: deps
 	bash scripts/benchmarks.sh
 
-# Regenerates docs/print.md's comparison with Blender's exporter (about 12 min; installs
+# Regenerates docs/print.md's comparison with Blender's exporter (about 5 min; installs
 # Blender when missing). Needs ../shared/data.
 print-benchmark: deps
 	bash scripts/print-benchmark.sh
