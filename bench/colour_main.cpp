@@ -4,10 +4,6 @@
 // own so that its peak memory is its own: with colour none and with colour auto. Prints, per
 // dpi, the colour pass's seconds per page (the difference of the two runs), both peaks, and the
 // PDF and SVG bytes per page. Prints figures; it is not a test.
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -16,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/child_process.h"
 #include "core/io/load.h"
 #include "engine/pipeline.h"
 
@@ -54,32 +51,16 @@ Run run_once(const std::string& path, double dpi, bool colour, const std::string
 
 // run_once in a child process, with the child's peak resident memory.
 Run in_child(const std::string& path, double dpi, bool colour, const std::string& detail) {
-  int fds[2];
-  if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fds[0]);
-    Run r = run_once(path, dpi, colour, detail);
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    r.peak_mb = usage.ru_maxrss / 1024.0;
+  const ChildRun child = bench::in_child([&] {
+    const Run r = run_once(path, dpi, colour, detail);
     std::ostringstream o;
-    o << r.seconds << ' ' << r.pages << ' ' << r.pdf_bytes << ' ' << r.svg_bytes << ' '
-      << r.peak_mb;
-    const std::string s = o.str();
-    if (write(fds[1], s.data(), s.size()) < 0) _exit(2);
-    _exit(0);
-  }
-  close(fds[1]);
-  std::string text;
-  char buf[256];
-  for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) > 0;) text.append(buf, n);
-  close(fds[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
+    o << r.seconds << ' ' << r.pages << ' ' << r.pdf_bytes << ' ' << r.svg_bytes;
+    return o.str();
+  });
   Run r;
-  std::istringstream(text) >> r.seconds >> r.pages >> r.pdf_bytes >> r.svg_bytes >> r.peak_mb;
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || r.pages == 0)
+  std::istringstream(child.text) >> r.seconds >> r.pages >> r.pdf_bytes >> r.svg_bytes;
+  r.peak_mb = child.peak_mb;
+  if (!child.ok || r.pages == 0)
     throw std::runtime_error("the run at " + std::to_string(dpi) + " dpi failed");
   return r;
 }
