@@ -47,6 +47,14 @@ before(async () => {
   });
 });
 
+// Waits until the page's job has ended (done, failed, cancelled or error) and returns that state.
+async function jobEnded(page, timeout) {
+  await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
+    timeout,
+  });
+  return page.evaluate(() => document.body.dataset.state);
+}
+
 // The colours a person sees in an element: its screenshot, decoded by the browser, counted.
 // `background`: the page's near-white; of the rest, `beige` is the paper colour every model was
 // drawn in before the demo showed colour (0xf2e6c9 however lit), `saturated` is colour far from
@@ -194,10 +202,7 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   });
   await page.click("#start");
 
-  await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
-    timeout: 300000,
-  });
-  const state = await page.evaluate(() => document.body.dataset.state);
+  const state = await jobEnded(page, 300000);
   const status = await page.textContent("#status");
   assert.equal(state, "done", `page ended in ${state}: ${status}`);
   assert.match(status, /^(succeeded|approximated): net of \d+ faces/);
@@ -303,11 +308,8 @@ test("the demo unfolds every part of a model, or only the largest, and lists the
     await page.selectOption("#components", components);
     await page.evaluate(() => delete document.body.dataset.state);
     await page.click("#start");
-    await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
-      timeout: 120000,
-    });
     return {
-      state: await page.evaluate(() => document.body.dataset.state),
+      state: await jobEnded(page, 120000),
       status: await page.textContent("#status"),
       repairs: await page.$$eval("#repairs li", (items) => items.map((li) => [li.dataset.code, li.textContent])),
     };
@@ -346,10 +348,7 @@ test("the demo shows a textured glTF textured and upright, folded, flat and in t
   await page.fill("#detail", "full");
   await page.selectOption("#paper", "A4");
   await page.click("#start");
-  await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
-    timeout: 120000,
-  });
-  assert.equal(await page.evaluate(() => document.body.dataset.state), "done", await page.textContent("#status"));
+  assert.equal(await jobEnded(page, 120000), "done", await page.textContent("#status"));
 
   // The texture (the Cesium logo, 256 × 256) is mapped by the faces' coordinates.
   const shown = await shownMaterials(page);
@@ -400,10 +399,7 @@ test("the demo shows a model's vertex colours (a PLY cube, z up as its coordinat
   await page.setInputFiles("#file", { name: "cube.ply", mimeType: "application/octet-stream", buffer: Buffer.from(ply) });
   await page.selectOption("#strategy", "TU");
   await page.click("#start");
-  await page.waitForFunction(() => ["done", "failed", "cancelled", "error"].includes(document.body.dataset.state), null, {
-    timeout: 120000,
-  });
-  assert.equal(await page.evaluate(() => document.body.dataset.state), "done", await page.textContent("#status"));
+  assert.equal(await jobEnded(page, 120000), "done", await page.textContent("#status"));
   const shown = await shownMaterials(page);
   assert.ok(shown.materials.every((m) => m.vertexColors && m.color === "ffffff" && !m.map), JSON.stringify(shown));
   // Not turned: the scene's z is the file's z (only glTF is y up).
