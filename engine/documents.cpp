@@ -171,9 +171,9 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   std::string layout_note;
   if (fit) {
     page.validate();
-    // Tabs stick out by up to their height on each side; then the paper to cut along, and a
-    // millimetre to spare so that a piece at the limit still slides into place.
-    const double tab_room = 2 * std::max(0.0, options.tab_height_mm) + kCutSpacingMm + 1;
+    // Tabs stick out by up to their height on each side; then the paper to cut along, and 3 mm
+    // to spare for the nesting grid's cells (print/nest.h).
+    const double tab_room = 2 * std::max(0.0, options.tab_height_mm) + kCutSpacingMm + 3;
     const Vec2 room{page.paper.width - 2 * page.margin_mm - tab_room,
                     page.paper.height - 2 * page.margin_mm - tab_room};
     if (!(room.x > 0 && room.y > 0))

@@ -16,7 +16,7 @@
 namespace papernet {
 namespace {
 
-// Clipper and libnest2d work in integer coordinates: micrometres.
+// Clipper and the nesting grid work in integer coordinates: micrometres.
 constexpr double kUnitsPerMm = 1000;
 
 ClipperLib::IntPoint to_int(Vec2 p) {
@@ -25,7 +25,7 @@ ClipperLib::IntPoint to_int(Vec2 p) {
 }
 
 /// What is nested: the shapes of one piece (its faces and their tabs) or one glue strip, turned
-/// by `turn` about the origin before libnest2d moves it.
+/// by `turn` about the origin before it is nested.
 struct Part {
   std::vector<std::vector<Vec2>> shapes;
   double turn = 0;
@@ -55,6 +55,19 @@ ClipperLib::Path outline_of(const std::vector<std::vector<Vec2>>& shapes, double
   for (auto& p : grown) {
     const double a = ClipperLib::Area(p);
     if (a > best_area) best_area = a, best = std::move(p);
+  }
+  if (best.empty()) {
+    // Faces without area (slivers of a CAD model): the box of their points, however thin.
+    ClipperLib::cInt lo_x = 0, lo_y = 0, hi_x = 0, hi_y = 0;
+    bool any = false;
+    for (const auto& path : paths)
+      for (const auto& p : path) {
+        lo_x = any ? std::min(lo_x, p.X) : p.X, hi_x = any ? std::max(hi_x, p.X) : p.X;
+        lo_y = any ? std::min(lo_y, p.Y) : p.Y, hi_y = any ? std::max(hi_y, p.Y) : p.Y;
+        any = true;
+      }
+    if (!any) return best;
+    return {{lo_x, lo_y}, {lo_x, hi_y}, {hi_x, hi_y}, {hi_x, lo_y}, {lo_x, lo_y}};
   }
   ClipperLib::CleanPolygon(best);
   if (ClipperLib::Orientation(best)) ClipperLib::ReversePath(best);
@@ -94,8 +107,8 @@ double fitting_turn(const std::vector<Vec2>& points, Vec2 room) {
 namespace {
 
 /// Nests parts onto sheets numbered from `first_sheet`: each part turned to fit, its outline
-/// nested by libnest2d (print/internal/nest_outlines.h). Returns each part's turn and shift in
-/// layout coordinates (sheet k is the window at x = k * (w + kSheetGap)) and the sheets used.
+/// nested on a grid of cells (print/internal/nest_outlines.h). Returns each part's turn and shift
+/// in layout coordinates (sheet k is the window at x = k * (w + kSheetGap)) and the sheets used.
 constexpr double kSheetGap = 20;
 
 struct Placement {

@@ -10,9 +10,10 @@ namespace papernet {
 /// Nests the pieces of a laid-out net onto the fewest sheets (docs/print.md, "Fit layout"): each
 /// piece with its glue tabs, and each glue strip, is an outline (their union grown by half of
 /// `spacing_mm`, so pieces keep that much paper between them to cut along), turned to lie along
-/// its minimum-area box and placed by libnest2d's bottom-left placer (first fit, largest first,
-/// quarter turns allowed), which slides outlines against each other polygon by polygon, not by
-/// their boxes. Pieces must already fit a page's printable area with their tabs (cut_to_fit).
+/// its minimum-area box, then placed by print/internal/nest_outlines.h: largest first, on the
+/// first sheet where one of its quarter turns fits, at the lowest free place of a grid of cells
+/// (into other pieces' hollows too). Pieces must already fit a page's printable area with their
+/// tabs (cut_to_fit).
 ///
 /// `piece` gives each face's piece. Moves everything in `layout` (faces, tabs, strips, lines,
 /// labels) rigidly to its sheet: sheet k is the window [k * (w + gap), (k + 1) * w + k * gap] x

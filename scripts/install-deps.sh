@@ -13,7 +13,7 @@ runtime=(libdraco7 libsqlite3-0 libpq5 libcairo2 libcpp-httplib0.11 libssl3 libp
 build=(build-essential cmake pkg-config git clang-format ccache
   libdraco-dev libtinygltf-dev nlohmann-json3-dev libcpp-httplib-dev
   libgtest-dev libsqlite3-dev libpq-dev libcairo2-dev zlib1g-dev libssl-dev
-  libnest2d-dev libpolyclipping-dev libboost-dev libpng-dev libjpeg-dev)
+  libpolyclipping-dev libpng-dev libjpeg-dev)
 # Node.js and npm bundle the web demo and run the JS client tests. Any Node >= 18 with npm
 # will do (Debian 12 ships 18); one already on the PATH is kept.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then

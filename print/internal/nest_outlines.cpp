@@ -1,71 +1,204 @@
 #include "print/internal/nest_outlines.h"
 
-#include <libnest2d/libnest2d.hpp>
+#include <polyclipping/clipper.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <utility>
 
 namespace papernet::print_detail {
 namespace {
 
-bool overlap(const libnest2d::Item& a, const libnest2d::Item& b) {
-  ClipperLib::Clipper clipper;
-  clipper.AddPath(a.transformedShape().Contour, ClipperLib::ptSubject, true);
-  clipper.AddPath(b.transformedShape().Contour, ClipperLib::ptClip, true);
-  ClipperLib::Paths common;
-  clipper.Execute(ClipperLib::ctIntersection, common, ClipperLib::pftNonZero,
-                  ClipperLib::pftNonZero);
+// The grid's cell, in the outlines' units (micrometres): half a millimetre.
+constexpr std::int64_t kCell = 500;
+
+// Outlines grow by this much before they are rasterised by their cells' centres, so that every
+// cell an outline touches is marked (half the cell's diagonal, and some to spare).
+constexpr double kCover = 0.72 * kCell;
+
+/// Cells of a grid as rows of 64-bit words; bit i of a row is cell i.
+class Bits {
+ public:
+  Bits() = default;
+  Bits(int width, int height)
+      : width_(width),
+        height_(height),
+        words_((width + 63) / 64),
+        bits_(static_cast<std::size_t>(words_) * height, 0) {}
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int words() const { return words_; }
+  std::uint64_t word(int row, int w) const {
+    return bits_[static_cast<std::size_t>(row) * words_ + w];
+  }
+  void set(int x, int y) {
+    bits_[static_cast<std::size_t>(y) * words_ + x / 64] |= std::uint64_t{1} << (x % 64);
+  }
+  /// Row `row` shifted `by` cells to the right, word `w`.
+  std::uint64_t shifted(int row, int w, int by) const {
+    const int whole = by / 64, part = by % 64;
+    const int src = w - whole;
+    std::uint64_t v = 0;
+    if (src >= 0 && src < words_) v = word(row, src) << part;
+    if (part != 0 && src - 1 >= 0 && src - 1 < words_) v |= word(row, src - 1) >> (64 - part);
+    return v;
+  }
+
+ private:
+  int width_ = 0, height_ = 0, words_ = 0;
+  std::vector<std::uint64_t> bits_;
+};
+
+/// An outline turned, as cells: `mask` cell (i, j) is the grid's cell (i + x, j + y) when the
+/// turned outline is moved by (x - ox, y - oy) cells.
+struct Shape {
+  double angle = 0;
+  std::int64_t ox = 0, oy = 0;  ///< the mask's first cell in the turned outline's frame
+  Bits mask;
   double area = 0;
-  for (const auto& p : common) area += std::abs(ClipperLib::Area(p));
-  return area > 0;
+};
+
+Shape rasterise(const std::vector<IntPoint>& outline, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  ClipperLib::Path path;
+  for (const IntPoint& p : outline)
+    path.push_back({static_cast<ClipperLib::cInt>(std::llround(c * p.x - s * p.y)),
+                    static_cast<ClipperLib::cInt>(std::llround(s * p.x + c * p.y))});
+  Shape shape;
+  shape.angle = angle;
+  shape.area = std::abs(ClipperLib::Area(path));
+  ClipperLib::ClipperOffset offset;
+  // An outline without area (a sliver's box) grows as the lines it is.
+  offset.AddPath(path, ClipperLib::jtMiter,
+                 shape.area > 0 ? ClipperLib::etClosedPolygon : ClipperLib::etOpenSquare);
+  ClipperLib::Paths grown;
+  offset.Execute(grown, kCover);
+  std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), lo_y = lo_x;
+  std::int64_t hi_x = std::numeric_limits<std::int64_t>::min(), hi_y = hi_x;
+  for (const auto& g : grown)
+    for (const auto& p : g) {
+      lo_x = std::min<std::int64_t>(lo_x, p.X), hi_x = std::max<std::int64_t>(hi_x, p.X);
+      lo_y = std::min<std::int64_t>(lo_y, p.Y), hi_y = std::max<std::int64_t>(hi_y, p.Y);
+    }
+  if (grown.empty()) return shape;
+  auto cell_of = [](std::int64_t v) {
+    return static_cast<std::int64_t>(std::floor(static_cast<double>(v) / kCell));
+  };
+  shape.ox = cell_of(lo_x);
+  shape.oy = cell_of(lo_y);
+  const auto w = static_cast<int>(cell_of(hi_x) - shape.ox + 1);
+  const auto h = static_cast<int>(cell_of(hi_y) - shape.oy + 1);
+  shape.mask = Bits(w, h);
+  // Each row's cells whose centres lie inside the grown outline (even-odd over all its paths,
+  // so a hole stays free).
+  std::vector<double> xs;
+  for (int j = 0; j < h; ++j) {
+    const double y = (static_cast<double>(shape.oy + j) + 0.5) * kCell;
+    xs.clear();
+    for (const auto& g : grown)
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        const auto& a = g[k];
+        const auto& b = g[(k + 1) % g.size()];
+        const double ay = static_cast<double>(a.Y), by = static_cast<double>(b.Y);
+        if ((ay <= y) == (by <= y)) continue;
+        xs.push_back(static_cast<double>(a.X) +
+                     (y - ay) * static_cast<double>(b.X - a.X) / (by - ay));
+      }
+    std::sort(xs.begin(), xs.end());
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+      const auto from = static_cast<int>(std::ceil(xs[k] / kCell - 0.5 - shape.ox));
+      const auto to = static_cast<int>(std::floor(xs[k + 1] / kCell - 0.5 - shape.ox));
+      for (int i = std::max(0, from); i <= std::min(w - 1, to); ++i) shape.mask.set(i, j);
+    }
+  }
+  return shape;
+}
+
+bool collides(const Bits& sheet, const Bits& mask, int x, int y) {
+  const int first = x / 64, last = (x + mask.width() - 1) / 64;
+  const int inner = x % 64;
+  for (int j = 0; j < mask.height(); ++j)
+    for (int w = first; w <= last; ++w) {
+      // The mask's row shifted by x cells: its word w - x / 64, shifted by x % 64.
+      const std::uint64_t m = mask.shifted(j, w - first, inner);
+      if (m & sheet.word(y + j, w)) return true;
+    }
+  return false;
+}
+
+void stamp(Bits& sheet, const Bits& mask, int x, int y) {
+  for (int j = 0; j < mask.height(); ++j)
+    for (int i = 0; i < mask.width(); ++i)
+      if (mask.word(j, i / 64) >> (i % 64) & 1) sheet.set(x + i, y + j);
+}
+
+/// The lowest, then leftmost, place of `mask` on `sheet` where it touches nothing.
+std::optional<std::pair<int, int>> lowest_place(const Bits& sheet, const Bits& mask) {
+  for (int y = 0; y + mask.height() <= sheet.height(); ++y)
+    for (int x = 0; x + mask.width() <= sheet.width(); ++x)
+      if (!collides(sheet, mask, x, y)) return std::pair{x, y};
+  return std::nullopt;
 }
 
 }  // namespace
 
 std::vector<NestedOutline> nest_outlines(const std::vector<std::vector<IntPoint>>& outlines,
                                          std::int64_t width, std::int64_t height) {
-  std::vector<libnest2d::Item> items;
-  items.reserve(outlines.size());
-  for (const auto& outline : outlines) {
-    ClipperLib::Path path;
-    for (const IntPoint& p : outline) path.push_back({p.x, p.y});
-    items.emplace_back(path);
-  }
-  using libnest2d::BottomLeftPlacer;
-  using libnest2d::FirstFitSelection;
-  // Outlines come turned to fit the sheet; the placer's own quarter turns are off, because with
-  // them libnest2d 5.0 was seen to leave two turned outlines overlapping.
-  const libnest2d::NestConfig<BottomLeftPlacer, FirstFitSelection> config{};
-  const libnest2d::Box sheet({0, 0}, {width, height});
-  std::vector<NestedOutline> out(items.size());
-  // Nest; then check every pair on a sheet, and nest those that overlap an earlier one again on
-  // sheets of their own (an outline alone on a sheet overlaps nothing), until none overlaps.
-  std::vector<std::size_t> todo(items.size());
-  for (std::size_t i = 0; i < todo.size(); ++i) todo[i] = i;
-  int first_sheet = 0;
-  while (!todo.empty()) {
-    std::vector<libnest2d::Item> batch;
-    for (std::size_t i : todo) batch.push_back(items[i]);
-    libnest2d::nest<BottomLeftPlacer, FirstFitSelection>(batch, sheet, 0, config);
-    std::vector<std::size_t> again;
-    int sheets = 0;
-    for (std::size_t k = 0; k < batch.size(); ++k) {
-      bool clash = false;
-      for (std::size_t j = 0; j < k && !clash && batch[k].binId() >= 0; ++j)
-        clash = batch[j].binId() == batch[k].binId() && overlap(batch[j], batch[k]);
-      if (clash) {
-        again.push_back(todo[k]);
-        batch[k].binId(-2);  // off its sheet: later outlines are not checked against it
-        continue;
+  const auto cols = static_cast<int>(width / kCell), rows = static_cast<int>(height / kCell);
+  std::vector<NestedOutline> out(outlines.size());
+  // Each outline in its four quarter turns.
+  std::vector<std::vector<Shape>> shapes(outlines.size());
+  for (std::size_t i = 0; i < outlines.size(); ++i)
+    for (int q = 0; q < 4; ++q)
+      shapes[i].push_back(rasterise(outlines[i], q * 0.5 * std::numbers::pi));
+  std::vector<std::size_t> order(outlines.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return shapes[a][0].area > shapes[b][0].area;
+  });
+  std::vector<Bits> sheets;
+  for (std::size_t i : order) {
+    bool placed = false;
+    for (std::size_t k = 0; k <= sheets.size() && !placed; ++k) {
+      const bool fresh = k == sheets.size();
+      if (fresh) sheets.emplace_back(cols, rows);
+      // Of the turns that fit this sheet, the one that lies lowest, then leftmost.
+      const Shape* best = nullptr;
+      std::pair<int, int> at{0, 0};
+      for (const Shape& s : shapes[i]) {
+        if (s.mask.width() == 0) continue;
+        const auto p = lowest_place(sheets[k], s.mask);
+        if (p && (!best || std::pair{p->second, p->first} < std::pair{at.second, at.first}))
+          best = &s, at = *p;
       }
-      const auto t = batch[k].translation();
-      const int bin = batch[k].binId();
-      out[todo[k]] = {bin < 0 ? -1 : first_sheet + bin, static_cast<double>(batch[k].rotation()),
-                      t.X, t.Y};
-      sheets = std::max(sheets, bin + 1);
+      if (!best && fresh) {
+        sheets.pop_back();  // fits no sheet, not even an empty one
+        break;
+      }
+      if (!best) continue;
+      stamp(sheets[k], best->mask, at.first, at.second);
+      out[i] = {static_cast<int>(k), best->angle, (at.first - best->ox) * kCell,
+                (at.second - best->oy) * kCell};
+      placed = true;
     }
-    if (again.size() == todo.size()) break;  // cannot happen: the first is alone on its sheet
-    first_sheet += sheets;
-    todo = std::move(again);
+    if (placed) continue;
+    // Too large for the grid's margin of cells: alone on a sheet, at its exact place, when its
+    // box fits the sheet as it comes turned.
+    std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), lo_y = lo_x;
+    std::int64_t hi_x = std::numeric_limits<std::int64_t>::min(), hi_y = hi_x;
+    for (const IntPoint& p : outlines[i]) {
+      lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
+      lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+    }
+    if (outlines[i].empty() || hi_x - lo_x > width || hi_y - lo_y > height) continue;
+    Bits& full = sheets.emplace_back(cols, rows);
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < cols; ++x) full.set(x, y);
+    out[i] = {static_cast<int>(sheets.size()) - 1, 0, -lo_x, -lo_y};
   }
   return out;
 }

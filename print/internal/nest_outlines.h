@@ -1,7 +1,5 @@
 #pragma once
-// The one place libnest2d is called (print/nest.cpp's backend). Plain C++17 on both sides: this
-// file's .cpp is compiled as C++17, because libnest2d 5.0's headers do not compile as C++20
-// (comparisons of its Radians become ambiguous with C++20's rewritten operators).
+// Outlines placed on sheets (print/nest.cpp's backend; docs/print.md, "Fit layout").
 
 #include <cstdint>
 #include <vector>
@@ -12,7 +10,7 @@ struct IntPoint {
   std::int64_t x = 0, y = 0;
 };
 
-/// Where libnest2d put one outline: sheet `sheet` (-1: it fits no sheet), turned by `angle`
+/// Where one outline goes: sheet `sheet` (-1: it fits no sheet), turned by `angle`
 /// radians counter-clockwise about the origin, then moved by (`dx`, `dy`).
 struct NestedOutline {
   int sheet = -1;
@@ -20,9 +18,14 @@ struct NestedOutline {
   std::int64_t dx = 0, dy = 0;
 };
 
-/// Nests closed outlines (each a simple polygon, clockwise, first point repeated last) into the
-/// fewest `width` x `height` sheets with the bottom-left placer, first fit (largest first),
-/// quarter turns allowed. Returns one placement per outline, in order.
+/// Nests closed outlines (each a simple polygon, first point repeated last) into few `width` x
+/// `height` sheets: each outline, in its four quarter turns, is covered by cells of 0.5 mm (500
+/// units; every cell it touches), and, largest first, goes on the first sheet where a turn of it
+/// touches no cell already taken, at the lowest, then leftmost, such cell (bottom-left fill). No
+/// two outlines placed on a sheet share a cell, so none overlap. An outline that no empty grid
+/// holds (its cells reach past the sheet) gets a sheet of its own at its exact place, untouched,
+/// when its box fits the sheet; else its sheet is -1. Returns one placement per outline, in
+/// order.
 std::vector<NestedOutline> nest_outlines(const std::vector<std::vector<IntPoint>>& outlines,
                                          std::int64_t width, std::int64_t height);
 

@@ -194,7 +194,7 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
     ++pdf_pages;
   EXPECT_EQ(pdf_pages, static_cast<std::size_t>(n));
 
-  // The sheet list: captions "page k: P1, P4" (on the Duck none needs a second line).
+  // The sheet list: captions "page k: P1, P4", broken after a comma onto more lines when long.
   const std::vector<std::string> overview = texts(printed.pages[0], "labels");
   std::map<int, std::vector<int>> listed;  // piece -> pages it is listed on
   std::map<int, std::vector<int>> mapped;  // piece -> thumbnails its number is on (by count)
@@ -204,14 +204,16 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
   const Adjacency adj = adjacency(doc);
   std::set<int> steps;
   int caption_page = -1;
+  bool more = false;  // the caption's last line ended in a comma: its next line goes on
   for (const std::string& t : overview) {
     std::smatch m;
-    if (std::regex_match(t, m, caption)) {
-      caption_page = std::stoi(m[1]) - 1;
-      const std::string rest = m[2];
+    if (more || std::regex_match(t, m, caption)) {
+      if (!more) caption_page = std::stoi(m[1]) - 1;
+      const std::string rest = more ? t : std::string(m[2]);
       for (auto it = std::sregex_iterator(rest.begin(), rest.end(), names);
            it != std::sregex_iterator(); ++it)
         listed[std::stoi((*it)[1]) - 1].push_back(caption_page);
+      more = !rest.empty() && rest.back() == ',';
     } else if (std::regex_match(t, m, step)) {
       const int p = std::stoi(m[1]) - 1;
       steps.insert(p);

@@ -639,9 +639,10 @@ TEST(ColourPrintSvg, PagesHoldOnePngPerPieceBetweenFillsAndLines) {
       ++images;
     }
   }
-  // Two pieces (the cube's two printed pieces) on a page each, one image each.
+  // One image per printed piece; the cube's pieces share pages (nested), every page coloured.
   EXPECT_EQ(images, static_cast<std::size_t>(out.print->pieces));
-  EXPECT_EQ(coloured_pages, static_cast<std::size_t>(out.print->pieces));
+  EXPECT_GE(coloured_pages, 1u);
+  EXPECT_LE(coloured_pages, static_cast<std::size_t>(out.print->pieces));
 }
 
 // With colour none the same pages are line art: the faces print in the pale face fill, not the
