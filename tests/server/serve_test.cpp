@@ -680,9 +680,10 @@ TEST_P(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsPiecesOrStrictlyTheMeshP
 // claimed it between the insert and the answer; polls then show documented phases only.
 TEST_P(ServeTest, AcceptedJobIsQueuedWithADocumentedPhase) {
   Server s({"--workers", "2", "--reuse-results", "false"});
+  // README "Progress": every phase a job reports.
   const std::set<std::string> phases = {
-      "queued", "load", "validate",  "collapse",     "unfold", "uncollapse", "tabs",
-      "write",  "done", "succeeded", "approximated", "failed", "cancelled"};
+      "queued", "load",  "validate", "collapse",  "unfold", "uncollapse", "tabs",
+      "layout", "write", "done",     "succeeded", "failed", "cancelled",  "approximated"};
   std::vector<std::string> ids;
   for (int i = 0; i < 6; ++i) {
     auto res = s.client().Post("/v1/jobs?strategy=TU", kNonManifoldObj, "model/obj");
