@@ -2,7 +2,7 @@
 // tested in Node). Every face hangs from its parent by the mesh edge they share; folding by t
 // rotates each face's subtree about that edge by t × its fold angle, composed from the root down.
 // At t = 0 every piece lies flat in z = 0 as drawn (x, y = its 2D points, y mirrored when the
-// piece is drawn clockwise), the pieces side by side in a row; at t = 1 every piece is where its
+// piece is drawn clockwise), the pieces side by side in rows; at t = 1 every piece is where its
 // part is in the model (a model in parts is seen whole), in the frame prepareFold is given (the
 // model's coordinates turned so that the model stands up: colour.js sceneFrame), each piece
 // turning and moving there steadily as t grows.
@@ -126,12 +126,27 @@ export function prepareFold(doc, { frame = IDENTITY } = {}) {
       hi[p] = [Math.max(hi[p][0], u), Math.max(hi[p][1], y)];
     }
   });
-  const gap = 0.1 * Math.max(...roots.map((_, p) => Math.max(hi[p][0] - lo[p][0], hi[p][1] - lo[p][1])));
+  const width = (p) => hi[p][0] - lo[p][0];
+  const height = (p) => hi[p][1] - lo[p][1];
+  const gap = 0.1 * Math.max(...roots.map((_, p) => Math.max(width(p), height(p))));
+  // Rows about twice as wide as the pieces' area is deep, so that a kit of many pieces stays in
+  // view; the first piece stays where it is drawn, the rows go on below it.
+  let area = 0;
+  for (let p = 0; p < pieces; ++p) area += (width(p) + gap) * (height(p) + gap);
+  const rowWidth = Math.max(...roots.map((_, p) => width(p)), 2 * Math.sqrt(area));
   const shift = [];
-  let x = 0;
+  let x = lo.length > 0 ? lo[0][0] : 0;
+  let top = lo.length > 0 ? hi[0][1] : 0;
+  let rowHeight = 0;
   for (let p = 0; p < pieces; ++p) {
-    shift.push(p === 0 ? [0, 0] : [x - lo[p][0], lo[0][1] - lo[p][1]]);
-    x = (p === 0 ? hi[0][0] : x + hi[p][0] - lo[p][0]) + gap;
+    if (p > 0 && x + width(p) > (lo[0][0] + rowWidth)) {
+      x = lo[0][0];
+      top -= rowHeight + gap;
+      rowHeight = 0;
+    }
+    shift.push(p === 0 ? [0, 0] : [x - lo[p][0], top - hi[p][1]]);
+    x += width(p) + gap;
+    rowHeight = Math.max(rowHeight, height(p));
   }
   const flat = netFaces.map((f, i) => {
     const p = pieceOf[i];

@@ -335,10 +335,15 @@ function offerSheets(id, pages) {
   };
 }
 
+// The job whose final result is shown: an intermediate fetched before it ended and parsed after
+// (a large net takes a while) must not replace it.
+let finalShown = null;
+
 async function showResult(id, final, format) {
   const [doc, svg] = await Promise.all([client.netJson(id), client.netSvg(id)]);
   const faces = doc.mesh.faces.length;
-  if (!final && faces === shownFaces) return;
+  if (!final && (faces === shownFaces || finalShown === id)) return;
+  if (final) finalShown = id;
   shownFaces = faces;
   showSvg(svg);
   offerSheets(id, final ? doc.print?.pages ?? 0 : 0);
