@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <regex>
 #include <set>
@@ -13,6 +14,7 @@
 #include "core/unfold/unfolding.h"
 #include "print/arrange.h"
 #include "print/fit.h"
+#include "print/internal/nest_outlines.h"
 #include "print/nest.h"
 #include "print/svg.h"
 #include "tests/support/meshes.h"
@@ -173,6 +175,58 @@ TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
   EXPECT_EQ(faces, u.mesh.faces.size());
   EXPECT_EQ(tabs, layout.tabs.size());
   EXPECT_EQ(strips, layout.strips.size());
+}
+
+// The grid nester on its own: an L-shaped outline leaves a hollow that a square fills on the same
+// sheet (a bottom-left placer that slides from the corner cannot reach it), no two placed
+// outlines overlap or leave the sheet, and an outline without area (a piece of slivers, seen as
+// its box) still gets a sheet.
+TEST(Nest, OutlinesFillHollowsWithoutOverlapsInsideTheSheet) {
+  using print_detail::IntPoint;
+  constexpr std::int64_t mm = 1000;  // outlines are in micrometres
+  auto polygon = [](std::vector<IntPoint> p) {
+    p.push_back(p.front());
+    return p;
+  };
+  // A4's printable area with 10 mm margins; an L filling its left and bottom 150 mm, and two
+  // 100 mm squares: with the L placed, one square fits only in the L's hollow.
+  const std::int64_t w = 190 * mm, h = 277 * mm;
+  const std::vector<std::vector<IntPoint>> outlines = {
+      polygon({{0, 0},
+               {185 * mm, 0},
+               {185 * mm, 150 * mm},
+               {50 * mm, 150 * mm},
+               {50 * mm, 270 * mm},
+               {0, 270 * mm}}),
+      polygon({{0, 0}, {100 * mm, 0}, {100 * mm, 100 * mm}, {0, 100 * mm}}),
+      polygon({{0, 0}, {100 * mm, 0}, {100 * mm, 100 * mm}, {0, 100 * mm}}),
+      polygon({{0, 0}, {30 * mm, 30 * mm}}),  // no area
+  };
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(outlines, w, h);
+  ASSERT_EQ(placed.size(), outlines.size());
+  std::map<int, std::vector<std::vector<Vec2>>> on_sheet;
+  for (std::size_t i = 0; i < outlines.size(); ++i) {
+    ASSERT_GE(placed[i].sheet, 0) << "outline " << i;
+    std::vector<Vec2> moved;
+    for (const IntPoint& p : outlines[i]) {
+      const Vec2 q =
+          rotate(Vec2{static_cast<double>(p.x), static_cast<double>(p.y)}, placed[i].angle) +
+          Vec2{static_cast<double>(placed[i].dx), static_cast<double>(placed[i].dy)};
+      EXPECT_GE(q.x, -1) << "outline " << i;
+      EXPECT_GE(q.y, -1) << "outline " << i;
+      EXPECT_LE(q.x, w + 1.0) << "outline " << i;
+      EXPECT_LE(q.y, h + 1.0) << "outline " << i;
+      moved.push_back((1.0 / mm) * q);
+    }
+    moved.pop_back();  // the repeated first point
+    on_sheet[placed[i].sheet].push_back(moved);
+  }
+  EXPECT_EQ(placed[1].sheet, placed[0].sheet) << "the first square goes into the L's hollow";
+  for (const auto& [sheet, shapes] : on_sheet)
+    for (std::size_t i = 0; i < shapes.size(); ++i)
+      for (std::size_t j = i + 1; j < shapes.size(); ++j)
+        EXPECT_LE(test::overlap_thickness(shapes[i], shapes[j]), 1e-6) << "sheet " << sheet;
 }
 
 }  // namespace
