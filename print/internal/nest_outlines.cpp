@@ -31,20 +31,17 @@ class Bits {
         bits_(static_cast<std::size_t>(words_) * height, 0) {}
   int width() const { return width_; }
   int height() const { return height_; }
-  int words() const { return words_; }
   std::uint64_t word(int row, int w) const {
     return bits_[static_cast<std::size_t>(row) * words_ + w];
   }
   void set(int x, int y) {
     bits_[static_cast<std::size_t>(y) * words_ + x / 64] |= std::uint64_t{1} << (x % 64);
   }
-  /// Row `row` shifted `by` cells to the right, word `w`.
+  /// Word `w` of row `row` shifted `by` (0 to 63) cells to the right: its own bits moved up, and
+  /// the top bits of the word before it.
   std::uint64_t shifted(int row, int w, int by) const {
-    const int whole = by / 64, part = by % 64;
-    const int src = w - whole;
-    std::uint64_t v = 0;
-    if (src >= 0 && src < words_) v = word(row, src) << part;
-    if (part != 0 && src - 1 >= 0 && src - 1 < words_) v |= word(row, src - 1) >> (64 - part);
+    std::uint64_t v = w < words_ ? word(row, w) << by : 0;
+    if (by != 0 && w > 0) v |= word(row, w - 1) >> (64 - by);
     return v;
   }
 
@@ -123,7 +120,7 @@ bool collides(const Bits& sheet, const Bits& mask, int x, int y) {
   const int inner = x % 64;
   for (int j = 0; j < mask.height(); ++j)
     for (int w = first; w <= last; ++w) {
-      // The mask's row shifted by x cells: its word w - x / 64, shifted by x % 64.
+      // The mask's row moved x cells right: its word w - x / 64, shifted by x % 64.
       const std::uint64_t m = mask.shifted(j, w - first, inner);
       if (m & sheet.word(y + j, w)) return true;
     }
