@@ -3,6 +3,7 @@
 #include <polyclipping/clipper.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -34,6 +35,14 @@ class Bits {
   std::uint64_t word(int row, int w) const {
     return bits_[static_cast<std::size_t>(row) * words_ + w];
   }
+  bool test(int x, int y) const { return word(y, x / 64) >> (x % 64) & 1; }
+  /// The 64 cells of row `row` from cell `x` on (bit 0 is cell x; cells past the row are 0).
+  std::uint64_t from(int row, int x) const {
+    const int w = x / 64, by = x % 64;
+    std::uint64_t v = w < words_ ? word(row, w) >> by : 0;
+    if (by != 0 && w + 1 < words_) v |= word(row, w + 1) << (64 - by);
+    return v;
+  }
   void set(int x, int y) {
     bits_[static_cast<std::size_t>(y) * words_ + x / 64] |= std::uint64_t{1} << (x % 64);
   }
@@ -57,7 +66,13 @@ struct Shape {
   std::int64_t ox = 0, oy = 0;  ///< the mask's first cell in the turned outline's frame
   Bits mask;
   double area = 0;
+  /// Some of the mask's cells, spread over it: a place where one of them meets a marked cell
+  /// of the sheet is ruled out before the whole mask is compared.
+  std::vector<std::pair<int, int>> probes;
 };
+
+// How many cells of a mask are probed first (Shape::probes).
+constexpr std::size_t kProbes = 24;
 
 Shape rasterise(const std::vector<IntPoint>& outline, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -112,6 +127,12 @@ Shape rasterise(const std::vector<IntPoint>& outline, double angle) {
       for (int i = std::max(0, from); i <= std::min(w - 1, to); ++i) shape.mask.set(i, j);
     }
   }
+  std::vector<std::pair<int, int>> cells;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      if (shape.mask.test(i, j)) cells.emplace_back(i, j);
+  const std::size_t step = std::max<std::size_t>(1, cells.size() / kProbes);
+  for (std::size_t k = step / 2; k < cells.size(); k += step) shape.probes.push_back(cells[k]);
   return shape;
 }
 
@@ -133,11 +154,26 @@ void stamp(Bits& sheet, const Bits& mask, int x, int y) {
       if (mask.word(j, i / 64) >> (i % 64) & 1) sheet.set(x + i, y + j);
 }
 
-/// The lowest, then leftmost, place of `mask` on `sheet` where it touches nothing.
-std::optional<std::pair<int, int>> lowest_place(const Bits& sheet, const Bits& mask) {
-  for (int y = 0; y + mask.height() <= sheet.height(); ++y)
-    for (int x = 0; x + mask.width() <= sheet.width(); ++x)
-      if (!collides(sheet, mask, x, y)) return std::pair{x, y};
+/// The lowest, then leftmost, place of `shape` on `sheet` where it touches nothing, no higher
+/// than row `last_y`. Sixty-four places of a row at a time are first ruled out where one of the
+/// shape's probes meets a marked cell.
+std::optional<std::pair<int, int>> lowest_place(const Bits& sheet, const Shape& shape, int last_y) {
+  const Bits& mask = shape.mask;
+  const int places = sheet.width() - mask.width() + 1;  // x in [0, places)
+  last_y = std::min(last_y, sheet.height() - mask.height());
+  for (int y = 0; y <= last_y && places > 0; ++y)
+    for (int x0 = 0; x0 < places; x0 += 64) {
+      std::uint64_t open =
+          places - x0 >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << (places - x0)) - 1;
+      for (auto [i, j] : shape.probes) {
+        open &= ~sheet.from(y + j, x0 + i);
+        if (open == 0) break;
+      }
+      for (; open != 0; open &= open - 1) {
+        const int x = x0 + std::countr_zero(open);
+        if (!collides(sheet, mask, x, y)) return std::pair{x, y};
+      }
+    }
   return std::nullopt;
 }
 
@@ -146,56 +182,81 @@ std::optional<std::pair<int, int>> lowest_place(const Bits& sheet, const Bits& m
 std::vector<NestedOutline> nest_outlines(const std::vector<std::vector<IntPoint>>& outlines,
                                          std::int64_t width, std::int64_t height) {
   const auto cols = static_cast<int>(width / kCell), rows = static_cast<int>(height / kCell);
-  std::vector<NestedOutline> out(outlines.size());
   // Each outline in its four quarter turns.
   std::vector<std::vector<Shape>> shapes(outlines.size());
   for (std::size_t i = 0; i < outlines.size(); ++i)
     for (int q = 0; q < 4; ++q)
       shapes[i].push_back(rasterise(outlines[i], q * 0.5 * std::numbers::pi));
-  std::vector<std::size_t> order(outlines.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return shapes[a][0].area > shapes[b][0].area;
-  });
-  std::vector<Bits> sheets;
-  for (std::size_t i : order) {
-    bool placed = false;
-    for (std::size_t k = 0; k <= sheets.size() && !placed; ++k) {
-      const bool fresh = k == sheets.size();
-      if (fresh) sheets.emplace_back(cols, rows);
-      // Of the turns that fit this sheet, the one that lies lowest, then leftmost.
-      const Shape* best = nullptr;
-      std::pair<int, int> at{0, 0};
-      for (const Shape& s : shapes[i]) {
-        if (s.mask.width() == 0) continue;
-        const auto p = lowest_place(sheets[k], s.mask);
-        if (p && (!best || std::pair{p->second, p->first} < std::pair{at.second, at.first}))
-          best = &s, at = *p;
+  // Outlines placed in `order`, each on the first sheet where it fits; how many sheets it took.
+  const auto fill = [&](const std::vector<std::size_t>& order, std::vector<NestedOutline>& out) {
+    std::vector<Bits> sheets;
+    for (std::size_t i : order) {
+      bool placed = false;
+      for (std::size_t k = 0; k <= sheets.size() && !placed; ++k) {
+        const bool fresh = k == sheets.size();
+        if (fresh) sheets.emplace_back(cols, rows);
+        // Of the turns that fit this sheet, the one that lies lowest, then leftmost.
+        const Shape* best = nullptr;
+        std::pair<int, int> at{0, 0};
+        for (const Shape& s : shapes[i]) {
+          if (s.mask.width() == 0) continue;
+          // A turn placed no lower than the best so far is not wanted.
+          const auto p = lowest_place(sheets[k], s, best ? at.second : rows);
+          if (p && (!best || std::pair{p->second, p->first} < std::pair{at.second, at.first}))
+            best = &s, at = *p;
+        }
+        if (!best && fresh) {
+          sheets.pop_back();  // fits no sheet, not even an empty one
+          break;
+        }
+        if (!best) continue;
+        stamp(sheets[k], best->mask, at.first, at.second);
+        out[i] = {static_cast<int>(k), best->angle, (at.first - best->ox) * kCell,
+                  (at.second - best->oy) * kCell};
+        placed = true;
       }
-      if (!best && fresh) {
-        sheets.pop_back();  // fits no sheet, not even an empty one
-        break;
+      if (placed) continue;
+      // Too large for the grid's margin of cells: alone on a sheet, at its exact place, when its
+      // box fits the sheet as it comes turned.
+      std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), lo_y = lo_x;
+      std::int64_t hi_x = std::numeric_limits<std::int64_t>::min(), hi_y = hi_x;
+      for (const IntPoint& p : outlines[i]) {
+        lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
+        lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
       }
-      if (!best) continue;
-      stamp(sheets[k], best->mask, at.first, at.second);
-      out[i] = {static_cast<int>(k), best->angle, (at.first - best->ox) * kCell,
-                (at.second - best->oy) * kCell};
-      placed = true;
+      if (outlines[i].empty() || hi_x - lo_x > width || hi_y - lo_y > height) continue;
+      Bits& full = sheets.emplace_back(cols, rows);
+      for (int y = 0; y < rows; ++y)
+        for (int x = 0; x < cols; ++x) full.set(x, y);
+      out[i] = {static_cast<int>(sheets.size()) - 1, 0, -lo_x, -lo_y};
     }
-    if (placed) continue;
-    // Too large for the grid's margin of cells: alone on a sheet, at its exact place, when its
-    // box fits the sheet as it comes turned.
-    std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), lo_y = lo_x;
-    std::int64_t hi_x = std::numeric_limits<std::int64_t>::min(), hi_y = hi_x;
-    for (const IntPoint& p : outlines[i]) {
-      lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
-      lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
-    }
-    if (outlines[i].empty() || hi_x - lo_x > width || hi_y - lo_y > height) continue;
-    Bits& full = sheets.emplace_back(cols, rows);
-    for (int y = 0; y < rows; ++y)
-      for (int x = 0; x < cols; ++x) full.set(x, y);
-    out[i] = {static_cast<int>(sheets.size()) - 1, 0, -lo_x, -lo_y};
+    return sheets.size();
+  };
+  // Largest first, by area, by the longest side, by the box: the order that takes the fewest
+  // sheets (the first of them on a tie).
+  const auto by = [&](auto key) {
+    std::vector<std::size_t> order(outlines.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return key(a) > key(b); });
+    return order;
+  };
+  const auto& turns = shapes;
+  const std::vector<std::vector<std::size_t>> orders{
+      by([&](std::size_t i) { return turns[i][0].area; }),
+      by([&](std::size_t i) {
+        return static_cast<double>(std::max(turns[i][0].mask.width(), turns[i][0].mask.height()));
+      }),
+      by([&](std::size_t i) {
+        return static_cast<double>(turns[i][0].mask.width()) * turns[i][0].mask.height();
+      }),
+  };
+  std::vector<NestedOutline> out;
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  for (const auto& order : orders) {
+    std::vector<NestedOutline> tried(outlines.size());
+    const std::size_t sheets = fill(order, tried);
+    if (sheets < fewest) fewest = sheets, out = std::move(tried);
   }
   return out;
 }
