@@ -1,6 +1,8 @@
 // The pipeline's last steps: the pieces as one net document, and the documents made from it.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <optional>
 
@@ -154,10 +156,49 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
 
 namespace {
 
+// How far the pieces of a fit layout are shrunk below a sheet's room, tried in turn (docs/print.md,
+// "Fit layout"): smaller pieces nest into each other's hollows and often fill fewer sheets.
+constexpr double kFitShrinks[] = {1, 0.85, 0.7, 0.6, 0.5, 0.4};
+
+// What a piece costs against a sheet when the cuts are chosen: one sheet fewer is worth up to
+// this many more pieces to cut out and glue.
+constexpr double kPiecesPerSheet = 20;
+
+// The net cut into pieces, numbered in build order, laid out and nested onto sheets.
+struct FitPrint {
+  FitPieces pieces;
+  PieceGraph graph;
+  PrintLayout layout;
+  PageLayout pages;
+
+  double cost() const {
+    return static_cast<double>(pages.pages.size()) + pieces.pieces / kPiecesPerSheet;
+  }
+};
+
+FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& print, double gap,
+                     const PageOptions& page) {
+  // The pieces numbered in a build order, neighbours after each other (docs/print.md).
+  FitPrint out{std::move(pieces), {}, {}, {}};
+  out.graph = piece_graph(mesh, out.pieces.piece);
+  std::vector<double> area(static_cast<std::size_t>(out.pieces.pieces), 0);
+  for (std::size_t f = 0; f < out.pieces.piece.size(); ++f) {
+    const auto& t = out.pieces.net.points[f];
+    area[out.pieces.piece[f]] += 0.5 * std::abs(cross(t[1] - t[0], t[2] - t[0]));
+  }
+  renumber_pieces(out.pieces.piece, build_order(out.graph, area));
+  out.graph = piece_graph(mesh, out.pieces.piece);
+  out.layout = layout_net(mesh, arrange_pieces(out.pieces.net, out.pieces.piece, gap), print,
+                          out.pieces.piece);
+  out.pages = nest_pages(out.layout, out.pieces.piece, page, kCutSpacingMm);
+  return out;
+}
+
 // The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
-// net document as printed (describe_print).
+// net document as printed (describe_print). A fit layout tries the cuts of kFitShrinks in turn
+// while `search_seconds` last (at least the first) and keeps the cheapest.
 void write_print(const JobOptions& options, const DocumentRequest& request, UnfoldOutcome& outcome,
-                 Progress& progress) {
+                 double search_seconds, Progress& progress) {
   const Mesh& mesh = outcome.net.mesh;
   Documents& docs = outcome.documents;
   const PrintOptions print = print_options(options);
@@ -167,7 +208,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   // The print path (docs/print.md): pieces, cut to fit a sheet with room for their tabs; tabs,
   // strips and labels; then nesting onto sheets (fit) or tiling (tile); then drawing.
   bool fit = has_paper(options) && options.layout != PageLayoutMode::Tile;
-  FitPieces pieces{outcome.net.net, outcome.net.piece, 0, 0};
+  std::optional<FitPrint> chosen;
   std::string layout_note;
   if (fit) {
     page.validate();
@@ -181,31 +222,55 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
                                    "the margins and tabs leave no room on the paper");
     const Vec3 extent = bounding_box(mesh).size();
     const double model_mm = scale * std::max({extent.x, extent.y, extent.z});
-    try {
-      pieces =
-          cut_to_fit(outcome.net.net, outcome.net.piece, scale, room, page.paper.name, model_mm);
-    } catch (const InvalidOptionException& e) {
-      // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
-      if (options.layout || e.code() != "face_too_large") throw;
-      fit = false;
-      layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
+    const auto started = std::chrono::steady_clock::now();
+    const auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    };
+    const std::size_t tries = std::size(kFitShrinks);
+    int last_pieces = -1;
+    for (std::size_t i = 0; i < tries; ++i) {
+      if (i > 0) {
+        if (progress.cancelled()) throw CancelledException();
+        // Another try only while one more as long as the average fits the time left, and while
+        // the best so far leaves sheets to save.
+        if (seconds() * (i + 1) / i > search_seconds || chosen->pages.pages.size() <= 1) break;
+      }
+      FitPieces cut;
+      try {
+        cut = cut_to_fit(outcome.net.net, outcome.net.piece, scale, room, page.paper.name, model_mm,
+                         kFitShrinks[i]);
+      } catch (const InvalidOptionException& e) {
+        // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
+        if (options.layout || e.code() != "face_too_large") throw;
+        fit = false;
+        layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
+        break;
+      }
+      if (cut.pieces == last_pieces) continue;  // the same cuts as the try before
+      last_pieces = cut.pieces;
+      FitPrint tried = lay_out_fit(mesh, std::move(cut), print, gap, page);
+      if (!chosen || tried.cost() < chosen->cost()) chosen = std::move(tried);
+      report(progress, "layout", 0.6 * static_cast<double>(i + 1) / static_cast<double>(tries));
     }
   }
-  // Fit: the pieces numbered in a build order, neighbours after each other (docs/print.md).
+  FitPieces pieces{outcome.net.net, outcome.net.piece, 0, 0};
   PieceGraph graph;
+  PrintLayout layout;
+  PageLayout pages;
+  std::optional<PrintLayout> unpaged;  // without paper: the net as laid out, before paginate
   if (fit) {
-    graph = piece_graph(mesh, pieces.piece);
-    std::vector<double> area(static_cast<std::size_t>(pieces.pieces), 0);
-    for (std::size_t f = 0; f < pieces.piece.size(); ++f) {
-      const auto& t = pieces.net.points[f];
-      area[pieces.piece[f]] += 0.5 * std::abs(cross(t[1] - t[0], t[2] - t[0]));
-    }
-    renumber_pieces(pieces.piece, build_order(graph, area));
-    graph = piece_graph(mesh, pieces.piece);
+    pieces = std::move(chosen->pieces);
+    graph = std::move(chosen->graph);
+    layout = std::move(chosen->layout);
+    pages = std::move(chosen->pages);
+  } else {
+    layout = layout_net(mesh, arrange_pieces(pieces.net, pieces.piece, gap), print, pieces.piece);
+    report(progress, "layout", 0.3);
+    // Without paper, the SVG is the net as laid out; paginating may turn it and move strips.
+    if (request.svg_pages && !has_paper(options)) unpaged = layout;
+    pages = paginate(layout, page);
   }
-  report(progress, "layout", 0.3);
-  PrintLayout layout =
-      layout_net(mesh, arrange_pieces(pieces.net, pieces.piece, gap), print, pieces.piece);
+  report(progress, "layout", 0.6);
   // Colour (docs/colour.md, "Printing"): rasterised page by page as the pages are drawn.
   std::optional<PrintColour> colour;
   if (options.colour && !outcome.net.colour.empty()) {
@@ -233,16 +298,11 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.labels = labels.count;
   summary.smallest_label_mm = labels.smallest_mm;
   summary.small_labels = labels.illegible;
-  // Without paper, the SVG is the net as laid out; paginating may turn it and move strips.
-  if (request.svg_pages && !has_paper(options))
-    docs.svg_pages = {write_net_svg(layout, page.margin_mm, paint)};
-  report(progress, "layout", 0.6);
-  PageLayout pages =
-      fit ? nest_pages(layout, pieces.piece, page, kCutSpacingMm) : paginate(layout, page);
   if (fit && options.overview.value_or(pieces.pieces > 1)) {
     add_overview(pages, layout, pieces.piece, std::move(graph));
     summary.overview = true;
   }
+  if (unpaged) docs.svg_pages = {write_net_svg(*unpaged, page.margin_mm, paint)};
   report(progress, "write", 0);
   summary.pages = static_cast<int>(pages.pages.size());
   summary.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));
@@ -275,8 +335,8 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
 }  // namespace
 
 void write_documents(const JobOptions& options, const DocumentRequest& request,
-                     UnfoldOutcome& outcome, Progress& progress) {
-  if (request.print()) write_print(options, request, outcome, progress);
+                     UnfoldOutcome& outcome, double layout_seconds, Progress& progress) {
+  if (request.print()) write_print(options, request, outcome, layout_seconds, progress);
   report(progress, "write", 0.9);
   Documents& docs = outcome.documents;
   docs.net_json = write_net_json(outcome.net);

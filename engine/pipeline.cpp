@@ -79,7 +79,7 @@ class Relay : public Progress {
     Progress quiet;
     JobOptions line_art = options_;
     line_art.colour = false;
-    write_documents(line_art, documents_, outcome, quiet);
+    write_documents(line_art, documents_, outcome, 0, quiet);  // one layout tried: a preview
     to_.intermediate_outcome(outcome);
   }
   bool cancelled() override { return to_.cancelled(); }
@@ -198,7 +198,8 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
     out.net.warnings.push_back(std::move(*warning));
   out.net.metrics.seconds = seconds;
   if (options.colour && documents.print()) out.baked_colour = bake_colour(pieces, prepared, scale);
-  write_documents(options, documents, out, tracked);
+  // The layout's search for fewer sheets may take half of the time left; drawing the rest.
+  write_documents(options, documents, out, 0.5 * (time_limit - seconds_since(start)), tracked);
   tracked.finish(out.net.mesh.faces.size(), prepared.input.faces);
   return out;
 }

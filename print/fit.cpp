@@ -68,7 +68,7 @@ std::string mm(double v) {
 }  // namespace
 
 FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
-                     const std::string& paper_name, double model_mm) {
+                     const std::string& paper_name, double model_mm, double shrink) {
   const auto n = static_cast<int>(net.parent.size());
   FitPieces out{net, piece, 0, 0};
   for (int p : piece) out.pieces = std::max(out.pieces, p + 1);
@@ -104,6 +104,7 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
   for (std::size_t i = 0; i < order.size(); ++i)
     for (int c : children[order[i]]) order.push_back(c);
 
+  const Vec2 target = std::clamp(shrink, 0.0, 1.0) * room;
   // hull[f]: the convex hull (mm) of what remains of f's subtree after the cuts below it.
   std::vector<std::vector<Vec2>> hull(n);
   std::vector<char> cut(n, 0);
@@ -118,7 +119,7 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
       std::vector<Vec2> pts = own;
       for (int c : kept) pts.insert(pts.end(), hull[c].begin(), hull[c].end());
       std::vector<Vec2> h = convex_hull(pts);
-      if (hull_fits(h, room) || kept.empty()) {
+      if (hull_fits(h, target) || kept.empty()) {
         hull[f] = std::move(h);
         break;
       }

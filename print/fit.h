@@ -23,11 +23,13 @@ struct FitPieces {
 /// box of its convex hull along one of the hull's edges fits `room` either way round. Greedy from
 /// the leaves: a face keeps its children's remaining subtrees while they fit together and cuts
 /// off the largest ones (by hull area) when they do not, so a piece that fits is never cut and
-/// the pieces cut off are as large as the room allows.
+/// the pieces cut off are as large as the room allows. With `shrink` below 1, pieces are cut to
+/// fit `shrink` x `room` instead (smaller pieces nest onto fewer sheets: docs/print.md, "Fit
+/// layout"); a face larger than that is a piece of its own, as long as it fits `room`.
 /// \throw InvalidOptionException ("face_too_large", option "size_mm") naming a face that fits
 ///        no room, its size, and the largest model size (`model_mm` is the model's size at
 ///        `scale`) at which every face fits.
 FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
-                     const std::string& paper_name, double model_mm);
+                     const std::string& paper_name, double model_mm, double shrink = 1);
 
 }  // namespace papernet

@@ -92,9 +92,11 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
 /// The documents of `outcome.net` that `request` asks for; fills `outcome.print` when it asks
 /// for a print. Printed on paper, `outcome.net` becomes the net as printed (its pieces cut to fit
 /// a sheet, its `print` placements) before the net JSON is written. Progress: phase "layout" (a
-/// print's pieces cut to fit, tabs, nesting), then "write", each with its phase_fraction.
+/// print's pieces cut to fit, tabs, nesting), then "write", each with its phase_fraction. A fit
+/// layout tries several cuts while `layout_seconds` last, at least one, and keeps the one that
+/// needs the fewest sheets for its pieces (docs/print.md, "Fit layout").
 /// \throw InvalidOptionException when the print refuses the options.
 void write_documents(const JobOptions& options, const DocumentRequest& request,
-                     UnfoldOutcome& outcome, Progress& progress);
+                     UnfoldOutcome& outcome, double layout_seconds, Progress& progress);
 
 }  // namespace papernet::engine_detail

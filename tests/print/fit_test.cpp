@@ -100,6 +100,36 @@ TEST(Fit, CutsALargeNetIntoTreesThatEachFitTheSheet) {
   EXPECT_EQ(small.net.parent, u.net.parent);
 }
 
+TEST(Fit, ShrunkPiecesFitTheSmallerBoxAndAFaceLargerThanItIsAPieceAlone) {
+  const Unfolded u = tabu_net("sample.obj");
+  ASSERT_FALSE(u.mesh.faces.empty());
+  const double scale = print_scale(u.mesh, {});  // 200 mm
+  const std::vector<int> one(u.mesh.faces.size(), 0);
+  const FitPieces full = cut_to_fit(u.net, one, scale, kRoom, "A4", 200);
+  const FitPieces half = cut_to_fit(u.net, one, scale, kRoom, "A4", 200, 0.5);
+  EXPECT_GT(half.pieces, full.pieces);
+  std::vector<std::vector<Vec2>> points(half.pieces);
+  for (std::size_t f = 0; f < u.mesh.faces.size(); ++f)
+    for (Vec2 q : u.net.points[f]) points[half.piece[f]].push_back(scale * q);
+  for (int p = 0; p < half.pieces; ++p)
+    EXPECT_TRUE(fits_at_some_turn(points[p], 0.5 * kRoom, 1.0)) << "piece " << p;
+  const NetCheckReport check = check_pieces(u.mesh, half.net, half.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+
+  // A tetrahedron whose faces fit the room but not a tenth of it: four pieces of one face.
+  const Mesh mesh = test::tetrahedron();
+  const Net net = test::bfs_net(mesh);
+  const std::vector<int> four(mesh.faces.size(), 0);
+  double side = 0;
+  for (const auto& t : net.points)
+    for (int k = 0; k < 3; ++k) side = std::max(side, norm(t[k] - t[(k + 1) % 3]));
+  const double big = 0.5 * kRoom.x / side;  // the longest side half the room's width
+  const FitPieces alone = cut_to_fit(net, four, big, kRoom, "A4", 100, 0.1);
+  EXPECT_EQ(alone.pieces, 4);
+  EXPECT_EQ(alone.cut_links, 3);
+  EXPECT_THROW(cut_to_fit(net, four, 4 * big, kRoom, "A4", 400, 0.1), InvalidOptionException);
+}
+
 TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
   const Mesh mesh = test::tetrahedron();
   const Net net = test::bfs_net(mesh);
