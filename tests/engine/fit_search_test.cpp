@@ -51,8 +51,8 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
     ASSERT_TRUE(p->doc.print);
     EXPECT_EQ(static_cast<std::size_t>(p->doc.print->pages), p->pages);
   }
-  std::printf("sample.obj on A4: %zu sheets with %d pieces; searched, %zu with %d\n",
-              largest.pages, largest.pieces, searched.pages, searched.pieces);
+  std::printf("sample.obj on A4: %zu sheets with %d pieces; searched, %zu with %d\n", largest.pages,
+              largest.pieces, searched.pages, searched.pieces);
 }
 
 }  // namespace
