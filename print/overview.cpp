@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
 
 namespace papernet {
@@ -47,6 +48,30 @@ std::vector<std::string> wrap(const std::string& head, const std::vector<int>& p
       line = longer;
   }
   return lines;
+}
+
+/// A box on the page: x0, y0, x1, y1 (mm).
+struct Box {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+  bool holds(const Box& o) const { return o.x0 >= x0 && o.x1 <= x1 && o.y0 >= y0 && o.y1 <= y1; }
+};
+
+/// The centre nearest `at` for a text box of half-size `half` that lies inside `inside` and
+/// overlaps none of `taken`: `at` itself, else the first free place on rings around it (eight
+/// directions, each ring a text box farther out); `at` when none is free.
+Vec2 free_place(Vec2 at, Vec2 half, const Box& inside, const std::vector<Box>& taken) {
+  constexpr int kRings = 8;
+  for (int r = 0; r <= kRings; ++r)
+    for (int k = 0; k < (r == 0 ? 1 : 8); ++k) {
+      const double a = k * std::numbers::pi / 4;
+      const Vec2 c{at.x + r * 2 * half.x * std::cos(a), at.y + r * 2 * half.y * std::sin(a)};
+      const Box box{c.x - half.x, c.y - half.y, c.x + half.x, c.y + half.y};
+      if (!inside.holds(box)) continue;
+      if (std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(box); }))
+        return c;
+    }
+  return at;
 }
 
 struct Writer {
@@ -122,9 +147,22 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
       if (std::all_of(g.corners.begin(), g.corners.end(), [&](Vec2 p) { return holds(page, p); }))
         out.line(Layer::Cut, {map(g.corners[0]), map(g.corners[1]), map(g.corners[2]),
                               map(g.corners[3]), map(g.corners[0])});
-    for (const int p : on_sheet[i])
-      if (p < static_cast<int>(layout.piece_labels.size()))
-        out.text(Layer::Labels, map(layout.piece_labels[p].at), piece_name(p), kPieceMm);
+    // Each piece's number at its label, or, where it would cover a number already there, at
+    // the nearest free place around it inside the thumbnail, with a line back to the piece.
+    const Box inside{x0, y0, x0 + sw * scale, y0 + sh * scale};
+    std::vector<Box> taken;
+    for (const int p : on_sheet[i]) {
+      if (p >= static_cast<int>(layout.piece_labels.size())) continue;
+      const Vec2 at = map(layout.piece_labels[p].at);
+      const std::string name = piece_name(p);
+      const Vec2 half{0.5 * text_width(name, kPieceMm) + 0.3, 0.5 * kPieceMm + 0.3};
+      const Vec2 place = free_place(at, half, inside, taken);
+      taken.push_back({place.x - half.x, place.y - half.y, place.x + half.x, place.y + half.y});
+      out.text(Layer::Labels, place, name, kPieceMm);
+      const Vec2 edge{std::clamp(at.x, place.x - half.x, place.x + half.x),
+                      std::clamp(at.y, place.y - half.y, place.y + half.y)};
+      if (norm(edge - at) > 0.5) out.line(Layer::Marks, {at, edge});
+    }
     // The caption: "page 3: P1, P4", broken into lines that fit the thumbnail's width.
     const std::vector<std::string> lines = captions(static_cast<std::size_t>(i), cell_w);
     for (std::size_t l = 0; l < lines.size(); ++l)

@@ -1,8 +1,9 @@
-// Assembly aids (docs/print.md, "Build order" and "The overview page"), on the Duck at the
-// defaults (detail auto, 200 mm, A4, layout fit): pieces numbered so that each glues to one
-// before it, labels across pieces naming the piece they join, and the overview page listing
-// every piece with its sheet. Checked against an adjacency built here from the net JSON's mesh
-// and pieces, and against the drawn pages, not against the print's own data.
+// Assembly aids (docs/print.md, "Build order" and "The overview page"), on the Duck (and a CAD
+// part of many small pieces) at the defaults (detail auto, 200 mm, A4, layout fit): pieces
+// numbered so that each glues to one before it, labels across pieces naming the piece they join,
+// and the overview page listing every piece with its sheet. Checked against an adjacency built
+// here from the net JSON's mesh and pieces, and against the drawn pages, not against the print's
+// own data.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -242,6 +243,47 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
   EXPECT_EQ(steps.size(), doc.pieces.size()) << "one build step per piece";
   EXPECT_EQ(mapped.size(), doc.pieces.size()) << "each piece's number on its thumbnail";
   for (const auto& [p, on] : mapped) EXPECT_EQ(on.size(), 1u) << "P" << p + 1;
+}
+
+// No text on the overview covers another: the pieces' numbers on the thumbnails, where small
+// pieces lie close, included (on this part's 47 pieces four numbers covered others when each sat
+// at its piece's label). Boxes of half an em per character and 0.7 em high (digits and
+// capitals), from the drawn SVG.
+TEST(AssemblyAids, NoTextOnTheOverviewCoversAnother) {
+  JobOptions options;
+  options.layout = PageLayoutMode::Fit;
+  PipelineProgress quiet;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {}, {.svg_pages = true}, quiet);
+  const Printed printed{read_net_json(out.documents.net_json), out.documents.svg_pages, {}};
+  ASSERT_TRUE(printed.doc.print);
+  ASSERT_EQ(printed.doc.print->overview_page, 0);
+  const std::string g = svg_group(printed.pages[0], "labels");
+  static const std::regex text(
+      "<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" font-size=\"([0-9.]+)\"[^>]*>([^<]+)</text>");
+  struct Box {
+    double x0, y0, x1, y1;
+    std::string text;
+  };
+  std::vector<Box> boxes;
+  std::size_t numbers = 0;
+  for (auto it = std::sregex_iterator(g.begin(), g.end(), text); it != std::sregex_iterator();
+       ++it) {
+    const double x = std::stod((*it)[1]), size = std::stod((*it)[3]);
+    const double y = std::stod((*it)[2]) - 0.35 * size;  // the text's visual centre
+    const std::string t = (*it)[4];
+    numbers += std::regex_match(t, std::regex("P[0-9]+"));
+    const double half_w = 0.25 * size * static_cast<double>(t.size());
+    boxes.push_back({x - half_w, y - 0.35 * size, x + half_w, y + 0.35 * size, t});
+  }
+  EXPECT_GE(numbers, printed.doc.pieces.size()) << "each piece's number on its thumbnail";
+  EXPECT_GT(printed.doc.pieces.size(), 20u) << "the part no longer has many small pieces";
+  for (std::size_t a = 0; a < boxes.size(); ++a)
+    for (std::size_t b = a + 1; b < boxes.size(); ++b) {
+      const Box &p = boxes[a], &q = boxes[b];
+      EXPECT_FALSE(p.x0 < q.x1 && q.x0 < p.x1 && p.y0 < q.y1 && q.y0 < p.y1)
+          << "\"" << p.text << "\" covers \"" << q.text << "\"";
+    }
 }
 
 // overview no: the sheets alone, from page 1, in build order too; the net JSON has no
