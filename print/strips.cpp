@@ -189,15 +189,15 @@ std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& face
   // The window must hug the net (its centre at most `hug` beyond its half size from a face or
   // tab): a strip out in the open would print on pages that show nothing else.
   const double hug = options.hug / cell;
-  auto try_at = [&](const Size& s, int ci, int cj) {
+  auto try_at = [&](const Size& s, int ci, int cj, bool hugging = true) {
     for (bool standing : {false, true}) {
       const double w = standing ? s.width : s.length, h = standing ? s.length : s.width;
       const int cw = static_cast<int>(std::ceil(w / cell)) + 2 * gc;
       const int ch = static_cast<int>(std::ceil(h / cell)) + 2 * gc;
       const int i = ci - cw / 2, j = cj - ch / 2;
       if (i < 0 || j < 0 || i + cw > space.nx() || j + ch > space.ny() ||
-          space.at(distance, ci, cj) > 0.5 * std::max(cw, ch) + hug || !allowed(i, j, cw, ch) ||
-          !space.free(i, j, cw, ch))
+          (hugging && space.at(distance, ci, cj) > 0.5 * std::max(cw, ch) + hug) ||
+          !allowed(i, j, cw, ch) || !space.free(i, j, cw, ch))
         continue;
       const auto rect = strip_rect(space.corner(i + gc, j + gc), s.length, s.width, standing);
       if (grid.overlaps(rect, tolerance)) continue;  // the raster is conservative: never
@@ -212,26 +212,67 @@ std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& face
   // around the edge's middle, up to `search_radius`), so that it is printed on the same page
   // as its edge where it can be.
   const int radius = static_cast<int>(std::ceil(options.search_radius / cell));
-  std::vector<int> far;  // strips with no room near their edge
-  for (int o : order) {
-    const Size& s = sizes[o];
-    const int ti = static_cast<int>(std::floor((s.near.x - lo.x) / cell));
-    const int tj = static_cast<int>(std::floor((s.near.y - lo.y) / cell));
-    const double limit = 0.5 * (std::ceil(s.length / cell) + 2 * gc) + hug;
-    bool placed = false;
-    for (int r = 0; r <= radius && !placed; ++r)
-      for (int k = 0; k < std::max(1, 8 * r) && !placed; ++k) {
+  auto cell_of = [&](Vec2 p) {
+    return std::pair{static_cast<int>(std::floor((p.x - lo.x) / cell)),
+                     static_cast<int>(std::floor((p.y - lo.y) / cell))};
+  };
+  // Whether `place` puts strip `s` on a cell of the rings around its edge's middle, nearest
+  // first, out to radius `rings`, within cells [i0, i1] x [j0, j1].
+  auto ring_search = [&](const Size& s, int rings, int i0, int j0, int i1, int j1, auto place) {
+    const auto [ti, tj] = cell_of(s.near);
+    for (int r = 0; r <= rings; ++r)
+      for (int k = 0; k < std::max(1, 8 * r); ++k) {
         // The k-th cell of the ring of radius r: walk its four sides.
         const int side = r > 0 ? k / (2 * r) : 0, t = r > 0 ? k % (2 * r) : 0;
         const int di = side == 0 ? -r + t : side == 1 ? r : side == 2 ? r - t : -r;
         const int dj = side == 0 ? -r : side == 1 ? -r + t : side == 2 ? r : r - t;
         const int ci = ti + di, cj = tj + dj;
-        if (ci < 0 || cj < 0 || ci >= space.nx() || cj >= space.ny() ||
-            space.at(distance, ci, cj) > limit)
-          continue;  // off the raster, or too far from the net for this strip either way
-        placed = try_at(s, ci, cj);
+        if (ci < i0 || cj < j0 || ci > i1 || cj > j1) continue;
+        if (place(ci, cj)) return true;
       }
+    return false;
+  };
+  std::vector<int> far;  // strips with no room near their edge
+  for (int o : order) {
+    const Size& s = sizes[o];
+    const double limit = 0.5 * (std::ceil(s.length / cell) + 2 * gc) + hug;
+    const bool placed =
+        ring_search(s, radius, 0, 0, space.nx() - 1, space.ny() - 1, [&](int ci, int cj) {
+          // too far from the net for this strip either way
+          return space.at(distance, ci, cj) <= limit && try_at(s, ci, cj);
+        });
     if (!placed) far.push_back(o);
+  }
+  // Then, when strips must lie in boxes (the sheets of a fit layout), the free window nearest
+  // the edge anywhere in the edge's own box, out in the open too: that sheet prints anyway.
+  if (!options.within.empty()) {
+    std::vector<int> still;
+    // Per box, the first strip that found no room in it: no strip as long and as wide will.
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    std::vector<std::pair<double, double>> full(options.within.size(), {kInfinity, kInfinity});
+    for (int o : far) {
+      const Size& s = sizes[o];
+      std::size_t b = 0;
+      while (b < options.within.size() &&
+             !(s.near.x >= options.within[b].first.x && s.near.y >= options.within[b].first.y &&
+               s.near.x <= options.within[b].second.x && s.near.y <= options.within[b].second.y))
+        ++b;
+      if (b == options.within.size() || (s.length >= full[b].first && s.width >= full[b].second)) {
+        still.push_back(o);
+        continue;
+      }
+      const auto [i0, j0] = cell_of(options.within[b].first);
+      const auto [i1, j1] = cell_of(options.within[b].second);
+      const auto [ti, tj] = cell_of(s.near);
+      const int rings = std::max({ti - i0, i1 - ti, tj - j0, j1 - tj});
+      if (ring_search(s, rings, std::max(0, i0), std::max(0, j0), std::min(space.nx() - 1, i1),
+                      std::min(space.ny() - 1, j1),
+                      [&](int ci, int cj) { return try_at(s, ci, cj, false); }))
+        continue;
+      if (full[b].first == kInfinity) full[b] = {s.length, s.width};
+      still.push_back(o);
+    }
+    far = std::move(still);
   }
   // Then anywhere in the box, scanning rows from the top, left to right. Strips come in growing
   // sizes and space only shrinks, so no window before the last strip's can hold the next: the

@@ -3,13 +3,17 @@
 // Sheets are counted from the drawn pages.
 #include <gtest/gtest.h>
 
+#include <regex>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "api/net_json.h"
 #include "core/unfold/net_check.h"
 #include "engine/internal/steps.h"
 #include "engine/pipeline.h"
 #include "tests/support/job_input.h"
+#include "tests/support/svg.h"
 
 namespace papernet::test {
 namespace {
@@ -53,6 +57,41 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
   }
   std::printf("sample.obj on A4: %zu sheets with %d pieces; searched, %zu with %d\n", largest.pages,
               largest.pieces, searched.pages, searched.pieces);
+}
+
+/// The texts of an SVG group: their numbers (the text before an arrow, "12" of "12→P3").
+std::vector<std::string> numbers(const std::string& group) {
+  std::vector<std::string> out;
+  static const std::regex text("<text [^>]*>([0-9]+)[^<]*</text>");
+  for (auto it = std::sregex_iterator(group.begin(), group.end(), text);
+       it != std::sregex_iterator(); ++it)
+    out.push_back((*it)[1].str());
+  return out;
+}
+
+// A glue strip prints on the sheet of its edge (docs/print.md, "Fit layout"): each number on a
+// drawn strip is also an edge label on the same page. Tightly nested sheets leave little room
+// beside an edge, so a strip that finds none there goes to the nearest free paper of that sheet.
+TEST(FitSearch, GlueStripsPrintOnTheSheetOfTheirEdge) {
+  JobOptions options;
+  options.colour = false;
+  PipelineProgress quiet;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("reference.obj"), options, {}, {.svg_pages = true}, quiet);
+  ASSERT_TRUE(out.print);
+  ASSERT_GT(out.print->strips, 0u) << "reference.obj at the defaults has no glue strips now";
+  std::size_t strips = 0;
+  for (std::size_t k = 0; k < out.documents.svg_pages.size(); ++k) {
+    const std::string& svg = out.documents.svg_pages[k];
+    const std::vector<std::string> labels = numbers(svg_group(svg, "labels"));
+    const std::set<std::string> edges(labels.begin(), labels.end());
+    for (const std::string& n : numbers(svg_group(svg, "strips"))) {
+      ++strips;
+      EXPECT_TRUE(edges.count(n)) << "page " << k + 1 << ": strip " << n
+                                  << " is not on the sheet of its edge";
+    }
+  }
+  EXPECT_EQ(strips, 2 * out.print->strips) << "each strip carries its number twice";
 }
 
 }  // namespace
