@@ -209,6 +209,7 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
     }
     StripOptions strip_options;
     strip_options.gap = 0.5 * spacing_mm;
+    strip_options.nearest_in_box = true;  // on the sheet of its edge, wherever there is room
     for (int k = 0; k < sheets; ++k) strip_options.within.push_back(window(k));
     std::vector<GlueStrip> moved =
         place_strips(layout.faces, layout.tabs, requests, {}, strip_options);

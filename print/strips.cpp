@@ -245,33 +245,38 @@ std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& face
   }
   // Then, when strips must lie in boxes (the sheets of a fit layout), the free window nearest
   // the edge anywhere in the edge's own box, out in the open too: that sheet prints anyway.
-  if (!options.within.empty()) {
+  // Largest first, so that small strips fill what large ones leave.
+  if (options.nearest_in_box && !options.within.empty()) {
     std::vector<int> still;
-    // Per box, the first strip that found no room in it: no strip as long and as wide will.
-    constexpr double kInfinity = std::numeric_limits<double>::infinity();
-    std::vector<std::pair<double, double>> full(options.within.size(), {kInfinity, kInfinity});
-    for (int o : far) {
-      const Size& s = sizes[o];
+    // Per box, the sizes that found no room in it: no strip as long and as wide will.
+    std::vector<std::vector<std::pair<double, double>>> full(options.within.size());
+    for (auto it = far.rbegin(); it != far.rend(); ++it) {
+      const Size& s = sizes[*it];
       std::size_t b = 0;
       while (b < options.within.size() &&
              !(s.near.x >= options.within[b].first.x && s.near.y >= options.within[b].first.y &&
                s.near.x <= options.within[b].second.x && s.near.y <= options.within[b].second.y))
         ++b;
-      if (b == options.within.size() || (s.length >= full[b].first && s.width >= full[b].second)) {
-        still.push_back(o);
-        continue;
+      const bool hopeless =
+          b == options.within.size() ||
+          std::any_of(full[b].begin(), full[b].end(), [&](const std::pair<double, double>& f) {
+            return s.length >= f.first && s.width >= f.second;
+          });
+      if (!hopeless) {
+        const auto [i0, j0] = cell_of(options.within[b].first);
+        const auto [i1, j1] = cell_of(options.within[b].second);
+        const auto [ti, tj] = cell_of(s.near);
+        const int rings = std::max({ti - i0, i1 - ti, tj - j0, j1 - tj});
+        if (ring_search(s, rings, std::max(0, i0), std::max(0, j0), std::min(space.nx() - 1, i1),
+                        std::min(space.ny() - 1, j1),
+                        [&](int ci, int cj) { return try_at(s, ci, cj, false); }))
+          continue;
+        full[b].emplace_back(s.length, s.width);
       }
-      const auto [i0, j0] = cell_of(options.within[b].first);
-      const auto [i1, j1] = cell_of(options.within[b].second);
-      const auto [ti, tj] = cell_of(s.near);
-      const int rings = std::max({ti - i0, i1 - ti, tj - j0, j1 - tj});
-      if (ring_search(s, rings, std::max(0, i0), std::max(0, j0), std::min(space.nx() - 1, i1),
-                      std::min(space.ny() - 1, j1),
-                      [&](int ci, int cj) { return try_at(s, ci, cj, false); }))
-        continue;
-      if (full[b].first == kInfinity) full[b] = {s.length, s.width};
-      still.push_back(o);
+      still.push_back(*it);
     }
+    // The scan below takes them smallest first.
+    std::reverse(still.begin(), still.end());
     far = std::move(still);
   }
   // Then anywhere in the box, scanning rows from the top, left to right. Strips come in growing

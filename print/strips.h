@@ -30,6 +30,10 @@ struct StripOptions {
   double search_radius = 30;  ///< how far from its edge a strip is looked for first
   double hug = 3;  ///< ... where it stays this close to the net (beyond its own half size)
   std::vector<std::pair<Vec2, Vec2>> within;  ///< boxes (lo, hi) strips must lie in, if any
+  /// With `within`: a strip with no room near its edge takes the free place nearest its edge
+  /// anywhere in the box that holds the edge (a sheet of a fit layout, which prints anyway),
+  /// largest strips first, before the scan from the top left.
+  bool nearest_in_box = false;
 };
 
 /// One strip to place: for `edge`, `length` x `width`, as near `near` as it can go.
@@ -50,8 +54,9 @@ std::vector<StripRequest> strip_requests(const std::vector<std::array<Vec2, 3>>&
 /// Places every requested strip where it overlaps neither a face, a tab, one of `others` nor
 /// another strip, keeping `gap` of free paper around it: in the free window of the bounding box
 /// of faces, tabs and `others` nearest `near` (within `search_radius`, lying or standing) that
-/// hugs the net (so that it prints on a page the net needs anyway), else in the first free
-/// window of the box (scanning from the top left), else in rows below the box. With
+/// hugs the net (so that it prints on a page the net needs anyway), else (nearest_in_box) the
+/// nearest free window in the edge's box, else in the first free window of the box (scanning
+/// from the top left), else in rows below the box. With
 /// `options.within` set, windows inside the box must also lie inside one of those boxes.
 /// Checked geometrically with convex_overlap, never by the raster alone.
 std::vector<GlueStrip> place_strips(const std::vector<std::array<Vec2, 3>>& faces,
