@@ -228,7 +228,8 @@ bool refuse_unexpected_body(const httplib::Request& req) {
 std::string allowed_methods(const std::string& path) {
   static const std::regex job("^/v1/jobs/[^/]+$");
   static const std::regex job_get(
-      "^/v1/jobs/[^/]+/(events|net\\.json|net\\.svg|net\\.pdf|mesh\\.glb)$");
+      "^/v1/jobs/[^/]+/(events|net\\.json|net\\.svg|net\\.pdf|mesh\\.glb|pages/[0-9]{1,6}|"
+      "textures/[0-9]{1,6})$");
   if (path == "/v1/jobs") return "GET, HEAD, POST";
   if (std::regex_match(path, job)) return "GET, HEAD, DELETE";
   if (path == "/healthz" || path == "/readyz" || path == "/metrics" || path == "/v1/openapi.json" ||

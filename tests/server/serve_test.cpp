@@ -759,10 +759,10 @@ TEST_P(ServeTest, CorsForConfiguredOriginsOnEveryBrowserRoute) {
   EXPECT_EQ(events->status, 200);
   EXPECT_EQ(events->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
   EXPECT_NE(stream.find("event: done"), std::string::npos) << stream;
-  for (const std::string& path :
-       std::vector<std::string>{"/v1/jobs/" + id, "/v1/jobs", "/v1/jobs/" + id + "/net.json",
-                                "/v1/jobs/" + id + "/net.svg", "/v1/jobs/" + id + "/net.pdf",
-                                "/v1/jobs/" + id + "/mesh.glb", "/v1/openapi.json"}) {
+  for (const std::string& path : std::vector<std::string>{
+           "/v1/jobs/" + id, "/v1/jobs", "/v1/jobs/" + id + "/net.json",
+           "/v1/jobs/" + id + "/net.svg", "/v1/jobs/" + id + "/net.pdf",
+           "/v1/jobs/" + id + "/mesh.glb", "/v1/jobs/" + id + "/pages/1", "/v1/openapi.json"}) {
     SCOPED_TRACE(path);
     auto res = c.Get(path, shop);
     ASSERT_TRUE(res);
@@ -776,6 +776,22 @@ TEST_P(ServeTest, CorsForConfiguredOriginsOnEveryBrowserRoute) {
   auto missing = c.Get("/v1/jobs/0123456789abcdef0123456789abcdef", shop);
   expect_problem(missing, 404, "job_not_found");
   EXPECT_EQ(missing->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+  auto no_texture = c.Get("/v1/jobs/" + id + "/textures/0", shop);  // the mesh has none
+  ASSERT_TRUE(no_texture);
+  EXPECT_EQ(no_texture->status, 404);
+  EXPECT_EQ(no_texture->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
+  // A sheet and a texture are fetched by the demo's page: preflight and methods as for results.
+  for (const std::string path : {"/pages/2", "/textures/0"}) {
+    SCOPED_TRACE(path);
+    auto pre = c.Options("/v1/jobs/" + id + path, {{"Origin", "https://shop.example"},
+                                                   {"Access-Control-Request-Method", "GET"}});
+    ASSERT_TRUE(pre);
+    EXPECT_EQ(pre->status, 204);
+    EXPECT_EQ(pre->get_header_value("Access-Control-Allow-Methods"), "GET, HEAD");
+    auto post = c.Post("/v1/jobs/" + id + path, shop, "x", "text/plain");
+    expect_problem(post, 405, "method_not_allowed");
+    EXPECT_EQ(post->get_header_value("Allow"), "GET, HEAD");
+  }
   auto cancel = c.Delete("/v1/jobs/" + id, shop);
   expect_problem(cancel, 409, "job_finished");
   EXPECT_EQ(cancel->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");

@@ -96,10 +96,15 @@ TEST_P(ServeTenants, EachTenantSeesListsAndCancelsOnlyItsOwnJobs) {
   const json a_final = final_as(s, "key-a", a_job);
   ASSERT_EQ(a_final["status"], "succeeded") << a_final.dump();
   EXPECT_EQ(c.Get("/v1/jobs/" + a_job + "/net.json", bearer("key-a"))->status, 200);
+  // Its sheets too, with its key only (the demo and the JS client fetch them one by one).
+  EXPECT_EQ(c.Get("/v1/jobs/" + a_job + "/pages/1", bearer("key-a"))->status, 200);
+  expect_problem(c.Get("/v1/jobs/" + a_job + "/pages/1"), 401, "missing_api_key");
+  expect_problem(c.Get("/v1/jobs/" + a_job + "/textures/0"), 401, "missing_api_key");
 
   // Tenant B: A's job is not there, exactly as a job that never existed.
   const std::string nobody = "0123456789abcdef0123456789abcdef";
-  for (const char* suffix : {"", "/net.json", "/net.svg", "/mesh.glb", "/events"}) {
+  for (const char* suffix :
+       {"", "/net.json", "/net.svg", "/mesh.glb", "/events", "/pages/1", "/textures/0"}) {
     SCOPED_TRACE(suffix);
     auto other = c.Get("/v1/jobs/" + a_job + suffix, bearer("key-b"));
     auto missing = c.Get("/v1/jobs/" + nobody + suffix, bearer("key-b"));
