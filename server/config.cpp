@@ -55,6 +55,24 @@ double duration(const std::string& where, const std::string& v) {
   return out * unit;
 }
 
+// "500M" -> bytes: a whole number, optionally with K, M, G or T (powers of 1024).
+std::uint64_t byte_size(const std::string& where, const std::string& v) {
+  std::uint64_t unit = 1;
+  std::string digits = v;
+  const std::string units = "KMGT";
+  if (!v.empty() && units.find(v.back()) != std::string::npos) {
+    unit = std::uint64_t{1} << (10 * (units.find(v.back()) + 1));
+    digits.pop_back();
+  }
+  std::uint64_t out = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), out);
+  if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() ||
+      out > (std::uint64_t{1} << 60) / unit)
+    throw ConfigError(where + ": '" + v +
+                      "' is not a size (bytes, or a number with K, M, G or T; e.g. 20G)");
+  return out * unit;
+}
+
 bool yes_no(const std::string& where, const std::string& v) {
   if (v == "1" || v == "true" || v == "yes") return true;
   if (v == "0" || v == "false" || v == "no") return false;
@@ -232,6 +250,13 @@ const std::vector<Setting>& settings() {
        "job_expired; 0 = forever (default 7d)",
        [](ServerConfig& c, const std::string& w, const std::string& v) {
          c.retention = duration(w, v);
+       }},
+      {"max-store", "PAPERNET_MAX_STORE",
+       "most bytes of uploads and results the store keeps: past it, the finished jobs that "
+       "finished first expire early (410 job_expired), before their retention; bytes, or a "
+       "number with K, M, G or T; 0 = no bound (default 20G)",
+       [](ServerConfig& c, const std::string& w, const std::string& v) {
+         c.max_store_bytes = byte_size(w, v);
        }},
       {"webhook-hosts", "PAPERNET_WEBHOOK_HOSTS",
        "comma-separated hosts a job's callback_url may name (hooks.shop.example, 10.0.0.7, "

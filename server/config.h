@@ -43,6 +43,9 @@ struct ServerConfig {
   /// File of API keys (server/api_keys.h); "" = none: the API is open to whoever reaches it.
   std::string api_keys;
   double retention = 7 * 86400;  ///< seconds a finished job and its files are kept (0 = forever)
+  /// Bytes of uploads and results the store keeps at most (0 = no bound): past it, finished jobs
+  /// expire early, those that finished first first.
+  std::uint64_t max_store_bytes = std::uint64_t{20} << 30;
   /// Hosts a job's callback_url may name (server/webhooks.h); empty = any public host.
   std::vector<std::string> webhook_hosts;
   std::string webhook_secret;       ///< signs callbacks; "" = callback_url refused

@@ -246,6 +246,7 @@ ServiceStats JobService::stats() {
   try {
     s.jobs_by_status = store_.count_by_status();
     s.queued_by_tenant = store_.queued_by_tenant();
+    s.stored_bytes = store_.stored_bytes();
   } catch (const StoreError&) {
     s.store_up = false;
   }

@@ -33,6 +33,10 @@ struct ServiceSettings {
   /// Seconds a finished job is kept before JobStore::expire removes its files (0 = forever);
   /// swept every retention/2 seconds, at most every minute.
   double retention_seconds = 7 * 86400;
+  /// Bytes of files the store keeps at most (0 = no bound): the sweep expires the finished jobs
+  /// that finished first until the store holds no more (JobStore::stored_bytes); swept every
+  /// 2 seconds then.
+  std::uint64_t max_store_bytes = 0;
 };
 
 /// Who submits a job, and on what terms.
@@ -70,6 +74,7 @@ struct ServiceStats {
   std::uint64_t claims = 0;          ///< jobs this node's workers claimed
   std::uint64_t lease_expiries = 0;  ///< of those, taken over from a node whose lease ran out
   std::uint64_t leases_lost = 0;     ///< jobs this node ran whose lease passed to another node
+  std::uint64_t stored_bytes = 0;    ///< JobStore::stored_bytes (every node's jobs)
   StoreStats store;
 };
 

@@ -121,6 +121,11 @@ class JobStore {
   /// removed (a result other jobs still reuse stays until they expire too). Idempotency-Key
   /// records created before `keys_before` go. Returns the jobs that expired now.
   virtual std::size_t expire(double finished_before, double keys_before) = 0;
+  /// The bytes of every upload, intermediate and result file held (their lengths as stored,
+  /// before the database's own compression): what retention and the size bound remove.
+  virtual std::uint64_t stored_bytes() = 0;
+  /// When the finished job that finished first and has not expired finished (nullopt: none).
+  virtual std::optional<double> oldest_finished() = 0;
   /// `tenant`'s queued jobs.
   virtual std::size_t queued_count(const std::string& tenant) = 0;
   /// Queued jobs per tenant (tenants with none left out), for /metrics.

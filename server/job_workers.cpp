@@ -3,6 +3,7 @@
 // running here, publishes their progress and intermediates to the store for other nodes, and
 // learns of cancellations and of leases lost to another node.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "server/internal/live_job.h"
@@ -300,15 +301,36 @@ bool JobService::finish(JobRecord& record, const Claim& claim, JobStatus status,
 // Retention, on the lease keeper's thread: every node sweeps (JobStore::expire is idempotent).
 void JobService::sweep(std::chrono::steady_clock::time_point& next) {
   const auto now = std::chrono::steady_clock::now();
-  if (settings_.retention_seconds <= 0 || now < next) return;
-  const double every = std::clamp(settings_.retention_seconds / 2, 0.2, 60.0);
+  const bool timed = settings_.retention_seconds > 0, bounded = settings_.max_store_bytes > 0;
+  if ((!timed && !bounded) || now < next) return;
+  double every = timed ? std::clamp(settings_.retention_seconds / 2, 0.2, 60.0) : 60.0;
+  if (bounded) every = std::min(every, 2.0);
   next = now + std::chrono::milliseconds(static_cast<long>(every * 1000));
   const double wall = now_seconds();
+  const double keys_before = wall - 24 * 3600.0;
   try {
-    const std::size_t expired =
-        store_.expire(wall - settings_.retention_seconds, wall - 24 * 3600.0);
-    if (expired > 0)
-      log_("retention: " + std::to_string(expired) + " finished jobs expired; their files removed");
+    if (timed) {
+      const std::size_t expired = store_.expire(wall - settings_.retention_seconds, keys_before);
+      if (expired > 0)
+        log_("retention: " + std::to_string(expired) +
+             " finished jobs expired; their files removed");
+    }
+    std::uint64_t bytes = bounded ? store_.stored_bytes() : 0;
+    if (bytes > settings_.max_store_bytes) {
+      // The store's size bound: the jobs that finished first go first, each round at least one.
+      const std::uint64_t before = bytes;
+      std::size_t expired = 0;
+      while (bytes > settings_.max_store_bytes) {
+        const std::optional<double> oldest = store_.oldest_finished();
+        if (!oldest) break;  // only queued and running jobs hold files
+        expired += store_.expire(std::nextafter(*oldest, HUGE_VAL), keys_before);
+        bytes = store_.stored_bytes();
+      }
+      log_("retention: the store held " + std::to_string(before) + " bytes, more than " +
+           std::to_string(settings_.max_store_bytes) + " (--max-store); " +
+           std::to_string(expired) + " finished jobs expired early, " + std::to_string(bytes) +
+           " bytes left");
+    }
   } catch (const std::exception& e) {
     log_(std::string("retention: ") + e.what());
   }

@@ -143,6 +143,10 @@ std::string render_metrics(const ServiceStats& jobs, const HttpMetrics& http) {
       << "# HELP papernet_jobs_running Jobs a worker is running now.\n"
          "# TYPE papernet_jobs_running gauge\n"
       << "papernet_jobs_running " << jobs.running << "\n"
+      << "# HELP papernet_store_bytes Bytes of uploads, intermediates and results in the store "
+         "(what retention and --max-store remove).\n"
+         "# TYPE papernet_store_bytes gauge\n"
+      << "papernet_store_bytes " << jobs.stored_bytes << "\n"
       << "# HELP papernet_jobs Jobs in the store by status.\n"
          "# TYPE papernet_jobs gauge\n";
   for (const char* status :

@@ -377,6 +377,31 @@ std::size_t PgJobStore::expire(double finished_before, double keys_before) {
   return expired;
 }
 
+std::uint64_t PgJobStore::stored_bytes() {
+  std::uint64_t out = 0;
+  // octet_length reads a value's length from its header, without decompressing it.
+  pool_.run([&](Connection& c) {
+    out = static_cast<std::uint64_t>(
+        c.exec("SELECT (SELECT COALESCE(SUM(octet_length(mesh)), 0) FROM inputs) + "
+               "(SELECT COALESCE(SUM(octet_length(data)), 0) FROM input_files) + "
+               "(SELECT COALESCE(SUM(octet_length(data)), 0) FROM intermediates) + "
+               "(SELECT COALESCE(SUM(octet_length(data)), 0) FROM results)")
+            .integer(0, 0));
+  });
+  return out;
+}
+
+std::optional<double> PgJobStore::oldest_finished() {
+  std::optional<double> out;
+  pool_.run([&](Connection& c) {
+    Result r = c.exec(
+        "SELECT MIN(finished) FROM jobs WHERE NOT expired AND finished > 0 AND status IN "
+        "('succeeded', 'approximated', 'failed', 'cancelled')");
+    if (!r.null(0, 0)) out = r.real(0, 0);
+  });
+  return out;
+}
+
 std::size_t PgJobStore::queued_count(const std::string& tenant) {
   std::size_t out = 0;
   pool_.run([&](Connection& c) {

@@ -64,6 +64,7 @@ int run_service(const ServerConfig& config) {
   settings.max_attempts = config.max_attempts;
   settings.lease_seconds = config.lease;
   settings.retention_seconds = config.retention;
+  settings.max_store_bytes = config.max_store_bytes;
   JobService service(
       *store,
       make_pipeline_runner({config.max_body_bytes, config.max_faces, config.job_time_limit}),

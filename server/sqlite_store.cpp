@@ -332,6 +332,26 @@ std::size_t SqliteJobStore::expire(double finished_before, double keys_before) {
   return static_cast<std::size_t>(expired);
 }
 
+std::uint64_t SqliteJobStore::stored_bytes() {
+  std::lock_guard lock(mutex_);
+  // length() of a BLOB reads its size from the record, not its bytes.
+  Statement s(db_,
+              "SELECT (SELECT COALESCE(SUM(length(mesh)), 0) FROM inputs) + "
+              "(SELECT COALESCE(SUM(length(data)), 0) FROM input_files) + "
+              "(SELECT COALESCE(SUM(length(data)), 0) FROM intermediates) + "
+              "(SELECT COALESCE(SUM(length(data)), 0) FROM results)");
+  return s.step() ? static_cast<std::uint64_t>(s.integer(0)) : 0;
+}
+
+std::optional<double> SqliteJobStore::oldest_finished() {
+  std::lock_guard lock(mutex_);
+  Statement s(db_,
+              "SELECT COALESCE(MIN(finished), 0) FROM jobs WHERE expired=0 AND finished>0 AND "
+              "status IN ('succeeded','approximated','failed','cancelled')");
+  if (!s.step() || !(s.real(0) > 0)) return std::nullopt;
+  return s.real(0);
+}
+
 std::size_t SqliteJobStore::queued_count(const std::string& tenant) {
   std::lock_guard lock(mutex_);
   Statement s(db_, "SELECT COUNT(*) FROM jobs WHERE status='queued' AND tenant=?");

@@ -34,6 +34,8 @@ class SqliteJobStore : public JobStore {
   void forget_idempotency(const std::string& tenant, const std::string& key,
                           const std::string& job_id) override;
   std::size_t expire(double finished_before, double keys_before) override;
+  std::uint64_t stored_bytes() override;
+  std::optional<double> oldest_finished() override;
   std::size_t queued_count(const std::string& tenant) override;
   std::map<std::string, std::size_t> queued_by_tenant() override;
   std::map<std::string, std::size_t> count_by_status() override;

@@ -125,3 +125,13 @@ TEST(ConfigTest, RetentionIsADuration) {
   for (const char* bad : {"", "d", "7w", "-1", "1e9d", "soon"})
     EXPECT_THROW(parse({"--retention", bad}), ConfigError) << bad;
 }
+
+TEST(ConfigTest, MaxStoreIsASize) {
+  EXPECT_EQ(parse({})->max_store_bytes, std::uint64_t{20} << 30);
+  EXPECT_EQ(parse({"--max-store", "123456"})->max_store_bytes, 123456u);
+  EXPECT_EQ(parse({"--max-store", "500M"})->max_store_bytes, std::uint64_t{500} << 20);
+  EXPECT_EQ(parse({}, {{"PAPERNET_MAX_STORE", "2T"}})->max_store_bytes, std::uint64_t{2} << 40);
+  EXPECT_EQ(parse({"--max-store", "0"})->max_store_bytes, 0u);
+  for (const char* bad : {"", "G", "10GB", "-1", "1.5G", "99999999999T", "lots"})
+    EXPECT_THROW(parse({"--max-store", bad}), ConfigError) << bad;
+}

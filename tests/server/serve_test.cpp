@@ -815,13 +815,27 @@ TEST_P(ServeTest, NoCorsUnlessConfiguredAndAnyOriginWithStar) {
 
 // Retention: a finished job past --retention loses its upload and files and answers 410
 // job_expired; it leaves the list; a job that is not finished is kept.
+// papernet_store_bytes from /metrics.
+std::uint64_t store_bytes(const Server& s) {
+  auto res = s.client().Get("/metrics");
+  EXPECT_TRUE(res && res->status == 200);
+  if (!res) return 0;
+  const std::string name = "\npapernet_store_bytes ";
+  const auto at = res->body.find(name);
+  EXPECT_NE(at, std::string::npos) << res->body;
+  return at == std::string::npos ? 0 : std::stoull(res->body.substr(at + name.size()));
+}
+
 TEST_P(ServeTest, FinishedJobsExpireAfterRetentionWith410) {
   Server s({"--workers", "1", "--retention", "1"});
   auto c = s.client();
   const std::string id = submit(s, kNonManifoldObj, "model/obj", "?strategy=TU");
   ASSERT_EQ(wait_final(s, id)["status"], "succeeded");
+  const std::uint64_t held = store_bytes(s);  // its upload and results, unless already expired
   // Expiry comes within a sweep or two of the second passing: wait for it, then look.
   while (c.Get("/v1/jobs/" + id)->status == 200) std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(store_bytes(s), 0u) << "the expired job's upload and files are removed (held " << held
+                                << " bytes)";
   expect_problem(c.Get("/v1/jobs/" + id), 410, "job_expired");
   for (const char* name : {"/net.json", "/net.svg", "/net.pdf", "/mesh.glb", "/events"})
     expect_problem(c.Get("/v1/jobs/" + id + name), 410, "job_expired");
@@ -833,4 +847,37 @@ TEST_P(ServeTest, FinishedJobsExpireAfterRetentionWith410) {
   const json job = body(c.Get("/v1/jobs/" + again));
   EXPECT_FALSE(job["result"].is_object() && job["result"]["metrics"].contains("reused_from"))
       << job.dump();
+}
+
+// --max-store: past it, the finished jobs that finished first expire early (410), until the
+// store holds no more; the gauge papernet_store_bytes says what it holds.
+TEST_P(ServeTest, PastMaxStoreTheJobsThatFinishedFirstExpireEarly) {
+  std::uint64_t one = 0;  // one job's upload and results, measured without a bound
+  {
+    Server s({"--workers", "1", "--max-store", "0"});
+    const std::string id = submit(s, kNonManifoldObj, "model/obj", "?strategy=TU&size_mm=100");
+    ASSERT_EQ(wait_final(s, id)["status"], "succeeded");
+    one = store_bytes(s);
+  }
+  ASSERT_GT(one, 1000u);
+  // Room for two such jobs and a half: of four, the first two go.
+  const std::uint64_t bound = one * 5 / 2;
+  Server s({"--workers", "1", "--max-store", std::to_string(bound)});
+  auto c = s.client();
+  std::vector<std::string> ids;
+  for (int size : {100, 110, 120, 130}) {  // four results, none reused from another
+    ids.push_back(
+        submit(s, kNonManifoldObj, "model/obj", "?strategy=TU&size_mm=" + std::to_string(size)));
+    ASSERT_EQ(wait_final(s, ids.back())["status"], "succeeded");
+  }
+  // The sweep runs every 2 s with a bound: wait for the second job to go (at most 20 s).
+  for (int i = 0; i < 200 && c.Get("/v1/jobs/" + ids[1])->status == 200; ++i)
+    std::this_thread::sleep_for(100ms);
+  expect_problem(c.Get("/v1/jobs/" + ids[0]), 410, "job_expired");
+  expect_problem(c.Get("/v1/jobs/" + ids[1] + "/net.json"), 410, "job_expired");
+  for (int k : {2, 3}) EXPECT_EQ(c.Get("/v1/jobs/" + ids[k] + "/net.json")->status, 200) << k;
+  const std::uint64_t held = store_bytes(s);
+  EXPECT_LE(held, bound);
+  EXPECT_GT(held, one) << "the two newest jobs' files stay";
+  EXPECT_NE(s.log().find("(--max-store)"), std::string::npos) << s.log();
 }
