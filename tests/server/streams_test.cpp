@@ -26,7 +26,7 @@ namespace {
 #ifdef PAPERNET_TEST_SANITIZED
 constexpr std::size_t kStreams = 60;
 #else
-constexpr std::size_t kStreams = 300;
+constexpr std::size_t kStreams = 500;  // the default --max-streams
 #endif
 
 using Clock = std::chrono::steady_clock;
