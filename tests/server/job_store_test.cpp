@@ -121,6 +121,35 @@ TEST_P(JobStoreTest, TheQueueLimitCountsQueuedJobsOnly) {
   EXPECT_TRUE(store->insert(third, nullptr, 2)) << "one runs, one is queued";
 }
 
+// Idempotency-Key (README): a key stands for its first request within the window (the service
+// passes `since` = now - 24 h), per tenant; a record older than the window gives way.
+TEST_P(JobStoreTest, AnIdempotencyKeyStandsForItsFirstRequestWithinTheWindowOnly) {
+  const auto store = open_store();
+  constexpr double kDay = 24 * 3600;
+  const double t0 = 1'000'000;
+  EXPECT_EQ(store->remember_idempotency("shop-a", "k", {"h1", "job1", t0}, t0 - kDay).job_id,
+            "job1");
+  // The same key an hour later, even with another request: the first stands.
+  const IdempotencyRecord again =
+      store->remember_idempotency("shop-a", "k", {"h2", "job2", t0 + 3600}, t0 + 3600 - kDay);
+  EXPECT_EQ(again.job_id, "job1");
+  EXPECT_EQ(again.request_hash, "h1");
+  // Another tenant's key of the same name is its own.
+  EXPECT_EQ(store->remember_idempotency("shop-b", "k", {"h3", "job3", t0 + 3600}, t0 + 3600 - kDay)
+                .job_id,
+            "job3");
+  // A day and a second after the first: it no longer stands; the new request takes the key.
+  const double later = t0 + kDay + 1;
+  EXPECT_EQ(store->remember_idempotency("shop-a", "k", {"h4", "job4", later}, later - kDay).job_id,
+            "job4");
+  EXPECT_EQ(store->remember_idempotency("shop-a", "k", {"h5", "job5", later}, later - kDay).job_id,
+            "job4");
+  // Retention's sweep drops records created before its cut-off.
+  store->expire(0, later + 1);
+  EXPECT_EQ(store->remember_idempotency("shop-a", "k", {"h6", "job6", later + 2}, 0).job_id,
+            "job6");
+}
+
 // Several nodes start at once on an empty database: the schema is migrated once.
 TEST(PgStoreMigrations, NodesStartingTogetherMigrateOnceAndANewerSchemaIsRefused) {
   PAPERNET_SHARED_POSTGRES(postgres);
