@@ -274,10 +274,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   // Colour (docs/colour.md, "Printing"): rasterised page by page as the pages are drawn.
   std::optional<PrintColour> colour;
   if (options.colour && !outcome.net.colour.empty()) {
-    std::vector<std::string> notes;
+    std::vector<PrintNote> notes;
     colour = print_colour(outcome.net.colour, mesh.faces.size(), options.dpi, notes);
-    for (const std::string& note : notes)
-      outcome.net.warnings.push_back({"texture_not_printed", 1, note});
+    for (const PrintNote& note : notes)
+      outcome.net.warnings.push_back({note.code, note.count, note.message});
     // Faces of approximate pieces: from the input surface nearest them (engine/colour.cpp).
     colour->faces.resize(mesh.faces.size());
     for (std::size_t f = 0; f < outcome.baked_colour.size() && f < mesh.faces.size(); ++f)

@@ -89,46 +89,173 @@ bool coloured(const ColourTriangle& t, const PrintColour& colour) {
          (finite(t.rgba[0]) && finite(t.rgba[1]) && finite(t.rgba[2]));
 }
 
-// The texture as a pattern for a triangle with page corners p and texture coordinates uv:
-// its matrix maps page millimetres to texels. Null when either triangle is degenerate.
-cairo_pattern_t* texture_pattern(const PrintTexture& tex, const std::array<Vec2, 3>& p,
-                                 const std::array<UV, 3>& uv) {
+template <typename Points>
+void trace(cairo_t* cr, const Points& p) {
+  cairo_move_to(cr, p[0].x, p[0].y);
+  for (std::size_t i = 1; i < p.size(); ++i) cairo_line_to(cr, p[i].x, p[i].y);
+  cairo_close_path(cr);
+}
+
+// An affine function of page position: a · p + c.
+struct Affine {
+  Vec2 a;
+  double c = 0;
+  double operator()(Vec2 p) const { return dot(a, p) + c; }
+};
+
+// Texture coordinates far out of [0, 1] are brought near before cairo sees them: pixman holds
+// texel coordinates in 16.16 fixed point (at most 32767). Repeat and mirror move a triangle by
+// whole periods (even ones for mirror); clamp splits it where u and v leave [0, 1] (below).
+// A triangle spread over more periods than this (a texture repeated hundreds of times across
+// one face) prints the texel at its centre.
+constexpr double kMaxPeriods = 64;
+// Under clamp sampling, a polygon whose texture coordinates stay within this far of [0, 1] is
+// drawn with one pattern (the pattern's pad extend is the clamp).
+constexpr double kNearUv = 2;
+
+// Part of a polygon filled from the texture through one matrix (page millimetres to texels).
+struct TexturePart {
+  std::vector<Vec2> outline;
+  cairo_matrix_t matrix;
+};
+
+// The part of polygon `poly` where f(p) >= level (above) or f(p) <= level (!above).
+std::vector<Vec2> clip(const std::vector<Vec2>& poly, const Affine& f, double level, bool above) {
+  std::vector<Vec2> out;
+  auto inside = [&](double x) { return above ? x >= level : x <= level; };
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+    const double fa = f(a), fb = f(b);
+    if (inside(fa)) out.push_back(a);
+    if (inside(fa) != inside(fb)) out.push_back(a + ((level - fa) / (fb - fa)) * (b - a));
+  }
+  return out;
+}
+
+cairo_matrix_t matrix_of(const Affine& x, const Affine& y) {
+  cairo_matrix_t m;
+  cairo_matrix_init(&m, x.a.x, y.a.x, x.a.y, y.a.y, x.c, y.c);
+  return m;
+}
+
+// The texture over `outline`, coloured as the triangle with page corners p and texture
+// coordinates uv maps it (extended past the triangle's sides): the parts to fill, each with its
+// matrix. Empty when the triangle's map is degenerate or repeats too often; the caller then
+// prints the texel at its centre.
+std::vector<TexturePart> texture_parts(const PrintTexture& tex, const std::array<Vec2, 3>& p,
+                                       std::array<UV, 3> uv, const std::vector<Vec2>& outline) {
+  const bool clamp = tex.sampler.wrap_s == 33071;
+  if (!clamp)
+    for (int axis = 0; axis < 2; ++axis) {
+      const double mean = uv[0][axis] / 3 + uv[1][axis] / 3 + uv[2][axis] / 3;
+      const int wrap = axis == 0 ? tex.sampler.wrap_s : tex.sampler.wrap_t;
+      const double period = wrap == 33648 ? 2 : 1;
+      const double shift = period * std::floor(mean / period);
+      for (UV& c : uv) c[axis] -= shift;
+    }
+  // u and v of a page point: [u1-u0 u2-u0] · [e1 e2]⁻¹ · (p - p0) + u0.
   const Vec2 e1 = p[1] - p[0], e2 = p[2] - p[0];
   const double det = cross(e1, e2);
-  const Vec2 t0{uv[0][0] * tex.width, uv[0][1] * tex.height};
-  const Vec2 f1 = Vec2{uv[1][0] * tex.width, uv[1][1] * tex.height} - t0;
-  const Vec2 f2 = Vec2{uv[2][0] * tex.width, uv[2][1] * tex.height} - t0;
-  const double area = cross(f1, f2);
-  if (!(std::abs(det) > 1e-12) || !(std::abs(area) > 1e-9)) return nullptr;
-  // M = [f1 f2] · [e1 e2]⁻¹, then the translation that takes p0 to t0.
-  const double i00 = e2.y / det, i01 = -e2.x / det, i10 = -e1.y / det, i11 = e1.x / det;
-  cairo_matrix_t m;
-  m.xx = f1.x * i00 + f2.x * i10;
-  m.xy = f1.x * i01 + f2.x * i11;
-  m.yx = f1.y * i00 + f2.y * i10;
-  m.yy = f1.y * i01 + f2.y * i11;
-  m.x0 = t0.x - (m.xx * p[0].x + m.xy * p[0].y);
-  m.y0 = t0.y - (m.yx * p[0].x + m.yy * p[0].y);
+  const double area =
+      (uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1]) - (uv[2][0] - uv[0][0]) * (uv[1][1] - uv[0][1]);
+  const double texels = area * tex.width * tex.height;
+  if (!(std::abs(det) > 1e-12) || !(std::abs(texels) > 1e-9) || !std::isfinite(texels)) return {};
+  const Vec2 r1{e2.y / det, -e2.x / det}, r2{-e1.y / det, e1.x / det};  // rows of [e1 e2]⁻¹
+  std::array<Affine, 2> map;
+  std::array<double, 2> lo{}, hi{};
+  for (int axis = 0; axis < 2; ++axis) {
+    const double d1 = uv[1][axis] - uv[0][axis], d2 = uv[2][axis] - uv[0][axis];
+    map[axis].a = d1 * r1 + d2 * r2;
+    map[axis].c = uv[0][axis] - dot(map[axis].a, p[0]);
+    lo[axis] = hi[axis] = map[axis](outline[0]);
+    for (Vec2 q : outline) {
+      lo[axis] = std::min(lo[axis], map[axis](q));
+      hi[axis] = std::max(hi[axis], map[axis](q));
+    }
+  }
+  const std::array<double, 2> n{static_cast<double>(tex.width), static_cast<double>(tex.height)};
+  auto texel_map = [&](int axis) { return Affine{n[axis] * map[axis].a, n[axis] * map[axis].c}; };
+  const bool near =
+      clamp ? lo[0] >= -kNearUv && lo[1] >= -kNearUv && hi[0] <= 1 + kNearUv && hi[1] <= 1 + kNearUv
+            : hi[0] - lo[0] <= kMaxPeriods && hi[1] - lo[1] <= kMaxPeriods;
+  if (near) return {{outline, matrix_of(texel_map(0), texel_map(1))}};
+  if (!clamp) return {};
+  // Clamp far out: where u < 0 every point shows the first texel column, where u > 1 the last
+  // (and so for v). Each of the nine parts the lines u, v = 0, 1 cut the outline into gets a
+  // matrix that keeps its texels near: the axis in [0, 1] as the triangle maps it, an axis past
+  // an edge held just beyond that edge (a quarter texel of spread over the part, along the
+  // other axis's gradient's normal, keeps the matrix invertible). The middle part is drawn
+  // last, over the antialiased seams.
+  std::vector<TexturePart> parts;
+  auto add = [&](std::array<int, 2> side) {  // per axis 0: below 0, 1: in [0, 1], 2: above 1
+    std::vector<Vec2> poly = outline;
+    for (int axis = 0; axis < 2 && poly.size() >= 3; ++axis) {
+      if (side[axis] != 2) poly = clip(poly, map[axis], side[axis] == 0 ? 0 : 1, false);
+      if (side[axis] != 0 && poly.size() >= 3)
+        poly = clip(poly, map[axis], side[axis] == 2 ? 1 : 0, true);
+    }
+    if (poly.size() < 3) return;
+    Box2 box = Box2::empty();
+    for (Vec2 q : poly) box.add(q);
+    const Vec2 centre = 0.5 * (box.lo + box.hi);
+    const double spread = 0.25 / std::max(norm(box.size()), 1e-9);
+    std::array<Affine, 2> row;
+    for (int axis = 0; axis < 2; ++axis) {
+      if (side[axis] == 1) {
+        row[axis] = texel_map(axis);
+        continue;
+      }
+      const int other = 1 - axis;
+      Vec2 q = axis == 0 ? Vec2{1, 0} : Vec2{0, 1};
+      if (side[other] == 1) {
+        const Vec2 g = map[other].a;
+        q = (1 / norm(g)) * Vec2{-g.y, g.x};
+      }
+      const double held = side[axis] == 0 ? -0.75 : n[axis] + 0.75;
+      row[axis] = {spread * q, held - spread * dot(q, centre)};
+    }
+    parts.push_back({std::move(poly), matrix_of(row[0], row[1])});
+  };
+  for (int su = 0; su < 3; ++su)
+    for (int sv = 0; sv < 3; ++sv)
+      if (su != 1 || sv != 1) add({su, sv});
+  add({1, 1});
+  return parts;
+}
+
+// The texture through `matrix` as the source.
+void set_texture_source(cairo_t* cr, const PrintTexture& tex, const cairo_matrix_t& matrix) {
   cairo_pattern_t* pattern = cairo_pattern_create_for_surface(tex.surface.get());
-  cairo_pattern_set_matrix(pattern, &m);
+  cairo_pattern_set_matrix(pattern, &matrix);
   cairo_pattern_set_extend(pattern, extend_of(tex.sampler.wrap_s));
   cairo_pattern_set_filter(
       pattern, tex.sampler.mag_filter == 9728 ? CAIRO_FILTER_NEAREST : CAIRO_FILTER_GOOD);
-  return pattern;
+  cairo_set_source(cr, pattern);
+  cairo_pattern_destroy(pattern);
+}
+
+// Fills each part from the texture.
+void fill_texture(cairo_t* cr, const PrintTexture& tex, const std::vector<TexturePart>& parts) {
+  for (const TexturePart& part : parts) {
+    set_texture_source(cr, tex, part.matrix);
+    trace(cr, part.outline);
+    cairo_fill(cr);
+  }
 }
 
 // The texel at the centroid of uv, for a triangle whose map to the texture is degenerate.
 std::array<double, 3> texel_at(const PrintTexture& tex, const std::array<UV, 3>& uv) {
   auto wrap = [](double t, int n, int mode) {
-    double x = t * n;
-    if (mode == 33071) return std::clamp(static_cast<int>(std::floor(x)), 0, n - 1);
-    x = std::fmod(std::floor(x), 2.0 * n);
-    if (x < 0) x += 2.0 * n;
-    int i = static_cast<int>(x);
-    if (mode == 33648 && i >= n) return 2 * n - 1 - i;
-    return i % n;
+    const double x = std::floor(t * n);
+    if (mode == 33071) return static_cast<int>(std::clamp(x, 0.0, n - 1.0));
+    const double period = mode == 33648 ? 2.0 * n : n;
+    double i = std::fmod(x, period);
+    if (i < 0) i += period;
+    const int k = std::clamp(static_cast<int>(i), 0, static_cast<int>(period) - 1);
+    return k >= n ? 2 * n - 1 - k : k;
   };
-  const double u = (uv[0][0] + uv[1][0] + uv[2][0]) / 3, v = (uv[0][1] + uv[1][1] + uv[2][1]) / 3;
+  const double u = uv[0][0] / 3 + uv[1][0] / 3 + uv[2][0] / 3;
+  const double v = uv[0][1] / 3 + uv[1][1] / 3 + uv[2][1] / 3;
   const int x = wrap(u, tex.width, tex.sampler.wrap_s), y = wrap(v, tex.height, tex.sampler.wrap_t);
   cairo_surface_t* s = tex.surface.get();
   const auto* row = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(s) +
@@ -136,13 +263,6 @@ std::array<double, 3> texel_at(const PrintTexture& tex, const std::array<UV, 3>&
                                                                cairo_image_surface_get_stride(s));
   const std::uint32_t px = row[x];
   return {((px >> 16) & 255) / 255.0, ((px >> 8) & 255) / 255.0, (px & 255) / 255.0};
-}
-
-template <typename Points>
-void trace(cairo_t* cr, const Points& p) {
-  cairo_move_to(cr, p[0].x, p[0].y);
-  for (std::size_t i = 1; i < p.size(); ++i) cairo_line_to(cr, p[i].x, p[i].y);
-  cairo_close_path(cr);
 }
 
 // Triangle p grown by `d` on every side: each corner moved out along its bisector by d over the
@@ -175,22 +295,21 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2, 3>& p,
   const bool uniform = c[0] == c[1] && c[1] == c[2];
   const bool white = uniform && c[0] == std::array<double, 3>{1, 1, 1};
   const PrintTexture* tex = texture_of(t, colour);
-  cairo_pattern_t* pattern = tex ? texture_pattern(*tex, p, t.uv) : nullptr;
   const std::vector<Vec2> outline = area ? *area : grown(p, bleed);
+  const std::vector<TexturePart> parts =
+      tex ? texture_parts(*tex, p, t.uv, outline) : std::vector<TexturePart>{};
   auto fill_and_bleed = [&] {
     trace(cr, outline);
     cairo_fill(cr);
   };
-  if (tex && !pattern) {  // a texture squeezed to a point or a line: the texel there
+  if (tex && parts.empty()) {  // squeezed to a point or a line, or repeated too often
     const auto texel = texel_at(*tex, t.uv);
     cairo_set_source_rgb(cr, texel[0] * c[0][0], texel[1] * c[0][1], texel[2] * c[0][2]);
     fill_and_bleed();
     return;
   }
-  if (pattern && white) {
-    cairo_set_source(cr, pattern);
-    cairo_pattern_destroy(pattern);
-    fill_and_bleed();
+  if (tex && white && parts.size() == 1) {
+    fill_texture(cr, *tex, parts);
     return;
   }
   auto gradient = [&] {
@@ -206,7 +325,7 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2, 3>& p,
   };
   // The bleed in the colour of the corners' mean; a gradient only covers its triangle.
   auto mean = [&](int i) { return (c[0][i] + c[1][i] + c[2][i]) / 3; };
-  if (!pattern) {
+  if (!tex) {
     cairo_set_source_rgb(cr, mean(0), mean(1), mean(2));
     fill_and_bleed();
     if (!uniform) {
@@ -227,9 +346,15 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2, 3>& p,
   cairo_rectangle(cr, x0, y0, x1 - x0, y1 - y0);
   cairo_clip(cr);
   cairo_push_group(cr);
-  cairo_set_source(cr, pattern);
-  cairo_pattern_destroy(pattern);
-  cairo_paint(cr);
+  if (parts.size() == 1) {
+    set_texture_source(cr, *tex, parts[0].matrix);
+    cairo_paint(cr);
+  } else {  // under the parts' seams: the texel at the centre
+    const auto texel = texel_at(*tex, t.uv);
+    cairo_set_source_rgb(cr, texel[0], texel[1], texel[2]);
+    cairo_paint(cr);
+    fill_texture(cr, *tex, parts);
+  }
   cairo_set_operator(cr, CAIRO_OPERATOR_MULTIPLY);
   if (uniform) {
     cairo_set_source_rgb(cr, c[0][0], c[0][1], c[0][2]);
@@ -279,7 +404,7 @@ bool PrintColour::any() const {
 }
 
 PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi,
-                         std::vector<std::string>& notes) {
+                         std::vector<PrintNote>& notes) {
   PrintColour out;
   out.dpi = dpi;
   out.materials = colour.materials;
@@ -292,20 +417,48 @@ PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi
       p.width = image.width;
       p.height = image.height;
     } catch (const IOException& e) {
-      notes.push_back("texture " + std::to_string(out.textures.size() - 1) +
-                      (t.name.empty() ? std::string() : " (" + t.name + ")") +
-                      " is printed without its image: " + e.what());
+      notes.push_back({"texture_not_printed", 1,
+                       "texture " + std::to_string(out.textures.size() - 1) +
+                           (t.name.empty() ? std::string() : " (" + t.name + ")") +
+                           " is printed without its image: " + e.what()});
     }
   }
   if (colour.empty()) return out;
   out.faces.resize(faces);
+  std::size_t unmapped = 0, far = 0;
   for (std::size_t f = 0; f < faces; ++f) {
     ColourTriangle t;
     if (f < colour.uvs.size()) t.uv = colour.uvs[f];
     if (f < colour.colours.size()) t.rgba = colour.colours[f];
     if (f < colour.face_materials.size()) t.material = colour.face_materials[f];
     if (coloured(t, out)) out.faces[f].push_back(t);
+    // A face whose material has a decoded texture: are its coordinates usable?
+    const int m = t.material;
+    const int k =
+        m >= 0 && m < static_cast<int>(out.materials.size()) ? out.materials[m].texture : -1;
+    if (k < 0 || k >= static_cast<int>(out.textures.size()) || !out.textures[k].surface) continue;
+    if (!texture_of(t, out)) {
+      ++unmapped;
+    } else if (out.textures[k].sampler.wrap_s == 33071) {
+      for (const UV& uv : t.uv)
+        if (std::abs(uv[0] - 0.5) > 0.5 + kNearUv || std::abs(uv[1] - 0.5) > 0.5 + kNearUv) {
+          ++far;
+          break;
+        }
+    }
   }
+  if (unmapped > 0)
+    notes.push_back({"texture_coordinates_missing", unmapped,
+                     std::to_string(unmapped) +
+                         " textured faces have no finite texture coordinates (NaN, infinite or "
+                         "missing): they print in their material's colour without the texture"});
+  if (far > 0)
+    notes.push_back({"texture_coordinates_out_of_range", far,
+                     std::to_string(far) + " faces have texture coordinates more than " +
+                         std::to_string(static_cast<int>(kNearUv)) +
+                         " texture widths outside [0, 1] under clamp sampling: they print the "
+                         "colours of the texture's edge, as clamping says, which is seldom what "
+                         "the model meant"});
   return out;
 }
 

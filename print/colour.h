@@ -56,12 +56,22 @@ struct PrintColour {
   bool any() const;
 };
 
+/// Something about the model's colour a person should know before printing (the result's
+/// warnings): a code, how many textures or faces it concerns, and what it means for the print.
+struct PrintNote {
+  std::string code;
+  std::size_t count = 1;
+  std::string message;
+};
+
 /// The colour of a mesh of `faces` faces from its per-corner data (each face one
-/// ColourTriangle). Textures are decoded here; one that does not decode (or exceeds the pixel
-/// limit) leaves its faces with the material's factor only, and adds a note to `notes` naming
-/// the texture and the fault.
+/// ColourTriangle). Textures are decoded here. Notes name what does not print as the model
+/// says: a texture that does not decode (or exceeds the pixel limit) leaves its faces with the
+/// material's factor only (`texture_not_printed`); textured faces without finite texture
+/// coordinates print the factor too (`texture_coordinates_missing`), and clamped coordinates far
+/// outside [0, 1] print the texture's edge (`texture_coordinates_out_of_range`).
 PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi,
-                         std::vector<std::string>& notes);
+                         std::vector<PrintNote>& notes);
 
 /// A piece's colour placed on a page: the image's top-left corner and size in page
 /// millimetres (y down), its pixels an ARGB32 cairo image surface (transparent where nothing is

@@ -4,6 +4,7 @@
 // 3 px is sampled at interior points and compared with the model's own colour at the same
 // barycentric point: its texture (decoded here, sampled bilinearly), times the material's
 // factor and the vertex colours (linear, so turned into sRGB as the page is).
+#include <cairo.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,6 +27,7 @@
 #include "core/io/load.h"
 #include "core/unfold/net_check.h"
 #include "engine/pipeline.h"
+#include "print/colour.h"
 #include "tests/support/job_input.h"
 
 namespace papernet::test {
@@ -158,8 +160,9 @@ struct Check {
   /// Cut edges of 4 mm or more, both faces on the page, with paper printed on at least one side
   /// (a tab; an edge with a glue strip instead has none, unless another face lies there).
   std::size_t cut_edges = 0;
-  std::size_t tabbed = 0;  ///< of those, one side shows the other face's colour (its tab)
-  std::size_t strips = 0;  ///< glue strips printed
+  std::size_t tabbed = 0;           ///< of those, one side shows the other face's colour (its tab)
+  std::size_t strips = 0;           ///< glue strips printed
+  std::vector<NetRepair> warnings;  ///< the result's
 };
 
 // Glue tabs: for each cut edge of 4 mm or more, the point 0.8 mm outside each of its two faces'
@@ -293,6 +296,7 @@ Check check_colour(const std::string& file, double size_mm, const JobInput& inpu
     check_tabs(doc, expected, raster, page, check);
   }
   check.strips = out.print->strips;
+  check.warnings = doc.warnings;
   std::filesystem::remove(path);
   return check;
 }
@@ -411,16 +415,12 @@ JobInput as_obj_with_mtl(const SourceModel& m) {
   return input;
 }
 
-// The source as a glTF whose material's texture reference has a KHR_texture_transform (offset,
-// rotation, scale): the file's texture coordinates are the source's under the inverse of that
-// transform, so printed through it they show the source's colours. The transform as the
-// extension's specification defines it: uv' = T R S uv, R = [cos r, sin r; -sin r, cos r].
-JobInput as_gltf_with_texture_transform(const SourceModel& m) {
-  const double ox = 0.25, oy = -0.125, r = 0.5, sx = 2, sy = 0.5;
-  const double a = std::cos(r) * sx, c = std::sin(r) * sy;   // u' = a u + c v + ox
-  const double b = -std::sin(r) * sx, d = std::cos(r) * sy;  // v' = b u + d v + oy
-  const double det = a * d - b * c;
-  std::vector<float> positions, uvs;
+// The source as a glTF, its corners with texture coordinates `uvs` (glTF's convention), the
+// material's texture reference with `extensions` (null: none), the texture with `sampler` (null:
+// none, so repeat).
+JobInput as_gltf(const SourceModel& m, const std::vector<std::array<UV, 3>>& uvs,
+                 const nlohmann::json& extensions, const nlohmann::json& sampler) {
+  std::vector<float> positions, coordinates;
   std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (std::size_t f = 0; f < m.corners.size(); ++f)
     for (int k = 0; k < 3; ++k) {
@@ -431,19 +431,20 @@ JobInput as_gltf_with_texture_transform(const SourceModel& m) {
         lo[i] = std::min(lo[i], static_cast<double>(positions.back()));
         hi[i] = std::max(hi[i], static_cast<double>(positions.back()));
       }
-      const double u = m.uvs[f][k][0] - ox, v = m.uvs[f][k][1] - oy;
-      uvs.push_back(static_cast<float>((d * u - c * v) / det));
-      uvs.push_back(static_cast<float>((-b * u + a * v) / det));
+      coordinates.push_back(static_cast<float>(uvs[f][k][0]));
+      coordinates.push_back(static_cast<float>(uvs[f][k][1]));
     }
   std::string buffer(reinterpret_cast<const char*>(positions.data()),
                      positions.size() * sizeof(float));
   const std::size_t uv_offset = buffer.size();
-  buffer.append(reinterpret_cast<const char*>(uvs.data()), uvs.size() * sizeof(float));
+  buffer.append(reinterpret_cast<const char*>(coordinates.data()),
+                coordinates.size() * sizeof(float));
   const std::size_t count = m.corners.size() * 3;
-  const nlohmann::json transform = {{"offset", {ox, oy}}, {"rotation", r}, {"scale", {sx, sy}}};
-  const nlohmann::json gltf = {
+  nlohmann::json reference = {{"index", 0}};
+  if (!extensions.is_null()) reference["extensions"] = extensions;
+  nlohmann::json texture = {{"source", 0}};
+  nlohmann::json gltf = {
       {"asset", {{"version", "2.0"}}},
-      {"extensionsUsed", {"KHR_texture_transform"}},
       {"scene", 0},
       {"scenes", {{{"nodes", {0}}}}},
       {"nodes", {{{"mesh", 0}}}},
@@ -453,9 +454,7 @@ JobInput as_gltf_with_texture_transform(const SourceModel& m) {
       {"materials",
        {{{"pbrMetallicRoughness",
           {{"baseColorFactor", {m.factor[0], m.factor[1], m.factor[2], 1.0}},
-           {"baseColorTexture",
-            {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}}}}}}},
-      {"textures", {{{"source", 0}}}},
+           {"baseColorTexture", reference}}}}}},
       {"images", {{{"uri", "box.png"}}}},
       {"buffers",
        {{{"byteLength", buffer.size()},
@@ -471,11 +470,36 @@ JobInput as_gltf_with_texture_transform(const SourceModel& m) {
          {"min", lo},
          {"max", hi}},
         {{"bufferView", 1}, {"componentType", 5126}, {"count", count}, {"type", "VEC2"}}}}};
+  if (!extensions.is_null()) gltf["extensionsUsed"] = {"KHR_texture_transform"};
+  if (!sampler.is_null()) {
+    gltf["samplers"] = {sampler};
+    texture["sampler"] = 0;
+  }
+  gltf["textures"] = {texture};
   JobInput input;
   input.mesh = gltf.dump();
   input.format = MeshFormat::Gltf;
   input.external_files["box.png"] = m.texture.bytes;
   return input;
+}
+
+// The source as a glTF whose material's texture reference has a KHR_texture_transform (offset,
+// rotation, scale): the file's texture coordinates are the source's under the inverse of that
+// transform, so printed through it they show the source's colours. The transform as the
+// extension's specification defines it: uv' = T R S uv, R = [cos r, sin r; -sin r, cos r].
+JobInput as_gltf_with_texture_transform(const SourceModel& m) {
+  const double ox = 0.25, oy = -0.125, r = 0.5, sx = 2, sy = 0.5;
+  const double a = std::cos(r) * sx, c = std::sin(r) * sy;   // u' = a u + c v + ox
+  const double b = -std::sin(r) * sx, d = std::cos(r) * sy;  // v' = b u + d v + oy
+  const double det = a * d - b * c;
+  std::vector<std::array<UV, 3>> uvs = m.uvs;
+  for (auto& face : uvs)
+    for (UV& uv : face) {
+      const double u = uv[0] - ox, v = uv[1] - oy;
+      uv = {(d * u - c * v) / det, (-b * u + a * v) / det};
+    }
+  const nlohmann::json transform = {{"offset", {ox, oy}}, {"rotation", r}, {"scale", {sx, sy}}};
+  return as_gltf(m, uvs, {{"KHR_texture_transform", transform}}, nullptr);
 }
 
 // The textured box as an OBJ with MTL and as a glTF with KHR_texture_transform prints the
@@ -501,6 +525,104 @@ TEST(ColourPrintForms, ObjWithMtlAndTextureTransformPrintTheSourcesColours) {
         name.c_str(), check.matched, check.faces, kTolerance, check.worst, check.tabbed,
         check.cut_edges);
   }
+}
+
+// A 64 x 64 texture whose texels all differ: red grows along u, green along v.
+Texture gradient_texture() {
+  std::unique_ptr<cairo_surface_t, void (*)(cairo_surface_t*)> s(
+      cairo_image_surface_create(CAIRO_FORMAT_RGB24, 64, 64), cairo_surface_destroy);
+  cairo_surface_flush(s.get());
+  unsigned char* data = cairo_image_surface_get_data(s.get());
+  for (int y = 0; y < 64; ++y) {
+    auto* row =
+        reinterpret_cast<std::uint32_t*>(data + y * cairo_image_surface_get_stride(s.get()));
+    for (int x = 0; x < 64; ++x)
+      row[x] = 0xff000000u | std::uint32_t(x * 4) << 16 | std::uint32_t(y * 4) << 8 | 0x80;
+  }
+  cairo_surface_mark_dirty(s.get());
+  Texture t;
+  t.bytes = encode_png(s.get());
+  t.mime_type = "image/png";
+  t.width = t.height = 64;
+  return t;
+}
+
+// Bilinear sample at (u, v) clamped to [0, 1] (texel indices clamped at the edges).
+std::array<double, 3> sample_clamped(const Image& image, double u, double v) {
+  const double x = std::clamp(u, 0.0, 1.0) * image.width - 0.5;
+  const double y = std::clamp(v, 0.0, 1.0) * image.height - 0.5;
+  const double fx = std::floor(x), fy = std::floor(y);
+  auto texel = [&](double tx, double ty, int c) {
+    const int ix = std::clamp(static_cast<int>(tx), 0, image.width - 1);
+    const int iy = std::clamp(static_cast<int>(ty), 0, image.height - 1);
+    return image.rgba[(static_cast<std::size_t>(iy) * image.width + ix) * 4 + c] / 255.0;
+  };
+  std::array<double, 3> out{};
+  for (int c = 0; c < 3; ++c)
+    out[c] = (1 - (x - fx)) * (1 - (y - fy)) * texel(fx, fy, c) +
+             (x - fx) * (1 - (y - fy)) * texel(fx + 1, fy, c) +
+             (1 - (x - fx)) * (y - fy) * texel(fx, fy + 1, c) +
+             (x - fx) * (y - fy) * texel(fx + 1, fy + 1, c);
+  return out;
+}
+
+// Texture coordinates far outside [0, 1] under clamp sampling (issue "Colour kits", bad
+// input): the box with a gradient texture, its faces' coordinates moved 1,000 widths out in u
+// (a face shows the last column's gradient along v), 10^6 out in both (the corner texel) or
+// stretched 2,000-fold about the middle (each side shows an edge column, the texture itself a
+// sliver between); one face's coordinates NaN (it prints the material's white). The print shows
+// what clamping says at every sampled point, and the result warns of both.
+TEST(ColourPrintForms, FarOutUvsUnderClampSamplingPrintTheClampedTexture) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  SourceModel box = box_textured();
+  ASSERT_EQ(box.corners.size(), 12u);
+  box.texture = gradient_texture();
+  box.factor = {1, 1, 1, 1};
+  std::vector<std::array<UV, 3>> far = box.uvs;
+  for (std::size_t f = 0; f < far.size(); ++f)
+    for (UV& uv : far[f]) {
+      if (f % 3 == 0) uv[0] += 1000;
+      if (f % 3 == 1) uv = {uv[0] - 1e6, uv[1] - 1e6};
+      if (f % 3 == 2) uv[0] = (uv[0] - 0.5) * 2000 + 0.5;
+    }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  far[3][1] = {nan, nan};
+  SourceModel printed = box;
+  printed.uvs = far;
+  const Image texture = decode_image(box.texture.bytes);
+  const Expected expected = [&](const NetDocument& doc, std::size_t f,
+                                const std::array<double, 3>& w) {
+    const auto& tri = doc.mesh.faces[f];
+    for (std::size_t i = 0; i < far.size(); ++i) {
+      std::array<int, 3> corner{-1, -1, -1};
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 3; ++j)
+          if (norm(box.corners[i][j] - doc.mesh.vertices[tri[k]]) < 1e-6) corner[k] = j;
+      if (std::count(corner.begin(), corner.end(), -1) > 0) continue;
+      if (i == 3) return std::array<double, 3>{1, 1, 1};
+      double u = 0, v = 0;
+      for (int k = 0; k < 3; ++k)
+        u += w[k] * far[i][corner[k]][0], v += w[k] * far[i][corner[k]][1];
+      return sample_clamped(texture, u, v);
+    }
+    return std::array<double, 3>{-1, -1, -1};
+  };
+  const nlohmann::json clamp = {{"wrapS", 33071}, {"wrapT", 33071}};
+  const Check check =
+      check_colour("box_far_uvs.gltf", 80, as_gltf(printed, far, nullptr, clamp), expected);
+  EXPECT_EQ(check.faces, 12u);
+  EXPECT_GE(static_cast<double>(check.matched), 0.98 * check.faces)
+      << check.matched << " of " << check.faces
+      << " faces print the clamped texture; worst mean difference " << check.worst;
+  std::printf("far-out clamped coordinates: %zu of %zu faces within %.2f (worst %.3f)\n",
+              check.matched, check.faces, kTolerance, check.worst);
+  auto warning = [&](const std::string& code) {
+    for (const NetRepair& w : check.warnings)
+      if (w.code == code) return w.count;
+    return std::size_t{0};
+  };
+  EXPECT_EQ(warning("texture_coordinates_out_of_range"), 11u);
+  EXPECT_EQ(warning("texture_coordinates_missing"), 1u);
 }
 
 // Closest point of triangle abc to p, as barycentric coordinates (Ericson, Real-Time Collision
