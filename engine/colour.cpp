@@ -74,6 +74,7 @@ std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& p
         const auto& s = part.faces[g];
         ColourTriangle tri;
         tri.at = at;
+        tri.source = g;
         tri.material = static_cast<std::size_t>(g) < colour.face_materials.size()
                            ? colour.face_materials[g]
                            : -1;

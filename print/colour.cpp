@@ -96,6 +96,14 @@ void trace(cairo_t* cr, const Points& p) {
   cairo_close_path(cr);
 }
 
+// Polygons filled together (nonzero winding: each one counter-clockwise on the page, so their
+// union is filled where they overlap).
+using Outline = std::vector<std::vector<Vec2>>;
+
+void trace(cairo_t* cr, const Outline& outline) {
+  for (const auto& polygon : outline) trace(cr, polygon);
+}
+
 // An affine function of page position: a · p + c.
 struct Affine {
   Vec2 a;
@@ -115,7 +123,7 @@ constexpr double kNearUv = 2;
 
 // Part of a polygon filled from the texture through one matrix (page millimetres to texels).
 struct TexturePart {
-  std::vector<Vec2> outline;
+  Outline outline;
   cairo_matrix_t matrix;
 };
 
@@ -143,7 +151,7 @@ cairo_matrix_t matrix_of(const Affine& x, const Affine& y) {
 // matrix. Empty when the triangle's map is degenerate or repeats too often; the caller then
 // prints the texel at its centre.
 std::vector<TexturePart> texture_parts(const PrintTexture& tex, const std::array<Vec2, 3>& p,
-                                       std::array<UV, 3> uv, const std::vector<Vec2>& outline) {
+                                       std::array<UV, 3> uv, const Outline& outline) {
   const bool clamp = tex.sampler.wrap_s == 33071;
   if (!clamp)
     for (int axis = 0; axis < 2; ++axis) {
@@ -167,17 +175,23 @@ std::vector<TexturePart> texture_parts(const PrintTexture& tex, const std::array
     const double d1 = uv[1][axis] - uv[0][axis], d2 = uv[2][axis] - uv[0][axis];
     map[axis].a = d1 * r1 + d2 * r2;
     map[axis].c = uv[0][axis] - dot(map[axis].a, p[0]);
-    lo[axis] = hi[axis] = map[axis](outline[0]);
-    for (Vec2 q : outline) {
-      lo[axis] = std::min(lo[axis], map[axis](q));
-      hi[axis] = std::max(hi[axis], map[axis](q));
-    }
+    lo[axis] = std::numeric_limits<double>::infinity();
+    hi[axis] = -lo[axis];
+    for (const auto& polygon : outline)
+      for (Vec2 q : polygon) {
+        lo[axis] = std::min(lo[axis], map[axis](q));
+        hi[axis] = std::max(hi[axis], map[axis](q));
+      }
   }
   const std::array<double, 2> n{static_cast<double>(tex.width), static_cast<double>(tex.height)};
   auto texel_map = [&](int axis) { return Affine{n[axis] * map[axis].a, n[axis] * map[axis].c}; };
+  // pixman's limit, with room for the bleed and filtering.
+  const bool fixed_point = std::max(std::abs(lo[0]), std::abs(hi[0])) * n[0] <= 16384 &&
+                           std::max(std::abs(lo[1]), std::abs(hi[1])) * n[1] <= 16384;
   const bool near =
-      clamp ? lo[0] >= -kNearUv && lo[1] >= -kNearUv && hi[0] <= 1 + kNearUv && hi[1] <= 1 + kNearUv
-            : hi[0] - lo[0] <= kMaxPeriods && hi[1] - lo[1] <= kMaxPeriods;
+      fixed_point && (clamp ? lo[0] >= -kNearUv && lo[1] >= -kNearUv && hi[0] <= 1 + kNearUv &&
+                                  hi[1] <= 1 + kNearUv
+                            : hi[0] - lo[0] <= kMaxPeriods && hi[1] - lo[1] <= kMaxPeriods);
   if (near) return {{outline, matrix_of(texel_map(0), texel_map(1))}};
   if (!clamp) return {};
   // Clamp far out: where u < 0 every point shows the first texel column, where u > 1 the last
@@ -188,15 +202,19 @@ std::vector<TexturePart> texture_parts(const PrintTexture& tex, const std::array
   // last, over the antialiased seams.
   std::vector<TexturePart> parts;
   auto add = [&](std::array<int, 2> side) {  // per axis 0: below 0, 1: in [0, 1], 2: above 1
-    std::vector<Vec2> poly = outline;
-    for (int axis = 0; axis < 2 && poly.size() >= 3; ++axis) {
-      if (side[axis] != 2) poly = clip(poly, map[axis], side[axis] == 0 ? 0 : 1, false);
-      if (side[axis] != 0 && poly.size() >= 3)
-        poly = clip(poly, map[axis], side[axis] == 2 ? 1 : 0, true);
-    }
-    if (poly.size() < 3) return;
+    Outline polys;
     Box2 box = Box2::empty();
-    for (Vec2 q : poly) box.add(q);
+    for (std::vector<Vec2> poly : outline) {
+      for (int axis = 0; axis < 2 && poly.size() >= 3; ++axis) {
+        if (side[axis] != 2) poly = clip(poly, map[axis], side[axis] == 0 ? 0 : 1, false);
+        if (side[axis] != 0 && poly.size() >= 3)
+          poly = clip(poly, map[axis], side[axis] == 2 ? 1 : 0, true);
+      }
+      if (poly.size() < 3) continue;
+      for (Vec2 q : poly) box.add(q);
+      polys.push_back(std::move(poly));
+    }
+    if (polys.empty()) return;
     const Vec2 centre = 0.5 * (box.lo + box.hi);
     const double spread = 0.25 / std::max(norm(box.size()), 1e-9);
     std::array<Affine, 2> row;
@@ -214,7 +232,7 @@ std::vector<TexturePart> texture_parts(const PrintTexture& tex, const std::array
       const double held = side[axis] == 0 ? -0.75 : n[axis] + 0.75;
       row[axis] = {spread * q, held - spread * dot(q, centre)};
     }
-    parts.push_back({std::move(poly), matrix_of(row[0], row[1])});
+    parts.push_back({std::move(polys), matrix_of(row[0], row[1])});
   };
   for (int su = 0; su < 3; ++su)
     for (int sv = 0; sv < 3; ++sv)
@@ -269,7 +287,8 @@ std::array<double, 3> texel_at(const PrintTexture& tex, const std::array<UV, 3>&
 // sine of its half angle (at most 4 d, so a sliver's sharp corner stays near). Filled instead of
 // p, it covers the hairline antialiasing leaves between neighbouring triangles and reaches d past
 // the cuts; a stroke would do the same at several times the cost.
-std::vector<Vec2> grown(const std::array<Vec2, 3>& p, double d) {
+std::vector<Vec2> grown(std::array<Vec2, 3> p, double d) {
+  if (cross(p[1] - p[0], p[2] - p[0]) < 0) std::swap(p[1], p[2]);  // counter-clockwise
   std::vector<Vec2> out(p.begin(), p.end());
   for (int i = 0; i < 3; ++i) {
     const Vec2 a = p[(i + 2) % 3], v = p[i], b = p[(i + 1) % 3];
@@ -286,16 +305,21 @@ std::vector<Vec2> grown(const std::array<Vec2, 3>& p, double d) {
   return out;
 }
 
-// Fills the triangle at page corners p with its colour, and `bleed` millimetres around it; with
-// `area`, that polygon instead, coloured by the triangle's map extended past its sides.
-void paint(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2, 3>& p,
+// Fills the triangles at page corners ps with the colour of t placed at ps[0] (those after it
+// share its map: placed parts of one face coloured from one source face), and `bleed`
+// millimetres around them; with `area`, that polygon instead, coloured by the triangle's map
+// extended past its sides.
+void paint(cairo_t* cr, const ColourTriangle& t, const std::vector<std::array<Vec2, 3>>& ps,
            const PrintColour& colour, double bleed, const std::vector<Vec2>* area = nullptr) {
+  const std::array<Vec2, 3>& p = ps.front();
   const std::array<std::array<double, 3>, 3> c{
       corner_colour(t, colour, 0), corner_colour(t, colour, 1), corner_colour(t, colour, 2)};
   const bool uniform = c[0] == c[1] && c[1] == c[2];
   const bool white = uniform && c[0] == std::array<double, 3>{1, 1, 1};
   const PrintTexture* tex = texture_of(t, colour);
-  const std::vector<Vec2> outline = area ? *area : grown(p, bleed);
+  Outline outline;
+  if (area) outline.push_back(*area);
+  for (std::size_t i = 0; !area && i < ps.size(); ++i) outline.push_back(grown(ps[i], bleed));
   const std::vector<TexturePart> parts =
       tex ? texture_parts(*tex, p, t.uv, outline) : std::vector<TexturePart>{};
   auto fill_and_bleed = [&] {
@@ -519,12 +543,40 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
       throw IOException("cairo could not make a " + std::to_string(w) + " x " + std::to_string(h) +
                         " colour image");
     cairo_t* cr = cairo_create(surface.get());
+    // A pixel no wider than half a cut line (0.125 mm): the colour's edges, a pixel past the
+    // cuts, lie under the line art, and neighbouring triangles overlap by their bleed, so
+    // antialiasing would show nowhere; without it cairo fills about a quarter faster.
+    if (scale >= 8) cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
     cairo_scale(cr, scale, scale);
     cairo_translate(cr, -b.lo.x, -b.lo.y);
     const double line = 1 / scale;  // the bleed: a pixel at the resolution drawn
     for (int f : members[r]) {
       const auto corners = page_face(f);
-      for (const ColourTriangle& t : colour.faces[f]) paint(cr, t, place(t, corners), colour, line);
+      // Triangles coloured from one source face share its map: one fill for them all.
+      const auto& triangles = colour.faces[f];
+      std::vector<std::size_t> order(triangles.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      auto key = [&](std::size_t i) {
+        const ColourTriangle& t = triangles[i];
+        return t.source >= 0 && !finite(t.rgba[0]) ? t.source : -1 - static_cast<long>(i);
+      };
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+      // The group's map is taken from its largest triangle (a sliver's is ill-conditioned).
+      std::vector<std::array<Vec2, 3>> group;
+      std::size_t largest = 0;
+      double area = -1;
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const auto placed = place(triangles[order[i]], corners);
+        const double a = std::abs(cross(placed[1] - placed[0], placed[2] - placed[0]));
+        if (a > area) area = a, largest = order[i];
+        group.push_back(placed);
+        if (i + 1 < order.size() && key(order[i + 1]) == key(order[i])) continue;
+        group.insert(group.begin(), place(triangles[largest], corners));
+        paint(cr, triangles[largest], group, colour, line);
+        group.clear();
+        area = -1;
+      }
     }
     for (const TabUnder& tu : tabs[r]) {
       const NetEdge& e = layout.edges[tu.tab->edge];
@@ -548,7 +600,7 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
         const double d = norm((1.0 / 3) * (q[0] + q[1] + q[2]) - middle);
         if (d < best) best = d, nearest = i;
       }
-      paint(cr, under_triangles[nearest], place(under_triangles[nearest], hinged), colour, line,
+      paint(cr, under_triangles[nearest], {place(under_triangles[nearest], hinged)}, colour, line,
             &tab);
     }
     const cairo_status_t status = cairo_status(cr);

@@ -30,6 +30,9 @@ struct ColourTriangle {
   std::array<RGBA, 3> rgba{
       {{kNone, kNone, kNone, kNone}, {kNone, kNone, kNone, kNone}, {kNone, kNone, kNone, kNone}}};
   int material = -1;
+  /// The input face it is coloured from (a face's part of the surface it approximates), or -1.
+  /// Parts of one printed face with the same source share one map and are filled together.
+  long source = -1;
 };
 
 /// The default raster resolution of printed colour, dots per inch.
