@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <iterator>
 #include <map>
 #include <optional>
@@ -317,9 +318,17 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   std::optional<PdfWriter> pdf;
   if (request.pdf) pdf.emplace(layout, pages.width, pages.height);
   const int n = static_cast<int>(pages.pages.size());
+  // With colour, page i + 1 is drawn (its images rasterised) on a thread of its own while page i
+  // is written (cairo compresses its images): the two take about as long, and at most two pages'
+  // images are held. Only that thread samples the textures.
+  const auto policy = paint ? std::launch::async : std::launch::deferred;
+  auto draw = [&](int i) { return draw_page(layout, pages, i, paint); };
+  std::future<PageDrawing> next;
+  if ((pdf || svg_pages) && n > 0) next = std::async(policy, draw, 0);
   for (int i = 0; (pdf || svg_pages) && i < n; ++i) {
     if (progress.cancelled()) throw CancelledException();
-    const PageDrawing drawing = draw_page(layout, pages, i, paint);
+    const PageDrawing drawing = next.get();
+    if (i + 1 < n) next = std::async(policy, draw, i + 1);
     if (pdf) pdf->add_page(drawing);
     if (svg_pages) docs.svg_pages.push_back(write_page_svg(layout, drawing, i, n));
     report(progress, "write", 0.8 * (i + 1) / n);
