@@ -64,15 +64,29 @@ cairo_extend_t extend_of(int wrap) {
   }
 }
 
-// The triangle's own colour factor (material × vertex colours), sRGB, at one corner.
-std::array<double, 3> corner_colour(const ColourTriangle& t, const PrintColour& colour, int k) {
+// The triangle's own colour factor (material × vertex colours), sRGB, at barycentric point w:
+// vertex colours are interpolated as glTF has them, linear, then turned into sRGB.
+std::array<double, 3> factor_at(const ColourTriangle& t, const PrintColour& colour,
+                                const std::array<double, 3>& w) {
   RGBA c{1, 1, 1, 1};
   if (t.material >= 0 && t.material < static_cast<int>(colour.materials.size()))
     c = colour.materials[t.material].base_color;
-  if (finite(t.rgba[k]))
-    for (int i = 0; i < 3; ++i) c[i] *= t.rgba[k][i];
+  if (finite(t.rgba[0]) && finite(t.rgba[1]) && finite(t.rgba[2]))
+    for (int i = 0; i < 3; ++i)
+      c[i] *= w[0] * t.rgba[0][i] + w[1] * t.rgba[1][i] + w[2] * t.rgba[2][i];
   return {srgb(c[0]), srgb(c[1]), srgb(c[2])};
 }
+
+std::array<double, 3> corner_colour(const ColourTriangle& t, const PrintColour& colour, int k) {
+  std::array<double, 3> w{0, 0, 0};
+  w[k] = 1;
+  return factor_at(t, colour, w);
+}
+
+// A gradient's triangle is cut into this many steps a side: cairo interpolates a mesh patch's
+// corner colours in sRGB, so the linear interpolation is followed patch by patch (from black to
+// white, 0.235 off at the middle in one patch, under 0.015 in 4 x 4).
+constexpr int kGradientSteps = 4;
 
 const PrintTexture* texture_of(const ColourTriangle& t, const PrintColour& colour) {
   if (t.material < 0 || t.material >= static_cast<int>(colour.materials.size())) return nullptr;
@@ -161,6 +175,23 @@ std::vector<TexturePart> texture_parts(const PrintTexture& tex, const std::array
       const double shift = period * std::floor(mean / period);
       for (UV& c : uv) c[axis] -= shift;
     }
+  // Texture coordinates on a line (a face mapped onto a strip of texels): the corner off the
+  // longest side moved a thousandth of a texel across it, so that cairo samples along the line.
+  {
+    std::array<Vec2, 3> t;
+    for (int k = 0; k < 3; ++k) t[k] = {uv[k][0] * tex.width, uv[k][1] * tex.height};
+    int side = 0;
+    for (int k = 1; k < 3; ++k)
+      if (norm(t[(k + 1) % 3] - t[k]) > norm(t[(side + 1) % 3] - t[side])) side = k;
+    const Vec2 along = t[(side + 1) % 3] - t[side];
+    const double length = norm(along);
+    if (length > 1e-6 && std::abs(cross(t[1] - t[0], t[2] - t[0])) < 1e-6 * length * length) {
+      const Vec2 across = (1e-3 / length) * Vec2{-along.y, along.x};
+      UV& off = uv[(side + 2) % 3];
+      off[0] += across.x / tex.width;
+      off[1] += across.y / tex.height;
+    }
+  }
   // u and v of a page point: [u1-u0 u2-u0] · [e1 e2]⁻¹ · (p - p0) + u0.
   const Vec2 e1 = p[1] - p[0], e2 = p[2] - p[0];
   const double det = cross(e1, e2);
@@ -261,10 +292,11 @@ void fill_texture(cairo_t* cr, const PrintTexture& tex, const std::vector<Textur
   }
 }
 
-// The texel at the centroid of uv, for a triangle whose map to the texture is degenerate.
+// The texture at the centroid of uv, for a triangle whose map to the texture is degenerate
+// (a point or a line): sampled as the pattern would, bilinearly between the four texels around
+// it (nearest under a nearest filter), each wrapped by the sampler.
 std::array<double, 3> texel_at(const PrintTexture& tex, const std::array<UV, 3>& uv) {
-  auto wrap = [](double t, int n, int mode) {
-    const double x = std::floor(t * n);
+  auto wrap = [](double x, int n, int mode) {  // texel index x (whole) into [0, n)
     if (mode == 33071) return static_cast<int>(std::clamp(x, 0.0, n - 1.0));
     const double period = mode == 33648 ? 2.0 * n : n;
     double i = std::fmod(x, period);
@@ -274,13 +306,28 @@ std::array<double, 3> texel_at(const PrintTexture& tex, const std::array<UV, 3>&
   };
   const double u = uv[0][0] / 3 + uv[1][0] / 3 + uv[2][0] / 3;
   const double v = uv[0][1] / 3 + uv[1][1] / 3 + uv[2][1] / 3;
-  const int x = wrap(u, tex.width, tex.sampler.wrap_s), y = wrap(v, tex.height, tex.sampler.wrap_t);
   cairo_surface_t* s = tex.surface.get();
-  const auto* row = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(s) +
-                                                           static_cast<std::ptrdiff_t>(y) *
-                                                               cairo_image_surface_get_stride(s));
-  const std::uint32_t px = row[x];
-  return {((px >> 16) & 255) / 255.0, ((px >> 8) & 255) / 255.0, (px & 255) / 255.0};
+  auto texel = [&](double x, double y) {
+    const int ix = wrap(x, tex.width, tex.sampler.wrap_s);
+    const int iy = wrap(y, tex.height, tex.sampler.wrap_t);
+    const auto* row = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(s) +
+                                                             static_cast<std::ptrdiff_t>(iy) *
+                                                                 cairo_image_surface_get_stride(s));
+    const std::uint32_t px = row[ix];
+    return std::array<double, 3>{((px >> 16) & 255) / 255.0, ((px >> 8) & 255) / 255.0,
+                                 (px & 255) / 255.0};
+  };
+  if (tex.sampler.mag_filter == 9728)
+    return texel(std::floor(u * tex.width), std::floor(v * tex.height));
+  // Texel centres at half-integers.
+  const double x = u * tex.width - 0.5, y = v * tex.height - 0.5;
+  const double x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
+  const auto a = texel(x0, y0), b = texel(x0 + 1, y0), c = texel(x0, y0 + 1),
+             d = texel(x0 + 1, y0 + 1);
+  std::array<double, 3> out;
+  for (int i = 0; i < 3; ++i)
+    out[i] = (1 - fy) * ((1 - fx) * a[i] + fx * b[i]) + fy * ((1 - fx) * c[i] + fx * d[i]);
+  return out;
 }
 
 // Triangle p grown by `d` on every side: each corner moved out along its bisector by d over the
@@ -338,13 +385,27 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::vector<std::array<Ve
   }
   auto gradient = [&] {
     cairo_pattern_t* mesh = cairo_pattern_create_mesh();
-    cairo_mesh_pattern_begin_patch(mesh);
-    cairo_mesh_pattern_move_to(mesh, p[0].x, p[0].y);
-    cairo_mesh_pattern_line_to(mesh, p[1].x, p[1].y);
-    cairo_mesh_pattern_line_to(mesh, p[2].x, p[2].y);
-    for (int k = 0; k < 3; ++k)
-      cairo_mesh_pattern_set_corner_color_rgb(mesh, k, c[k][0], c[k][1], c[k][2]);
-    cairo_mesh_pattern_end_patch(mesh);
+    constexpr int n = kGradientSteps;
+    auto patch = [&](std::array<std::array<int, 2>, 3> ij) {
+      cairo_mesh_pattern_begin_patch(mesh);
+      for (int k = 0; k < 3; ++k) {
+        const double b = double(ij[k][0]) / n, g = double(ij[k][1]) / n;
+        const std::array<double, 3> w{1 - b - g, b, g};
+        const Vec2 q = w[0] * p[0] + w[1] * p[1] + w[2] * p[2];
+        if (k == 0)
+          cairo_mesh_pattern_move_to(mesh, q.x, q.y);
+        else
+          cairo_mesh_pattern_line_to(mesh, q.x, q.y);
+        const auto rgb = factor_at(t, colour, w);
+        cairo_mesh_pattern_set_corner_color_rgb(mesh, k, rgb[0], rgb[1], rgb[2]);
+      }
+      cairo_mesh_pattern_end_patch(mesh);
+    };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        patch({{{i, j}, {i + 1, j}, {i, j + 1}}});
+        if (i + j + 1 < n) patch({{{i + 1, j}, {i + 1, j + 1}, {i, j + 1}}});
+      }
     return mesh;
   };
   // The bleed in the colour of the corners' mean; a gradient only covers its triangle.

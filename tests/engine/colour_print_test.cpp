@@ -107,9 +107,11 @@ std::array<double, 3> model_colour(const NetDocument& doc, const std::vector<Ima
       for (int i = 0; i < 3; ++i) c[i] *= s[i];
     }
   }
-  if (f < doc.colour.colours.size()) {
+  if (f < doc.colour.colours.size()) {  // NaN: the face has none
     const auto& vc = doc.colour.colours[f];
-    for (int i = 0; i < 3; ++i) c[i] *= srgb(w[0] * vc[0][i] + w[1] * vc[1][i] + w[2] * vc[2][i]);
+    for (int i = 0; i < 3; ++i)
+      if (std::isfinite(vc[0][i]) && std::isfinite(vc[1][i]) && std::isfinite(vc[2][i]))
+        c[i] *= srgb(w[0] * vc[0][i] + w[1] * vc[1][i] + w[2] * vc[2][i]);
   }
   return c;
 }
@@ -262,7 +264,9 @@ Check check_colour(const std::string& file, double size_mm, const JobInput& inpu
       return model_colour(d, textures, f, w);
     };
   const std::string path =
-      (std::filesystem::temp_directory_path() / ("papernet_colour_" + file + ".pdf")).string();
+      (std::filesystem::temp_directory_path() /
+       ("papernet_colour_" + std::filesystem::path(file).filename().string() + ".pdf"))
+          .string();
   {
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), std::fclose);
     std::fwrite(out.documents.pdf.data(), 1, out.documents.pdf.size(), f.get());
@@ -303,15 +307,16 @@ Check check_colour(const std::string& file, double size_mm, const JobInput& inpu
 
 class ColourPrint : public ::testing::TestWithParam<std::pair<const char*, double>> {};
 
-INSTANTIATE_TEST_SUITE_P(Models, ColourPrint,
-                         ::testing::Values(std::pair{"Duck.glb", 150.0},
-                                           std::pair{"BoxTextured.glb", 80.0},
-                                           std::pair{"cubevc.glb", 80.0},
-                                           std::pair{"rgb_cube.gltf", 80.0}),
-                         [](const auto& info) {
-                           std::string name = info.param.first;
-                           return name.substr(0, name.find('.'));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Models, ColourPrint,
+    ::testing::Values(std::pair{"Duck.glb", 150.0}, std::pair{"BoxTextured.glb", 80.0},
+                      std::pair{"cubevc.glb", 80.0}, std::pair{"rgb_cube.gltf", 80.0},
+                      std::pair{"VertexColorTest/VertexColorTest.gltf", 150.0}),
+    [](const auto& info) {
+      std::string name = info.param.first;
+      name = name.substr(name.find('/') + 1);
+      return name.substr(0, name.find('.'));
+    });
 
 // At least 98 % of the faces large enough to sample print the model's colour.
 TEST_P(ColourPrint, PagesShowTheModelsColourOnEveryFace) {
@@ -417,10 +422,11 @@ JobInput as_obj_with_mtl(const SourceModel& m) {
 
 // The source as a glTF, its corners with texture coordinates `uvs` (glTF's convention), the
 // material's texture reference with `extensions` (null: none), the texture with `sampler` (null:
-// none, so repeat).
+// none, so repeat). With `colours` (linear RGB per corner), those as COLOR_0 and no texture.
 JobInput as_gltf(const SourceModel& m, const std::vector<std::array<UV, 3>>& uvs,
-                 const nlohmann::json& extensions, const nlohmann::json& sampler) {
-  std::vector<float> positions, coordinates;
+                 const nlohmann::json& extensions, const nlohmann::json& sampler,
+                 const std::vector<std::array<std::array<float, 3>, 3>>& colours = {}) {
+  std::vector<float> positions, coordinates, rgb;
   std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (std::size_t f = 0; f < m.corners.size(); ++f)
     for (int k = 0; k < 3; ++k) {
@@ -433,12 +439,15 @@ JobInput as_gltf(const SourceModel& m, const std::vector<std::array<UV, 3>>& uvs
       }
       coordinates.push_back(static_cast<float>(uvs[f][k][0]));
       coordinates.push_back(static_cast<float>(uvs[f][k][1]));
+      if (!colours.empty()) rgb.insert(rgb.end(), colours[f][k].begin(), colours[f][k].end());
     }
   std::string buffer(reinterpret_cast<const char*>(positions.data()),
                      positions.size() * sizeof(float));
   const std::size_t uv_offset = buffer.size();
   buffer.append(reinterpret_cast<const char*>(coordinates.data()),
                 coordinates.size() * sizeof(float));
+  const std::size_t rgb_offset = buffer.size();
+  buffer.append(reinterpret_cast<const char*>(rgb.data()), rgb.size() * sizeof(float));
   const std::size_t count = m.corners.size() * 3;
   nlohmann::json reference = {{"index", 0}};
   if (!extensions.is_null()) reference["extensions"] = extensions;
@@ -461,7 +470,7 @@ JobInput as_gltf(const SourceModel& m, const std::vector<std::array<UV, 3>>& uvs
          {"uri", "data:application/octet-stream;base64," + encode_base64(buffer)}}}},
       {"bufferViews",
        {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", uv_offset}},
-        {{"buffer", 0}, {"byteOffset", uv_offset}, {"byteLength", buffer.size() - uv_offset}}}},
+        {{"buffer", 0}, {"byteOffset", uv_offset}, {"byteLength", rgb_offset - uv_offset}}}},
       {"accessors",
        {{{"bufferView", 0},
          {"componentType", 5126},
@@ -471,6 +480,21 @@ JobInput as_gltf(const SourceModel& m, const std::vector<std::array<UV, 3>>& uvs
          {"max", hi}},
         {{"bufferView", 1}, {"componentType", 5126}, {"count", count}, {"type", "VEC2"}}}}};
   if (!extensions.is_null()) gltf["extensionsUsed"] = {"KHR_texture_transform"};
+  if (!colours.empty()) {
+    gltf["bufferViews"].push_back(
+        {{"buffer", 0}, {"byteOffset", rgb_offset}, {"byteLength", buffer.size() - rgb_offset}});
+    gltf["accessors"].push_back(
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}});
+    gltf["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 2;
+    gltf["materials"][0]["pbrMetallicRoughness"].erase("baseColorTexture");
+    gltf.erase("textures");
+    gltf.erase("images");
+    gltf.erase("samplers");
+    JobInput input;
+    input.mesh = gltf.dump();
+    input.format = MeshFormat::Gltf;
+    return input;
+  }
   if (!sampler.is_null()) {
     gltf["samplers"] = {sampler};
     texture["sampler"] = 0;
@@ -623,6 +647,25 @@ TEST(ColourPrintForms, FarOutUvsUnderClampSamplingPrintTheClampedTexture) {
   };
   EXPECT_EQ(warning("texture_coordinates_out_of_range"), 11u);
   EXPECT_EQ(warning("texture_coordinates_missing"), 1u);
+}
+
+// Vertex colours are linear (glTF) and so is their interpolation across a face; cairo's
+// gradients interpolate in sRGB, which from black to white is 0.235 off at the middle. The box
+// with each face black at one corner and white at the others prints the linear blend (the test's
+// expected colour: srgb of the interpolated linear colour).
+TEST(ColourPrintForms, VertexColourGradientsBlendLinearly) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  const SourceModel box = box_textured();
+  std::vector<std::array<std::array<float, 3>, 3>> colours(box.corners.size());
+  for (auto& face : colours) face = {{{0, 0, 0}, {1, 1, 1}, {1, 1, 1}}};
+  const Check check =
+      check_colour("box_gradient.gltf", 80, as_gltf(box, box.uvs, nullptr, nullptr, colours));
+  EXPECT_EQ(check.faces, 12u);
+  EXPECT_GE(static_cast<double>(check.matched), 0.98 * check.faces)
+      << check.matched << " of " << check.faces
+      << " faces print the linear blend of their corners; worst mean difference " << check.worst;
+  std::printf("vertex colour gradients: %zu of %zu faces within %.2f (worst %.3f)\n", check.matched,
+              check.faces, kTolerance, check.worst);
 }
 
 // Closest point of triangle abc to p, as barycentric coordinates (Ericson, Real-Time Collision

@@ -1,6 +1,7 @@
 // A job's input from a file of tests/data, as the command line reads it.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "core/io/load.h"
@@ -8,10 +9,18 @@
 
 namespace papernet::test {
 
+/// A model in a folder of its own (a .gltf with its buffers and images) comes with the other
+/// files of that folder, as the command line reads those beside the file.
 inline JobInput data_file(const std::string& name) {
   JobInput input;
-  input.mesh = read_mesh_file(std::string(PAPERNET_TEST_DATA) + "/" + name, 64 << 20);
+  const std::filesystem::path path = std::filesystem::path(PAPERNET_TEST_DATA) / name;
+  input.mesh = read_mesh_file(path.string(), 64 << 20);
   input.format = format_from_extension(name);
+  if (name.find('/') != std::string::npos)
+    for (const auto& entry : std::filesystem::directory_iterator(path.parent_path()))
+      if (entry.path() != path && entry.is_regular_file())
+        input.external_files[entry.path().filename().string()] =
+            read_mesh_file(entry.path().string(), 64 << 20);
   return input;
 }
 
