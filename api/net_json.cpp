@@ -72,7 +72,9 @@ void colour_to_json(const MeshColour& c, nlohmann::json& out) {
   for (const Material& m : c.materials)
     materials.push_back({{"name", m.name},
                          {"base_color", m.base_color},
-                         {"texture", m.texture >= 0 ? json(m.texture) : json(nullptr)}});
+                         {"texture", m.texture >= 0 ? json(m.texture) : json(nullptr)},
+                         {"alpha_mode", alpha_mode_name(m.alpha_mode)},
+                         {"alpha_cutoff", m.alpha_cutoff}});
   for (const Texture& t : c.textures)
     textures.push_back({{"name", t.name},
                         {"mime_type", t.mime_type},
@@ -127,6 +129,15 @@ void colour_from_json(const nlohmann::json& j, const nlohmann::json& mesh, std::
       material.base_color = field(m, "base_color", "a material").get<RGBA>();
       const auto& t = field(m, "texture", "a material");
       material.texture = t.is_null() ? -1 : t.get<int>();
+      const std::string mode = m.value("alpha_mode", std::string("OPAQUE"));
+      if (mode == "MASK")
+        material.alpha_mode = AlphaMode::Mask;
+      else if (mode == "BLEND")
+        material.alpha_mode = AlphaMode::Blend;
+      else if (mode != "OPAQUE")
+        throw IOException("net JSON: a material's alpha_mode is '" + mode +
+                          "', not OPAQUE, MASK or BLEND");
+      material.alpha_cutoff = m.value("alpha_cutoff", 0.5);
       if (material.texture >= int(c.textures.size()) || material.texture < -1)
         throw IOException(std::string("net JSON: a material names texture ") +
                           std::to_string(material.texture) + " of " +

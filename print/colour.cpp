@@ -46,9 +46,30 @@ SurfacePtr texture_surface(const Image& image) {
   for (int y = 0; y < image.height; ++y) {
     auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
     const std::uint8_t* in = image.rgba.data() + static_cast<std::size_t>(y) * image.width * 4;
-    for (int x = 0; x < image.width; ++x, in += 4)  // alpha ignored: paper is opaque
+    for (int x = 0; x < image.width; ++x, in += 4)  // alpha apart (alpha_surface)
       row[x] = 0xff000000u | (std::uint32_t{in[0]} << 16) | (std::uint32_t{in[1]} << 8) | in[2];
   }
+  cairo_surface_mark_dirty(s.get());
+  return s;
+}
+
+// The image's alpha as an A8 surface: as it is, or 255 where alpha times `factor` reaches
+// `cutoff` (0 elsewhere) when `cutoff` >= 0. Null when every pixel is opaque.
+SurfacePtr alpha_surface(const Image& image, double factor, double cutoff) {
+  bool any = false;
+  for (std::size_t i = 3; i < image.rgba.size() && !any; i += 4) any = image.rgba[i] < 255;
+  if (!any) return nullptr;
+  SurfacePtr s = own(cairo_image_surface_create(CAIRO_FORMAT_A8, image.width, image.height));
+  if (cairo_surface_status(s.get()) != CAIRO_STATUS_SUCCESS) return nullptr;
+  cairo_surface_flush(s.get());
+  unsigned char* data = cairo_image_surface_get_data(s.get());
+  const int stride = cairo_image_surface_get_stride(s.get());
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint8_t a = image.rgba[(static_cast<std::size_t>(y) * image.width + x) * 4 + 3];
+      data[static_cast<std::ptrdiff_t>(y) * stride + x] =
+          cutoff < 0 ? a : (a / 255.0 * factor >= cutoff ? 255 : 0);
+    }
   cairo_surface_mark_dirty(s.get());
   return s;
 }
@@ -64,8 +85,28 @@ cairo_extend_t extend_of(int wrap) {
   }
 }
 
+const PrintTexture* texture_of(const ColourTriangle& t, const PrintColour& colour);
+
+// How much of the triangle's material covers the paper by its factor's alpha (docs/colour.md,
+// "Alpha"): 1 when opaque; under Blend the alpha; under Mask 1 or 0 by the cutoff.
+double factor_cover(const ColourTriangle& t, const PrintColour& colour) {
+  if (t.material < 0 || t.material >= static_cast<int>(colour.materials.size())) return 1;
+  const Material& m = colour.materials[t.material];
+  const double a = std::clamp(m.base_color[3], 0.0, 1.0);
+  switch (m.alpha_mode) {
+    case AlphaMode::Blend:
+      return a;
+    case AlphaMode::Mask:
+      return a >= m.alpha_cutoff ? 1 : 0;
+    case AlphaMode::Opaque:
+      break;
+  }
+  return 1;
+}
+
 // The triangle's own colour factor (material × vertex colours), sRGB, at barycentric point w:
-// vertex colours are interpolated as glTF has them, linear, then turned into sRGB.
+// vertex colours are interpolated as glTF has them, linear, then turned into sRGB. Without a
+// texture, the paper shows through as the factor's alpha says.
 std::array<double, 3> factor_at(const ColourTriangle& t, const PrintColour& colour,
                                 const std::array<double, 3>& w) {
   RGBA c{1, 1, 1, 1};
@@ -74,7 +115,12 @@ std::array<double, 3> factor_at(const ColourTriangle& t, const PrintColour& colo
   if (finite(t.rgba[0]) && finite(t.rgba[1]) && finite(t.rgba[2]))
     for (int i = 0; i < 3; ++i)
       c[i] *= w[0] * t.rgba[0][i] + w[1] * t.rgba[1][i] + w[2] * t.rgba[2][i];
-  return {srgb(c[0]), srgb(c[1]), srgb(c[2])};
+  std::array<double, 3> out{srgb(c[0]), srgb(c[1]), srgb(c[2])};
+  if (!texture_of(t, colour)) {
+    const double cover = factor_cover(t, colour);
+    for (double& x : out) x = x * cover + (1 - cover);
+  }
+  return out;
 }
 
 std::array<double, 3> corner_colour(const ColourTriangle& t, const PrintColour& colour, int k) {
@@ -379,7 +425,18 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::vector<std::array<Ve
     fill_and_bleed();
     return;
   }
-  if (tex && white && parts.size() == 1) {
+  // The paper showing through a Mask or Blend material (docs/colour.md, "Alpha"): the texture's
+  // alpha, times the factor's cover. Drawn for a texture taken through one map.
+  const SurfacePtr alpha =
+      tex && t.material >= 0 && t.material < static_cast<int>(colour.alpha.size())
+          ? colour.alpha[t.material]
+          : nullptr;
+  const bool mask = colour.materials.empty() || t.material < 0
+                        ? false
+                        : colour.materials[t.material].alpha_mode == AlphaMode::Mask;
+  const double cover = alpha && mask ? 1.0 : factor_cover(t, colour);
+  const bool see_through = tex && parts.size() == 1 && (alpha || cover < 1);
+  if (tex && white && parts.size() == 1 && !see_through) {
     fill_texture(cr, *tex, parts);
     return;
   }
@@ -451,8 +508,38 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::vector<std::array<Ve
     trace(cr, p);
     cairo_fill(cr);
   }
-  cairo_pop_group_to_source(cr);
-  fill_and_bleed();
+  if (!see_through) {
+    cairo_pop_group_to_source(cr);
+    fill_and_bleed();
+    cairo_restore(cr);
+    return;
+  }
+  // The paper, then the product through the alpha.
+  cairo_pattern_t* product = cairo_pop_group(cr);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  trace(cr, outline);
+  cairo_fill_preserve(cr);
+  cairo_clip(cr);
+  cairo_set_source(cr, product);
+  cairo_pattern_destroy(product);
+  if (!alpha) {
+    cairo_paint_with_alpha(cr, cover);
+  } else {
+    cairo_pattern_t* through = cairo_pattern_create_for_surface(alpha.get());
+    cairo_pattern_set_matrix(through, &parts[0].matrix);
+    cairo_pattern_set_extend(through, extend_of(tex->sampler.wrap_s));
+    cairo_pattern_set_filter(
+        through, tex->sampler.mag_filter == 9728 ? CAIRO_FILTER_NEAREST : CAIRO_FILTER_GOOD);
+    if (cover < 1) {  // the factor's alpha times the texture's
+      cairo_push_group_with_content(cr, CAIRO_CONTENT_ALPHA);
+      cairo_set_source(cr, through);
+      cairo_paint_with_alpha(cr, cover);
+      cairo_pattern_destroy(through);
+      through = cairo_pop_group(cr);
+    }
+    cairo_mask(cr, through);
+    cairo_pattern_destroy(through);
+  }
   cairo_restore(cr);
 }
 
@@ -493,6 +580,7 @@ PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi
   PrintColour out;
   out.dpi = dpi;
   out.materials = colour.materials;
+  out.alpha.resize(out.materials.size());
   for (const Texture& t : colour.textures) {
     PrintTexture& p = out.textures.emplace_back();
     p.sampler = t.sampler;
@@ -501,6 +589,14 @@ PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi
       p.surface = texture_surface(image);
       p.width = image.width;
       p.height = image.height;
+      const int k = static_cast<int>(out.textures.size()) - 1;
+      for (std::size_t m = 0; m < out.materials.size(); ++m) {
+        const Material& material = out.materials[m];
+        if (material.texture != k || material.alpha_mode == AlphaMode::Opaque) continue;
+        const bool mask = material.alpha_mode == AlphaMode::Mask;
+        out.alpha[m] = alpha_surface(image, material.base_color[3],
+                                     mask ? std::max(material.alpha_cutoff, 0.0) : -1.0);
+      }
     } catch (const IOException& e) {
       notes.push_back({"texture_not_printed", 1,
                        "texture " + std::to_string(out.textures.size() - 1) +

@@ -53,6 +53,10 @@ struct PrintColour {
   std::vector<std::vector<ColourTriangle>> faces;
   std::vector<Material> materials;
   std::vector<PrintTexture> textures;
+  /// Per material: where its texture lets the paper show (alpha, A8; under Mask already
+  /// thresholded with the factor's alpha), null when the material is opaque or its texture has
+  /// no alpha.
+  std::vector<std::shared_ptr<cairo_surface_t>> alpha;
   double dpi = kDefaultColourDpi;
 
   /// True when some face is coloured.

@@ -159,7 +159,14 @@ export interface NetDocument {
     /** Per face, an index into `materials` (-1: none). */
     face_materials?: number[];
   };
-  materials?: Array<{ name: string; base_color: [number, number, number, number]; texture: number | null }>;
+  materials?: Array<{
+    name: string;
+    base_color: [number, number, number, number];
+    texture: number | null;
+    /** glTF alphaMode: what is see-through prints as paper (OPAQUE when absent). */
+    alpha_mode?: "OPAQUE" | "MASK" | "BLEND";
+    alpha_cutoff?: number;
+  }>;
   /** The images are served beside the document: PapernetClient.texture(id, k). */
   textures?: Array<{
     name: string;

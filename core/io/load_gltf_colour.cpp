@@ -175,6 +175,9 @@ void read_gltf_materials(const tinygltf::Model& model, const GltfImageBytes& ima
     const auto& factor = m.pbrMetallicRoughness.baseColorFactor;
     for (std::size_t k = 0; k < 4 && k < factor.size(); ++k) out.base_color[k] = factor[k];
     out.texture = texture(m.pbrMetallicRoughness.baseColorTexture.index);
+    if (m.alphaMode == "MASK") out.alpha_mode = AlphaMode::Mask;
+    if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::Blend;
+    if (std::isfinite(m.alphaCutoff)) out.alpha_cutoff = m.alphaCutoff;
     colour.materials.push_back(std::move(out));
   }
 }

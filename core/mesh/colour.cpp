@@ -4,6 +4,18 @@
 #include <limits>
 
 namespace papernet {
+
+const char* alpha_mode_name(AlphaMode mode) {
+  switch (mode) {
+    case AlphaMode::Mask:
+      return "MASK";
+    case AlphaMode::Blend:
+      return "BLEND";
+    case AlphaMode::Opaque:
+      break;
+  }
+  return "OPAQUE";
+}
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

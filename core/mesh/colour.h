@@ -29,11 +29,21 @@ struct Texture {
   std::string bytes;
 };
 
+/// How a material's alpha (the base colour's, times its texture's) is read: glTF's alphaMode.
+/// Opaque ignores it; Mask shows the surface where alpha is at least the cutoff and nothing
+/// elsewhere; Blend lets what is behind show through. On paper, what does not show is the paper.
+enum class AlphaMode { Opaque, Mask, Blend };
+
 struct Material {
   std::string name;
   RGBA base_color{1, 1, 1, 1};  ///< glTF baseColorFactor, OBJ Kd (alpha d)
   int texture = -1;             ///< index into MeshColour::textures, -1 without one
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  double alpha_cutoff = 0.5;  ///< for AlphaMode::Mask
 };
+
+/// "OPAQUE", "MASK" or "BLEND", as glTF spells them.
+const char* alpha_mode_name(AlphaMode mode);
 
 /// Per-face colour data of a mesh, indexed like Mesh::faces. Each vector is empty when the
 /// input has none; otherwise it has one entry per face. A face without texture coordinates
