@@ -156,7 +156,7 @@ void trace(cairo_t* cr, const Points& p) {
   cairo_close_path(cr);
 }
 
-// Polygons filled together (nonzero winding: each one counter-clockwise on the page, so their
+// Polygons filled together (nonzero winding: each triangle turned the same way round, so their
 // union is filled where they overlap).
 using Outline = std::vector<std::vector<Vec2>>;
 
@@ -381,7 +381,7 @@ std::array<double, 3> texel_at(const PrintTexture& tex, const std::array<UV, 3>&
 // p, it covers the hairline antialiasing leaves between neighbouring triangles and reaches d past
 // the cuts; a stroke would do the same at several times the cost.
 std::vector<Vec2> grown(std::array<Vec2, 3> p, double d) {
-  if (cross(p[1] - p[0], p[2] - p[0]) < 0) std::swap(p[1], p[2]);  // counter-clockwise
+  if (cross(p[1] - p[0], p[2] - p[0]) < 0) std::swap(p[1], p[2]);  // all one orientation
   std::vector<Vec2> out(p.begin(), p.end());
   for (int i = 0; i < 3; ++i) {
     const Vec2 a = p[(i + 2) % 3], v = p[i], b = p[(i + 1) % 3];
