@@ -5,6 +5,8 @@
 // barycentric point: its texture (decoded here, sampled bilinearly), times the material's
 // factor and the vertex colours (linear, so turned into sRGB as the page is).
 #include <cairo.h>
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -540,16 +542,93 @@ JobInput as_gltf_with_texture_transform(const SourceModel& m) {
   return as_gltf(m, uvs, {{"KHR_texture_transform", transform}}, nullptr);
 }
 
-// The textured box as an OBJ with MTL and as a glTF with KHR_texture_transform prints the
-// colours of the box it was written from, face by face (found by position), tabs included.
-TEST(ColourPrintForms, ObjWithMtlAndTextureTransformPrintTheSourcesColours) {
+// The source as a glTF whose primitive is Draco-compressed (KHR_draco_mesh_compression):
+// positions and texture coordinates encoded by libdraco, losslessly (no quantization).
+JobInput as_draco_gltf(const SourceModel& m) {
+  const int faces = static_cast<int>(m.corners.size());
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(faces);
+  const int position =
+      builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  const int texcoord =
+      builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (int f = 0; f < faces; ++f) {
+    std::array<std::array<float, 3>, 3> p;
+    std::array<std::array<float, 2>, 3> t;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 q = m.corners[f][k];
+      p[k] = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(lo[i], static_cast<double>(p[k][i]));
+        hi[i] = std::max(hi[i], static_cast<double>(p[k][i]));
+      }
+      t[k] = {static_cast<float>(m.uvs[f][k][0]), static_cast<float>(m.uvs[f][k][1])};
+    }
+    builder.SetAttributeValuesForFace(position, draco::FaceIndex(f), p[0].data(), p[1].data(),
+                                      p[2].data());
+    builder.SetAttributeValuesForFace(texcoord, draco::FaceIndex(f), t[0].data(), t[1].data(),
+                                      t[2].data());
+  }
+  const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  draco::Encoder encoder;
+  draco::EncoderBuffer buffer;
+  EXPECT_TRUE(mesh && encoder.EncodeMeshToBuffer(*mesh, &buffer).ok());
+  const std::string drc(buffer.data(), buffer.size());
+  const std::size_t count = m.corners.size() * 3;
+  const nlohmann::json draco = {{"bufferView", 0},
+                                {"attributes",
+                                 {{"POSITION", mesh->attribute(position)->unique_id()},
+                                  {"TEXCOORD_0", mesh->attribute(texcoord)->unique_id()}}}};
+  const nlohmann::json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"KHR_draco_mesh_compression"}},
+      {"extensionsRequired", {"KHR_draco_mesh_compression"}},
+      {"scene", 0},
+      {"scenes", nlohmann::json::array({nlohmann::json::object({{"nodes", {0}}})})},
+      {"nodes", nlohmann::json::array({nlohmann::json::object({{"mesh", 0}})})},
+      {"meshes", nlohmann::json::array({nlohmann::json::object(
+                     {{"primitives",
+                       nlohmann::json::array({nlohmann::json::object(
+                           {{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}},
+                            {"indices", 2},
+                            {"material", 0},
+                            {"extensions", nlohmann::json::object(
+                                               {{"KHR_draco_mesh_compression", draco}})}})})}})})},
+      {"materials", nlohmann::json::array({nlohmann::json::object(
+                        {{"pbrMetallicRoughness",
+                          {{"baseColorFactor", {m.factor[0], m.factor[1], m.factor[2], 1.0}},
+                           {"baseColorTexture", nlohmann::json::object({{"index", 0}})}}}})})},
+      {"textures", nlohmann::json::array({nlohmann::json::object({{"source", 0}})})},
+      {"images", nlohmann::json::array({nlohmann::json::object({{"uri", "box.png"}})})},
+      {"buffers", nlohmann::json::array({nlohmann::json::object(
+                      {{"byteLength", drc.size()},
+                       {"uri", "data:application/octet-stream;base64," + encode_base64(drc)}})})},
+      {"bufferViews", nlohmann::json::array({nlohmann::json::object(
+                          {{"buffer", 0}, {"byteOffset", 0}, {"byteLength", drc.size()}})})},
+      {"accessors",
+       {{{"componentType", 5126}, {"count", count}, {"type", "VEC3"}, {"min", lo}, {"max", hi}},
+        {{"componentType", 5126}, {"count", count}, {"type", "VEC2"}},
+        {{"componentType", 5125}, {"count", count}, {"type", "SCALAR"}}}}};
+  JobInput input;
+  input.mesh = gltf.dump();
+  input.format = MeshFormat::Gltf;
+  input.external_files["box.png"] = m.texture.bytes;
+  return input;
+}
+
+// The textured box as an OBJ with MTL, as a glTF with KHR_texture_transform and as a
+// Draco-compressed glTF prints the colours of the box it was written from, face by face (found
+// by position), tabs included.
+TEST(ColourPrintForms, ObjWithMtlTextureTransformAndDracoPrintTheSourcesColours) {
   if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
   const SourceModel box = box_textured();
   ASSERT_EQ(box.corners.size(), 12u);
   const Image texture = decode_image(box.texture.bytes);
-  for (const auto& [name, input] : {std::pair{std::string("box.obj"), as_obj_with_mtl(box)},
-                                    std::pair{std::string("box_texture_transform.gltf"),
-                                              as_gltf_with_texture_transform(box)}}) {
+  for (const auto& [name, input] :
+       {std::pair{std::string("box.obj"), as_obj_with_mtl(box)},
+        std::pair{std::string("box_texture_transform.gltf"), as_gltf_with_texture_transform(box)},
+        std::pair{std::string("box_draco.gltf"), as_draco_gltf(box)}}) {
     const Check check = check_colour(name, 80, input, source_colour(box, texture));
     EXPECT_EQ(check.faces, 12u) << name;
     EXPECT_GE(static_cast<double>(check.matched), 0.98 * check.faces)
