@@ -318,13 +318,20 @@ std::vector<TexturePart> texture_parts(const PrintTexture& tex, const std::array
   return parts;
 }
 
+// `surface` (a texture, or its alpha) through `matrix`, sampled as `sampler` says.
+cairo_pattern_t* sampled(cairo_surface_t* surface, const TextureSampler& sampler,
+                         const cairo_matrix_t& matrix) {
+  cairo_pattern_t* pattern = cairo_pattern_create_for_surface(surface);
+  cairo_pattern_set_matrix(pattern, &matrix);
+  cairo_pattern_set_extend(pattern, extend_of(sampler.wrap_s));
+  cairo_pattern_set_filter(pattern,
+                           sampler.mag_filter == 9728 ? CAIRO_FILTER_NEAREST : CAIRO_FILTER_GOOD);
+  return pattern;
+}
+
 // The texture through `matrix` as the source.
 void set_texture_source(cairo_t* cr, const PrintTexture& tex, const cairo_matrix_t& matrix) {
-  cairo_pattern_t* pattern = cairo_pattern_create_for_surface(tex.surface.get());
-  cairo_pattern_set_matrix(pattern, &matrix);
-  cairo_pattern_set_extend(pattern, extend_of(tex.sampler.wrap_s));
-  cairo_pattern_set_filter(
-      pattern, tex.sampler.mag_filter == 9728 ? CAIRO_FILTER_NEAREST : CAIRO_FILTER_GOOD);
+  cairo_pattern_t* pattern = sampled(tex.surface.get(), tex.sampler, matrix);
   cairo_set_source(cr, pattern);
   cairo_pattern_destroy(pattern);
 }
@@ -431,10 +438,9 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::vector<std::array<Ve
       tex && t.material >= 0 && t.material < static_cast<int>(colour.alpha.size())
           ? colour.alpha[t.material]
           : nullptr;
-  const bool mask = colour.materials.empty() || t.material < 0
-                        ? false
-                        : colour.materials[t.material].alpha_mode == AlphaMode::Mask;
-  const double cover = alpha && mask ? 1.0 : factor_cover(t, colour);
+  // Under Mask the alpha image already holds the factor's alpha (print_colour).
+  const bool masked = alpha && colour.materials[t.material].alpha_mode == AlphaMode::Mask;
+  const double cover = masked ? 1.0 : factor_cover(t, colour);
   const bool see_through = tex && parts.size() == 1 && (alpha || cover < 1);
   if (tex && white && parts.size() == 1 && !see_through) {
     fill_texture(cr, *tex, parts);
@@ -525,11 +531,7 @@ void paint(cairo_t* cr, const ColourTriangle& t, const std::vector<std::array<Ve
   if (!alpha) {
     cairo_paint_with_alpha(cr, cover);
   } else {
-    cairo_pattern_t* through = cairo_pattern_create_for_surface(alpha.get());
-    cairo_pattern_set_matrix(through, &parts[0].matrix);
-    cairo_pattern_set_extend(through, extend_of(tex->sampler.wrap_s));
-    cairo_pattern_set_filter(
-        through, tex->sampler.mag_filter == 9728 ? CAIRO_FILTER_NEAREST : CAIRO_FILTER_GOOD);
+    cairo_pattern_t* through = sampled(alpha.get(), tex->sampler, parts[0].matrix);
     if (cover < 1) {  // the factor's alpha times the texture's
       cairo_push_group_with_content(cr, CAIRO_CONTENT_ALPHA);
       cairo_set_source(cr, through);
@@ -719,17 +721,20 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
       };
       std::stable_sort(order.begin(), order.end(),
                        [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-      // The group's map is taken from its largest triangle (a sliver's is ill-conditioned).
+      // The group's map is taken from its largest triangle (a sliver's is ill-conditioned),
+      // which goes first.
       std::vector<std::array<Vec2, 3>> group;
       std::size_t largest = 0;
       double area = -1;
       for (std::size_t i = 0; i < order.size(); ++i) {
         const auto placed = place(triangles[order[i]], corners);
         const double a = std::abs(cross(placed[1] - placed[0], placed[2] - placed[0]));
-        if (a > area) area = a, largest = order[i];
         group.push_back(placed);
+        if (a > area) {
+          area = a, largest = order[i];
+          std::swap(group.front(), group.back());
+        }
         if (i + 1 < order.size() && key(order[i + 1]) == key(order[i])) continue;
-        group.insert(group.begin(), place(triangles[largest], corners));
         paint(cr, triangles[largest], group, colour, line);
         group.clear();
         area = -1;

@@ -75,13 +75,17 @@ double srgb(double linear) {
   return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
 }
 
-// Bilinear sample at (u, v), repeating, texel centres at half-integers: red, green, blue, alpha.
-std::array<double, 4> sample_rgba(const Image& image, double u, double v) {
+// Bilinear sample at (u, v), texel centres at half-integers: red, green, blue, alpha. Repeating,
+// or with `clamp` clamped to [0, 1] (texel indices clamped at the edges).
+std::array<double, 4> sample_rgba(const Image& image, double u, double v, bool clamp = false) {
+  if (clamp) u = std::clamp(u, 0.0, 1.0), v = std::clamp(v, 0.0, 1.0);
   const double x = u * image.width - 0.5, y = v * image.height - 0.5;
   const double fx = std::floor(x), fy = std::floor(y);
+  auto index = [&](double t, int n) {
+    return clamp ? std::clamp(static_cast<int>(t), 0, n - 1) : ((static_cast<int>(t) % n) + n) % n;
+  };
   auto texel = [&](double tx, double ty, int c) {
-    const int ix = ((static_cast<int>(tx) % image.width) + image.width) % image.width;
-    const int iy = ((static_cast<int>(ty) % image.height) + image.height) % image.height;
+    const int ix = index(tx, image.width), iy = index(ty, image.height);
     return image.rgba[(static_cast<std::size_t>(iy) * image.width + ix) * 4 + c] / 255.0;
   };
   std::array<double, 4> out{};
@@ -664,25 +668,6 @@ Texture gradient_texture() {
   return t;
 }
 
-// Bilinear sample at (u, v) clamped to [0, 1] (texel indices clamped at the edges).
-std::array<double, 3> sample_clamped(const Image& image, double u, double v) {
-  const double x = std::clamp(u, 0.0, 1.0) * image.width - 0.5;
-  const double y = std::clamp(v, 0.0, 1.0) * image.height - 0.5;
-  const double fx = std::floor(x), fy = std::floor(y);
-  auto texel = [&](double tx, double ty, int c) {
-    const int ix = std::clamp(static_cast<int>(tx), 0, image.width - 1);
-    const int iy = std::clamp(static_cast<int>(ty), 0, image.height - 1);
-    return image.rgba[(static_cast<std::size_t>(iy) * image.width + ix) * 4 + c] / 255.0;
-  };
-  std::array<double, 3> out{};
-  for (int c = 0; c < 3; ++c)
-    out[c] = (1 - (x - fx)) * (1 - (y - fy)) * texel(fx, fy, c) +
-             (x - fx) * (1 - (y - fy)) * texel(fx + 1, fy, c) +
-             (1 - (x - fx)) * (y - fy) * texel(fx, fy + 1, c) +
-             (x - fx) * (y - fy) * texel(fx + 1, fy + 1, c);
-  return out;
-}
-
 // Texture coordinates far outside [0, 1] under clamp sampling (issue "Colour kits", bad
 // input): the box with a gradient texture, its faces' coordinates moved 1,000 widths out in u
 // (a face shows the last column's gradient along v), 10^6 out in both (the corner texel) or
@@ -720,7 +705,8 @@ TEST(ColourPrintForms, FarOutUvsUnderClampSamplingPrintTheClampedTexture) {
       double u = 0, v = 0;
       for (int k = 0; k < 3; ++k)
         u += w[k] * far[i][corner[k]][0], v += w[k] * far[i][corner[k]][1];
-      return sample_clamped(texture, u, v);
+      const auto c = sample_rgba(texture, u, v, true);
+      return std::array<double, 3>{c[0], c[1], c[2]};
     }
     return std::array<double, 3>{-1, -1, -1};
   };
