@@ -68,10 +68,11 @@ std::vector<std::string> split(const std::string& s, char sep) {
 void execute(BenchRun& run, const std::string& exe, const std::string& file, double limit,
              const std::string& tmp) {
   const ChildResult r =
-      // The unfolder alone: no pass that changes the cuts for glue tabs (a print's concern).
+      // The unfolder alone, on every face of the mesh: no collapse to a buildable detail and no
+      // pass that changes the cuts for glue tabs (a print's concerns).
       run_child({exe, "unfold", file, "--strategy", run.strategy, "-o", tmp, "--seed",
-                 std::to_string(run.seed), "--time-limit", std::to_string(limit),
-                 "--tab-room-budget", "0"},
+                 std::to_string(run.seed), "--time-limit", std::to_string(limit), "--detail",
+                 "full", "--tab-room-budget", "0"},
                 limit + 30 + limit * 0.5);
   std::remove(tmp.c_str());
   record_child_result(r, run);
