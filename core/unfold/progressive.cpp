@@ -59,9 +59,16 @@ struct Applied {
   std::size_t iterations = 0;  // 0: no overlaps appeared
 };
 
-// Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests.
-constexpr std::size_t kRepairTestsBase = 4000;
-constexpr std::size_t kRepairTestsPerFace = 4;
+// Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests. Its
+// sides grow fourfold from 16 faces while no move helps, up to the whole mesh: on large meshes
+// the cuts on the tree path between a new overlapping pair often have no side under 256 faces,
+// and the repair's many ways of gluing a side back (any face near the cut) find a move where the
+// Tabu Unfolder's walks take hundreds of iterations. c3d__rocker-arm (20,088 faces, seed 1,
+// docs/performance.md): with sides of at most 256 faces and 4,000 + 4 tests per face, 42 Tabu
+// runs after splits took 17.4 s of a 22.9 s unfold; with these, 16 runs took 2.7 s of 7.8 s.
+// Neutral on bench/1000-2000.
+constexpr std::size_t kRepairTestsBase = 256'000;
+constexpr std::size_t kRepairTestsPerFace = 256;
 // Splits per update(): kSplitsPerUpdate, or one per kBatchFaces faces of the current mesh when
 // that is more. Consecutive splits often move the same parts of the tree (the branches that meet
 // their rings); together these are re-laid out and tested once. With eight per update the Tabu
@@ -98,8 +105,17 @@ constexpr std::size_t kHopelessPairsPerFace = 10;
 constexpr std::size_t kSplitIterationsBase = 2000;
 constexpr std::size_t kSplitIterationsPerFace = 5;
 // Small meshes get the split work budget of this many faces (their moves are cheap, but they may
-// need more of them per face).
+// need more of them per face). Larger ones get it times their size over this: a move tests the
+// faces of the side it moves, up to half the mesh, so the tests of each split grow with the
+// mesh as well as the number of splits (c3d__rocker-arm, 20,088 faces, spent a budget linear in
+// its faces at 11,722 faces while every split was still being resolved in under a second).
 constexpr std::size_t kSplitTestsMinFaces = 2000;
+// Share of the Tabu Unfolder's walks after a split that end at a face the start face overlaps
+// (TabuOptions::partner_walks): the overlaps a split leaves are few and local, and only cuts on
+// the tree path between a pair can separate it. bench/1000-2000 (QQ and AUTO, seed 1): QQ
+// complete 92.6 / 88.9 / 88.9 % -> 100 / 92.6 / 88.9 %, AUTO's slowest run at 2,000 faces
+// 24.7 -> 13.9 s; c3d__rocker-arm's Tabu runs 24.7 -> 17.4 s (docs/performance.md).
+constexpr double kSplitPartnerWalks = 1.0;
 
 // The smaller of an iteration or test limit (0: none) and n.
 std::size_t at_most(std::size_t limit, std::size_t n) {
@@ -159,6 +175,7 @@ std::size_t place_splits(State& st, const std::vector<VertexSplit>& splits, std:
   Unfolding& u = st.unfolding;
   if (u.update() == 0) return 0;
   LocalRepairOptions repair;
+  repair.max_side = u.face_count();
   repair.max_tests = kRepairTestsBase + kRepairTestsPerFace * u.face_count();
   return u.repair_locally(repair);
 }
@@ -398,6 +415,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       t.phase = "uncollapse";
       t.input_faces = input_faces;
       t.time_limit_seconds = options.split_time_limit_seconds;
+      t.partner_walks = kSplitPartnerWalks;
       t.max_iterations =
           options.split_iterations > 0
               ? options.split_iterations
@@ -406,8 +424,9 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
                                  result.stats.iterations));
       if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
       if (options.split_tests_per_face > 0) {
-        const std::size_t budget =
-            options.split_tests_per_face * std::max(input_faces, kSplitTestsMinFaces);
+        const std::size_t budget = options.split_tests_per_face *
+                                   std::max(input_faces, kSplitTestsMinFaces) *
+                                   std::max<std::size_t>(1, input_faces / kSplitTestsMinFaces);
         if (split_tests >= budget) {
           failed = true;
           break;

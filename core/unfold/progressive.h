@@ -27,7 +27,8 @@ struct ProgressiveOptions {
   /// tabu.max_iterations).
   std::size_t split_iterations = 0;
   /// Work budget of the Tabu Unfolder over all splits, in faces moved and tested while evaluating
-  /// candidate moves (TabuStats::tests), per input face (at least 2,000 faces; 0: none). Most
+  /// candidate moves (TabuStats::tests), per input face (at least 2,000 faces, and times the
+  /// input's faces over 2,000 beyond: a move's tests grow with the mesh; 0: none). Most
   /// splits need none (the local repair clears their overlaps); a mesh whose splits keep needing
   /// long Tabu runs (CAD parts with slivers) ends as an approximation once the budget is spent,
   /// instead of taking up to the whole time limit. Deterministic.

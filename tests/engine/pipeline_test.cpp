@@ -83,7 +83,8 @@ TEST(Pipeline, WritesTheDocumentsAskedForAndCountsThePrint) {
 }
 
 // The default strategy (AUTO) on the real meshes of tests/data: every net passes the net
-// checker, and each is complete. On the CAD part where QQ alone gives an approximation (seed 3),
+// checker, and each is complete. On the CAD part where QQ alone gives an approximation (seed 38;
+// since the uncollapse's Tabu walks end at an overlapping partner, the only one of seeds 1-40),
 // AUTO gives a net of the part itself. (No tab-room pass: the nets are what is tested.)
 TEST(Pipeline, TheDefaultStrategyGivesCheckedCompleteNetsOfRealMeshes) {
   PipelineProgress quiet;
@@ -100,7 +101,7 @@ TEST(Pipeline, TheDefaultStrategyGivesCheckedCompleteNetsOfRealMeshes) {
   }
   JobOptions qq = automatic;
   qq.strategy = Strategy::QQ;
-  qq.seed = automatic.seed = 3;
+  qq.seed = automatic.seed = 38;
   const UnfoldOutcome approximate =
       run_pipeline(data_file("trimesh_ADIS16480_600.obj"), qq, {}, {}, quiet);
   expect_checked(approximate);
@@ -158,7 +159,7 @@ TEST(Pipeline, TheNetCarriesEachCornersUvsAndTheTextures) {
 }
 
 TEST(Pipeline, AnApproximatePieceSaysItHasNoUvs) {
-  // The 600-face part QQ stops short of (seed 3), with one texture coordinate on every corner.
+  // The 600-face part QQ stops short of (seed 38), with one texture coordinate on every corner.
   JobInput input = data_file("trimesh_ADIS16480_600.obj");
   std::string obj = "vt 0.25 0.75\n";
   std::istringstream lines(input.mesh);
@@ -178,7 +179,7 @@ TEST(Pipeline, AnApproximatePieceSaysItHasNoUvs) {
   input.mesh = obj;
   JobOptions qq;
   qq.strategy = Strategy::QQ;
-  qq.seed = 3;
+  qq.seed = 38;
   qq.tab_room_budget = 0;
   PipelineProgress quiet;
   const UnfoldOutcome out = run_pipeline(input, qq, {}, {}, quiet);

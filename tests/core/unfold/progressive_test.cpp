@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
@@ -218,13 +219,16 @@ TEST(Progressive, CompleteFirstFinishesTheInputWhereTheUncollapseStopped) {
   EXPECT_TRUE(finished) << "no seed stopped the uncollapse";
 }
 
-// A real mesh where complete_first matters: QQ with seed 3 stops short of this 600-face CAD part
-// (an approximation, overlap-free and checked), and complete_first finishes it into a net of the
-// part itself. Both stop on work budgets, not the clock.
+// A real mesh where complete_first matters: with a small budget for the Tabu runs after splits
+// (the work QQ gave up after on this 600-face CAD part before the uncollapse's walks ended at an
+// overlapping partner), QQ stops short of the part (an approximation, overlap-free and checked),
+// and complete_first finishes it into a net of the part itself. Both stop on work budgets, not
+// the clock.
 TEST(Progressive, CompleteFirstFinishesARealMeshQQOnlyApproximates) {
   const Mesh input = load_test_mesh("trimesh_ADIS16480_600.obj");
   ProgressiveOptions options;
   options.tabu.seed = 3;
+  options.split_tests_per_face = 25;
   const ProgressiveResult plain = unfold_generously(input, options);
   ASSERT_TRUE(plain.overlap_free);
   EXPECT_FALSE(plain.complete);
