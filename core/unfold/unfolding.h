@@ -140,6 +140,7 @@ class Unfolding : private unfolding_detail::UnfoldingState {
   long long evaluate_move(int g, int k, long long crossing, long long cutoff);
   void apply_move(int g, int k);
   void move_subtree(int g, int q);
+  void rehang_range(int g, int q);
   void relayout_all();
   std::uint32_t next_seen_epoch();
 

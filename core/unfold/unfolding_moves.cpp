@@ -182,7 +182,7 @@ void Unfolding::apply_move(int g, int k) {
   if (g_in_range_)
     move_subtree(g, q);
   else
-    root_at(root_);  // the pre-order of the changed tree
+    rehang_range(g, q);
 }
 
 // After apply_move when the moved link was g - parent_[g]: g's subtree hangs from q now; updates
@@ -208,6 +208,55 @@ void Unfolding::move_subtree(int g, int q) {
     std::rotate(order_.begin() + dest, order_.begin() + lo, order_.begin() + hi);
     from = dest;
   } else {
+    std::rotate(order_.begin() + lo, order_.begin() + hi, order_.begin() + dest + len);
+    to = dest + len;
+  }
+  for (int i = from; i < to; ++i) tin_[order_[i]] = i;
+}
+
+// After apply_move when the moved link was p - g with parent_[p] == g (the root's side moved
+// relative to the other): p's subtree, the pre-order range [cut_lo_, cut_hi_), now hangs from g
+// through q, one of its faces. Updates the pre-order, sizes and parents to exactly what
+// root_at(root_) gives in time proportional to the range and to the faces between its old and
+// new place, instead of every face: the range is ordered again from q as root_at would, then
+// moves among g's children (g's size and its ancestors' stay the same).
+void Unfolding::rehang_range(int g, int q) {
+  const int lo = cut_lo_, hi = cut_hi_, len = hi - lo;
+  rehung_.clear();
+  parent_[q] = g;
+  stack_.assign(1, q);
+  while (!stack_.empty()) {
+    const int x = stack_.back();
+    stack_.pop_back();
+    rehung_.push_back(x);
+    for (int k = 0; k < 3; ++k)
+      if (links_[x] >> k & 1) {
+        const int n = adj_[x][k];
+        if (n == parent_[x]) continue;
+        parent_[n] = x;
+        stack_.push_back(n);
+      }
+  }
+  for (int i = len - 1; i >= 0; --i) {
+    const int x = rehung_[i];
+    size_[x] = 1;
+    for (int k = 0; k < 3; ++k)
+      if ((links_[x] >> k & 1) && adj_[x][k] != parent_[x]) size_[x] += size_[adj_[x][k]];
+  }
+  std::copy(rehung_.begin(), rehung_.end(), order_.begin() + lo);
+  // Where the range goes, in positions without it: after g (which precedes it) and g's children
+  // across higher edges than the one to q, as root_at visits them.
+  const int kg = edge_to(g, q);
+  int dest = tin_[g] + 1;
+  for (int k = kg + 1; k < 3; ++k) {
+    const int n = adj_[g][k];
+    if ((links_[g] >> k & 1) && n != parent_[g]) dest += size_[n];
+  }
+  int from = lo, to = hi;
+  if (dest < lo) {
+    std::rotate(order_.begin() + dest, order_.begin() + lo, order_.begin() + hi);
+    from = dest;
+  } else if (dest > lo) {
     std::rotate(order_.begin() + lo, order_.begin() + hi, order_.begin() + dest + len);
     to = dest + len;
   }

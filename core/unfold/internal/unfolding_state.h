@@ -55,6 +55,7 @@ struct UnfoldingState {
   // Pre-order of the tree from its root (root_at) and the cut being evaluated (cut): one side
   // is the pre-order range [cut_lo_, cut_hi_), the other its complement.
   std::vector<int> order_, tin_, size_, stack_;
+  std::vector<int> rehung_;  // rehang_range: the range's faces in their new pre-order
   int root_ = 0, cut_lo_ = 0, cut_hi_ = 0, cut_other_ = -1;
   bool g_in_range_ = true, small_is_range_ = true;
   std::vector<std::pair<int, int>> crossing_;
