@@ -6,7 +6,6 @@
 #include <atomic>
 #include <cstring>
 #include <fstream>
-#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
