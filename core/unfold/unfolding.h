@@ -117,6 +117,9 @@ class Unfolding : private unfolding_detail::UnfoldingState {
 
   // unfolding_moves.cpp: the move primitives of the Tabu Unfolder.
   void root_at(int r);
+  // The faces reached from r over links without crossing to parent_[r], in root_at's pre-order,
+  // into out; sets their parents and subtree sizes.
+  void preorder_from(int r, std::vector<int>& out);
   // True when x is in a's subtree in the pre-order of root_at.
   bool in_subtree_of(int a, int x) const {
     return static_cast<unsigned>(tin_[x] - tin_[a]) < static_cast<unsigned>(size_[a]);

@@ -11,16 +11,19 @@ namespace papernet {
 
 void Unfolding::root_at(int r) {
   root_ = r;
-  const int nf = static_cast<int>(face_count());
-  order_.clear();
-  stack_.assign(1, r);
   parent_[r] = -1;
-  size_.resize(nf);
+  size_.resize(face_count());
+  preorder_from(r, order_);
+  for (int i = 0; i < static_cast<int>(order_.size()); ++i) tin_[order_[i]] = i;
+}
+
+void Unfolding::preorder_from(int r, std::vector<int>& out) {
+  out.clear();
+  stack_.assign(1, r);
   while (!stack_.empty()) {
     const int x = stack_.back();
     stack_.pop_back();
-    tin_[x] = static_cast<int>(order_.size());
-    order_.push_back(x);
+    out.push_back(x);
     for (int k = 0; k < 3; ++k)
       if (links_[x] >> k & 1) {
         const int n = adj_[x][k];
@@ -29,8 +32,8 @@ void Unfolding::root_at(int r) {
         stack_.push_back(n);
       }
   }
-  for (int i = nf - 1; i >= 0; --i) {
-    const int x = order_[i];
+  for (auto it = out.rbegin(); it != out.rend(); ++it) {
+    const int x = *it;
     size_[x] = 1;
     for (int k = 0; k < 3; ++k)
       if ((links_[x] >> k & 1) && adj_[x][k] != parent_[x]) size_[x] += size_[adj_[x][k]];
@@ -222,27 +225,8 @@ void Unfolding::move_subtree(int g, int q) {
 // moves among g's children (g's size and its ancestors' stay the same).
 void Unfolding::rehang_range(int g, int q) {
   const int lo = cut_lo_, hi = cut_hi_, len = hi - lo;
-  rehung_.clear();
   parent_[q] = g;
-  stack_.assign(1, q);
-  while (!stack_.empty()) {
-    const int x = stack_.back();
-    stack_.pop_back();
-    rehung_.push_back(x);
-    for (int k = 0; k < 3; ++k)
-      if (links_[x] >> k & 1) {
-        const int n = adj_[x][k];
-        if (n == parent_[x]) continue;
-        parent_[n] = x;
-        stack_.push_back(n);
-      }
-  }
-  for (int i = len - 1; i >= 0; --i) {
-    const int x = rehung_[i];
-    size_[x] = 1;
-    for (int k = 0; k < 3; ++k)
-      if ((links_[x] >> k & 1) && adj_[x][k] != parent_[x]) size_[x] += size_[adj_[x][k]];
-  }
+  preorder_from(q, rehung_);
   std::copy(rehung_.begin(), rehung_.end(), order_.begin() + lo);
   // Where the range goes, in positions without it: after g (which precedes it) and g's children
   // across higher edges than the one to q, as root_at visits them.
