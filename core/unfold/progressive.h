@@ -68,6 +68,10 @@ struct ProgressiveResult {
   std::size_t coarse_retries = 0;  ///< further collapses after a coarse mesh failed
   std::size_t splits = 0;          ///< vertex splits the net includes
   std::size_t splits_total = 0;    ///< collapses made
+  /// Passes of going back to the last checkpoint and replaying the splits after it, when a
+  /// split's overlaps stayed (0 or 1; a replay that diverged from the run it repeats would need
+  /// more and lose splits).
+  std::size_t replays = 0;
   /// complete_first gave the net: the uncollapse stopped, the Tabu Unfolder finished the input.
   bool continued = false;
   TabuStats stats;  ///< Tabu Unfolder work summed over all runs
