@@ -55,8 +55,9 @@ struct State {
 // A split that was applied, with what its Tabu run needed (to replay it exactly).
 struct Applied {
   std::vector<VertexSplit> splits;  // one, or a batch on large meshes
-  std::uint64_t seed = 0;
-  std::size_t iterations = 0;  // 0: no overlaps appeared
+  std::uint64_t seed = 0;           // of the new faces' places in the tree
+  std::uint64_t tabu_seed = 0;      // of the Tabu run that removed their overlaps (after restarts)
+  std::size_t iterations = 0;       // of that run; 0: no overlaps appeared
 };
 
 // Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests. Its
@@ -420,7 +421,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     // A few splits per update: the parts they move are re-laid out and tested once; on large
     // meshes batches also keep the O(faces) cost of a full update per face added bounded.
     Applied step;
-    step.seed = split_seed(options.tabu.seed, index++);
+    step.seed = step.tabu_seed = split_seed(options.tabu.seed, index++);
     const std::size_t batch = options.splits_per_update > 0
                                   ? options.splits_per_update
                                   : std::max(kSplitsPerUpdate, pm.face_count() / kBatchFaces);
@@ -451,12 +452,40 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         failed = true;
         break;
       }
-      if (!st.unfolding.resolve_overlaps(t, relay, &stats)) failed = true;
-      result.stats.iterations += stats.iterations;
-      result.stats.evaluations += stats.evaluations;
-      result.stats.tests += stats.tests;
-      split_tests += stats.tests;
-      step.iterations = stats.iterations;
+      // A run still searching after its share of tests starts again from the same state with
+      // another seed (ProgressiveOptions::restart_faces): only the last run counts for the replay.
+      const bool restart = options.restart_faces > 0 && pm.face_count() >= options.restart_faces;
+      std::size_t cap = options.restart_tests_per_face * pm.face_count();
+      for (std::size_t r = 0;; ++r, cap *= 2) {
+        TabuOptions run = t;
+        run.seed = step.tabu_seed;
+        if (limit > 0) run.time_limit_seconds = std::min(run.time_limit_seconds, remaining());
+        const bool capped =
+            restart && r < options.restarts && cap > 0 && (t.max_tests == 0 || cap < t.max_tests);
+        std::optional<State> before;
+        if (capped) {
+          run.max_tests = cap;
+          before = st;
+        }
+        stats = {};
+        const bool ok = st.unfolding.resolve_overlaps(run, relay, &stats);
+        result.stats.iterations += stats.iterations;
+        result.stats.evaluations += stats.evaluations;
+        result.stats.tests += stats.tests;
+        split_tests += stats.tests;
+        step.iterations = stats.iterations;
+        if (ok) break;
+        // Ended by another limit (iterations, the split budget, time): the uncollapse stops.
+        if (!capped || stats.tests < cap || (t.max_tests > 0 && stats.tests >= t.max_tests) ||
+            (limit > 0 && remaining() <= 0)) {
+          failed = true;
+          break;
+        }
+        if (t.max_tests > 0) t.max_tests -= stats.tests;
+        st = std::move(*before);
+        ++result.restarts;
+        step.tabu_seed = split_seed(step.tabu_seed, r);
+      }
       if (failed) break;
     }
     logged_splits += step.splits.size();
@@ -487,7 +516,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       std::size_t i = 0;
       for (; i < upto; ++i) {
         if (place_splits(st, log[i].splits, log[i].seed) == 0) continue;
-        TabuOptions t = split_tabu(log[i].seed);
+        TabuOptions t = split_tabu(log[i].tabu_seed);
         t.max_iterations = log[i].iterations;
         t.time_limit_seconds = 0;
         if (!st.unfolding.resolve_overlaps(t, relay)) break;

@@ -33,6 +33,15 @@ struct ProgressiveOptions {
   /// long Tabu runs (CAD parts with slivers) ends as an approximation once the budget is spent,
   /// instead of taking up to the whole time limit. Deterministic.
   std::size_t split_tests_per_face = 1250;
+  /// Restarts of a long Tabu run after a split, on meshes of at least `restart_faces` faces (0:
+  /// never): a run that has not removed the split's overlaps within `restart_tests_per_face`
+  /// moved-face tests per face of the current mesh goes back to where it started and searches
+  /// again with another seed, up to `restarts` times, the cap doubling each time; then a run
+  /// with the limits above. These runs are heavy-tailed on large meshes (docs/performance.md,
+  /// "Session 37"). Deterministic.
+  std::size_t restart_faces = 4000;
+  std::size_t restart_tests_per_face = 50;
+  std::size_t restarts = 3;
   /// Vertex splits applied together before one re-layout (Unfolding::update) and repair; 0 means
   /// automatic: four, and one per 4,000 faces of the current mesh beyond 16,000. Together, the
   /// tree parts that several splits move are re-laid out and tested once (docs/performance.md).
@@ -72,6 +81,7 @@ struct ProgressiveResult {
   /// split's overlaps stayed (0 or 1; a replay that diverged from the run it repeats would need
   /// more and lose splits).
   std::size_t replays = 0;
+  std::size_t restarts = 0;  ///< Tabu runs after splits that started again (see the options)
   /// complete_first gave the net: the uncollapse stopped, the Tabu Unfolder finished the input.
   bool continued = false;
   TabuStats stats;  ///< Tabu Unfolder work summed over all runs

@@ -212,6 +212,37 @@ TEST(Progressive, ReplayAfterAStuckSplitKeepsEverySplitBeforeIt) {
   EXPECT_GE(stopped, 3);  // the budget stops most seeds short of the input
 }
 
+// Restarts of long Tabu runs after splits (on by default from 4,000 faces; here on every mesh,
+// after a few tests per face): deterministic, valid nets, and a replay after a stuck split
+// repeats each restarted run with the seed it ended with.
+TEST(Progressive, RestartedSplitRunsAreDeterministicAndReplayExactly) {
+  const Mesh input = load_test_mesh("trimesh_ADIS16480_600.obj");
+  int restarted = 0, stopped = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    SCOPED_TRACE(seed);
+    ProgressiveOptions options;
+    options.tabu.seed = seed;
+    options.restart_faces = 1;
+    options.restart_tests_per_face = 4;
+    options.split_tests_per_face = 25;
+    const ProgressiveResult r = unfold_generously(input, options);
+    ASSERT_TRUE(r.overlap_free);
+    const NetCheckReport check = check_net(r.mesh, r.net);
+    EXPECT_TRUE(check.ok()) << check.summary();
+    if (r.restarts > 0) ++restarted;
+    if (!r.complete) {
+      ++stopped;
+      EXPECT_EQ(r.replays, 1u);
+    }
+    const ProgressiveResult again = unfold_generously(input, options);
+    EXPECT_EQ(again.restarts, r.restarts);
+    EXPECT_EQ(again.splits, r.splits);
+    EXPECT_EQ(again.net.parent, r.net.parent);
+  }
+  EXPECT_GE(restarted, 2);
+  EXPECT_GE(stopped, 1);
+}
+
 // complete_first (the default strategy): where the uncollapse stops (here: Tabu runs of a single
 // iteration after each split), the Tabu Unfolder finishes the input from the tree it stopped
 // with; a run the uncollapse completes is left exactly as it was.
