@@ -90,8 +90,9 @@ constexpr std::size_t kCoarseIterationsPerFace = 20;
 constexpr std::size_t kCoarseStallBase = 2000;
 constexpr std::size_t kCoarseTestsMin = 350'000;
 constexpr std::size_t kCoarseTestsPerFace = 700;
-// Checkpoints of the uncollapse under a time limit: a twentieth of it apart, within these bounds.
-// With a twentieth of 60 s (3 s), nefertiti ended at 65.8 s on a 60 s limit.
+// Checkpoints of the uncollapse under a time limit: a twentieth of it apart, within these bounds
+// (3 s at 60 s before; with the replay's divergence, fixed at the same time, nefertiti once ended
+// at 65.8 s on a 60 s limit).
 constexpr double kMinCheckpointSeconds = 0.25;
 constexpr double kCheckpointSeconds = 0.5;
 // The last attempt after the time limit is spent: at most this long beyond it.
@@ -386,8 +387,9 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   std::size_t logged_splits = 0;
   Clock::time_point last_checkpoint = Clock::now();
   // By time as well: after the time limit ends a split's Tabu run, replaying costs about the time
-  // since the checkpoint, spent beyond the limit. At most kCheckpointSeconds apart, the job ends
-  // within its limit plus about a second (a checkpoint copies the state: 10 ms at 20,000 faces).
+  // since the checkpoint, spent beyond the limit. At most kCheckpointSeconds apart, the unfold
+  // ends within its limit plus about a second (a checkpoint copies the state: 10 ms at 20,000
+  // faces).
   const auto checkpoint_period = std::chrono::duration<double>(
       limit > 0 ? std::clamp(limit / 20, kMinCheckpointSeconds, kCheckpointSeconds) : 1.0);
   std::optional<State> checkpoint;
@@ -459,7 +461,8 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       for (std::size_t r = 0;; ++r, cap *= 2) {
         TabuOptions run = t;
         run.seed = step.tabu_seed;
-        if (limit > 0) run.time_limit_seconds = std::min(run.time_limit_seconds, remaining());
+        if (limit > 0)
+          run.time_limit_seconds = std::max(1e-3, std::min(run.time_limit_seconds, remaining()));
         const bool capped =
             restart && r < options.restarts && cap > 0 && (t.max_tests == 0 || cap < t.max_tests);
         std::optional<State> before;
