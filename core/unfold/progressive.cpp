@@ -348,9 +348,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     }
     const bool hopeless = !last && u.overlap_count() > kHopelessPairsPerFace * faces;
     coarse_ok = !hopeless && u.resolve_overlaps(tabu, relay, &stats);
-    result.stats.iterations += stats.iterations;
-    result.stats.evaluations += stats.evaluations;
-    result.stats.tests += stats.tests;
+    result.stats.add(stats);
     stats = {};
     if (coarse_ok || last) break;
     collapse_further(pm, options.strategy, next, progress);
@@ -472,9 +470,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         }
         stats = {};
         const bool ok = st.unfolding.resolve_overlaps(run, relay, &stats);
-        result.stats.iterations += stats.iterations;
-        result.stats.evaluations += stats.evaluations;
-        result.stats.tests += stats.tests;
+        result.stats.add(stats);
         split_tests += stats.tests;
         step.iterations = stats.iterations;
         if (ok) break;
@@ -543,9 +539,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       // The input has no net at all (a dual graph that is a tree): keep the approximation.
     }
     stuck.reset();
-    result.stats.iterations += full.stats.iterations;
-    result.stats.evaluations += full.stats.evaluations;
-    result.stats.tests += full.stats.tests;
+    result.stats.add(full.stats);
     if (full.overlap_free) {
       result.continued = true;
       return complete_with(std::move(full.net), relay);

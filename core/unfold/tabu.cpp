@@ -225,9 +225,7 @@ UnfoldResult tabu_attempts(const Mesh& mesh, const std::vector<int>* start,
       rest.time_limit_seconds = std::max(1e-3, options.time_limit_seconds - seconds_since(begin));
     TabuStats st;
     const bool ok = unfolding.resolve_overlaps(rest, progress, &st);
-    result.stats.iterations += st.iterations;
-    result.stats.evaluations += st.evaluations;
-    result.stats.tests += st.tests;
+    result.stats.add(st);
     if (!best || unfolding.overlap_count() < best->overlap_count()) best = std::move(unfolding);
     if (ok || st.iterations == 0) break;  // 0: no move exists, or the budget is spent
     if (options.max_iterations) {

@@ -47,6 +47,12 @@ struct TabuStats {
   std::size_t evaluations = 0;  ///< candidate moves evaluated
   std::size_t tests = 0;        ///< faces moved and tested by those evaluations
   double seconds = 0;
+  /// Adds another run's work (iterations, evaluations, tests; not its seconds).
+  void add(const TabuStats& run) {
+    iterations += run.iterations;
+    evaluations += run.evaluations;
+    tests += run.tests;
+  }
 };
 
 /// Result of an unfolding strategy.
