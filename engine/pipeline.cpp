@@ -27,13 +27,19 @@ double seconds_since(Clock::time_point start) {
 // the print (layout and drawing), when they run: the unfolder gets the rest, the pass what is
 // left of the limit without the print's share, and the print what is left then. So the whole
 // job ends within its limit even when the unfolder would use all of it (docs/architecture.md,
-// "Time limit"; measured: the print of a net the unfolder reached in a tenth of the limit takes
-// well under that tenth).
+// "Time limit"). The tenths are enough for a net the unfolder reached in a tenth of the limit;
+// a larger net needs the time per face below.
 constexpr double kTabRoomTimeShare = 0.1;
 constexpr double kPrintTimeShare = 0.1;
-// Seconds a step gets at least (a time limit of 0 means none to the algorithms): the
-// progressive unfolder then returns the coarsest net it finds at once.
-constexpr double kLeastSeconds = 1e-3;
+// Seconds per face of the net that the steps after the unfold take on a large net, measured on
+// rocker-arm's nets of 18,000-20,000 faces (docs/architecture.md, "Time limit"): the print's
+// layout and drawing (2.2 s for an SVG, 2.9 s for a PDF, 3.3 s for PDF, SVG and glTF), the
+// tab-room pass's report, last check and overrun of its limit (0.3-0.5 s), and the distance of an
+// approximate net to the input (0.2-0.3 s). The unfolder leaves them that time for the net it
+// reaches, less the print's share already kept from it.
+constexpr double kPrintSecondsPerFace = 175e-6;
+constexpr double kTabRoomSecondsPerFace = 25e-6;
+constexpr double kDistanceSecondsPerFace = 12e-6;
 
 // An intermediate net is rendered at most this often: rendering costs time the unfolder could
 // use.
@@ -130,8 +136,9 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   RunProgress tracked(progress, plan);
   // The steps after the unfolder keep their shares of the time limit (kTabRoomTimeShare, ...).
   const double print_share = plan.print ? kPrintTimeShare : 0;
-  const double tabs_end = time_limit * (1 - print_share);
-  const double unfold_end = tabs_end - (plan.tabs ? time_limit * kTabRoomTimeShare : 0);
+  const double unfold_end = time_limit * (1 - print_share - (plan.tabs ? kTabRoomTimeShare : 0));
+  const double after_per_face = (plan.print ? kPrintSecondsPerFace : 0) +
+                                (plan.tabs ? kTabRoomSecondsPerFace : 0) + kDistanceSecondsPerFace;
   tracked.start(Stage::Prepare);
   const Prepared prepared = prepare(load_input(input, limits, tracked), options, tracked);
   std::size_t all_faces = 0;
@@ -151,8 +158,12 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
         std::max(share(left, part.faces.size(), all_faces - faces_before), kLeastSeconds);
     relay.start(Stage::Unfold, p, faces_before, seconds);
     const std::size_t simplify = detail_faces(part, options, scale, all_faces);
+    // The print's share of the part is outside its seconds already.
+    const AfterUnfold after{after_per_face,
+                            share(time_limit * print_share, part.faces.size(), all_faces)};
     try {
-      pieces.push_back(unfold_piece(part, options, simplify, seconds, part.faces.size(), relay));
+      pieces.push_back(
+          unfold_piece(part, options, simplify, seconds, after, part.faces.size(), relay));
     } catch (UnfoldFailedException& e) {
       e.seconds = seconds_since(start);
       throw;
@@ -164,11 +175,19 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   const double seconds = seconds_since(start);
 
   // The pass that makes room for tabs gets what is left of the time limit without the print's
-  // share, shared the same way; none left, it does not run.
-  const double left = tabs_end - seconds_since(start);
+  // share, or its time for the faces of the nets when that is more, shared the same way, less
+  // its report's time; none left, it does not run.
+  std::size_t net_faces = 0;
+  for (const Piece& piece : pieces) net_faces += piece.mesh.faces.size();
+  const double print_end =
+      time_limit - std::max(time_limit * print_share,
+                            plan.print ? kPrintSecondsPerFace * static_cast<double>(net_faces) : 0);
+  const double left = print_end - seconds_since(start);
   faces_before = 0;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
-    const double piece_seconds = share(left, prepared.parts[p].faces.size(), all_faces);
+    const double piece_seconds =
+        share(left, prepared.parts[p].faces.size(), all_faces) -
+        kTabRoomSecondsPerFace * static_cast<double>(pieces[p].mesh.faces.size());
     relay.start(Stage::Tabs, p, faces_before, piece_seconds);
     const bool room = plan.tabs && piece_seconds > 0;
     if (room) {

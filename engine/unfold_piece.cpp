@@ -36,12 +36,15 @@ CollapseStrategy collapses_of(Strategy strategy) {
 }
 
 Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
-                  std::size_t input_faces, Progress& progress) {
+                  const AfterUnfold& after, std::size_t input_faces, Progress& progress) {
   TabuOptions tabu;
   tabu.seed = options.seed;
   tabu.time_limit_seconds = seconds;
   tabu.input_faces = input_faces;
   if (options.strategy == Strategy::TU) {
+    // Every face is in the net: the steps after it need their time for all of them.
+    const double kept = after.per_face * static_cast<double>(mesh.faces.size()) - after.reserved;
+    tabu.time_limit_seconds = std::max(kLeastSeconds, seconds - std::max(0.0, kept));
     UnfoldResult r = unfold_tabu(mesh, tabu, progress);
     if (!r.overlap_free)
       throw UnfoldFailedException(r.overlaps, r.stats.iterations, mesh.faces.size(), input_faces);
@@ -52,6 +55,8 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
   p.target_faces = options.target_faces.value_or(0);
   p.tabu = tabu;
   p.complete_first = options.strategy == Strategy::AUTO;
+  p.after_seconds_per_face = after.per_face;
+  p.after_seconds_reserved = after.reserved;
   ProgressiveResult r = unfold_progressive(mesh, p, progress);
   if (!r.overlap_free)
     throw UnfoldFailedException(r.overlaps, r.stats.iterations, r.mesh.faces.size(), input_faces);
@@ -61,13 +66,14 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
 }  // namespace
 
 Piece unfold_piece(const Mesh& part, const JobOptions& options, std::size_t simplify,
-                   double seconds, std::size_t input_faces, Progress& progress) {
+                   double seconds, const AfterUnfold& after, std::size_t input_faces,
+                   Progress& progress) {
   // A low-poly version to print instead of the part, when asked for: the net is then
   // approximate, its distance measured to the part.
   std::optional<Mesh> simple =
       simplify_mesh(part, collapses_of(options.strategy), simplify, progress);
-  if (!simple) return unfold_mesh(part, options, seconds, input_faces, progress);
-  Piece piece = unfold_mesh(*simple, options, seconds, input_faces, progress);
+  if (!simple) return unfold_mesh(part, options, seconds, after, input_faces, progress);
+  Piece piece = unfold_mesh(*simple, options, seconds, after, input_faces, progress);
   piece.simplified = true;
   piece.complete = false;
   piece.hausdorff = approximation_distance(part, piece.mesh);

@@ -260,6 +260,12 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   const Clock::time_point start = Clock::now();
   const double limit = options.tabu.time_limit_seconds;
   const auto remaining = [&] { return limit > 0 ? limit - seconds_since(start) : 0.0; };
+  // What is left of the limit when a net of `faces` faces keeps the time the steps after the
+  // uncollapse need (ProgressiveOptions::after_seconds_per_face).
+  const auto left_for = [&](std::size_t faces) {
+    const double after = options.after_seconds_per_face * static_cast<double>(faces);
+    return remaining() - std::max(0.0, after - options.after_seconds_reserved);
+  };
   ProgressiveResult result;
   const auto complete_with = [&](Net net, Relay& relay) {
     result.complete = result.overlap_free = true;
@@ -358,14 +364,14 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
   }
   result.coarse_faces = pm.face_count();
   result.splits_total = pm.splits_left();
-  if (!coarse_ok && pm.face_count() < input_faces && (limit <= 0 || remaining() > 0)) {
+  if (!coarse_ok && pm.face_count() < input_faces && (limit <= 0 || left_for(input_faces) > 0)) {
     // No coarse mesh could be unfolded: plain Tabu Unfolding of the input itself with what is
     // left of the budget (unfold_tabu starts from the better of two trees; on meshes of slivers
     // such as the Twin plate the input's minimum-perimeter tree can be a net when no collapsed
     // version is unfolded).
     TabuOptions tabu = options.tabu;
     tabu.input_faces = input_faces;
-    if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, remaining());
+    if (limit > 0) tabu.time_limit_seconds = std::max(1e-3, left_for(input_faces));
     relay.context.faces = input_faces;
     UnfoldResult full;
     try {
@@ -417,7 +423,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     if (progress.cancelled()) throw CancelledException();
     // The time limit ends the uncollapse also between splits that need no search: the state is
     // overlap-free here, an approximate result.
-    if (limit > 0 && remaining() <= 0) break;
+    if (limit > 0 && left_for(pm.face_count()) <= 0) break;
     // A few splits per update: the parts they move are re-laid out and tested once; on large
     // meshes batches also keep the O(faces) cost of a full update per face added bounded.
     Applied step;
@@ -437,7 +443,8 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
               : at_most(t.max_iterations,
                         std::max(kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count(),
                                  result.stats.iterations));
-      if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, remaining());
+      if (limit > 0)
+        t.time_limit_seconds = std::min(t.time_limit_seconds, left_for(pm.face_count()));
       if (options.split_tests_per_face > 0) {
         const std::size_t budget = options.split_tests_per_face *
                                    std::max(input_faces, kSplitTestsMinFaces) *
@@ -460,7 +467,8 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         TabuOptions run = t;
         run.seed = step.tabu_seed;
         if (limit > 0)
-          run.time_limit_seconds = std::max(1e-3, std::min(run.time_limit_seconds, remaining()));
+          run.time_limit_seconds =
+              std::max(1e-3, std::min(run.time_limit_seconds, left_for(pm.face_count())));
         const bool capped =
             restart && r < options.restarts && cap > 0 && (t.max_tests == 0 || cap < t.max_tests);
         std::optional<State> before;
@@ -476,7 +484,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         if (ok) break;
         // Ended by another limit (iterations, the split budget, time): the uncollapse stops.
         if (!capped || stats.tests < cap || (t.max_tests > 0 && stats.tests >= t.max_tests) ||
-            (limit > 0 && remaining() <= 0)) {
+            (limit > 0 && left_for(pm.face_count()) <= 0)) {
           failed = true;
           break;
         }
@@ -526,11 +534,11 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     relay.quiet = false;
   }
 
-  if (stuck && (limit <= 0 || remaining() > 0)) {
+  if (stuck && (limit <= 0 || left_for(input_faces) > 0)) {
     TabuOptions t = options.tabu;
     t.phase = "uncollapse";
     t.input_faces = input_faces;
-    if (limit > 0) t.time_limit_seconds = std::max(1e-3, remaining());
+    if (limit > 0) t.time_limit_seconds = std::max(1e-3, left_for(input_faces));
     relay.context.faces = input_faces;
     UnfoldResult full;
     try {

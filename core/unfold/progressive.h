@@ -57,6 +57,13 @@ struct ProgressiveOptions {
   /// applied to it (unfold_tabu_from, with its restarts). The result is approximate only when
   /// that finds no net either.
   bool complete_first = false;
+  /// Seconds per face of the net that the steps after the uncollapse take (the caller's print and
+  /// glue tabs, the distance of an approximate net to the input), of which
+  /// `after_seconds_reserved` are already outside tabu.time_limit_seconds. Under a time limit the
+  /// uncollapse stops, and the complete-first run on the input does not start, when the time
+  /// left would not cover the rest for the faces the net has (or would have). 0: none.
+  double after_seconds_per_face = 0;
+  double after_seconds_reserved = 0;
 };
 
 /// Outcome of progressive unfolding.

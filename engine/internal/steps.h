@@ -61,10 +61,23 @@ std::size_t buildable_faces(const Mesh& part, double scale);
 std::size_t detail_faces(const Mesh& part, const JobOptions& options, double scale,
                          std::size_t all_faces);
 
-/// Unfolds `part` with the job's strategy within `seconds` (a low-poly version of `simplify`
-/// faces when that is not 0). \throw UnfoldFailedException, CancelledException.
+/// Seconds a step gets at least (a time limit of 0 means none to the algorithms): the
+/// progressive unfolder then returns the coarsest net it finds at once.
+inline constexpr double kLeastSeconds = 1e-3;
+
+/// The time the steps after a part's unfold take (run_pipeline): seconds per face of its net, of
+/// which `reserved` are already outside the unfold's seconds (ProgressiveOptions, the same names).
+struct AfterUnfold {
+  double per_face = 0;
+  double reserved = 0;
+};
+
+/// Unfolds `part` with the job's strategy within `seconds`, less what the steps `after` it need
+/// for the net it reaches (a low-poly version of `simplify` faces when that is not 0).
+/// \throw UnfoldFailedException, CancelledException.
 Piece unfold_piece(const Mesh& part, const JobOptions& options, std::size_t simplify,
-                   double seconds, std::size_t input_faces, Progress& progress);
+                   double seconds, const AfterUnfold& after, std::size_t input_faces,
+                   Progress& progress);
 
 /// Changes `piece`'s cuts so that more of its cut edges have room for a glue tab, within
 /// `seconds`, when the job prints tabs; keeps the new net only when it passes the net checker.

@@ -273,6 +273,30 @@ TEST(Progressive, CompleteFirstFinishesTheInputWhereTheUncollapseStopped) {
   EXPECT_TRUE(finished) << "no seed stopped the uncollapse";
 }
 
+// Time kept for the caller's steps after the unfold (print, glue tabs: so much per face of the
+// net) ends the uncollapse where the net's faces would need more than is left, with the last
+// overlap-free state, and keeps complete_first from starting on the input. Time already
+// reserved outside the limit counts against it.
+TEST(Progressive, TimeKeptForTheStepsAfterEndsTheUncollapseWhereTheNetWouldNeedIt) {
+  const Mesh input = load_test_mesh("sample.obj");  // 1,000 faces
+  constexpr std::size_t kFaces = 600;               // where the kept time is the whole limit
+  ProgressiveOptions options;
+  options.complete_first = true;
+  options.after_seconds_per_face = 120.0 / kFaces;  // unfold_generously's limit
+  const ProgressiveResult r = unfold_generously(input, options);
+  ASSERT_TRUE(r.overlap_free);
+  EXPECT_FALSE(r.complete);
+  EXPECT_FALSE(r.continued);
+  EXPECT_LE(r.mesh.faces.size(), kFaces + 16);  // one batch of splits past it at most
+  // The run's own seconds take off a little: faces in which the net's time was not yet short.
+  EXPECT_GE(r.mesh.faces.size(), kFaces / 2);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  // The same time per face, all but the kept time of 40 faces reserved outside the limit.
+  options.after_seconds_reserved = options.after_seconds_per_face * (input.faces.size() - 40);
+  expect_net_of_the_input(unfold_generously(input, options), input);
+}
+
 // A real mesh where complete_first matters: with a small budget for the Tabu runs after splits
 // (the work QQ gave up after on this 600-face CAD part before the uncollapse's walks ended at an
 // overlapping partner), QQ stops short of the part (an approximation, overlap-free and checked),
