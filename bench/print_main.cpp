@@ -1,8 +1,9 @@
 // papernet-print-bench [--bench DIR] [--res 400,1000] [--size-mm 200] [--detail full|auto|N]
-//                      [--blender TSV]
+//                      [--margin-mm 10] [--blender TSV]
 // What a person printing on A4 gets (docs/print.md, "Against Blender's exporter"): for each mesh
 // of DIR/RES/*.obj, one job in this process as `papernet unfold MESH -o kit.pdf` runs it (layout
-// fit, the default strategy, tabs auto, no colour) at SIZE mm with the given detail; the sheets,
+// fit, the default strategy, tabs auto, no colour) at SIZE mm with the given detail and page
+// margins (papernet's default: 10 mm; the Blender run must use the same); the sheets,
 // pieces, tabs, strips, smallest label and seconds. With --blender, the TSV that
 // blender_print_peer.py wrote for the same meshes (Blender's bundled "Export Paper Model" add-on,
 // "limit island size" on), side by side, and the targets counted. Prints Markdown; it is
@@ -45,7 +46,7 @@ struct Peer {
   std::string error;
 };
 
-Ours run_one(const fs::path& path, double size_mm, const Detail& detail) {
+Ours run_one(const fs::path& path, double size_mm, double margin_mm, const Detail& detail) {
   Ours r;
   r.mesh = path.filename().string();
   const auto start = std::chrono::steady_clock::now();
@@ -55,6 +56,7 @@ Ours run_one(const fs::path& path, double size_mm, const Detail& detail) {
     input.format = format_from_extension(path.string());
     JobOptions options;
     options.size_mm = size_mm;
+    options.margin_mm = margin_mm;
     options.layout = PageLayoutMode::Fit;
     options.colour = false;
     options.detail = detail;
@@ -126,7 +128,7 @@ std::vector<std::string> split(const std::string& list) {
 }
 
 int run(const std::string& bench, const std::vector<std::string>& resolutions, double size_mm,
-        const std::string& detail, const std::string& blender) {
+        double margin_mm, const std::string& detail, const std::string& blender) {
   const std::map<std::string, Peer> peer =
       blender.empty() ? std::map<std::string, Peer>{} : read_peer(blender);
   const bool with_peer = !peer.empty();
@@ -136,8 +138,8 @@ int run(const std::string& bench, const std::vector<std::string>& resolutions, d
       if (entry.path().extension() == ".obj") meshes.push_back(entry.path());
     std::sort(meshes.begin(), meshes.end());
     if (meshes.empty()) throw std::runtime_error("no .obj meshes in " + bench + "/" + res);
-    std::printf("### %s faces: %zu meshes, %.0f mm on A4, detail %s\n\n", res.c_str(),
-                meshes.size(), size_mm, detail.c_str());
+    std::printf("### %s faces: %zu meshes, %.0f mm on A4, %g mm margins, detail %s\n\n",
+                res.c_str(), meshes.size(), size_mm, margin_mm, detail.c_str());
     std::printf(
         "| mesh | sheets | pieces | tabs | strips | smallest label (under 1.5 mm) | s |%s\n",
         with_peer ? " Blender sheets | Blender islands | Blender s |" : "");
@@ -145,7 +147,7 @@ int run(const std::string& bench, const std::vector<std::string>& resolutions, d
     std::vector<double> pieces, seconds, sheets, peer_sheets, peer_islands;
     int refused = 0, tiled = 0, both = 0, not_more = 0, peer_refused = 0, peer_missing = 0;
     for (const fs::path& path : meshes) {
-      const Ours r = run_one(path, size_mm, parse_detail(detail));
+      const Ours r = run_one(path, size_mm, margin_mm, parse_detail(detail));
       std::string mesh = r.mesh.substr(0, r.mesh.size() - 4);
       if (!r.error.empty()) {
         ++refused;
@@ -205,7 +207,7 @@ int run(const std::string& bench, const std::vector<std::string>& resolutions, d
 int main(int argc, char** argv) {
   std::string bench = PAPERNET_SHARED_DATA "/bench", blender, detail = "full";
   std::vector<std::string> resolutions{"400", "1000"};
-  double size_mm = 200;
+  double size_mm = 200, margin_mm = papernet::JobOptions{}.margin_mm;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--bench")
@@ -216,11 +218,13 @@ int main(int argc, char** argv) {
       size_mm = std::stod(value);
     else if (flag == "--detail")
       detail = value;
+    else if (flag == "--margin-mm")
+      margin_mm = std::stod(value);
     else if (flag == "--blender")
       blender = value;
     else {
       std::cerr << "usage: papernet-print-bench [--bench DIR] [--res 400,1000] [--size-mm 200] "
-                   "[--detail full|auto|N] [--blender TSV]\n";
+                   "[--detail full|auto|N] [--margin-mm 10] [--blender TSV]\n";
       return 1;
     }
   }
@@ -229,7 +233,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    return papernet::bench::run(bench, resolutions, size_mm, detail, blender);
+    return papernet::bench::run(bench, resolutions, size_mm, margin_mm, detail, blender);
   } catch (const std::exception& e) {
     std::cerr << "papernet-print-bench: " << e.what() << "\n";
     return 1;

@@ -9,6 +9,7 @@
 #
 # Environment (all optional):
 #   DATA=../shared/data  BUILD=build  RES=400,1000  SIZE_MM=200
+#   MARGIN_MM=10  page margins of both tools (papernet's default; Blender's own is 5 mm)
 #   PEER=../shared/tools/blender_print_peer.py
 #   FROM_TSV=file.tsv  an earlier Blender run's TSV instead of running Blender again
 set -euo pipefail
@@ -18,6 +19,7 @@ DATA=${DATA:-../shared/data}
 BUILD=${BUILD:-build}
 RES=${RES:-400,1000}
 SIZE_MM=${SIZE_MM:-200}
+MARGIN_MM=${MARGIN_MM:-10}
 PEER=${PEER:-../shared/tools/blender_print_peer.py}
 OUT=$BUILD/print-bench
 DOC=docs/print.md
@@ -34,13 +36,14 @@ tsv=${FROM_TSV:-$OUT/blender.tsv}
 if [ -z "${FROM_TSV:-}" ]; then
   [ -f "$PEER" ] || { echo "error: no $PEER (the Blender peer script)" >&2; exit 1; }
   bash scripts/install-deps.sh blender
-  echo "Blender's exporter on $DATA/bench ($RES faces, $SIZE_MM mm, A4): $OUT/blender.log"
-  blender -b --factory-startup --python "$PEER" -- "$DATA/bench" "$tsv" "$RES" "$SIZE_MM" \
+  echo "Blender's exporter on $DATA/bench ($RES faces, $SIZE_MM mm, A4, $MARGIN_MM mm margins): $OUT/blender.log"
+  PEER_MARGIN_M=$(awk -v mm="$MARGIN_MM" 'BEGIN { print mm / 1000 }') \
+    blender -b --factory-startup --python "$PEER" -- "$DATA/bench" "$tsv" "$RES" "$SIZE_MM" \
     >"$OUT/blender.log" 2>&1
 fi
 echo "papernet on the same meshes: $OUT/table.md"
 "$BUILD/bin/papernet-print-bench" --bench "$DATA/bench" --res "$RES" --size-mm "$SIZE_MM" \
-  --detail full --blender "$tsv" | tee "$OUT/table.md"
+  --detail full --margin-mm "$MARGIN_MM" --blender "$tsv" | tee "$OUT/table.md"
 
 {
   sed -n "1,/^$(printf '%s' "$BEGIN" | sed 's/[][\/.*^$]/\\&/g')\$/p" "$DOC"
