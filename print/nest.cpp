@@ -1,7 +1,5 @@
 #include "print/nest.h"
 
-#include <polyclipping/clipper.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,12 +14,11 @@
 namespace papernet {
 namespace {
 
-// Clipper and the nesting grid work in integer coordinates: micrometres.
+// The nesting grid works in integer coordinates: micrometres.
 constexpr double kUnitsPerMm = 1000;
 
-ClipperLib::IntPoint to_int(Vec2 p) {
-  return {static_cast<ClipperLib::cInt>(std::llround(p.x * kUnitsPerMm)),
-          static_cast<ClipperLib::cInt>(std::llround(p.y * kUnitsPerMm))};
+print_detail::IntPoint to_int(Vec2 p) {
+  return {std::llround(p.x * kUnitsPerMm), std::llround(p.y * kUnitsPerMm)};
 }
 
 /// What is nested: the shapes of one piece (its faces and their tabs) or one glue strip, turned
@@ -30,50 +27,6 @@ struct Part {
   std::vector<std::vector<Vec2>> shapes;
   double turn = 0;
 };
-
-/// The outline of a part: the union of its shapes grown by `grow` mm; the largest contour (the
-/// shapes of a piece are joined along its folds, and the growth closes rounding cracks).
-ClipperLib::Path outline_of(const std::vector<std::vector<Vec2>>& shapes, double turn,
-                            double grow) {
-  ClipperLib::Paths paths;
-  for (const auto& s : shapes) {
-    ClipperLib::Path path;
-    for (Vec2 p : s) path.push_back(to_int(rotate(p, turn)));
-    if (!ClipperLib::Orientation(path)) ClipperLib::ReversePath(path);
-    paths.push_back(std::move(path));
-  }
-  ClipperLib::Clipper clipper;
-  clipper.AddPaths(paths, ClipperLib::ptSubject, true);
-  ClipperLib::Paths joined;
-  clipper.Execute(ClipperLib::ctUnion, joined, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  ClipperLib::ClipperOffset offset;
-  offset.AddPaths(joined, ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
-  ClipperLib::Paths grown;
-  offset.Execute(grown, grow * kUnitsPerMm);
-  ClipperLib::Path best;
-  double best_area = 0;
-  for (auto& p : grown) {
-    const double a = ClipperLib::Area(p);
-    if (a > best_area) best_area = a, best = std::move(p);
-  }
-  if (best.empty()) {
-    // Faces without area (slivers of a CAD model): the box of their points, however thin.
-    ClipperLib::cInt lo_x = 0, lo_y = 0, hi_x = 0, hi_y = 0;
-    bool any = false;
-    for (const auto& path : paths)
-      for (const auto& p : path) {
-        lo_x = any ? std::min(lo_x, p.X) : p.X, hi_x = any ? std::max(hi_x, p.X) : p.X;
-        lo_y = any ? std::min(lo_y, p.Y) : p.Y, hi_y = any ? std::max(hi_y, p.Y) : p.Y;
-        any = true;
-      }
-    if (!any) return best;
-    return {{lo_x, lo_y}, {lo_x, hi_y}, {hi_x, hi_y}, {hi_x, lo_y}, {lo_x, lo_y}};
-  }
-  ClipperLib::CleanPolygon(best);
-  if (ClipperLib::Orientation(best)) ClipperLib::ReversePath(best);
-  if (!best.empty()) best.push_back(best.front());
-  return best;
-}
 
 /// A turn (radians, counter-clockwise) that puts the points in a `room` box: of the turns that
 /// lay one of their hull's edges along x or y and fit, the one with the smallest box; none
@@ -119,20 +72,23 @@ struct Placement {
 
 Placement nest_parts(std::vector<Part>& parts, double w, double h, double spacing_mm,
                      int first_sheet, const std::string& paper) {
-  std::vector<std::vector<print_detail::IntPoint>> outlines;
+  // Each part keeps half the spacing of paper around it; its turn is chosen on its points with
+  // room for that (and a few micrometres of rounding to spare).
+  const double grow = 0.5 * spacing_mm;
+  std::vector<print_detail::NestPart> turned;
   for (Part& part : parts) {
-    // The turn is chosen on the outline itself (grown, with its mitred corners), a few
-    // micrometres of rounding to spare.
-    std::vector<Vec2> grown;
-    for (const ClipperLib::IntPoint& p : outline_of(part.shapes, 0, 0.5 * spacing_mm))
-      grown.push_back((1 / kUnitsPerMm) * Vec2{static_cast<double>(p.X), static_cast<double>(p.Y)});
-    part.turn = fitting_turn(grown, {w - 0.01, h - 0.01});
-    std::vector<print_detail::IntPoint>& outline = outlines.emplace_back();
-    for (const ClipperLib::IntPoint& p : outline_of(part.shapes, part.turn, 0.5 * spacing_mm))
-      outline.push_back({p.X, p.Y});
+    std::vector<Vec2> points;
+    for (const auto& shape : part.shapes) points.insert(points.end(), shape.begin(), shape.end());
+    part.turn = fitting_turn(points, {w - 2 * grow - 0.01, h - 2 * grow - 0.01});
+    print_detail::NestPart& polygons = turned.emplace_back();
+    for (const auto& shape : part.shapes) {
+      std::vector<print_detail::IntPoint>& polygon = polygons.emplace_back();
+      for (Vec2 p : shape) polygon.push_back(to_int(rotate(p, part.turn)));
+    }
   }
   const std::vector<print_detail::NestedOutline> placed =
-      print_detail::nest_outlines(outlines, static_cast<std::int64_t>(std::floor(w * kUnitsPerMm)),
+      print_detail::nest_outlines(turned, std::llround(grow * kUnitsPerMm),
+                                  static_cast<std::int64_t>(std::floor(w * kUnitsPerMm)),
                                   static_cast<std::int64_t>(std::floor(h * kUnitsPerMm)));
   Placement out;
   for (std::size_t i = 0; i < parts.size(); ++i) {

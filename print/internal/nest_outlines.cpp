@@ -14,11 +14,11 @@
 namespace papernet::print_detail {
 namespace {
 
-// The grid's cell, in the outlines' units (micrometres): half a millimetre.
+// The grid's cell, in the parts' units (micrometres): half a millimetre.
 constexpr std::int64_t kCell = 500;
 
-// Outlines grow by this much before they are rasterised by their cells' centres, so that every
-// cell an outline touches is marked (half the cell's diagonal, and some to spare).
+// Polygons grow by this much more before they are rasterised by their cells' centres, so that every
+// cell a grown polygon touches is marked (half the cell's diagonal, and some to spare).
 constexpr double kCover = 0.72 * kCell;
 
 /// Cells of a grid as rows of 64-bit words; bit i of a row is cell i.
@@ -59,11 +59,11 @@ class Bits {
   std::vector<std::uint64_t> bits_;
 };
 
-/// An outline turned, as cells: `mask` cell (i, j) is the grid's cell (i + x, j + y) when the
-/// turned outline is moved by (x - ox, y - oy) cells.
+/// A part turned, as cells: `mask` cell (i, j) is the grid's cell (i + x, j + y) when the
+/// turned part is moved by (x - ox, y - oy) cells.
 struct Shape {
   double angle = 0;
-  std::int64_t ox = 0, oy = 0;  ///< the mask's first cell in the turned outline's frame
+  std::int64_t ox = 0, oy = 0;  ///< the mask's first cell in the turned part's frame
   Bits mask;
   double area = 0;
   /// Some of the mask's cells, spread over it: a place where one of them meets a marked cell
@@ -74,29 +74,37 @@ struct Shape {
 // How many cells of a mask are probed first (Shape::probes).
 constexpr std::size_t kProbes = 24;
 
-Shape rasterise(const std::vector<IntPoint>& outline, double angle) {
+Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, double angle,
+                std::int64_t grow) {
   const double c = std::cos(angle), s = std::sin(angle);
-  ClipperLib::Path path;
-  for (const IntPoint& p : outline)
-    path.push_back({static_cast<ClipperLib::cInt>(std::llround(c * p.x - s * p.y)),
-                    static_cast<ClipperLib::cInt>(std::llround(s * p.x + c * p.y))});
   Shape shape;
   shape.angle = angle;
-  shape.area = std::abs(ClipperLib::Area(path));
-  ClipperLib::ClipperOffset offset;
-  // An outline without area (a sliver's box) grows as the lines it is.
-  offset.AddPath(path, ClipperLib::jtMiter,
-                 shape.area > 0 ? ClipperLib::etClosedPolygon : ClipperLib::etOpenSquare);
-  ClipperLib::Paths grown;
-  offset.Execute(grown, kCover);
+  // Each polygon turned and grown on its own: no union of a piece's faces, which Clipper's can
+  // get stuck on (slivers of CAD models met in FixupIntersectionOrder), and the grown polygons'
+  // cells together are those of the grown union.
+  std::vector<ClipperLib::Paths> grown(polygons.size());
   std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), lo_y = lo_x;
   std::int64_t hi_x = std::numeric_limits<std::int64_t>::min(), hi_y = hi_x;
-  for (const auto& g : grown)
-    for (const auto& p : g) {
-      lo_x = std::min<std::int64_t>(lo_x, p.X), hi_x = std::max<std::int64_t>(hi_x, p.X);
-      lo_y = std::min<std::int64_t>(lo_y, p.Y), hi_y = std::max<std::int64_t>(hi_y, p.Y);
-    }
-  if (grown.empty()) return shape;
+  ClipperLib::ClipperOffset offset;
+  for (std::size_t k = 0; k < polygons.size(); ++k) {
+    ClipperLib::Path path;
+    for (const IntPoint& p : polygons[k])
+      path.push_back({static_cast<ClipperLib::cInt>(std::llround(c * p.x - s * p.y)),
+                      static_cast<ClipperLib::cInt>(std::llround(s * p.x + c * p.y))});
+    const double area = std::abs(ClipperLib::Area(path));
+    shape.area += area;
+    offset.Clear();
+    // A polygon without area (a sliver) grows as the lines it is.
+    offset.AddPath(path, ClipperLib::jtMiter,
+                   area > 0 ? ClipperLib::etClosedPolygon : ClipperLib::etOpenSquare);
+    offset.Execute(grown[k], static_cast<double>(grow) + kCover);
+    for (const auto& g : grown[k])
+      for (const auto& p : g) {
+        lo_x = std::min<std::int64_t>(lo_x, p.X), hi_x = std::max<std::int64_t>(hi_x, p.X);
+        lo_y = std::min<std::int64_t>(lo_y, p.Y), hi_y = std::max<std::int64_t>(hi_y, p.Y);
+      }
+  }
+  if (lo_x > hi_x) return shape;
   auto cell_of = [](std::int64_t v) {
     return static_cast<std::int64_t>(std::floor(static_cast<double>(v) / kCell));
   };
@@ -105,26 +113,35 @@ Shape rasterise(const std::vector<IntPoint>& outline, double angle) {
   const auto w = static_cast<int>(cell_of(hi_x) - shape.ox + 1);
   const auto h = static_cast<int>(cell_of(hi_y) - shape.oy + 1);
   shape.mask = Bits(w, h);
-  // Each row's cells whose centres lie inside the grown outline (even-odd over all its paths,
-  // so a hole stays free).
+  // Each grown polygon's cells whose centres lie inside it (even-odd over its paths), row by row
+  // over its own rows.
   std::vector<double> xs;
-  for (int j = 0; j < h; ++j) {
-    const double y = (static_cast<double>(shape.oy + j) + 0.5) * kCell;
-    xs.clear();
-    for (const auto& g : grown)
-      for (std::size_t k = 0; k < g.size(); ++k) {
-        const auto& a = g[k];
-        const auto& b = g[(k + 1) % g.size()];
-        const double ay = static_cast<double>(a.Y), by = static_cast<double>(b.Y);
-        if ((ay <= y) == (by <= y)) continue;
-        xs.push_back(static_cast<double>(a.X) +
-                     (y - ay) * static_cast<double>(b.X - a.X) / (by - ay));
+  for (const ClipperLib::Paths& paths : grown) {
+    std::int64_t top = std::numeric_limits<std::int64_t>::max(), bottom = -top;
+    for (const auto& g : paths)
+      for (const auto& p : g)
+        top = std::min<std::int64_t>(top, p.Y), bottom = std::max<std::int64_t>(bottom, p.Y);
+    if (top > bottom) continue;
+    const int j0 = std::max(0, static_cast<int>(cell_of(top) - shape.oy));
+    const int j1 = std::min(h - 1, static_cast<int>(cell_of(bottom) - shape.oy));
+    for (int j = j0; j <= j1; ++j) {
+      const double y = (static_cast<double>(shape.oy + j) + 0.5) * kCell;
+      xs.clear();
+      for (const auto& g : paths)
+        for (std::size_t k = 0; k < g.size(); ++k) {
+          const auto& a = g[k];
+          const auto& b = g[(k + 1) % g.size()];
+          const double ay = static_cast<double>(a.Y), by = static_cast<double>(b.Y);
+          if ((ay <= y) == (by <= y)) continue;
+          xs.push_back(static_cast<double>(a.X) +
+                       (y - ay) * static_cast<double>(b.X - a.X) / (by - ay));
+        }
+      std::sort(xs.begin(), xs.end());
+      for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+        const auto from = static_cast<int>(std::ceil(xs[k] / kCell - 0.5 - shape.ox));
+        const auto to = static_cast<int>(std::floor(xs[k + 1] / kCell - 0.5 - shape.ox));
+        for (int i = std::max(0, from); i <= std::min(w - 1, to); ++i) shape.mask.set(i, j);
       }
-    std::sort(xs.begin(), xs.end());
-    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
-      const auto from = static_cast<int>(std::ceil(xs[k] / kCell - 0.5 - shape.ox));
-      const auto to = static_cast<int>(std::floor(xs[k + 1] / kCell - 0.5 - shape.ox));
-      for (int i = std::max(0, from); i <= std::min(w - 1, to); ++i) shape.mask.set(i, j);
     }
   }
   std::vector<std::pair<int, int>> cells;
@@ -179,15 +196,15 @@ std::optional<std::pair<int, int>> lowest_place(const Bits& sheet, const Shape& 
 
 }  // namespace
 
-std::vector<NestedOutline> nest_outlines(const std::vector<std::vector<IntPoint>>& outlines,
+std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std::int64_t grow,
                                          std::int64_t width, std::int64_t height) {
   const auto cols = static_cast<int>(width / kCell), rows = static_cast<int>(height / kCell);
-  // Each outline in its four quarter turns.
-  std::vector<std::vector<Shape>> shapes(outlines.size());
-  for (std::size_t i = 0; i < outlines.size(); ++i)
+  // Each part in its four quarter turns.
+  std::vector<std::vector<Shape>> shapes(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i)
     for (int q = 0; q < 4; ++q)
-      shapes[i].push_back(rasterise(outlines[i], q * 0.5 * std::numbers::pi));
-  // Outlines placed in `order`, each on the first sheet where it fits; how many sheets it took.
+      shapes[i].push_back(rasterise(parts[i], q * 0.5 * std::numbers::pi, grow));
+  // Parts placed in `order`, each on the first sheet where it fits; how many sheets it took.
   const auto fill = [&](const std::vector<std::size_t>& order, std::vector<NestedOutline>& out) {
     std::vector<Bits> sheets;
     for (std::size_t i : order) {
@@ -220,11 +237,12 @@ std::vector<NestedOutline> nest_outlines(const std::vector<std::vector<IntPoint>
       // box fits the sheet as it comes turned.
       std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), lo_y = lo_x;
       std::int64_t hi_x = std::numeric_limits<std::int64_t>::min(), hi_y = hi_x;
-      for (const IntPoint& p : outlines[i]) {
-        lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x);
-        lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
-      }
-      if (outlines[i].empty() || hi_x - lo_x > width || hi_y - lo_y > height) continue;
+      for (const auto& polygon : parts[i])
+        for (const IntPoint& p : polygon) {
+          lo_x = std::min(lo_x, p.x - grow), hi_x = std::max(hi_x, p.x + grow);
+          lo_y = std::min(lo_y, p.y - grow), hi_y = std::max(hi_y, p.y + grow);
+        }
+      if (lo_x > hi_x || hi_x - lo_x > width || hi_y - lo_y > height) continue;
       Bits& full = sheets.emplace_back(cols, rows);
       for (int y = 0; y < rows; ++y)
         for (int x = 0; x < cols; ++x) full.set(x, y);
@@ -235,7 +253,7 @@ std::vector<NestedOutline> nest_outlines(const std::vector<std::vector<IntPoint>
   // Largest first, by area, by the longest side, by the box: the order that takes the fewest
   // sheets (the first of them on a tie).
   const auto by = [&](auto key) {
-    std::vector<std::size_t> order(outlines.size());
+    std::vector<std::size_t> order(parts.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return key(a) > key(b); });
@@ -254,7 +272,7 @@ std::vector<NestedOutline> nest_outlines(const std::vector<std::vector<IntPoint>
   std::vector<NestedOutline> out;
   std::size_t fewest = std::numeric_limits<std::size_t>::max();
   for (const auto& order : orders) {
-    std::vector<NestedOutline> tried(outlines.size());
+    std::vector<NestedOutline> tried(parts.size());
     const std::size_t sheets = fill(order, tried);
     if (sheets < fewest) fewest = sheets, out = std::move(tried);
   }

@@ -18,15 +18,20 @@ struct NestedOutline {
   std::int64_t dx = 0, dy = 0;
 };
 
-/// Nests closed outlines (each a simple polygon, first point repeated last) into few `width` x
-/// `height` sheets: each outline, in its four quarter turns, is covered by cells of 0.5 mm (500
-/// units; every cell it touches), and, largest first, goes on the first sheet where a turn of it
-/// touches no cell already taken, at the lowest, then leftmost, such cell (bottom-left fill). No
-/// two outlines placed on a sheet share a cell, so none overlap. An outline that no empty grid
+/// One part to nest: its polygons (a piece's faces and tabs, or a glue strip), each closed and
+/// simple, together an overlap-free cover of the part.
+using NestPart = std::vector<std::vector<IntPoint>>;
+
+/// Nests parts into few `width` x `height` sheets, each part's polygons grown by `grow` (the
+/// paper kept around a part): each part, in its four quarter turns, is covered by cells of 0.5 mm
+/// (500 units; every cell one of its grown polygons touches: the polygons are grown and
+/// rasterised one by one, never joined), and, largest first, goes on the first sheet where a
+/// turn of it touches no cell already taken, at the lowest, then leftmost, such cell (bottom-left
+/// fill). No two parts placed on a sheet share a cell, so none overlap. A part that no empty grid
 /// holds (its cells reach past the sheet) gets a sheet of its own at its exact place, untouched,
-/// when its box fits the sheet; else its sheet is -1. Returns one placement per outline, in
+/// when its grown box fits the sheet; else its sheet is -1. Returns one placement per part, in
 /// order.
-std::vector<NestedOutline> nest_outlines(const std::vector<std::vector<IntPoint>>& outlines,
+std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std::int64_t grow,
                                          std::int64_t width, std::int64_t height);
 
 }  // namespace papernet::print_detail

@@ -207,13 +207,13 @@ TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
   EXPECT_EQ(strips, layout.strips.size());
 }
 
-// The grid nester on its own: an L-shaped outline leaves a hollow that a square fills on the same
-// sheet (a bottom-left placer that slides from the corner cannot reach it), no two placed
-// outlines overlap or leave the sheet, and an outline without area (a piece of slivers, seen as
-// its box) still gets a sheet.
-TEST(Nest, OutlinesFillHollowsWithoutOverlapsInsideTheSheet) {
+// The grid nester on its own: an L-shaped part (two rectangles, nested as one) leaves a hollow
+// that a square fills on the same sheet (a bottom-left placer that slides from the corner cannot
+// reach it), no two placed parts overlap or leave the sheet, and a part without area (a piece of
+// slivers) still gets a sheet.
+TEST(Nest, PartsFillHollowsWithoutOverlapsInsideTheSheet) {
   using print_detail::IntPoint;
-  constexpr std::int64_t mm = 1000;  // outlines are in micrometres
+  constexpr std::int64_t mm = 1000;  // parts are in micrometres
   auto polygon = [](std::vector<IntPoint> p) {
     p.push_back(p.front());
     return p;
@@ -221,38 +221,37 @@ TEST(Nest, OutlinesFillHollowsWithoutOverlapsInsideTheSheet) {
   // A4's printable area with 10 mm margins; an L filling its left and bottom 150 mm, and two
   // 100 mm squares: with the L placed, one square fits only in the L's hollow.
   const std::int64_t w = 190 * mm, h = 277 * mm;
-  const std::vector<std::vector<IntPoint>> outlines = {
-      polygon({{0, 0},
-               {185 * mm, 0},
-               {185 * mm, 150 * mm},
-               {50 * mm, 150 * mm},
-               {50 * mm, 270 * mm},
-               {0, 270 * mm}}),
-      polygon({{0, 0}, {100 * mm, 0}, {100 * mm, 100 * mm}, {0, 100 * mm}}),
-      polygon({{0, 0}, {100 * mm, 0}, {100 * mm, 100 * mm}, {0, 100 * mm}}),
-      polygon({{0, 0}, {30 * mm, 30 * mm}}),  // no area
+  const std::vector<print_detail::NestPart> parts = {
+      {polygon({{0, 0}, {185 * mm, 0}, {185 * mm, 150 * mm}, {0, 150 * mm}}),
+       polygon({{0, 150 * mm}, {50 * mm, 150 * mm}, {50 * mm, 270 * mm}, {0, 270 * mm}})},
+      {polygon({{0, 0}, {100 * mm, 0}, {100 * mm, 100 * mm}, {0, 100 * mm}})},
+      {polygon({{0, 0}, {100 * mm, 0}, {100 * mm, 100 * mm}, {0, 100 * mm}})},
+      {polygon({{0, 0}, {30 * mm, 30 * mm}}), polygon({{0, 0}, {0, 20 * mm}})},  // no area
   };
   const std::vector<print_detail::NestedOutline> placed =
-      print_detail::nest_outlines(outlines, w, h);
-  ASSERT_EQ(placed.size(), outlines.size());
+      print_detail::nest_outlines(parts, 0, w, h);
+  ASSERT_EQ(placed.size(), parts.size());
   std::map<int, std::vector<std::vector<Vec2>>> on_sheet;
-  for (std::size_t i = 0; i < outlines.size(); ++i) {
-    ASSERT_GE(placed[i].sheet, 0) << "outline " << i;
-    std::vector<Vec2> moved;
-    for (const IntPoint& p : outlines[i]) {
-      const Vec2 q =
-          rotate(Vec2{static_cast<double>(p.x), static_cast<double>(p.y)}, placed[i].angle) +
-          Vec2{static_cast<double>(placed[i].dx), static_cast<double>(placed[i].dy)};
-      EXPECT_GE(q.x, -1) << "outline " << i;
-      EXPECT_GE(q.y, -1) << "outline " << i;
-      EXPECT_LE(q.x, w + 1.0) << "outline " << i;
-      EXPECT_LE(q.y, h + 1.0) << "outline " << i;
-      moved.push_back((1.0 / mm) * q);
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    ASSERT_GE(placed[i].sheet, 0) << "part " << i;
+    for (const auto& shape : parts[i]) {
+      std::vector<Vec2> moved;
+      for (const IntPoint& p : shape) {
+        const Vec2 q =
+            rotate(Vec2{static_cast<double>(p.x), static_cast<double>(p.y)}, placed[i].angle) +
+            Vec2{static_cast<double>(placed[i].dx), static_cast<double>(placed[i].dy)};
+        EXPECT_GE(q.x, -1) << "part " << i;
+        EXPECT_GE(q.y, -1) << "part " << i;
+        EXPECT_LE(q.x, w + 1.0) << "part " << i;
+        EXPECT_LE(q.y, h + 1.0) << "part " << i;
+        moved.push_back((1.0 / mm) * q);
+      }
+      moved.pop_back();  // the repeated first point
+      on_sheet[placed[i].sheet].push_back(moved);
     }
-    moved.pop_back();  // the repeated first point
-    on_sheet[placed[i].sheet].push_back(moved);
   }
   EXPECT_EQ(placed[1].sheet, placed[0].sheet) << "the first square goes into the L's hollow";
+  // Shapes of one part only touch; shapes of two parts must not overlap.
   for (const auto& [sheet, shapes] : on_sheet)
     for (std::size_t i = 0; i < shapes.size(); ++i)
       for (std::size_t j = i + 1; j < shapes.size(); ++j)
