@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <unordered_map>
 
 #include "core/errors.h"
 #include "print/internal/piece_labels.h"
@@ -141,33 +142,86 @@ void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Labe
   }
 }
 
-/// True when `label`'s box meets that of another label of its face (`by_face`: the labels of
-/// each face, indices into `labels`).
-bool collides_in_face(const Label& label, const std::vector<Label>& labels,
-                      const std::vector<std::vector<int>>& by_face) {
-  for (int i : by_face[label.side.face]) {
-    const Label& other = labels[i];
-    if (&other != &label && !other.text.empty() &&
-        convex_overlap(label_box(label), label_box(other), 0))
-      return true;
+/// The boxes of a net's labels on a grid of cells, as the labels move: which other label a box
+/// meets, on any face (a label moved beside its edge reaches over folds into other faces).
+class LabelBoxes {
+ public:
+  explicit LabelBoxes(const std::vector<Label>& labels) : labels_(labels) {
+    for (int i = 0; i < static_cast<int>(labels.size()); ++i) add(i);
   }
-  return false;
-}
+  /// True when `label`'s box meets the box of a label other than label `self`.
+  bool collides(const Label& label, int self) const {
+    const std::array<Vec2, 4> box = label_box(label);
+    bool hit = false;
+    for_cells(box, [&](std::uint64_t key) {
+      const auto it = cells_.find(key);
+      if (hit || it == cells_.end()) return;
+      for (const int j : it->second)
+        if (j != self && !labels_[j].text.empty() &&
+            convex_overlap(box, label_box(labels_[j]), 0)) {
+          hit = true;
+          return;
+        }
+    });
+    return hit;
+  }
+  /// Label `i` is about to change: its box leaves the grid until added again.
+  void remove(int i) {
+    for_cells(label_box(labels_[i]), [&](std::uint64_t key) {
+      std::vector<int>& in = cells_[key];
+      in.erase(std::remove(in.begin(), in.end(), i), in.end());
+    });
+  }
+  void add(int i) {
+    if (labels_[i].text.empty()) return;
+    for_cells(label_box(labels_[i]), [&](std::uint64_t key) {
+      std::vector<int>& in = cells_[key];
+      if (std::find(in.begin(), in.end(), i) == in.end()) in.push_back(i);
+    });
+  }
+
+ private:
+  static constexpr double kCell = 4;  // mm: about a label's length
+  template <class F>
+  static void for_cells(const std::array<Vec2, 4>& box, F&& f) {
+    Box2 b = Box2::empty();
+    for (Vec2 p : box) b.add(p);
+    const auto lo_x = static_cast<std::int64_t>(std::floor(b.lo.x / kCell));
+    const auto hi_x = static_cast<std::int64_t>(std::floor(b.hi.x / kCell));
+    const auto lo_y = static_cast<std::int64_t>(std::floor(b.lo.y / kCell));
+    const auto hi_y = static_cast<std::int64_t>(std::floor(b.hi.y / kCell));
+    for (std::int64_t y = lo_y; y <= hi_y; ++y)
+      for (std::int64_t x = lo_x; x <= hi_x; ++x)
+        f(static_cast<std::uint64_t>(x) << 32 ^ static_cast<std::uint32_t>(y));
+  }
+  const std::vector<Label>& labels_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
 
 /// Labels that did not fit their face at kLegibleLabelMm move where they print that large: onto
 /// the glue tab of their side when it has room (the tab is glued away, its face's partner label
 /// stays in view), else beside their edge at that size, on the face's side of it, reaching over
-/// folds into the faces around, where that is clear of the face's other labels (docs/print.md,
-/// "Labels").
+/// folds into the faces around, where that is clear of every other label, of any face
+/// (docs/print.md, "Labels"). Only the labels of the faces `only` marks move, when given.
+/// `fitted`: each label as size_labels placed it in its face (apart from the others there),
+/// where a moved label goes back when it meets another.
 void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
                          const std::vector<Tab>& tabs, const std::vector<int>& tab_of,
-                         std::vector<Label>& labels, double max_size) {
-  const std::vector<Label> fitted = labels;  // apart from each other within each face
-  std::vector<std::vector<int>> by_face(faces.size());
-  for (int i = 0; i < static_cast<int>(labels.size()); ++i)
-    by_face[labels[i].side.face].push_back(i);
-  for (Label& label : labels) {
+                         std::vector<Label>& labels, const std::vector<Label>& fitted,
+                         double max_size, const std::vector<char>* only = nullptr) {
+  LabelBoxes boxes(labels);
+  // Moves label `i` to `to` when that is clear of the others.
+  const auto move_to = [&](int i, const Label& to) {
+    if (boxes.collides(to, i)) return false;
+    boxes.remove(i);
+    labels[i] = to;
+    boxes.add(i);
+    return true;
+  };
+  for (int i = 0; i < static_cast<int>(labels.size()); ++i) {
+    const Label& label = labels[i];
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
+    if (only && !(*only)[label.side.face]) continue;
     const double chars = label_chars(label.text);
     const int t = tab_of[label.edge];
     if (t >= 0 && tabs[t].side.face == label.side.face && tabs[t].side.k == label.side.k) {
@@ -178,11 +232,12 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
         const double height = dot(c[2] - c[1], up), top = norm(c[3] - c[2]);
         const double size = std::min({max_size, 0.6 * height, top / (1.15 * 0.6 * chars)});
         if (size >= kLegibleLabelMm) {
-          label.at = 0.25 * (c[0] + c[1] + c[2] + c[3]);
-          label.angle = std::atan2(d.y, d.x);
-          label.size = size;
-          turn_upright(label);
-          continue;
+          Label on_tab = label;
+          on_tab.at = 0.25 * (c[0] + c[1] + c[2] + c[3]);
+          on_tab.angle = std::atan2(d.y, d.x);
+          on_tab.size = size;
+          turn_upright(on_tab);
+          if (move_to(i, on_tab)) continue;
         }
       }
     }
@@ -194,26 +249,32 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
     const Vec2 d = (1 / len) * (p1 - p0);
     Vec2 up{-d.y, d.x};
     if (dot(p2 - p0, up) < 0) up = Vec2{0, 0} - up;
-    // Along the edge, the first place clear of the face's other labels (the middle first); where
-    // there is none (a sliver with two cut edges), the label keeps the size its face holds.
-    const Label small = label;
-    label.size = kLegibleLabelMm;
-    label.angle = std::atan2(d.y, d.x);
-    turn_upright(label);
-    bool clear = false;
-    for (const double t : {0.5, 0.3, 0.7, 0.15, 0.85}) {
-      label.at = p0 + (t * len) * d + (0.7 * kLegibleLabelMm) * up;
-      if ((clear = !collides_in_face(label, labels, by_face))) break;
+    // Along the edge, the first place clear of the other labels (the middle first), its centre
+    // 0.7 of its height from the edge, else 1.7 or 2.7 of it (at most 4 mm: still read as the
+    // edge's); where there is none (a sliver with two cut edges, a fan of slivers), the label
+    // keeps the size its face holds.
+    Label beside = label;
+    beside.size = kLegibleLabelMm;
+    beside.angle = std::atan2(d.y, d.x);
+    turn_upright(beside);
+    bool moved = false;
+    for (const double in : {0.7, 1.7, 2.7}) {
+      for (const double along : {0.5, 0.3, 0.7, 0.15, 0.85}) {
+        beside.at = p0 + (along * len) * d + (in * kLegibleLabelMm) * up;
+        if ((moved = move_to(i, beside))) break;
+      }
+      if (moved) break;
     }
-    if (!clear) label = small;
   }
   // A label put back at its fitted size may meet one moved before it: that one goes back too,
   // until none meet (the fitted labels are apart, so this ends).
   for (bool changed = true; changed;) {
     changed = false;
-    for (std::size_t i = 0; i < labels.size(); ++i)
-      if (labels[i].size != fitted[i].size && collides_in_face(labels[i], labels, by_face)) {
+    for (int i = 0; i < static_cast<int>(labels.size()); ++i)
+      if (labels[i].size != fitted[i].size && boxes.collides(labels[i], i)) {
+        boxes.remove(i);
         labels[i] = fitted[i];
+        boxes.add(i);
         changed = true;
       }
   }
@@ -371,7 +432,8 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   }
 
   size_labels(out.faces, out.labels, options.max_label_mm);
-  make_labels_legible(out.faces, out.tabs, tab_of, out.labels, options.max_label_mm);
+  std::vector<Label> fitted = out.labels;
+  make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm);
   // A label naming the piece across ("12→P3") that prints under the legible size even so (a
   // sliver with two cut edges) becomes the plain number, and its face's labels are placed again:
   // its twin still names the piece (docs/print.md, "Build order").
@@ -394,8 +456,10 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       redo.push_back(std::move(l));
     }
     size_labels(out.faces, redo, options.max_label_mm);
-    make_labels_legible(out.faces, out.tabs, tab_of, redo, options.max_label_mm);
-    for (std::size_t j = 0; j < index.size(); ++j) out.labels[index[j]] = std::move(redo[j]);
+    for (std::size_t j = 0; j < index.size(); ++j)
+      fitted[index[j]] = out.labels[index[j]] = redo[j];
+    make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm,
+                        &again);
   }
   if (pieces > 1) out.piece_labels = print_detail::place_piece_labels(out.faces, out.labels, piece);
 
