@@ -379,8 +379,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     } catch (const InvalidInputException&) {
       // The input has no net at all (a dual graph that is a tree): keep the coarse attempt.
     }
-    result.stats.iterations += full.stats.iterations;
-    result.stats.evaluations += full.stats.evaluations;
+    result.stats.add(full.stats);
     if (full.overlap_free) return complete_with(std::move(full.net), relay);
   }
   State st = std::move(*coarse);
