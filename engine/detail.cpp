@@ -18,6 +18,16 @@ constexpr double kBuildableEdgeMm = 18;
 // shape rather than become a tetrahedron.
 constexpr std::size_t kMinDetailFaces = 100;
 
+// The printed edge under which a cut edge has no room for its 1.5 mm label (three digits) beside
+// it, nor a glue tab a person can fold: auto collapses on while more edges than kShortEdgesAllowed
+// of the faces are that short (slivers and small features of CAD parts), as long as the surface
+// moves at most kDetailDistanceMm from the model's: a feature smaller than the shortest edge a
+// person builds goes. Tuned on the CAD parts and the milk truck of tests/data (docs/print.md,
+// "Detail").
+constexpr double kShortEdgeMm = 3;
+constexpr double kShortEdgesAllowed = 0.01;
+constexpr double kDetailDistanceMm = 3;
+
 // A part is collapsed only when it has this much more than the buildable faces: a model a
 // little denser is printed as it is rather than approximated.
 constexpr double kDetailSlack = 1.25;
@@ -47,21 +57,29 @@ std::size_t buildable_faces(const Mesh& part, double scale) {
       kMinDetailFaces, std::isfinite(faces) ? static_cast<std::size_t>(std::min(faces, 1e12)) : 0);
 }
 
-std::size_t detail_faces(const Mesh& part, const JobOptions& options, double scale,
-                         std::size_t all_faces) {
+SimplifyTarget detail_target(const Mesh& part, const JobOptions& options, double scale,
+                             std::size_t all_faces) {
+  SimplifyTarget target;
   switch (options.detail.mode) {
     case DetailMode::Full:
-      return 0;
+      return target;
     case DetailMode::Faces: {
       const double share = all_faces == 0 ? 1.0 : double(part.faces.size()) / double(all_faces);
-      return std::max<std::size_t>(
+      target.faces = std::max<std::size_t>(
           4, static_cast<std::size_t>(std::llround(share * double(options.detail.faces))));
+      return target;
     }
     case DetailMode::Auto:
       break;
   }
   const std::size_t buildable = buildable_faces(part, scale);
-  return double(part.faces.size()) > kDetailSlack * double(buildable) ? buildable : 0;
+  if (double(part.faces.size()) > kDetailSlack * double(buildable)) target.faces = buildable;
+  if (scale > 0 && std::isfinite(scale)) {
+    target.short_edge = kShortEdgeMm / scale;
+    target.short_edges_allowed = kShortEdgesAllowed;
+    target.max_distance = kDetailDistanceMm / scale;
+  }
+  return target;
 }
 
 std::optional<NetRepair> detail_warning(const std::vector<Piece>& pieces,

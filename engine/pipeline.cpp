@@ -157,13 +157,13 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
     const double seconds =
         std::max(share(left, part.faces.size(), all_faces - faces_before), kLeastSeconds);
     relay.start(Stage::Unfold, p, faces_before, seconds);
-    const std::size_t simplify = detail_faces(part, options, scale, all_faces);
+    const SimplifyTarget detail = detail_target(part, options, scale, all_faces);
     // The print's share of the part is outside its seconds already.
     const AfterUnfold after{after_per_face,
                             share(time_limit * print_share, part.faces.size(), all_faces)};
     try {
       pieces.push_back(
-          unfold_piece(part, options, simplify, seconds, after, part.faces.size(), relay));
+          unfold_piece(part, options, detail, seconds, after, part.faces.size(), relay));
     } catch (UnfoldFailedException& e) {
       e.seconds = seconds_since(start);
       throw;

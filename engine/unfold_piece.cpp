@@ -65,13 +65,13 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
 
 }  // namespace
 
-Piece unfold_piece(const Mesh& part, const JobOptions& options, std::size_t simplify,
+Piece unfold_piece(const Mesh& part, const JobOptions& options, const SimplifyTarget& detail,
                    double seconds, const AfterUnfold& after, std::size_t input_faces,
                    Progress& progress) {
   // A low-poly version to print instead of the part, when asked for: the net is then
   // approximate, its distance measured to the part.
   std::optional<Mesh> simple =
-      simplify_mesh(part, collapses_of(options.strategy), simplify, progress);
+      simplify_mesh(part, collapses_of(options.strategy), detail, progress);
   if (!simple) return unfold_mesh(part, options, seconds, after, input_faces, progress);
   Piece piece = unfold_mesh(*simple, options, seconds, after, input_faces, progress);
   piece.simplified = true;

@@ -1,12 +1,54 @@
 #include "core/mesh/simplify.h"
 
-namespace papernet {
+#include <algorithm>
+#include <utility>
+#include <vector>
 
-std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
-                                  Progress& progress) {
-  if (faces == 0 || faces >= mesh.faces.size()) return std::nullopt;
-  Mesh simple = decimate(mesh, {strategy, faces}, progress).compact();
-  if (simple.faces.size() >= mesh.faces.size()) return std::nullopt;
+#include "core/mesh/hausdorff.h"
+
+namespace papernet {
+namespace {
+
+// Each step of the collapse for short edges removes this part of the faces left.
+constexpr std::size_t kShortEdgeStep = 6;
+
+}  // namespace
+
+std::size_t count_short_edges(const Mesh& mesh, double length) {
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(mesh.faces.size() * 3);
+  for (const auto& t : mesh.faces)
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[i], b = t[(i + 1) % 3];
+      if (norm(mesh.vertices[a] - mesh.vertices[b]) < length)
+        edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  return static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
+}
+
+std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
+                                  const SimplifyTarget& target, Progress& progress) {
+  const std::size_t n = mesh.faces.size();
+  const auto too_short = [&](const Mesh& m) {
+    return target.short_edge > 0 && double(count_short_edges(m, target.short_edge)) >
+                                        target.short_edges_allowed * double(m.faces.size());
+  };
+  const bool collapse = target.faces > 0 && target.faces < n;
+  if (!collapse && !too_short(mesh)) return std::nullopt;
+  ProgressiveMesh pm = decimate(mesh, {strategy, collapse ? target.faces : n}, progress);
+  Mesh simple = pm.compact();
+  const double diagonal = bounding_box_diagonal(mesh);
+  while (too_short(simple)) {
+    const std::size_t before = pm.face_count();
+    collapse_further(pm, strategy, before - std::max<std::size_t>(1, before / kShortEdgeStep),
+                     progress);
+    if (pm.face_count() >= before) break;  // no legal collapse left
+    Mesh next = pm.compact();
+    if (approximation_distance(mesh, next) * diagonal > target.max_distance) break;
+    simple = std::move(next);
+  }
+  if (simple.faces.size() >= n) return std::nullopt;
   return simple;
 }
 

@@ -9,15 +9,30 @@
 
 namespace papernet {
 
+/// How far simplify_mesh collapses.
+struct SimplifyTarget {
+  /// Collapse to at most this many faces (0: keep them all).
+  std::size_t faces = 0;
+  /// Then, when > 0, go on collapsing in steps of a sixth of the faces while more edges than
+  /// `short_edges_allowed` times the faces are shorter than this; a step that would take the
+  /// surface farther than `max_distance` from `mesh` (two-sided Hausdorff, in its units) is not
+  /// taken, and ends it.
+  double short_edge = 0;
+  double short_edges_allowed = 0;
+  double max_distance = 0;
+};
+
 /// A low-poly version of `mesh` to print instead of it: collapsed with `strategy` (legal
-/// collapses only, as decimate) to at most `faces` faces, or as far as legal collapses go, with
-/// ids of its own. None when that is not fewer faces than `mesh` (`faces` 0 or not below its
-/// count, or no legal collapse): then print `mesh` itself. Fewer, larger faces have sharper
-/// vertices and longer edges, so more cut edges have room for a glue tab (docs/tabs.md).
-/// Reports phase "collapse".
-/// \throw InvalidInputException when `mesh` is not a manifold, oriented triangle mesh.
-/// \throw CancelledException when `progress` asks to stop.
-std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy, std::size_t faces,
-                                  Progress& progress);
+/// collapses only, as decimate) to at most `target.faces` faces, or as far as legal collapses
+/// go, then further while it has short edges (SimplifyTarget), with ids of its own. None when
+/// that is not fewer faces than `mesh`: then print `mesh` itself. Fewer, larger faces have sharper
+/// vertices and longer edges, so more cut edges have room for a glue tab (docs/tabs.md) and a
+/// label. Reports phase "collapse". \throw InvalidInputException when `mesh` is not a manifold,
+/// oriented triangle mesh. \throw CancelledException when `progress` asks to stop.
+std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
+                                  const SimplifyTarget& target, Progress& progress);
+
+/// The number of `mesh`'s edges (each counted once) shorter than `length`.
+std::size_t count_short_edges(const Mesh& mesh, double length);
 
 }  // namespace papernet

@@ -11,6 +11,7 @@
 #include "core/io/load.h"
 #include "core/mesh/colour.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/simplify.h"
 #include "core/progress.h"
 #include "core/unfold/net.h"
 #include "core/unfold/net_check.h"
@@ -55,11 +56,11 @@ double parts_print_scale(const std::vector<Mesh>& parts, const JobOptions& optio
 /// keeps its shape).
 std::size_t buildable_faces(const Mesh& part, double scale);
 
-/// The faces `part` is collapsed to before it is unfolded, by the job's `detail` (0: none):
-/// full none, N the part's share of N (by faces, of `all_faces`), auto buildable_faces when the
-/// part has clearly more.
-std::size_t detail_faces(const Mesh& part, const JobOptions& options, double scale,
-                         std::size_t all_faces);
+/// How far `part` is collapsed before it is unfolded, by the job's `detail`: full not at all,
+/// N to the part's share of N (by faces, of `all_faces`), auto to buildable_faces when the part
+/// has clearly more, then on while edges print too short for a label (docs/print.md, "Detail").
+SimplifyTarget detail_target(const Mesh& part, const JobOptions& options, double scale,
+                             std::size_t all_faces);
 
 /// Seconds a step gets at least (a time limit of 0 means none to the algorithms): the
 /// progressive unfolder then returns the coarsest net it finds at once.
@@ -73,9 +74,9 @@ struct AfterUnfold {
 };
 
 /// Unfolds `part` with the job's strategy within `seconds`, less what the steps `after` it need
-/// for the net it reaches (a low-poly version of `simplify` faces when that is not 0).
+/// for the net it reaches (a low-poly version collapsed as `detail` says, when that collapses).
 /// \throw UnfoldFailedException, CancelledException.
-Piece unfold_piece(const Mesh& part, const JobOptions& options, std::size_t simplify,
+Piece unfold_piece(const Mesh& part, const JobOptions& options, const SimplifyTarget& detail,
                    double seconds, const AfterUnfold& after, std::size_t input_faces,
                    Progress& progress);
 

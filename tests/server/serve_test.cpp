@@ -206,7 +206,7 @@ TEST_P(ServeTest, ShortTimeLimitGivesAnApproximateNet) {
 TEST_P(ServeTest, SubmitGlbDracoAndMultipartGltf) {
   Server s({"--workers", "1"});
   std::vector<std::string> ids = {
-      submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU"),
+      submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU&detail=full"),
       submit(s, test_mesh("Box_Draco.glb"), "", "?strategy=TU")};
   httplib::MultipartFormDataItems items = {
       {"mesh", test_mesh("gltf_external/Box.gltf"), "Box.gltf", "model/gltf+json"},
@@ -290,7 +290,8 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
 // whole net stays at net.svg.
 TEST_P(ServeTest, ServesEachPrintedPageOnItsOwn) {
   Server s({"--workers", "1"});
-  const std::string id = submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU");
+  const std::string id =
+      submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU&detail=full");
   const json job = wait_final(s, id);
   ASSERT_EQ(job["status"], "succeeded") << job.dump();
   auto c = s.client();
