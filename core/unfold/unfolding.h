@@ -150,6 +150,8 @@ class Unfolding : private unfolding_detail::UnfoldingState {
   // unfolding_repair.cpp: local repair.
   std::uint32_t next_side_epoch();
   bool collect_side(int x, int y, std::size_t limit);
+  bool grow_side(int x, int y, int inner, std::size_t limit);
+  void near_faces(int x, int y, std::size_t count);
   // The tree path a .. b into path_.
   void tree_path(int a, int b);
 };

@@ -28,6 +28,13 @@ constexpr std::size_t kPairsPerRound = 8;
 constexpr std::size_t kFirstSide = 16;
 // Faces of a side, nearest the cut first, along whose edges it may be glued back.
 constexpr std::size_t kGluable = 32;
+// Faces of a side, nearest the cut first, tested first when it is glued back, before the others
+// in the order grow_side holds them: those near the cut lie near the net once glued back, and end
+// a losing move sooner; the whole side breadth-first costs a search of it per cut, as before
+// grow_side. Rocker-arm (20,088 faces, seeds 1-3) unfolds in 7.6, 6.2 and 10.4 s with 512; 8.1,
+// 6.7 and 9.6 s with 128; 8.3, 7.2 and 10.1 s with 2,048; 9.8, 8.0 and 11.0 s with every side
+// searched breadth-first anew (docs/performance.md, "Session 39").
+constexpr std::size_t kTestedFirst = 512;
 // Links remembered as tabu (two per move).
 constexpr std::size_t kTabuLinks = 16;
 
@@ -61,6 +68,74 @@ bool Unfolding::collect_side(int x, int y, std::size_t limit) {
     }
   }
   return true;
+}
+
+// The side of the cut x - y holding x, marked with the epoch, as ranges of side_faces_ (which
+// holds its faces) in side_ranges_: in the tree's pre-order from x (neighbours in edge order), the
+// heads of the ranges, last first, then their tails, first first. `inner` -1: built anew; else
+// the ranges hold the side of the cut inner - x (the previous cut of a walk along a tree path),
+// which is the subtree at x's neighbour `inner`: only the faces around it are visited, so a walk
+// visits each face of its last side once. False (the side incomplete) when the side has more
+// than `limit` faces.
+bool Unfolding::grow_side(int x, int y, int inner, std::size_t limit) {
+  if (inner < 0) {
+    next_side_epoch();
+    side_faces_.clear();
+    side_ranges_.clear();
+  }
+  const std::uint32_t epoch = side_epoch_;
+  const auto add = [&](int t) {
+    side_mark_[t] = epoch;
+    side_faces_.push_back(t);
+  };
+  std::array<std::size_t, 3> range{side_faces_.size(), 0, 0};
+  bool tail = false;
+  add(x);
+  for (int k = 0; k < 3; ++k) {
+    const int n = adj_[x][k];
+    if (!(links_[x] >> k & 1) || n == y) continue;
+    if (n == inner) {
+      range[1] = side_faces_.size();
+      tail = true;
+      continue;
+    }
+    // The subtree at n, in pre-order: each face's children pushed in reverse edge order.
+    side_stack_.assign(1, {n, x});
+    while (!side_stack_.empty()) {
+      const auto [z, from] = side_stack_.back();
+      side_stack_.pop_back();
+      add(z);
+      if (side_faces_.size() > limit) return false;
+      for (int j = 2; j >= 0; --j) {
+        const int c = adj_[z][j];
+        if ((links_[z] >> j & 1) && c != from) side_stack_.push_back({c, z});
+      }
+    }
+  }
+  if (!tail) range[1] = side_faces_.size();
+  range[2] = side_faces_.size();
+  side_ranges_.push_back(range);
+  return side_faces_.size() <= limit;
+}
+
+// Marked in near_mark_ with near_epoch_.
+void Unfolding::near_faces(int x, int y, std::size_t count) {
+  if (near_mark_.size() < face_count()) near_mark_.resize(face_count(), 0);
+  if (++near_epoch_ == 0) {
+    std::fill(near_mark_.begin(), near_mark_.end(), 0);
+    near_epoch_ = 1;
+  }
+  near_.assign(1, x);
+  near_mark_[x] = near_epoch_;
+  for (std::size_t i = 0; i < near_.size() && near_.size() < count; ++i) {
+    const int z = near_[i];
+    for (int k = 0; k < 3 && near_.size() < count; ++k) {
+      const int n = adj_[z][k];
+      if (!(links_[z] >> k & 1) || (z == x && n == y) || near_mark_[n] == near_epoch_) continue;
+      near_mark_[n] = near_epoch_;
+      near_.push_back(n);
+    }
+  }
 }
 
 void Unfolding::tree_path(int a, int b) {
@@ -110,7 +185,6 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
   // the current best), so that the test budget runs out exactly as before.
   struct Cut {
     int x = -1, y = -1;
-    bool small = false;  // the side has at most `limit` faces (else: the end of that path side)
     std::size_t side = 0, begin = 0, end = 0;  // side size; its gluings [begin, end)
   };
   std::vector<Cut> cuts;
@@ -121,17 +195,26 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
     cuts.clear();
     gluings.clear();
     counts.clear();
-    // Evaluates every way of gluing the side x..(not y) in side_ (marked with `epoch`) back on.
+    // Evaluates every way of gluing the side x..(not y) (grow_side, marked with `epoch`) back on.
     const auto evaluate_side = [&](int x, int y, std::uint32_t epoch) {
+      // The overlapping pairs across the cut: from the side's faces, or from the overlapping
+      // faces (each pair seen from both) when they are fewer.
       long long crossing = 0;
-      for (int t : side_)
-        for (int b : overlaps_[t])
-          if (side_mark_[b] != epoch) ++crossing;
+      if (side_faces_.size() <= overlapping_.size()) {
+        for (const int t : side_faces_)
+          for (const int b : overlaps_[t]) crossing += side_mark_[b] != epoch;
+      } else {
+        for (const int a : overlapping_)
+          for (const int b : overlaps_[a])
+            crossing += (side_mark_[a] == epoch) != (side_mark_[b] == epoch);
+        crossing /= 2;
+      }
       if (crossing == 0) return;
-      // Glued back by any face near the cut (the first ones of the breadth-first side).
-      const std::size_t gluable = std::min(side_.size(), kGluable);
-      for (std::size_t i = 0; i < gluable; ++i)
-        for (int k = 0, s = side_[i]; k < 3; ++k) {
+      // Glued back by any face near the cut (the first ones breadth-first from it).
+      near_faces(x, y, kTestedFirst);
+      const std::size_t gluable = std::min(near_.size(), kGluable);
+      for (std::size_t g = 0; g < gluable; ++g)
+        for (int k = 0, s = near_[g]; k < 3; ++k) {
           const int q = adj_[s][k];
           if (q < 0 || side_mark_[q] == epoch || (s == x && q == y) || is_tabu(s, q)) continue;
           const Triangle2 placed = place_across(pos_[q], adj_edge_[s][k], k, shape_[s]);
@@ -139,7 +222,27 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
           long long delta = -crossing;
           ++st.evaluations;
           const std::size_t first = counts.size();
-          for (int t : side_) {
+          // The faces near the cut first (nearest the rest of the net once glued back, so most
+          // likely to meet it, which ends a move that cannot win sooner), then the rest.
+          const std::size_t near = near_.size(), ranges = side_ranges_.size();
+          std::size_t part = 0, at = 0, end = 0;  // part p: a head (p < ranges) or a tail
+          const auto next_face = [&](std::size_t i) {
+            if (i < near) return near_[i];
+            for (;;) {
+              while (at == end) {
+                if (part == 2 * ranges) return -1;
+                const auto& r = side_ranges_[part < ranges ? ranges - 1 - part : part - ranges];
+                at = part < ranges ? r[0] : r[1];
+                end = part < ranges ? r[1] : r[2];
+                ++part;
+              }
+              const int t = side_faces_[at++];
+              if (near_mark_[t] != near_epoch_) return t;
+            }
+          };
+          for (std::size_t i = 0;; ++i) {
+            const int t = next_face(i);
+            if (t < 0) break;
             const Triangle2 moved =
                 t == s ? placed
                        : Triangle2{motion(pos_[t][0]), motion(pos_[t][1]), motion(pos_[t][2])};
@@ -158,21 +261,20 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
             counts.push_back(delta);
             // Only a move that lowers the count is applied: stop once this one cannot win.
             if (delta > rise || delta > best.delta ||
-                (delta == best.delta && side_.size() >= best.side))
+                (delta == best.delta && side_faces_.size() >= best.side))
               break;
           }
           gluings.push_back({first, counts.size()});
-          if (delta < best.delta || (delta == best.delta && side_.size() < best.side))
-            best = {delta, side_.size(), x, y, s, k};
+          if (delta < best.delta || (delta == best.delta && side_faces_.size() < best.side))
+            best = {delta, side_faces_.size(), x, y, s, k};
         }
     };
 
-    // Evaluates the cut of link x - y (the side holding x moves) unless this round did; false when
-    // that side has more than `limit` faces.
+    // Evaluates the cut of link x - y (the side holding x moves: grow_side) unless this round did.
     const auto visit_cut = [&](int x, int y) {
       for (const Cut& c : cuts) {
         if (c.x != x || c.y != y) continue;
-        for (std::size_t i = c.begin; i < c.end && c.small; ++i) {
+        for (std::size_t i = c.begin; i < c.end; ++i) {
           ++st.evaluations;
           for (std::size_t j = gluings[i].first; j < gluings[i].second; ++j) {
             ++st.tests;
@@ -180,20 +282,16 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
             if (d > rise || d > best.delta || (d == best.delta && c.side >= best.side)) break;
           }
         }
-        return c.small;
+        return;
       }
       Cut c;
       c.x = x;
       c.y = y;
-      c.small = collect_side(x, y, limit);
       c.begin = gluings.size();
-      if (c.small) {
-        c.side = side_.size();
-        evaluate_side(x, y, side_epoch_);
-      }
+      c.side = side_faces_.size();
+      evaluate_side(x, y, side_epoch_);
       c.end = gluings.size();
       if (options.reuse_cuts) cuts.push_back(c);
-      return c.small;
     };
 
     pairs.clear();
@@ -209,14 +307,15 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
       tree_path(a, b);
       const std::vector<int> path = path_;
       const std::size_t m = path.size();
-      // Sides holding a grow along the path, sides holding b shrink: try both ends while small.
+      // Sides holding a grow along the path, sides holding b shrink: try both ends while small,
+      // each side grown from the one before.
       for (std::size_t i = 0; i + 1 < m; ++i) {
-        if (is_tabu(path[i], path[i + 1])) continue;
-        if (!visit_cut(path[i], path[i + 1])) break;
+        if (!grow_side(path[i], path[i + 1], i > 0 ? path[i - 1] : -1, limit)) break;
+        if (!is_tabu(path[i], path[i + 1])) visit_cut(path[i], path[i + 1]);
       }
       for (std::size_t i = m - 1; i > 0; --i) {
-        if (is_tabu(path[i], path[i - 1])) continue;
-        if (!visit_cut(path[i], path[i - 1])) break;
+        if (!grow_side(path[i], path[i - 1], i + 1 < m ? path[i + 1] : -1, limit)) break;
+        if (!is_tabu(path[i], path[i - 1])) visit_cut(path[i], path[i - 1]);
       }
     }
     if (best.delta >= 0 || best.delta == LLONG_MAX) {

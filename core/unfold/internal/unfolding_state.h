@@ -63,8 +63,14 @@ struct UnfoldingState {
   std::uint32_t seen_epoch_ = 0;
   std::size_t tested_ = 0;  // faces tested by evaluate_move, ever
   std::vector<int> side_, path_;
-  std::vector<std::uint32_t> side_mark_;
-  std::uint32_t side_epoch_ = 0;
+  // grow_side: the side of a cut on a walk along a tree path, as ranges of side_faces_ (each
+  // cut's head [x and the subtrees before the previous cut's side] and tail [those after]);
+  // faces to visit, with their parent; near_faces: the faces nearest a cut.
+  std::vector<int> side_faces_, near_;
+  std::vector<std::array<std::size_t, 3>> side_ranges_;  // head begin, tail begin, tail end
+  std::vector<std::pair<int, int>> side_stack_;
+  std::vector<std::uint32_t> side_mark_, near_mark_;  // near_mark_: near_'s faces, by near_epoch_
+  std::uint32_t side_epoch_ = 0, near_epoch_ = 0;
 };
 
 }  // namespace papernet::unfolding_detail
