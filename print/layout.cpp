@@ -249,18 +249,28 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
     const Vec2 d = (1 / len) * (p1 - p0);
     Vec2 up{-d.y, d.x};
     if (dot(p2 - p0, up) < 0) up = Vec2{0, 0} - up;
-    // Along the edge, the first place clear of the other labels (the middle first), its centre
-    // 0.7 of its height from the edge, else 1.7 or 2.7 of it (at most 4 mm: still read as the
-    // edge's); where there is none (a sliver with two cut edges, a fan of slivers), the label
-    // keeps the size its face holds.
+    // Along the edge, the first place clear of the other labels (the middle first, then towards
+    // its ends, then over them by the label's height: the labels of a short edge at a crowded
+    // vertex find room there), its centre 0.7 of its height from the edge, else 1.7 or 2.7 of it
+    // (at most 4 mm: still read as the edge's); where there is none (a sliver with two cut
+    // edges, a fan of slivers), the label keeps the size its face holds.
     Label beside = label;
     beside.size = kLegibleLabelMm;
     beside.angle = std::atan2(d.y, d.x);
     turn_upright(beside);
     bool moved = false;
     for (const double in : {0.7, 1.7, 2.7}) {
-      for (const double along : {0.5, 0.3, 0.7, 0.15, 0.85}) {
-        beside.at = p0 + (along * len) * d + (in * kLegibleLabelMm) * up;
+      // Each place: a fraction of the edge's length, and millimetres past that.
+      for (const auto& [part, past] : {std::pair{0.5, 0.0},
+                                       {0.3, 0.0},
+                                       {0.7, 0.0},
+                                       {0.15, 0.0},
+                                       {0.85, 0.0},
+                                       {0.0, 0.0},
+                                       {1.0, 0.0},
+                                       {0.0, -kLegibleLabelMm},
+                                       {1.0, kLegibleLabelMm}}) {
+        beside.at = p0 + (part * len + past) * d + (in * kLegibleLabelMm) * up;
         if ((moved = move_to(i, beside))) break;
       }
       if (moved) break;

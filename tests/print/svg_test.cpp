@@ -482,6 +482,16 @@ TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
         EXPECT_TRUE(on_tab || (face_side && std::abs(l->size - kLegibleLabelMm) < 1e-9))
             << name << " label " << l->text << " is neither in its face, on its tab nor beside "
             << "its edge";
+        if (!on_tab) {
+          // Beside its edge: its centre at most 2.7 of its height from the edge's line, and
+          // along it at most one height past either end.
+          const double len = norm(b - a);
+          const Vec2 d = (1 / len) * (b - a);
+          const double along = dot(l->at - a, d), off = std::abs(cross(d, l->at - a));
+          EXPECT_LE(off, 2.7 * kLegibleLabelMm + 1e-6) << name << " label " << l->text;
+          EXPECT_GE(along, -kLegibleLabelMm - 1e-6) << name << " label " << l->text;
+          EXPECT_LE(along, len + kLegibleLabelMm + 1e-6) << name << " label " << l->text;
+        }
       }
     }
     for (const auto& [text, n] : texts) EXPECT_EQ(n, 1) << name << ": label " << text << " reused";
