@@ -6,24 +6,17 @@
 
 #include "core/io/load.h"
 #include "core/mesh/hausdorff.h"
+#include "tests/support/meshes.h"
 
 namespace papernet {
 namespace {
-
-Mesh octahedron() {
-  Mesh m;
-  m.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  m.faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-             {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  return m;
-}
 
 Mesh cad_part() {
   return load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/thingi10k_65004.stl").mesh;
 }
 
 TEST(Simplify, ShortEdgesAreCountedOnce) {
-  const Mesh m = octahedron();  // 12 edges of length sqrt(2)
+  const Mesh m = test::octahedron();  // 12 edges of length sqrt(2)
   EXPECT_EQ(count_short_edges(m, 1.5), 12u);
   EXPECT_EQ(count_short_edges(m, 1.4), 0u);
 }
