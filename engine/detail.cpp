@@ -14,8 +14,8 @@ namespace {
 // prints of the Duck and of scans (docs/print.md, "Detail").
 constexpr double kBuildableEdgeMm = 18;
 
-// Parts are never collapsed below this many faces: a small part (a wheel of a truck) keeps its
-// shape rather than become a tetrahedron.
+// The area never collapses a part below this many faces: a small part (a wheel of a truck) keeps
+// its shape rather than become a tetrahedron. Only short edges take it further (below).
 constexpr std::size_t kMinDetailFaces = 100;
 
 // The printed edge under which a cut edge has no room for its 1.5 mm label (three digits) beside
