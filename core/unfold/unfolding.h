@@ -149,6 +149,8 @@ class Unfolding : private unfolding_detail::UnfoldingState {
 
   // unfolding_repair.cpp: local repair.
   std::uint32_t next_side_epoch();
+  void breadth_first_side(int x, int y, std::size_t count, std::vector<std::uint32_t>& mark,
+                          std::uint32_t epoch, std::vector<int>& out) const;
   bool collect_side(int x, int y, std::size_t limit);
   bool grow_side(int x, int y, int inner, std::size_t limit);
   void near_faces(int x, int y, std::size_t count);

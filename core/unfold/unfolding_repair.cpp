@@ -38,36 +38,46 @@ constexpr std::size_t kTestedFirst = 512;
 // Links remembered as tabu (two per move).
 constexpr std::size_t kTabuLinks = 16;
 
+// A new epoch for `marks` (one per face of `faces`): marks of earlier epochs no longer count.
+std::uint32_t next_epoch(std::vector<std::uint32_t>& marks, std::uint32_t& epoch,
+                         std::size_t faces) {
+  if (marks.size() < faces) marks.resize(faces, 0);
+  if (++epoch == 0) {
+    std::fill(marks.begin(), marks.end(), 0);
+    epoch = 1;
+  }
+  return epoch;
+}
+
 }  // namespace
 
 std::uint32_t Unfolding::next_side_epoch() {
-  if (side_mark_.size() < face_count()) side_mark_.resize(face_count(), 0);
-  if (++side_epoch_ == 0) {
-    std::fill(side_mark_.begin(), side_mark_.end(), 0);
-    side_epoch_ = 1;
+  return next_epoch(side_mark_, side_epoch_, face_count());
+}
+
+// The first `count` faces reached from x over links without crossing to y, breadth-first, into
+// `out`, marked in `mark` with `epoch`.
+void Unfolding::breadth_first_side(int x, int y, std::size_t count,
+                                   std::vector<std::uint32_t>& mark, std::uint32_t epoch,
+                                   std::vector<int>& out) const {
+  out.assign(1, x);
+  mark[x] = epoch;
+  for (std::size_t i = 0; i < out.size() && out.size() < count; ++i) {
+    const int z = out[i];
+    for (int k = 0; k < 3 && out.size() < count; ++k) {
+      const int n = adj_[z][k];
+      if (!(links_[z] >> k & 1) || (z == x && n == y) || mark[n] == epoch) continue;
+      mark[n] = epoch;
+      out.push_back(n);
+    }
   }
-  return side_epoch_;
 }
 
 // Faces reached from x over links without crossing to y, into side_ (marked with the epoch);
 // false (side_ incomplete) when there are more than `limit`.
 bool Unfolding::collect_side(int x, int y, std::size_t limit) {
-  side_.clear();
-  const std::uint32_t epoch = next_side_epoch();
-  side_mark_[x] = epoch;
-  side_.push_back(x);
-  for (std::size_t i = 0; i < side_.size(); ++i) {
-    const int z = side_[i];
-    for (int k = 0; k < 3; ++k) {
-      if (!(links_[z] >> k & 1)) continue;
-      const int n = adj_[z][k];
-      if ((z == x && n == y) || side_mark_[n] == epoch) continue;
-      side_mark_[n] = epoch;
-      side_.push_back(n);
-      if (side_.size() > limit) return false;
-    }
-  }
-  return true;
+  breadth_first_side(x, y, limit + 1, side_mark_, next_side_epoch(), side_);
+  return side_.size() <= limit;
 }
 
 // The side of the cut x - y holding x, marked with the epoch, as ranges of side_faces_ (which
@@ -118,24 +128,11 @@ bool Unfolding::grow_side(int x, int y, int inner, std::size_t limit) {
   return side_faces_.size() <= limit;
 }
 
-// Marked in near_mark_ with near_epoch_.
+// The first `count` faces of the side of the cut x - y holding x, breadth-first from x, into
+// near_ (marked in near_mark_ with near_epoch_).
 void Unfolding::near_faces(int x, int y, std::size_t count) {
-  if (near_mark_.size() < face_count()) near_mark_.resize(face_count(), 0);
-  if (++near_epoch_ == 0) {
-    std::fill(near_mark_.begin(), near_mark_.end(), 0);
-    near_epoch_ = 1;
-  }
-  near_.assign(1, x);
-  near_mark_[x] = near_epoch_;
-  for (std::size_t i = 0; i < near_.size() && near_.size() < count; ++i) {
-    const int z = near_[i];
-    for (int k = 0; k < 3 && near_.size() < count; ++k) {
-      const int n = adj_[z][k];
-      if (!(links_[z] >> k & 1) || (z == x && n == y) || near_mark_[n] == near_epoch_) continue;
-      near_mark_[n] = near_epoch_;
-      near_.push_back(n);
-    }
-  }
+  breadth_first_side(x, y, count, near_mark_, next_epoch(near_mark_, near_epoch_, face_count()),
+                     near_);
 }
 
 void Unfolding::tree_path(int a, int b) {
