@@ -9,6 +9,7 @@
 
 #include "core/io/write_mesh.h"
 #include "core/mesh/mesh.h"
+#include "core/unfold/net_check.h"
 #include "core/unfold/net_metrics.h"
 #include "engine/internal/steps.h"
 #include "print/arrange.h"
@@ -80,7 +81,7 @@ void describe_print(NetDocument& doc, const FitPieces& pieces, const PrintLayout
     for (int p : pieces.piece) ++printed[p].faces;
     doc.pieces = std::move(printed);
     doc.piece = pieces.piece;
-    doc.net.parent = pieces.net.parent;
+    doc.net = pieces.net;
   }
   NetPrint& print = doc.print.emplace();
   print.paper = page.paper.name;
@@ -161,8 +162,8 @@ namespace {
 // "Fit layout"): smaller pieces nest into each other's hollows and often fill fewer sheets.
 constexpr double kFitShrinks[] = {1, 0.85, 0.7, 0.6, 0.5, 0.4};
 
-// What a piece costs against a sheet when the cuts are chosen: one sheet fewer is worth up to
-// this many more pieces to cut out and glue.
+// What a piece, or a glue strip, costs against a sheet when the cuts are chosen: one sheet fewer
+// is worth up to this many more pieces and strips to cut out and glue.
 constexpr double kPiecesPerSheet = 20;
 
 // The net cut into pieces, numbered in build order, laid out and nested onto sheets.
@@ -173,7 +174,8 @@ struct FitPrint {
   PageLayout pages;
 
   double cost() const {
-    return static_cast<double>(pages.pages.size()) + pieces.pieces / kPiecesPerSheet;
+    const auto cut_out = static_cast<double>(pieces.pieces) + layout.strips.size();
+    return static_cast<double>(pages.pages.size()) + cut_out / kPiecesPerSheet;
   }
 };
 
@@ -196,8 +198,9 @@ FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& pri
 }
 
 // The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
-// net document as printed (describe_print). A fit layout tries the cuts of kFitShrinks in turn
-// while `search_seconds` last (at least the first) and keeps the cheapest.
+// net document as printed (describe_print). A fit layout tries the cuts of kFitShrinks in turn,
+// then pieces grown from single faces, while `search_seconds` last (at least the first), and
+// keeps the cheapest.
 void write_print(const JobOptions& options, const DocumentRequest& request, UnfoldOutcome& outcome,
                  double search_seconds, Progress& progress) {
   const Mesh& mesh = outcome.net.mesh;
@@ -227,7 +230,8 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     const auto seconds = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     };
-    const std::size_t tries = std::size(kFitShrinks);
+    // The cuts of kFitShrinks, then pieces grown from single faces (grow_to_fit).
+    const std::size_t tries = std::size(kFitShrinks) + 1;
     int last_pieces = -1;
     for (std::size_t i = 0; i < tries; ++i) {
       if (i > 0) {
@@ -238,8 +242,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
       }
       FitPieces cut;
       try {
-        cut = cut_to_fit(outcome.net.net, outcome.net.piece, scale, room, page.paper.name, model_mm,
-                         kFitShrinks[i]);
+        cut = i < std::size(kFitShrinks)
+                  ? cut_to_fit(outcome.net.net, outcome.net.piece, scale, room, page.paper.name,
+                               model_mm, kFitShrinks[i])
+                  : grow_to_fit(mesh, outcome.net.piece, scale, room);
       } catch (const InvalidOptionException& e) {
         // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
         if (options.layout || e.code() != "face_too_large") throw;
@@ -247,7 +253,12 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
         layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
         break;
       }
-      if (cut.pieces == last_pieces) continue;  // the same cuts as the try before
+      if (i < std::size(kFitShrinks)) {
+        if (cut.pieces == last_pieces) continue;  // the same cuts as the try before
+      } else if (const NetCheckReport check = check_pieces(mesh, cut.net, cut.piece); !check.ok()) {
+        // A new net, unlike the cuts of a checked one: printed only when it passes the check.
+        continue;
+      }
       last_pieces = cut.pieces;
       FitPrint tried = lay_out_fit(mesh, std::move(cut), print, gap, page);
       if (!chosen || tried.cost() < chosen->cost()) chosen = std::move(tried);

@@ -39,6 +39,8 @@ double growth_that_fits(const std::vector<Vec2>& hull, Vec2 room) {
   return best;
 }
 
+}  // namespace
+
 bool hull_fits(const std::vector<Vec2>& hull, Vec2 room) {
   if (hull.size() < 3) {
     double extent = 0;
@@ -52,6 +54,8 @@ bool hull_fits(const std::vector<Vec2>& hull, Vec2 room) {
   }
   return false;
 }
+
+namespace {
 
 double hull_area(const std::vector<Vec2>& hull) {
   double a = 0;

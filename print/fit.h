@@ -32,4 +32,19 @@ struct FitPieces {
 FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
                      const std::string& paper_name, double model_mm, double shrink = 1);
 
+/// Pieces grown from single faces instead of cut from a net (docs/print.md, "Fit layout"), as
+/// Blender's paper-model exporter grows its islands: every face of `mesh` starts as a piece of
+/// its own, laid flat; then the mesh's edges, flattest fold first (concave folds count double,
+/// longer edges first among equal folds), each join the two pieces on its sides when the joined
+/// piece lies flat without overlap (kOverlapTolerance of the mesh's diagonal) and, at `scale`
+/// millimetres per unit, fits `room` as cut_to_fit's pieces do. The pieces are compact where a
+/// net's subtrees sprawl. No piece takes faces of two parts (values of `piece`); `cut_links`
+/// counts the pieces beyond the parts. Every face must fit `room` (cut_to_fit throws otherwise).
+/// Deterministic: the same mesh grows the same pieces.
+FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, Vec2 room);
+
+/// True when the convex polygon `hull` (counter-clockwise) fits a `room` box turned along one of
+/// its edges, either way round.
+bool hull_fits(const std::vector<Vec2>& hull, Vec2 room);
+
 }  // namespace papernet

@@ -59,6 +59,27 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
               largest.pieces, searched.pages, searched.pieces);
 }
 
+// Pieces grown from single faces (grow_to_fit) are the last way the search tries: on a CAD part
+// whose net sprawls, they take fewer sheets than any cut of it, and the print is theirs; the
+// net document then holds the grown pieces (new places for the faces, not the unfolded ones).
+TEST(FitSearch, PiecesGrownFromFacesWhenTheyTakeFewerSheets) {
+  JobOptions options;
+  options.overview = false;
+  options.detail = {DetailMode::Full, 0};
+  PipelineProgress quiet;
+  const UnfoldOutcome unfolded =
+      run_pipeline(data_file("thingi10k_134617.stl"), options, {}, {}, quiet);
+  const Printed largest = print(unfolded, options, 0);
+  const Printed searched = print(unfolded, options, 60);
+  EXPECT_LT(searched.pages, largest.pages);
+  EXPECT_NE(searched.doc.net.points, unfolded.net.net.points) << "the print cut the unfolded net";
+  const NetCheckReport check =
+      check_pieces(searched.doc.mesh, searched.doc.net, searched.doc.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  std::printf("thingi10k_134617.stl on A4: %zu sheets with %d pieces cut; grown, %zu with %d\n",
+              largest.pages, largest.pieces, searched.pages, searched.pieces);
+}
+
 /// The texts of an SVG group: their numbers (the text before an arrow, "12" of "12→P3").
 std::vector<std::string> numbers(const std::string& group) {
   std::vector<std::string> out;

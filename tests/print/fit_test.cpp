@@ -160,6 +160,63 @@ TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
 // drawn. Each page, as drawn in its SVG, holds its faces, tabs and strips inside the printable
 // area, none overlapping another; every face is drawn once (no tiles), and every page says which
 // it is.
+// Pieces grown from single faces, flattest folds first (print/fit.h, grow_to_fit): each piece
+// is a net of its faces (one tree, glued edges that meet, no overlaps: the independent checker)
+// and fits the room at some turn; the same mesh grows the same pieces.
+TEST(Grow, PiecesAreNetsOfTheirFacesThatEachFitTheSheet) {
+  int meshes = 0;
+  for (const auto& [name, mesh] : test::test_data_meshes()) {
+    if (name != "thingi10k_134617.stl" && name != "trimesh_ADIS16480_600.obj" &&
+        name != "mirror.ply" && name != "sample.obj")
+      continue;
+    ++meshes;
+    const double scale = print_scale(mesh, {});  // 200 mm
+    const std::vector<int> one(mesh.faces.size(), 0);
+    const FitPieces grown = grow_to_fit(mesh, one, scale, kRoom);
+    EXPECT_GT(grown.pieces, 1) << name << " at 200 mm is larger than a sheet";
+    EXPECT_LT(grown.pieces, static_cast<int>(mesh.faces.size()) / 4) << name;
+    EXPECT_EQ(grown.cut_links, grown.pieces - 1) << name;
+    const NetCheckReport check = check_pieces(mesh, grown.net, grown.piece);
+    EXPECT_TRUE(check.ok()) << name << ": " << check.summary();
+    std::vector<std::vector<Vec2>> points(grown.pieces);
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      for (Vec2 q : grown.net.points[f]) points[grown.piece[f]].push_back(scale * q);
+    for (int p = 0; p < grown.pieces; ++p)
+      EXPECT_TRUE(fits_at_some_turn(points[p], kRoom, 1.0)) << name << ": piece " << p;
+    const FitPieces again = grow_to_fit(mesh, one, scale, kRoom);
+    EXPECT_EQ(again.net.parent, grown.net.parent) << name;
+    EXPECT_EQ(again.net.points, grown.net.points) << name;
+    std::printf("%s: %zu faces grow into %d pieces\n", name.c_str(), mesh.faces.size(),
+                grown.pieces);
+  }
+  EXPECT_EQ(meshes, 4) << "tests/data lacks a mesh of this test";
+}
+
+// A piece never takes faces of two parts: an octahedron whose upper and lower halves are given
+// as two parts grows apart along the equator, though it would fit the room whole.
+TEST(Grow, PartsGrowApart) {
+  const Mesh mesh = test::octahedron();
+  std::vector<int> part(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    double z = 0;
+    for (int v : mesh.faces[f]) z += mesh.vertices[v].z;
+    part[f] = z > 0 ? 0 : 1;
+  }
+  const double scale = 0.1 * kRoom.x;  // 2 units across: a fifth of the room
+  const FitPieces apart = grow_to_fit(mesh, part, scale, kRoom);
+  const FitPieces whole = grow_to_fit(mesh, std::vector<int>(mesh.faces.size(), 0), scale, kRoom);
+  EXPECT_EQ(whole.pieces, 1);
+  EXPECT_EQ(apart.pieces, 2);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (std::size_t g = 0; g < mesh.faces.size(); ++g) {
+      if (part[f] != part[g]) {
+        EXPECT_NE(apart.piece[f], apart.piece[g]) << f << " " << g;
+      }
+    }
+  EXPECT_TRUE(check_pieces(mesh, apart.net, apart.piece).ok());
+  EXPECT_TRUE(check_pieces(mesh, whole.net, whole.piece).ok());
+}
+
 TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
   const Unfolded u = tabu_net("sample.obj");
   ASSERT_FALSE(u.mesh.faces.empty());
