@@ -194,8 +194,9 @@ constexpr Spec kOptions[] = {
     {"overlap_mm", "LEN", "overlap of the tiles of a net larger than a page, mm",
      [](JobOptions& o, const std::string& n, const json& v) { o.overlap_mm = number(n, v); }},
     {"layout", "fit|tile",
-     "fit: pieces larger than a page are cut along folds (smaller still where that saves "
-     "sheets) and every piece is nested whole onto the fewest sheets (a face larger than a "
+     "fit: pieces larger than a page are cut along folds (smaller still, or grown anew from "
+     "single faces, where that saves sheets) and every piece is nested whole onto the fewest "
+     "sheets (a face larger than a "
      "sheet is an error); tile: each part one piece, "
      "tiled across pages to tape together (unset: fit, or tile when a face is larger than a "
      "sheet)",

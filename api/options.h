@@ -62,10 +62,10 @@ struct JobOptions {
   double margin_mm = PageOptions{}.margin_mm;
   /// Shared strip between neighbouring tiles of a net larger than a page (layout tile).
   double overlap_mm = PageOptions{}.overlap_mm;
-  /// Pages: fit (pieces larger than a page cut along folds, every piece nested whole onto the
-  /// fewest sheets; a face larger than a sheet is an error) or tile (each part one piece, tiled
-  /// across pages to tape together). Unset: fit, or tile when a face is larger than a sheet
-  /// (the result says so).
+  /// Pages: fit (pieces larger than a page cut along folds, or grown anew from single faces where
+  /// that saves sheets, every piece nested whole onto the fewest sheets; a face larger than a
+  /// sheet is an error) or tile (each part one piece, tiled across pages to tape together).
+  /// Unset: fit, or tile when a face is larger than a sheet (the result says so).
   std::optional<PageLayoutMode> layout;
   /// Glue: auto (tabs on the net where they fit, after making room for them; strips for the
   /// rest), strips (only strips) or none.
