@@ -230,8 +230,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     const auto seconds = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     };
-    // The cuts of kFitShrinks, then pieces grown from single faces (grow_to_fit).
-    const std::size_t tries = std::size(kFitShrinks) + 1;
+    // The cuts of kFitShrinks, then pieces grown from single faces (grow_to_fit): as large as
+    // they grow, then only as large as leaves room for a tab on every cut inside a piece.
+    const std::size_t tries = std::size(kFitShrinks) + 2;
+    const TabClearanceOptions tabs = tab_clearance_options(mesh, print);
     int last_pieces = -1;
     for (std::size_t i = 0; i < tries; ++i) {
       if (i > 0) {
@@ -240,12 +242,15 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
         // the best so far leaves sheets to save.
         if (seconds() * (i + 1) / i > search_seconds || chosen->pages.pages.size() <= 1) break;
       }
+      const bool grow_for_tabs = i > std::size(kFitShrinks);
+      if (grow_for_tabs && print.tabs != TabMode::Auto) break;  // no tabs: the same as the last
       FitPieces cut;
       try {
         cut = i < std::size(kFitShrinks)
                   ? cut_to_fit(outcome.net.net, outcome.net.piece, scale, room, page.paper.name,
                                model_mm, kFitShrinks[i])
-                  : grow_to_fit(mesh, outcome.net.piece, scale, room);
+                  : grow_to_fit(mesh, outcome.net.piece, scale, room,
+                                grow_for_tabs ? tabs.min_height : 0, tabs.angle_deg);
       } catch (const InvalidOptionException& e) {
         // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
         if (options.layout || e.code() != "face_too_large") throw;

@@ -40,8 +40,14 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
 /// millimetres per unit, fits `room` as cut_to_fit's pieces do. The pieces are compact where a
 /// net's subtrees sprawl. No piece takes faces of two parts (values of `piece`); `cut_links`
 /// counts the pieces beyond the parts. Every face must fit `room` (cut_to_fit throws otherwise).
-/// Deterministic: the same mesh grows the same pieces.
-FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, Vec2 room);
+/// With `tab_height` > 0 (model units) a join is also refused when it leaves a cut edge inside
+/// the joined piece (a slit: an edge whose two faces were in the two pieces, not glued) where a
+/// tab that high (of core/tabs' tab_shapes(`tab_angle_deg`), half the edge on a short one) fits
+/// on neither side without overlapping a face of the piece, unless its two sides lie on each
+/// other: more, smaller pieces, and tabs instead of glue strips on those cuts. Deterministic:
+/// the same mesh grows the same pieces.
+FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, Vec2 room,
+                      double tab_height = 0, double tab_angle_deg = 45);
 
 /// True when the convex polygon `hull` (counter-clockwise) fits a `room` box turned along one of
 /// its edges, either way round.

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/mesh/dual_graph.h"
+#include "core/tabs/tab_clearance.h"
 #include "core/unfold/folds.h"
 #include "core/unfold/net_metrics.h"
 #include "core/unfold/overlap.h"
@@ -61,7 +62,8 @@ Motion motion(Vec2 p0, Vec2 p1, Vec2 q0, Vec2 q1) {
 
 }  // namespace
 
-FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, Vec2 room) {
+FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, Vec2 room,
+                      double tab_height, double tab_angle_deg) {
   const auto n = static_cast<int>(mesh.faces.size());
   FitPieces out;
   out.net.parent.assign(n, -1);
@@ -102,6 +104,8 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
 
   std::vector<std::array<Vec2, 3>> moved;
   std::vector<Vec2> points;
+  std::vector<int> slot(n, -1);  // a face of the piece being moved: its place in `moved`
+  const std::vector<TabShape> shapes = tab_shapes(tab_angle_deg);
   for (const Join& j : joins) {
     int f = j.f, k = j.k;
     int g = graph.neighbour[f][k], kg = graph.neighbour_edge[f][k];
@@ -144,6 +148,57 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
         for (int c : big.faces) test(c);
     }
     if (overlaps) continue;
+    if (tab_height > 0) {
+      for (std::size_t i = 0; i < moved.size(); ++i) slot[small.faces[i]] = static_cast<int>(i);
+      const auto at = [&](int c) -> const std::array<Vec2, 3>& {
+        return slot[c] >= 0 ? moved[slot[c]] : out.net.points[c];
+      };
+      const Motion back = motion(f1, f0, g0, g1);  // big's frame to small's
+      // Whether a face of the joined piece but `self` overlaps the triangle t.
+      const auto blocked = [&](const std::array<Vec2, 3>& t, int self) {
+        bool hit = false;
+        const auto test = [&](int c) {
+          if (!hit && c != self && triangles_overlap(t, at(c), tolerance)) hit = true;
+        };
+        if (big.grid)
+          big.grid->query(triangle_box(t), test);
+        else
+          for (int c : big.faces) test(c);
+        if (small.grid)
+          small.grid->query(triangle_box({back(t[0]), back(t[1]), back(t[2])}), test);
+        else
+          for (int c : small.faces) test(c);
+        return hit;
+      };
+      // Whether a tab fits outside edge k of face h, over nothing of the joined piece.
+      const auto room_for_tab = [&](int h, int k) {
+        const auto& t = at(h);
+        const double height = std::min(tab_height, 0.5 * norm(t[(k + 1) % 3] - t[k]));
+        for (const TabShape& shape : shapes) {
+          const std::array<Vec2, 4> q = tab_trapezoid(t, k, shape, height);
+          if (!blocked({q[0], q[1], q[2]}, h) && !blocked({q[0], q[2], q[3]}, h)) return true;
+        }
+        return false;
+      };
+      // Every edge this join makes a cut inside one piece (but the glued one) needs a tab's
+      // room on one side, or its two sides on each other.
+      bool slit = false;
+      for (std::size_t i = 0; i < moved.size() && !slit; ++i) {
+        const int h = small.faces[i];
+        for (int k = 0; k < 3 && !slit; ++k) {
+          const int c = graph.neighbour[h][k];
+          if (c < 0 || of[c] != a || (h == g && k == kg)) continue;
+          const int kc = graph.neighbour_edge[h][k];
+          const Vec2 h0 = moved[i][k], h1 = moved[i][(k + 1) % 3];
+          const Vec2 c0 = at(c)[kc], c1 = at(c)[(kc + 1) % 3];
+          const double close = 1e-6 * norm(h1 - h0);
+          if (norm(h0 - c1) <= close && norm(h1 - c0) <= close) continue;  // glued
+          slit = !room_for_tab(h, k) && !room_for_tab(c, kc);
+        }
+      }
+      for (int h : small.faces) slot[h] = -1;
+      if (slit) continue;
+    }
     // Join: small's faces move into big's frame, its tree re-hung from g under f.
     for (std::size_t i = 0; i < moved.size(); ++i) {
       const int h = small.faces[i];
