@@ -101,8 +101,11 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   auto c = s.client();
   const std::string strips = submit(s, test_mesh("sample.obj"), "model/obj",
                                     "?detail=full&strategy=TU&seed=3&tabs=strips" + kTabRoomQuery);
-  const std::string yes = submit(s, test_mesh("sample.obj"), "model/obj",
-                                 "?detail=full&strategy=TU&seed=3&tabs=true" + kTabRoomQuery);
+  // Tiled, the print is the unfolder's net whole (a fit layout may print pieces grown anew,
+  // whose own cuts leave room for tabs: docs/print.md, "Fit layout").
+  const std::string yes =
+      submit(s, test_mesh("sample.obj"), "model/obj",
+             "?detail=full&strategy=TU&seed=3&layout=tile&tabs=true" + kTabRoomQuery);
   const json a = wait_final(s, strips), b = wait_final(s, yes);
   ASSERT_EQ(a["status"], "succeeded") << a.dump();
   ASSERT_EQ(b["status"], "succeeded") << b.dump();
@@ -123,8 +126,9 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
                  "invalid_option_value");
 
   // tab_room_budget=0: the unfolder's net as it is, with more strips.
-  const std::string unchanged = submit(s, test_mesh("sample.obj"), "model/obj",
-                                       "?detail=full&strategy=TU&seed=3&tab_room_budget=0");
+  const std::string unchanged =
+      submit(s, test_mesh("sample.obj"), "model/obj",
+             "?detail=full&strategy=TU&seed=3&layout=tile&tab_room_budget=0");
   const json u = wait_final(s, unchanged);
   ASSERT_EQ(u["status"], "succeeded") << u.dump();
   EXPECT_EQ(u["options"]["tab_room_budget"], 0);

@@ -57,8 +57,10 @@ async function jobEnded(page, timeout) {
 
 // The colours a person sees in an element: its screenshot, decoded by the browser, counted.
 // `background`: the page's near-white; of the rest, `beige` is the paper colour every model was
-// drawn in before the demo showed colour (0xf2e6c9 however lit), `saturated` is colour far from
-// any grey or beige, and `yellow` (the Duck), `blue` and `green` (BoxTextured's logo) name hues.
+// drawn in before the demo showed colour (0xf2e6c9 however lit; not counted at the rim of the
+// model, where the anti-aliased edge of a yellow face on the near-white background is pale
+// yellow too: thin pieces, folding, are mostly rim), `saturated` is colour far from any grey or
+// beige, and `yellow` (the Duck), `blue` and `green` (BoxTextured's logo) name hues.
 async function colours(page, selector) {
   const png = (await page.locator(selector).screenshot()).toString("base64");
   return page.evaluate(async (b64) => {
@@ -71,16 +73,24 @@ async function colours(page, selector) {
     context.drawImage(bitmap, 0, 0);
     const d = context.getImageData(0, 0, bitmap.width, bitmap.height).data;
     const n = { pixels: 0, background: 0, beige: 0, saturated: 0, yellow: 0, blue: 0, green: 0 };
+    const w = bitmap.width;
+    const background = (i) => {
+      const [r, g, b] = [d[i], d[i + 1], d[i + 2]];
+      return Math.min(r, g, b) > 235 && Math.max(r, g, b) - Math.min(r, g, b) < 12;
+    };
     for (let i = 0; i < d.length; i += 4) {
       const [r, g, b] = [d[i], d[i + 1], d[i + 2]];
       const max = Math.max(r, g, b);
       const min = Math.min(r, g, b);
       n.pixels++;
-      if (min > 235 && max - min < 12) {
+      if (background(i)) {
         n.background++;
         continue;
       }
-      if (r >= g && g >= b && r - b >= 10 && (r - b) / Math.max(r, 1) < 0.3) n.beige++;
+      const p = i / 4, x = p % w;
+      const rim = (x > 0 && background(i - 4)) || (x + 1 < w && background(i + 4)) ||
+        (p >= w && background(i - 4 * w)) || (i + 4 * w < d.length && background(i + 4 * w));
+      if (!rim && r >= g && g >= b && r - b >= 10 && (r - b) / Math.max(r, 1) < 0.3) n.beige++;
       if (max > 60 && (max - min) / max > 0.45) n.saturated++;
       if (r > 170 && g > 110 && b < 100 && r - b > 110) n.yellow++;
       if (b > r + 40 && b >= g) n.blue++;
