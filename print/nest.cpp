@@ -29,27 +29,33 @@ struct Part {
 };
 
 /// A turn (radians, counter-clockwise) that puts the points in a `room` box: of the turns that
-/// lay one of their hull's edges along x or y and fit, the one with the smallest box; none
-/// fitting, the minimum-area box's with its long side along y.
+/// lay one of their hull's edges along x or y and fit, the one with the smallest box; else of
+/// the turns every quarter degree (a piece that fits the room at a turn along one of its own
+/// hull's edges may fit with its tabs at none of theirs); none fitting, the minimum-area box's
+/// with its long side along y.
 double fitting_turn(const std::vector<Vec2>& points, Vec2 room) {
   const std::vector<Vec2> hull = convex_hull(points);
   double best = 0, best_area = std::numeric_limits<double>::infinity();
+  const auto consider = [&](double turn) {
+    Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    Vec2 hi = -1 * lo;
+    for (Vec2 p : hull) {
+      const Vec2 q = rotate(p, turn);
+      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)},
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+    }
+    const Vec2 size = hi - lo;
+    const double area = size.x * size.y;
+    if (size.x <= room.x && size.y <= room.y && area < best_area) best = turn, best_area = area;
+  };
   for (std::size_t i = 0; i < hull.size(); ++i) {
     const Vec2 d = hull[(i + 1) % hull.size()] - hull[i];
-    for (const double quarter : {0.0, 0.5 * std::numbers::pi}) {
-      const double turn = quarter - std::atan2(d.y, d.x);
-      Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-      Vec2 hi = -1 * lo;
-      for (Vec2 p : hull) {
-        const Vec2 q = rotate(p, turn);
-        lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)},
-        hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
-      }
-      const Vec2 size = hi - lo;
-      const double area = size.x * size.y;
-      if (size.x <= room.x && size.y <= room.y && area < best_area) best = turn, best_area = area;
-    }
+    for (const double quarter : {0.0, 0.5 * std::numbers::pi})
+      consider(quarter - std::atan2(d.y, d.x));
   }
+  for (int step = 0; step < 4 * 180 && !(best_area < std::numeric_limits<double>::infinity());
+       ++step)
+    consider(step * std::numbers::pi / (4 * 180));
   if (best_area < std::numeric_limits<double>::infinity()) return best;
   const OrientedBox box = min_area_box(points);
   return box.angle + (box.width() > box.height() ? 0.5 * std::numbers::pi : 0.0);

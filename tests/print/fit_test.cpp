@@ -337,6 +337,32 @@ TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
 // that a square fills on the same sheet (a bottom-left placer that slides from the corner cannot
 // reach it), no two placed parts overlap or leave the sheet, and a part without area (a piece of
 // slivers) still gets a sheet.
+// A piece that fits a sheet only turned across it (no edge of its outline along the page) is
+// nested so, not refused: a strip 300 mm long on A4 (190 x 277 mm printable).
+TEST(Nest, APieceThatFitsOnlyAcrossTheSheetIsTurnedThere) {
+  Mesh mesh;
+  mesh.vertices = {{0, 0, 0}, {300, 0, 0}, {300, 3, 0}, {0, 3, 0}};
+  mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+  Net net;
+  net.parent = {-1, 0};
+  net.points = {{Vec2{0, 0}, Vec2{300, 0}, Vec2{300, 3}}, {Vec2{0, 0}, Vec2{300, 3}, Vec2{0, 3}}};
+  PrintOptions print;
+  print.size_mm = 300;  // a millimetre per unit
+  PrintLayout layout = layout_net(mesh, net, print);
+  const PageOptions page;  // A4, 10 mm margins
+  PageLayout pages;
+  ASSERT_NO_THROW(pages = nest_pages(layout, {0, 0}, page, 2));
+  ASSERT_EQ(pages.pages.size(), 1u);
+  const std::vector<std::string> svgs = write_page_svgs(layout, pages);
+  for (const auto& shape : test::svg_polygons(test::svg_group(svgs.at(0), "faces")))
+    for (Vec2 p : shape) {
+      EXPECT_GE(p.x, page.margin_mm - 1e-3);
+      EXPECT_LE(p.x, page.paper.width - page.margin_mm + 1e-3);
+      EXPECT_GE(p.y, page.margin_mm - 1e-3);
+      EXPECT_LE(p.y, page.paper.height - page.margin_mm + 1e-3);
+    }
+}
+
 TEST(Nest, PartsFillHollowsWithoutOverlapsInsideTheSheet) {
   using print_detail::IntPoint;
   constexpr std::int64_t mm = 1000;  // parts are in micrometres
