@@ -39,20 +39,11 @@ struct Join {
   int f, k;  // face f, its edge k
 };
 
-// The rotation and translation taking the segment p0 -> p1 onto q0 -> q1 (same length).
-struct Motion {
-  Vec2 p0, q0;
-  double c = 1, s = 0;
-  Vec2 operator()(Vec2 p) const {
-    const Vec2 d = p - p0;
-    return {q0.x + c * d.x - s * d.y, q0.y + s * d.x + c * d.y};
-  }
-};
-
-Motion motion(Vec2 p0, Vec2 p1, Vec2 q0, Vec2 q1) {
+// The rigid motion taking the segment p0 -> p1 onto q0 -> q1 (of the same length).
+Rigid motion(Vec2 p0, Vec2 p1, Vec2 q0, Vec2 q1) {
   const Vec2 a = p1 - p0, b = q1 - q0;
   const double la = norm(a), lb = norm(b);
-  Motion m{p0, q0};
+  Rigid m{p0, q0};
   if (la > 0 && lb > 0) {
     m.c = dot(a, b) / (la * lb);
     m.s = cross(a, b) / (la * lb);
@@ -118,7 +109,7 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
     // g's edge kg runs the other way round f's edge k.
     const Vec2 f0 = pf[k], f1 = pf[(k + 1) % 3], g0 = pg[kg], g1 = pg[(kg + 1) % 3];
     if (!(norm(f1 - f0) > 0) || !(norm(g1 - g0) > 0)) continue;
-    const Motion move = motion(g0, g1, f1, f0);
+    const Rigid move = motion(g0, g1, f1, f0);
     Grown& big = grown[a];
     Grown& small = grown[b];
     points = big.hull;
@@ -153,7 +144,7 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
       const auto at = [&](int c) -> const std::array<Vec2, 3>& {
         return slot[c] >= 0 ? moved[slot[c]] : out.net.points[c];
       };
-      const Motion back = motion(f1, f0, g0, g1);  // big's frame to small's
+      const Rigid back = motion(f1, f0, g0, g1);  // big's frame to small's
       // Whether a face of the joined piece but `self` overlaps the triangle t.
       const auto blocked = [&](const std::array<Vec2, 3>& t, int self) {
         bool hit = false;

@@ -161,6 +161,19 @@ TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
 // drawn. Each page, as drawn in its SVG, holds its faces, tabs and strips inside the printable
 // area, none overlapping another; every face is drawn once (no tiles), and every page says which
 // it is.
+/// Each piece of `pieces` is a net of its faces (the independent checker) that fits kRoom at some
+/// turn at `scale`.
+void expect_nets_that_fit(const Mesh& mesh, const FitPieces& pieces, double scale,
+                          const std::string& name) {
+  const NetCheckReport check = check_pieces(mesh, pieces.net, pieces.piece);
+  EXPECT_TRUE(check.ok()) << name << ": " << check.summary();
+  std::vector<std::vector<Vec2>> points(pieces.pieces);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (Vec2 q : pieces.net.points[f]) points[pieces.piece[f]].push_back(scale * q);
+  for (int p = 0; p < pieces.pieces; ++p)
+    EXPECT_TRUE(fits_at_some_turn(points[p], kRoom, 1.0)) << name << ": piece " << p;
+}
+
 // Pieces grown from single faces, flattest folds first (print/fit.h, grow_to_fit): each piece
 // is a net of its faces (one tree, glued edges that meet, no overlaps: the independent checker)
 // and fits the room at some turn; the same mesh grows the same pieces.
@@ -177,13 +190,7 @@ TEST(Grow, PiecesAreNetsOfTheirFacesThatEachFitTheSheet) {
     EXPECT_GT(grown.pieces, 1) << name << " at 200 mm is larger than a sheet";
     EXPECT_LT(grown.pieces, static_cast<int>(mesh.faces.size()) / 4) << name;
     EXPECT_EQ(grown.cut_links, grown.pieces - 1) << name;
-    const NetCheckReport check = check_pieces(mesh, grown.net, grown.piece);
-    EXPECT_TRUE(check.ok()) << name << ": " << check.summary();
-    std::vector<std::vector<Vec2>> points(grown.pieces);
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-      for (Vec2 q : grown.net.points[f]) points[grown.piece[f]].push_back(scale * q);
-    for (int p = 0; p < grown.pieces; ++p)
-      EXPECT_TRUE(fits_at_some_turn(points[p], kRoom, 1.0)) << name << ": piece " << p;
+    expect_nets_that_fit(mesh, grown, scale, name);
     const FitPieces again = grow_to_fit(mesh, one, scale, kRoom);
     EXPECT_EQ(again.net.parent, grown.net.parent) << name;
     EXPECT_EQ(again.net.points, grown.net.points) << name;
@@ -239,13 +246,7 @@ TEST(Grow, PiecesGrownForTabsLeaveRoomForATabOnEveryCutInside) {
     const FitPieces large = grow_to_fit(mesh, one, scale, kRoom);
     const FitPieces for_tabs =
         grow_to_fit(mesh, one, scale, kRoom, tabs.min_height, tabs.angle_deg);
-    const NetCheckReport check = check_pieces(mesh, for_tabs.net, for_tabs.piece);
-    EXPECT_TRUE(check.ok()) << name << ": " << check.summary();
-    std::vector<std::vector<Vec2>> points(for_tabs.pieces);
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-      for (Vec2 q : for_tabs.net.points[f]) points[for_tabs.piece[f]].push_back(scale * q);
-    for (int p = 0; p < for_tabs.pieces; ++p)
-      EXPECT_TRUE(fits_at_some_turn(points[p], kRoom, 1.0)) << name << ": piece " << p;
+    expect_nets_that_fit(mesh, for_tabs, scale, name);
     const std::size_t before = slits_without_tab_room(mesh, large, tabs);
     const std::size_t after = slits_without_tab_room(mesh, for_tabs, tabs);
     EXPECT_EQ(after, 0u) << name;
