@@ -145,31 +145,31 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
         return slot[c] >= 0 ? moved[slot[c]] : out.net.points[c];
       };
       const Rigid back = motion(f1, f0, g0, g1);  // big's frame to small's
-      // Whether a face of the joined piece but `self` overlaps the triangle t.
-      const auto blocked = [&](const std::array<Vec2, 3>& t, int self) {
-        bool hit = false;
-        const auto test = [&](int c) {
-          if (!hit && c != self && triangles_overlap(t, at(c), tolerance)) hit = true;
-        };
-        if (big.grid)
-          big.grid->query(triangle_box(t), test);
-        else
-          for (int c : big.faces) test(c);
-        if (small.grid)
-          small.grid->query(triangle_box({back(t[0]), back(t[1]), back(t[2])}), test);
-        else
-          for (int c : small.faces) test(c);
-        return hit;
-      };
-      // Whether a tab fits outside edge k of face h, over nothing of the joined piece.
+      // Whether a tab fits outside edge k of face h, over no other face of the joined piece.
       const auto room_for_tab = [&](int h, int k) {
-        const auto& t = at(h);
-        const double height = std::min(tab_height, 0.5 * norm(t[(k + 1) % 3] - t[k]));
-        for (const TabShape& shape : shapes) {
-          const std::array<Vec2, 4> q = tab_trapezoid(t, k, shape, height);
-          if (!blocked({q[0], q[1], q[2]}, h) && !blocked({q[0], q[2], q[3]}, h)) return true;
-        }
-        return false;
+        return tab_fits(
+            at(h), k, shapes, tab_height,
+            [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
+              bool hit = false;
+              const auto test = [&](int c) {
+                if (!hit && c != h)
+                  hit = triangles_overlap(t0, at(c), tolerance) ||
+                        triangles_overlap(t1, at(c), tolerance);
+              };
+              if (big.grid)
+                big.grid->query(box, test);
+              else
+                for (int c : big.faces) test(c);
+              if (small.grid) {
+                Box2 back_box = Box2::empty();
+                for (Vec2 p : {box.lo, box.hi, Vec2{box.lo.x, box.hi.y}, Vec2{box.hi.x, box.lo.y}})
+                  back_box.add(back(p));
+                small.grid->query(back_box, test);
+              } else {
+                for (int c : small.faces) test(c);
+              }
+              return hit;
+            });
       };
       // Every edge this join makes a cut inside one piece (but the glued one) needs a tab's
       // room on one side, or its two sides on each other.
@@ -180,10 +180,8 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
           const int c = graph.neighbour[h][k];
           if (c < 0 || of[c] != a || (h == g && k == kg)) continue;
           const int kc = graph.neighbour_edge[h][k];
-          const Vec2 h0 = moved[i][k], h1 = moved[i][(k + 1) % 3];
-          const Vec2 c0 = at(c)[kc], c1 = at(c)[(kc + 1) % 3];
-          const double close = 1e-6 * norm(h1 - h0);
-          if (norm(h0 - c1) <= close && norm(h1 - c0) <= close) continue;  // glued
+          if (sides_coincide(moved[i][k], moved[i][(k + 1) % 3], at(c)[kc], at(c)[(kc + 1) % 3]))
+            continue;  // glued, not cut
           slit = !room_for_tab(h, k) && !room_for_tab(c, kc);
         }
       }

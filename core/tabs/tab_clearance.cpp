@@ -101,10 +101,7 @@ std::vector<EdgeSide> Clearance::blocked_edges() const {
 
 bool Clearance::coincident(int f, int k) const {
   const int n = adj_[f][k], kn = adj_edge_[f][k];
-  const Vec2 a0 = pos_[f][k], a1 = pos_[f][(k + 1) % 3];
-  const Vec2 b0 = pos_[n][kn], b1 = pos_[n][(kn + 1) % 3];
-  const double close = 1e-6 * norm(a1 - a0);
-  return norm(a0 - b1) <= close && norm(a1 - b0) <= close;
+  return sides_coincide(pos_[f][k], pos_[f][(k + 1) % 3], pos_[n][kn], pos_[n][(kn + 1) % 3]);
 }
 
 bool Clearance::side_has_room(int f, int k) const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "core/progress.h"
 #include "core/unfold/folds.h"
 #include "core/unfold/net.h"
+#include "core/unfold/overlap.h"
 #include "core/vec.h"
 
 namespace papernet {
@@ -28,6 +30,27 @@ std::vector<TabShape> tab_shapes(double angle_deg);
 /// the two top corners. The ends' insets shrink together so the top keeps a tenth of the base.
 std::array<Vec2, 4> tab_trapezoid(const std::array<Vec2, 3>& face, int k, const TabShape& shape,
                                   double height);
+
+/// Whether a tab of one of `shapes`, `min_height` tall (half the edge on shorter edges), fits on
+/// the outside of edge k of `face`: `hits(t0, t1, box)` says whether the tab's two triangles
+/// (their bounding box `box`) overlap an obstacle. False on an edge of length 0. The one room
+/// test of the pass (against the net), of leaf_room (against a fan) and of the print's pieces
+/// grown with room for tabs (print/fit.h, grow_to_fit).
+template <class Hits>
+bool tab_fits(const Triangle2& face, int k, const std::vector<TabShape>& shapes, double min_height,
+              Hits&& hits) {
+  const double len = norm(face[(k + 1) % 3] - face[k]);
+  if (!(len > 0)) return false;
+  const double h = std::min(min_height, 0.5 * len);
+  for (const TabShape& shape : shapes) {
+    const auto t = tab_trapezoid(face, k, shape, h);
+    const Triangle2 t0{t[0], t[1], t[2]}, t1{t[0], t[2], t[3]};
+    Box2 box = triangle_box(t0);
+    box.add(t[3]);
+    if (!hits(t0, t1, box)) return true;
+  }
+  return false;
+}
 
 struct TabClearanceOptions {
   /// Lowest tab worth printing, in model units (print: millimetres / scale); on an edge shorter

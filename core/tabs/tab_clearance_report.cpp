@@ -60,8 +60,8 @@ std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options
       }
       if (a != w || flat.empty()) continue;  // not a closed fan (not a manifold vertex)
       // The edge's two sides: (v, w) on the first face, (w, v) on the last.
-      if (tab_clearance_detail::tab_fits(flat.front(), 0, shapes, options.min_height, hits_fan) ||
-          tab_clearance_detail::tab_fits(flat.back(), 2, shapes, options.min_height, hits_fan)) {
+      if (tab_fits(flat.front(), 0, shapes, options.min_height, hits_fan) ||
+          tab_fits(flat.back(), 2, shapes, options.min_height, hits_fan)) {
         out[v] = 1;
         break;
       }

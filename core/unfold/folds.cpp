@@ -24,14 +24,17 @@ double fold_angle(const Mesh& mesh, int f, int g) {
   return 0;
 }
 
+bool sides_coincide(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1) {
+  const double tol = 1e-6 * std::max(norm(a1 - a0), 1e-300);
+  return norm(a0 - b1) <= tol && norm(a1 - b0) <= tol;
+}
+
 namespace {
 
 /// True when side b lies on side a in the net: the same two points, in opposite order.
 bool coincide(const Net& net, EdgeSide a, EdgeSide b) {
-  const Vec2 a0 = net.points[a.face][a.k], a1 = net.points[a.face][(a.k + 1) % 3];
-  const Vec2 b0 = net.points[b.face][b.k], b1 = net.points[b.face][(b.k + 1) % 3];
-  const double tol = 1e-6 * std::max(norm(a1 - a0), 1e-300);
-  return norm(a0 - b1) <= tol && norm(a1 - b0) <= tol;
+  return sides_coincide(net.points[a.face][a.k], net.points[a.face][(a.k + 1) % 3],
+                        net.points[b.face][b.k], net.points[b.face][(b.k + 1) % 3]);
 }
 
 }  // namespace

@@ -36,6 +36,11 @@ struct FoldOptions {
   double flat_angle_deg = 1.0;
 };
 
+/// True when two sides of a mesh edge lie on each other in a net: side a0 -> a1 of one face and
+/// side b0 -> b1 of the face across (which runs the other way) end at the same points, within
+/// 1e-6 of the edge's length. The rule by which classify_edges calls an edge glued, not cut.
+bool sides_coincide(Vec2 a0, Vec2 a1, Vec2 b0, Vec2 b1);
+
 /// Every mesh edge of a net, classified. An edge is glued (a fold) exactly when its two sides
 /// lie on each other in the net (same end points within 1e-6 of its length, faces on opposite
 /// sides): a tree link, or two faces that happen to meet there without a tree link; such an

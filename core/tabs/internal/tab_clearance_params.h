@@ -1,5 +1,5 @@
-// Internal to the tab clearance pass (core/tabs/tab_clearance*.cpp): its tuning and the one room
-// test it shares with leaf_room. Not part of the public API.
+// Internal to the tab clearance pass (core/tabs/tab_clearance*.cpp): its tuning. Not part of the
+// public API.
 #pragma once
 
 #include <algorithm>
@@ -47,25 +47,5 @@ constexpr std::size_t kKickSearches = 10;
 // The second round (clear_tab_room) is more of the tabu search when it spent its budget with
 // more blocked edges than this left, else kicks.
 constexpr std::size_t kSearchOnBlocked = 64;
-
-// Whether a tab of one of `shapes`, `min_height` tall (half the edge on shorter edges), fits on
-// the outside of edge k of `face`: `hits(t0, t1, box)` says whether the tab's two triangles
-// (their bounding box `box`) overlap an obstacle. False on an edge of length 0. The one room test
-// of the pass (Clearance::side_has_room, against the net) and of leaf_room (against a fan).
-template <class Hits>
-bool tab_fits(const Triangle2& face, int k, const std::vector<TabShape>& shapes, double min_height,
-              Hits&& hits) {
-  const double len = norm(face[(k + 1) % 3] - face[k]);
-  if (!(len > 0)) return false;
-  const double h = std::min(min_height, 0.5 * len);
-  for (const TabShape& shape : shapes) {
-    const auto t = tab_trapezoid(face, k, shape, h);
-    const Triangle2 t0{t[0], t[1], t[2]}, t1{t[0], t[2], t[3]};
-    Box2 box = triangle_box(t0);
-    box.add(t[3]);
-    if (!hits(t0, t1, box)) return true;
-  }
-  return false;
-}
 
 }  // namespace papernet::tab_clearance_detail
