@@ -9,7 +9,8 @@
 namespace papernet {
 namespace {
 
-// Each step of the collapse for short edges removes this part of the faces left.
+// Each step of the collapse for short edges removes this part of the faces left (then half of
+// that, and so on, after a step that moved the surface too far).
 constexpr std::size_t kShortEdgeStep = 6;
 
 }  // namespace
@@ -39,13 +40,19 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   ProgressiveMesh pm = decimate(mesh, {strategy, collapse ? target.faces : n}, progress);
   Mesh simple = pm.compact();
   const double diagonal = bounding_box_diagonal(mesh);
+  std::size_t step = kShortEdgeStep;
   while (too_short(simple)) {
     const std::size_t before = pm.face_count();
-    collapse_further(pm, strategy, before - std::max<std::size_t>(1, before / kShortEdgeStep),
-                     progress);
-    if (pm.face_count() >= before) break;  // no legal collapse left
-    Mesh next = pm.compact();
-    if (approximation_distance(mesh, next) * diagonal > target.max_distance) break;
+    ProgressiveMesh tried = pm;
+    collapse_further(tried, strategy, before - std::max<std::size_t>(1, before / step), progress);
+    if (tried.face_count() >= before) break;  // no legal collapse left
+    Mesh next = tried.compact();
+    if (approximation_distance(mesh, next) * diagonal > target.max_distance) {
+      if (before / step <= 1) break;
+      step *= 2;
+      continue;
+    }
+    pm = std::move(tried);
     simple = std::move(next);
   }
   if (simple.faces.size() >= n) return std::nullopt;

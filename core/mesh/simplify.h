@@ -16,7 +16,8 @@ struct SimplifyTarget {
   /// Then, when > 0, go on collapsing in steps of a sixth of the faces while more edges than
   /// `short_edges_allowed` times the faces are shorter than this; a step that would take the
   /// surface farther than `max_distance` from `mesh` (two-sided Hausdorff, in its units) is not
-  /// taken, and ends it.
+  /// taken: half as many collapses are tried instead, down to one, which ends it when it too
+  /// moves the surface that far.
   double short_edge = 0;
   double short_edges_allowed = 0;
   double max_distance = 0;

@@ -206,6 +206,34 @@ TEST(UnfoldCli, DetailAutoCollapsesShortEdgesOfACadPart) {
   std::remove((base + ".pdf").c_str());
 }
 
+// The milk truck's tyres and axles are small parts with edges printed under 3 mm. When a sixth of
+// the faces at once would move a part more than 3 mm, detail auto collapses fewer at a time: the
+// truck prints with no glue strip and no label under 1.5 mm (13 strips and one 0.38 mm label when
+// such a step ended the collapse).
+TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
+  const std::string base = ::testing::TempDir() + "papernet_detail_truck";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+                         "/CesiumMilkTruck/CesiumMilkTruck.gltf --colour none -o " + base +
+                         ".json -o " + base + ".pdf",
+                     &said),
+            0)
+      << said;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      said, m, std::regex(R"((\d+) glue strips.*smallest label [0-9.]+ mm \((\d+) under)")))
+      << said;
+  EXPECT_EQ(m[1].str(), "0") << said;
+  EXPECT_EQ(m[2].str(), "0") << said;
+  std::stringstream text;
+  text << std::ifstream(base + ".json").rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["detail"]["mode"], "auto");
+  EXPECT_LT(j["detail"]["faces"].get<int>(), 3624);
+  std::remove((base + ".json").c_str());
+  std::remove((base + ".pdf").c_str());
+}
+
 TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
   const std::string mesh = std::string(PAPERNET_TEST_DATA) + "/sample.obj -o /dev/null";
   EXPECT_EQ(papernet("unfold " + mesh + " --strategy QX"), 1);
