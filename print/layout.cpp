@@ -290,6 +290,35 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
   }
 }
 
+// How near a label under the legible size a face's labels give up naming the piece across, mm.
+constexpr double kCrowdedMm = 6;
+
+/// The faces with a corner within kCrowdedMm of a label under the legible size, which found no
+/// clear place: labels crowd there, at a small feature with many cut edges.
+std::vector<char> faces_near_small_labels(const std::vector<std::array<Vec2, 3>>& faces,
+                                          const std::vector<Label>& labels) {
+  std::vector<char> near(faces.size(), 0);
+  const auto cell = [](Vec2 p) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x / kCrowdedMm)))
+               << 32 ^
+           static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p.y / kCrowdedMm)));
+  };
+  std::unordered_map<std::uint64_t, std::vector<Vec2>> small;
+  for (const Label& l : labels)
+    if (!l.text.empty() && l.size < kLegibleLabelMm) small[cell(l.at)].push_back(l.at);
+  if (small.empty()) return near;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (const Vec2 p : faces[f])
+      for (int dy = -1; dy <= 1 && !near[f]; ++dy)
+        for (int dx = -1; dx <= 1 && !near[f]; ++dx) {
+          const auto it = small.find(cell(p + Vec2{dx * kCrowdedMm, dy * kCrowdedMm}));
+          if (it == small.end()) continue;
+          for (const Vec2 q : it->second)
+            if (norm(p - q) <= kCrowdedMm) near[f] = 1;
+        }
+  return near;
+}
+
 /// "6" and "9" (and "16" and "91", ...) read as each other upside down: mark those with a dot.
 std::string label_text(int number) {
   std::string text = std::to_string(number), turned;
@@ -446,7 +475,8 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm);
   // A label naming the piece across ("12→P3") that prints under the legible size even so (a
   // sliver with two cut edges) becomes the plain number, and its face's labels are placed again:
-  // its twin still names the piece (docs/print.md, "Build order").
+  // its twin still names the piece (docs/print.md, "Build order"). So do the labels of the faces
+  // around any label under that size: their shorter text leaves it room.
   std::vector<char> again(out.faces.size(), 0);
   bool shorten = false;
   for (const Label& l : out.labels) {
@@ -455,13 +485,37 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     again[l.side.face] = 1;
     shorten = true;
   }
+  const std::vector<char> crowded = faces_near_small_labels(out.faces, out.labels);
+  for (std::size_t f = 0; f < crowded.size(); ++f)
+    if (crowded[f]) again[f] = 1, shorten = true;
   if (shorten) {
+    // Of two crowded labels of one edge, only the one on the edge's first side gives up the name.
+    // A label whose twin prints under 1.5 mm keeps the name: the twin gives it up.
+    std::vector<int> twin(out.labels.size(), -1), first(out.edges.size(), -1);
+    for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
+      int& f = first[out.labels[i].edge];
+      if (f < 0) {
+        f = i;
+      } else {
+        twin[i] = f;
+        twin[f] = i;
+      }
+    }
+    const auto gives_way = [&](int i) {
+      const Label& l = out.labels[i];
+      if (!crowded[l.side.face]) return false;
+      if (twin[i] < 0) return true;
+      const Label& other = out.labels[twin[i]];
+      if (other.size < kLegibleLabelMm) return false;
+      return !crowded[other.side.face] || l.side.face == out.edges[l.edge].a.face;
+    };
     std::vector<int> index;
     std::vector<Label> redo;
     for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
       if (!again[out.labels[i].side.face]) continue;
       Label l = out.labels[i];
-      if (l.size < kLegibleLabelMm) l.text = label_text(out.edges[l.edge].cut_index + 1);
+      if (l.size < kLegibleLabelMm || gives_way(i))
+        l.text = label_text(out.edges[l.edge].cut_index + 1);
       index.push_back(i);
       redo.push_back(std::move(l));
     }

@@ -108,10 +108,12 @@ TEST(AssemblyAids, EachPieceGluesToAnEarlierOneWheneverTheGraphAllows) {
 }
 
 // Every cut edge between two pieces has its number on both sides, each naming the other side's
-// piece ("12→P3"), on the page of its own piece (but for the rare side where that would print
-// under 1.5 mm: there the plain number); each piece's number prints once, on its page.
-TEST(AssemblyAids, EveryLabelAcrossPiecesNamesThePieceItJoins) {
-  const Printed& printed = duck();
+// piece ("12→P3"), on the page of its own piece, but for at most `max_shortened` edges with one
+// side the plain number (where the name would print under 1.5 mm, or crowd out a label that
+// does not) and `max_unnamed` with both (where both sides' names would print under 1.5 mm);
+// each piece's number prints once, on its page.
+void expect_labels_name_the_pieces_they_join(const Printed& printed, std::size_t max_shortened,
+                                             std::size_t max_unnamed) {
   const NetDocument& doc = printed.doc;
   ASSERT_TRUE(doc.print);
   const Adjacency adj = adjacency(doc);
@@ -134,7 +136,9 @@ TEST(AssemblyAids, EveryLabelAcrossPiecesNamesThePieceItJoins) {
         ADD_FAILURE() << "label '" << t << "' on page " << k + 1;
     }
   }
-  EXPECT_EQ(by_number.size(), adj.cross_edges) << "edges between pieces with named labels";
+  EXPECT_LE(by_number.size(), adj.cross_edges);
+  EXPECT_GE(by_number.size() + max_unnamed, adj.cross_edges)
+      << "edges between pieces with named labels";
   std::size_t shortened = 0;
   for (const auto& [number, sides] : by_number) {
     ASSERT_LE(sides.size(), 2u) << "edge " << number;
@@ -162,13 +166,49 @@ TEST(AssemblyAids, EveryLabelAcrossPiecesNamesThePieceItJoins) {
     EXPECT_EQ(sides[0].first, doc.print->placements[a].page) << "edge " << number;
     EXPECT_EQ(sides[1].first, doc.print->placements[b].page) << "edge " << number;
   }
-  EXPECT_LE(shortened, std::max<std::size_t>(1, adj.cross_edges / 100))
+  EXPECT_LE(shortened, max_shortened)
       << "of " << adj.cross_edges << " edges between pieces, shortened on one side";
   ASSERT_EQ(piece_pages.size(), doc.pieces.size());
   for (const auto& [p, pages] : piece_pages) {
     ASSERT_EQ(pages.size(), 1u) << "P" << p + 1;
     EXPECT_EQ(pages[0], doc.print->placements[p].page) << "P" << p + 1;
   }
+}
+
+TEST(AssemblyAids, EveryLabelAcrossPiecesNamesThePieceItJoins) {
+  const Printed& printed = duck();
+  expect_labels_name_the_pieces_they_join(
+      printed, std::max<std::size_t>(1, adjacency(printed.doc).cross_edges / 100), 0);
+}
+
+// A CAD part whose small features crowd the labels of many short cut edges: the labels around a
+// label that found no place of 1.5 mm give up naming the piece across, which leaves it room
+// (13 labels under 1.5 mm before; docs/print.md, "Labels"), while every edge between pieces
+// still names the piece on one side at least.
+TEST(AssemblyAids, CrowdedLabelsGiveUpThePieceNameForRoom) {
+  JobOptions options;
+  options.layout = PageLayoutMode::Fit;
+  options.colour = false;
+  PipelineProgress quiet;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {}, {.svg_pages = true}, quiet);
+  const Printed printed{read_net_json(out.documents.net_json), out.documents.svg_pages, {}};
+  ASSERT_TRUE(printed.doc.print);
+  const std::size_t cross_edges = adjacency(printed.doc).cross_edges;
+  expect_labels_name_the_pieces_they_join(printed, cross_edges, cross_edges / 50);
+  static const std::regex size("font-size=\"([0-9.]+)\"");
+  std::size_t labels = 0, small = 0;
+  for (std::size_t k = 0; k < printed.pages.size(); ++k) {
+    if (static_cast<int>(k) == printed.doc.print->overview_page) continue;
+    const std::string g = svg_group(printed.pages[k], "labels");
+    for (auto it = std::sregex_iterator(g.begin(), g.end(), size); it != std::sregex_iterator();
+         ++it) {
+      ++labels;
+      small += std::stod((*it)[1]) < 1.5 - 1e-3;
+    }
+  }
+  EXPECT_GT(labels, 300u) << "the part no longer has many labels";
+  EXPECT_LE(small, 4u) << "of " << labels << " labels, under 1.5 mm";
 }
 
 // The overview is page 1: every piece on it once, captioned with the page the placements put it
