@@ -475,8 +475,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm);
   // A label naming the piece across ("12→P3") that prints under the legible size even so (a
   // sliver with two cut edges) becomes the plain number, and its face's labels are placed again:
-  // its twin still names the piece (docs/print.md, "Build order"). So do the labels of the faces
-  // around any label under that size: their shorter text leaves it room.
+  // its twin still names the piece (docs/print.md, "Build order").
   std::vector<char> again(out.faces.size(), 0);
   bool shorten = false;
   for (const Label& l : out.labels) {
@@ -485,12 +484,30 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     again[l.side.face] = 1;
     shorten = true;
   }
-  const std::vector<char> crowded = faces_near_small_labels(out.faces, out.labels);
-  for (std::size_t f = 0; f < crowded.size(); ++f)
-    if (crowded[f]) again[f] = 1, shorten = true;
   if (shorten) {
-    // Of two crowded labels of one edge, only the one on the edge's first side gives up the name.
-    // A label whose twin prints under 1.5 mm keeps the name: the twin gives it up.
+    std::vector<int> index;
+    std::vector<Label> redo;
+    for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
+      if (!again[out.labels[i].side.face]) continue;
+      Label l = out.labels[i];
+      if (l.size < kLegibleLabelMm) l.text = label_text(out.edges[l.edge].cut_index + 1);
+      index.push_back(i);
+      redo.push_back(std::move(l));
+    }
+    size_labels(out.faces, redo, options.max_label_mm);
+    for (std::size_t j = 0; j < index.size(); ++j)
+      fitted[index[j]] = out.labels[index[j]] = redo[j];
+    make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm,
+                        &again);
+  }
+  // Where a label still prints under the legible size (a small feature with many short cut
+  // edges), the labels moved beside their edges around it give up naming the piece across, in
+  // place (their boxes shrink about their centres), and the small labels look for room again.
+  // Of the two labels of an edge one keeps the name: the one whose twin prints under the legible
+  // size or plain already, else the one on the edge's second side when both are crowded
+  // (docs/print.md, "Build order").
+  if (const std::vector<char> crowded = faces_near_small_labels(out.faces, out.labels);
+      std::find(crowded.begin(), crowded.end(), 1) != crowded.end()) {
     std::vector<int> twin(out.labels.size(), -1), first(out.edges.size(), -1);
     for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
       int& f = first[out.labels[i].edge];
@@ -503,27 +520,24 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     }
     const auto gives_way = [&](int i) {
       const Label& l = out.labels[i];
-      if (!crowded[l.side.face]) return false;
+      const bool moved =
+          l.size != fitted[i].size || l.at.x != fitted[i].at.x || l.at.y != fitted[i].at.y;
+      if (!crowded[l.side.face] || !moved || l.size < kLegibleLabelMm) return false;
       if (twin[i] < 0) return true;
       const Label& other = out.labels[twin[i]];
-      if (other.size < kLegibleLabelMm) return false;
+      if (other.size < kLegibleLabelMm || other.text == label_text(out.edges[l.edge].cut_index + 1))
+        return false;  // the twin prints small, or gave the name up before
       return !crowded[other.side.face] || l.side.face == out.edges[l.edge].a.face;
     };
-    std::vector<int> index;
-    std::vector<Label> redo;
+    bool gave = false;
     for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
-      if (!again[out.labels[i].side.face]) continue;
-      Label l = out.labels[i];
-      if (l.size < kLegibleLabelMm || gives_way(i))
-        l.text = label_text(out.edges[l.edge].cut_index + 1);
-      index.push_back(i);
-      redo.push_back(std::move(l));
+      const std::string plain = label_text(out.edges[out.labels[i].edge].cut_index + 1);
+      if (out.labels[i].text == plain || !gives_way(i)) continue;
+      out.labels[i].text = fitted[i].text = plain;
+      gave = true;
     }
-    size_labels(out.faces, redo, options.max_label_mm);
-    for (std::size_t j = 0; j < index.size(); ++j)
-      fitted[index[j]] = out.labels[index[j]] = redo[j];
-    make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm,
-                        &again);
+    if (gave)
+      make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm);
   }
   if (pieces > 1) out.piece_labels = print_detail::place_piece_labels(out.faces, out.labels, piece);
 

@@ -181,10 +181,11 @@ TEST(AssemblyAids, EveryLabelAcrossPiecesNamesThePieceItJoins) {
       printed, std::max<std::size_t>(1, adjacency(printed.doc).cross_edges / 100), 0);
 }
 
-// A CAD part whose small features crowd the labels of many short cut edges: the labels around a
-// label that found no place of 1.5 mm give up naming the piece across, which leaves it room
-// (13 labels under 1.5 mm before; docs/print.md, "Labels"), while every edge between pieces
-// still names the piece on one side at least.
+// A CAD part whose small features crowd the labels of many short cut edges: the labels moved
+// beside their edges around a label that found no place of 1.5 mm give up naming the piece
+// across, which leaves it room (13 labels under 1.5 mm before; docs/print.md, "Build order"),
+// while the edges between pieces still name the piece on one side at least (but where both
+// sides print under 1.5 mm).
 TEST(AssemblyAids, CrowdedLabelsGiveUpThePieceNameForRoom) {
   JobOptions options;
   options.layout = PageLayoutMode::Fit;
