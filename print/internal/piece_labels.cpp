@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "print/tabs.h"
 
@@ -9,7 +10,6 @@ namespace papernet::print_detail {
 namespace {
 
 constexpr double kLargestMm = 8;         // a piece's number, at most
-constexpr double kWantedMm = 3;          // and at least, where a face holds it
 constexpr std::size_t kFacesTried = 40;  // per piece, by inscribed circle
 
 struct Circle {
@@ -26,18 +26,31 @@ Circle incircle(const std::array<Vec2, 3>& t) {
   return {centre, 2 * area / perimeter};
 }
 
-/// True when the disc of `radius` about `centre` meets the convex polygon `box`.
-bool disc_meets(Vec2 centre, double radius, const std::array<Vec2, 4>& box) {
+/// How far `p` lies from the convex polygon `box` (counter-clockwise): 0 inside it.
+double distance_to_box(Vec2 p, const std::array<Vec2, 4>& box) {
   bool inside = true;
+  double nearest = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < box.size(); ++k) {
     const Vec2 a = box[k], b = box[(k + 1) % box.size()];
-    inside = inside && cross(b - a, centre - a) >= 0;
+    inside = inside && cross(b - a, p - a) >= 0;
     const Vec2 ab = b - a;
     const double len2 = dot(ab, ab);
-    const double t = len2 > 0 ? std::clamp(dot(centre - a, ab) / len2, 0.0, 1.0) : 0.0;
-    if (norm(centre - (a + t * ab)) < radius) return true;
+    const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    nearest = std::min(nearest, norm(p - (a + t * ab)));
   }
-  return inside;
+  return inside ? 0.0 : nearest;
+}
+
+/// How far `p`, inside triangle `t`, lies from its sides.
+double distance_to_sides(Vec2 p, const std::array<Vec2, 3>& t) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const Vec2 a = t[k], b = t[(k + 1) % 3];
+    const double len = norm(b - a);
+    if (!(len > 0)) return 0;
+    nearest = std::min(nearest, std::abs(cross(b - a, p - a)) / len);
+  }
+  return nearest;
 }
 
 }  // namespace
@@ -65,34 +78,47 @@ std::vector<Label> place_piece_labels(const std::vector<std::array<Vec2, 3>>& fa
     if (candidates.size() > kFacesTried) candidates.resize(kFacesTried);
     // The box's half-diagonal over its height: the box, at any turn about its centre, lies in
     // a disc of radius size * this, which must keep clear of the edge labels and inside the
-    // face's inscribed circle; so the number can be turned to read level on the page (angle 0
-    // here, and wherever nesting or tiling moves the piece).
+    // face; so the number can be turned to read level on the page (angle 0 here, and wherever
+    // nesting or tiling moves the piece). Each face is tried at the centre of its inscribed
+    // circle and at points towards its corners and the middles of its sides, where the labels
+    // of its edges may leave room that the centre has not; the largest number wins.
     const double c = label_chars(label.text);
     const double diagonal = std::sqrt(0.09 * c * c + 0.25);
     label.angle = 0;
-    bool placed = false;
-    for (const double least : {kWantedMm, kLegibleLabelMm}) {
-      for (std::size_t i = 0; i < candidates.size() && !placed; ++i) {
-        const int f = candidates[i];
-        label.at = circle[f].centre;
-        label.side = {f, 0};
-        for (label.size = std::min(kLargestMm, 0.9 * circle[f].radius / diagonal);
-             label.size >= least; label.size *= 0.85) {
-          const double reach = label.size * diagonal;
-          placed = std::none_of(boxes[p].begin(), boxes[p].end(), [&](const auto& other) {
-            return disc_meets(label.at, reach, other);
-          });
-          if (placed) break;
-        }
+    double best_size = -1, best_clear = -1;
+    Vec2 best_at{}, clearest_at{};
+    int best_face = -1, clearest_face = -1;
+    for (const int f : candidates) {
+      const auto& t = faces[f];
+      const Vec2 centre = circle[f].centre;
+      std::array<Vec2, 10> points;
+      points[0] = centre;
+      for (int k = 0; k < 3; ++k) {
+        points[1 + k] = centre + 0.3 * (t[k] - centre);
+        points[4 + k] = centre + 0.6 * (t[k] - centre);
+        points[7 + k] = centre + 0.6 * (0.5 * (t[k] + t[(k + 1) % 3]) - centre);
       }
-      if (placed) break;
+      for (const Vec2 at : points) {
+        double clear = std::numeric_limits<double>::infinity();
+        for (const auto& box : boxes[p]) clear = std::min(clear, distance_to_box(at, box));
+        // As large as the face holds (its disc within 0.9 of the room to the face's sides),
+        // at most kLargestMm, with its disc clear of the edge labels.
+        const double size =
+            std::min(kLargestMm, std::min(0.9 * distance_to_sides(at, t), clear) / diagonal);
+        if (size > best_size) best_size = size, best_at = at, best_face = f;
+        if (clear > best_clear) best_clear = clear, clearest_at = at, clearest_face = f;
+      }
     }
-    if (!placed && !candidates.empty()) {
-      // Nothing clear: the widest face, as large as it holds (over an edge label).
-      const int f = candidates.front();
-      label.at = circle[f].centre;
-      label.side = {f, 0};
-      label.size = std::max(kLegibleLabelMm, circle[f].radius / diagonal);
+    if (best_face >= 0 && best_size >= kLegibleLabelMm) {
+      label.at = best_at;
+      label.side = {best_face, 0};
+      label.size = best_size;
+    } else if (clearest_face >= 0) {
+      // No place holds it legibly clear of the edge labels: at the legible size where it meets
+      // them least, farthest from them.
+      label.at = clearest_at;
+      label.side = {clearest_face, 0};
+      label.size = kLegibleLabelMm;
     }
     out.push_back(std::move(label));
   }

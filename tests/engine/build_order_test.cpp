@@ -7,7 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <regex>
 #include <set>
 #include <string>
@@ -38,6 +41,20 @@ const Printed& duck() {
         run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true, .pdf = true}, quiet);
     return Printed{read_net_json(out.documents.net_json), out.documents.svg_pages,
                    out.documents.pdf};
+  }();
+  return printed;
+}
+
+/// A CAD part of small features, many short cut edges and small pieces, at the defaults.
+const Printed& cad_part() {
+  static const Printed printed = [] {
+    JobOptions options;
+    options.layout = PageLayoutMode::Fit;
+    options.colour = false;
+    PipelineProgress quiet;
+    UnfoldOutcome out = run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {},
+                                     {.svg_pages = true}, quiet);
+    return Printed{read_net_json(out.documents.net_json), out.documents.svg_pages, {}};
   }();
   return printed;
 }
@@ -187,13 +204,7 @@ TEST(AssemblyAids, EveryLabelAcrossPiecesNamesThePieceItJoins) {
 // while the edges between pieces still name the piece on one side at least (but where both
 // sides print under 1.5 mm).
 TEST(AssemblyAids, CrowdedLabelsGiveUpThePieceNameForRoom) {
-  JobOptions options;
-  options.layout = PageLayoutMode::Fit;
-  options.colour = false;
-  PipelineProgress quiet;
-  const UnfoldOutcome out =
-      run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {}, {.svg_pages = true}, quiet);
-  const Printed printed{read_net_json(out.documents.net_json), out.documents.svg_pages, {}};
+  const Printed& printed = cad_part();
   ASSERT_TRUE(printed.doc.print);
   const std::size_t cross_edges = adjacency(printed.doc).cross_edges;
   expect_labels_name_the_pieces_they_join(printed, cross_edges, cross_edges / 50);
@@ -210,6 +221,78 @@ TEST(AssemblyAids, CrowdedLabelsGiveUpThePieceNameForRoom) {
   }
   EXPECT_GT(labels, 300u) << "the part no longer has many labels";
   EXPECT_LE(small, 4u) << "of " << labels << " labels, under 1.5 mm";
+}
+
+/// A text of an SVG page as drawn: its corners (counter-clockwise on the page, y down), half an
+/// em per character (the arrow one em) and 0.7 em high, about the centre it turns on.
+struct DrawnText {
+  std::string text;
+  std::array<Vec2, 4> corners;
+};
+
+std::vector<DrawnText> drawn_texts(const std::string& svg, const std::string& group) {
+  std::vector<DrawnText> out;
+  const std::string g = svg_group(svg, group);
+  static const std::regex text(
+      "<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" font-size=\"([0-9.]+)\"[^>]*"
+      "rotate\\(([-0-9.]+) ([-0-9.]+) ([-0-9.]+)\\)\">([^<]+)</text>");
+  for (auto it = std::sregex_iterator(g.begin(), g.end(), text); it != std::sregex_iterator();
+       ++it) {
+    const double size = std::stod((*it)[3]), angle = std::stod((*it)[4]) * std::numbers::pi / 180;
+    const Vec2 centre{std::stod((*it)[5]), std::stod((*it)[6])};
+    const std::string t = (*it)[7];
+    double ems = 0;
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      const auto byte = static_cast<unsigned char>(t[k]);
+      if (byte < 0x80)
+        ems += 0.5;
+      else if (byte >= 0xC0)
+        ems += 1;  // the first byte of a UTF-8 character (the arrow)
+    }
+    const Vec2 along{std::cos(angle), std::sin(angle)}, across{-along.y, along.x};
+    const double w = 0.5 * ems * size, h = 0.35 * size;
+    out.push_back({t,
+                   {centre - w * along - h * across, centre + w * along - h * across,
+                    centre + w * along + h * across, centre - w * along + h * across}});
+  }
+  return out;
+}
+
+/// True when two convex quadrilaterals overlap (no separating axis among their sides).
+bool quads_overlap(const std::array<Vec2, 4>& a, const std::array<Vec2, 4>& b) {
+  for (const auto* poly : {&a, &b})
+    for (int k = 0; k < 4; ++k) {
+      const Vec2 side = (*poly)[(k + 1) % 4] - (*poly)[k], normal{-side.y, side.x};
+      double a_lo = INFINITY, a_hi = -INFINITY, b_lo = INFINITY, b_hi = -INFINITY;
+      for (const Vec2 p : a)
+        a_lo = std::min(a_lo, dot(normal, p)), a_hi = std::max(a_hi, dot(normal, p));
+      for (const Vec2 p : b)
+        b_lo = std::min(b_lo, dot(normal, p)), b_hi = std::max(b_hi, dot(normal, p));
+      if (a_hi <= b_lo || b_hi <= a_lo) return false;
+    }
+  return true;
+}
+
+// Each piece's number prints clear of the edge labels, on the drawn sheets: where the centre of
+// a face's inscribed circle is taken, points towards the face's corners and sides are tried
+// (10 of the CAD part's 26 piece numbers lay over an edge label when only the centres were).
+TEST(AssemblyAids, PieceNumbersPrintClearOfTheEdgeLabels) {
+  for (const Printed* printed : {&duck(), &cad_part()}) {
+    ASSERT_TRUE(printed->doc.print);
+    std::size_t numbers = 0;
+    for (int k = 0; k < static_cast<int>(printed->pages.size()); ++k) {
+      if (k == printed->doc.print->overview_page) continue;
+      std::vector<DrawnText> pieces, edges;
+      for (DrawnText& t : drawn_texts(printed->pages[k], "labels"))
+        (std::regex_match(t.text, std::regex("P[0-9]+")) ? pieces : edges).push_back(std::move(t));
+      numbers += pieces.size();
+      for (const DrawnText& p : pieces)
+        for (const DrawnText& e : edges)
+          EXPECT_FALSE(quads_overlap(p.corners, e.corners))
+              << p.text << " over \"" << e.text << "\" on page " << k + 1;
+    }
+    EXPECT_EQ(numbers, printed->doc.pieces.size());
+  }
 }
 
 // The overview is page 1: every piece on it once, captioned with the page the placements put it
