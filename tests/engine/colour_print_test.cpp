@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -269,7 +270,8 @@ Check check_colour(const std::string& file, double size_mm, const JobInput& inpu
   options.labels = false;  // line art over the colour: numbers cover small faces' centres
   options.tab_room_budget = 2000;
   PipelineProgress quiet;
-  const UnfoldOutcome out = run_pipeline(input, options, {}, {.pdf = true}, quiet);
+  const UnfoldOutcome out =
+      run_pipeline(input, options, {}, {.svg_pages = true, .pdf = true}, quiet);
   const NetDocument& doc = out.net;
   EXPECT_TRUE(check_pieces(doc.mesh, doc.net, doc.piece).ok());
   Check check;
@@ -297,29 +299,35 @@ Check check_colour(const std::string& file, double size_mm, const JobInput& inpu
       ADD_FAILURE() << "pdftoppm could not render page " << page + 1 << " of " << path;
       continue;
     }
-    // Each piece's number prints in the circle inscribed in the piece's face with the largest
-    // one, at most 8 mm tall (print/internal/piece_labels.h): samples in that circle (within the
-    // number's half-diagonal of its centre) are not compared; they may be under the number.
-    std::map<int, std::pair<Vec2, double>> number_at;  // piece: centre and radius, pixels
-    for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
-      const std::array<Vec2, 3> p = page_pixels(doc, f);
-      const double r = inradius(p);
-      auto [it, added] = number_at.try_emplace(doc.piece[f], Vec2{}, -1);
-      if (r <= it->second.second) continue;
-      const double a = norm(p[1] - p[2]), b = norm(p[2] - p[0]), c = norm(p[0] - p[1]);
-      it->second = {(1 / (a + b + c)) * (a * p[0] + b * p[1] + c * p[2]), r};
+    // The pieces' numbers ("P3") as the page's SVG draws them, each within its box's
+    // half-diagonal (a box of 0.6 em per character, 1 em high) of its centre, in pixels: samples
+    // there are not compared; they may be under the number.
+    std::vector<std::pair<Vec2, double>> numbers;
+    if (static_cast<std::size_t>(page) < out.documents.svg_pages.size()) {
+      const std::string& svg = out.documents.svg_pages[page];
+      static const std::regex number(
+          "<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" font-size=\"([0-9.]+)\"[^>]*>(P[0-9]+)</text>");
+      for (auto it = std::sregex_iterator(svg.begin(), svg.end(), number);
+           it != std::sregex_iterator(); ++it) {
+        const double size = std::stod((*it)[3]), chars = static_cast<double>((*it)[4].length());
+        const Vec2 centre{std::stod((*it)[1]), std::stod((*it)[2]) - 0.35 * size};
+        numbers.push_back({(kDpi / 25.4) * centre,
+                           1.05 * (kDpi / 25.4) * size * std::sqrt(0.09 * chars * chars + 0.25)});
+      }
     }
+    const auto under_a_number = [&](Vec2 at) {
+      return std::any_of(numbers.begin(), numbers.end(),
+                         [&](const auto& n) { return norm(at - n.first) < n.second; });
+    };
     for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
       const PiecePlacement& placed = doc.print->placements.at(doc.piece[f]);
       if (placed.page != page) continue;
       const std::array<Vec2, 3> p = page_pixels(doc, f);
       if (!(inradius(p) >= 3) || (sampled && !sampled(doc, f))) continue;
-      const auto& [number, circle] = number_at.at(doc.piece[f]);
-      const double covered = std::min(circle, 1.05 * 8 * kDpi / 25.4);
       std::vector<double> errors;
       for (const auto& w : kSamples) {
         const Vec2 at = w[0] * p[0] + w[1] * p[1] + w[2] * p[2];
-        if (norm(at - number) < covered) continue;
+        if (under_a_number(at)) continue;
         const int x = static_cast<int>(at.x), y = static_cast<int>(at.y);
         if (x < 0 || y < 0 || x >= raster.width || y >= raster.height) {
           errors.push_back(1);
