@@ -1,8 +1,12 @@
 #include "print/pages.h"
 
+#include <cairo.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numbers>
 
 #include "core/errors.h"
@@ -268,6 +272,64 @@ bool box_meets(const std::vector<Vec2>& pts, Vec2 lo, Vec2 hi) {
 
 /// Adds the layout's shapes inside window [lo, hi] (layout coordinates), mapped to the page with
 /// the window's top-left corner at `at`.
+// The colour of the faces where no image covers them (print/pdf.cpp, print/svg.cpp), and the
+// relative luminance (linear light) under which white text reads better than the labels' dark
+// grey (#333333): the two have the same contrast ratio there.
+constexpr unsigned kFaceFill = 0xf3f6fb;
+constexpr double kDarkLuminance = 0.245;
+
+double linear(double srgb) {
+  return srgb <= 0.04045 ? srgb / 12.92 : std::pow((srgb + 0.055) / 1.055, 2.4);
+}
+
+/// The relative luminance of the page at `q` (mm): the topmost image that covers it over the
+/// faces' fill.
+double luminance_at(const std::vector<PageImage>& images, Vec2 q) {
+  double rgb[3] = {((kFaceFill >> 16) & 0xff) / 255.0, ((kFaceFill >> 8) & 0xff) / 255.0,
+                   (kFaceFill & 0xff) / 255.0};
+  for (auto it = images.rbegin(); it != images.rend(); ++it) {
+    cairo_surface_t* surface = it->surface.get();
+    const int w = cairo_image_surface_get_width(surface),
+              h = cairo_image_surface_get_height(surface);
+    if (!(it->width > 0 && it->height > 0) || w <= 0 || h <= 0) continue;
+    const double fx = (q.x - it->at.x) / it->width * w, fy = (q.y - it->at.y) / it->height * h;
+    if (!(fx >= 0 && fy >= 0 && fx < w && fy < h)) continue;
+    const unsigned char* row =
+        cairo_image_surface_get_data(surface) +
+        static_cast<std::ptrdiff_t>(fy) * cairo_image_surface_get_stride(surface);
+    std::uint32_t argb;
+    std::memcpy(&argb, row + 4 * static_cast<std::ptrdiff_t>(fx), 4);
+    const double a = (argb >> 24) / 255.0;
+    if (a <= 0) continue;
+    // Premultiplied ARGB32 over the fill.
+    for (int c = 0; c < 3; ++c) rgb[c] = ((argb >> (16 - 8 * c)) & 0xff) / 255.0 + (1 - a) * rgb[c];
+    break;
+  }
+  return 0.2126 * linear(rgb[0]) + 0.7152 * linear(rgb[1]) + 0.0722 * linear(rgb[2]);
+}
+
+/// Labels over a dark colour (a black tyre, a dark texture) are drawn white: the mean luminance
+/// of 15 points over the text's box decides.
+void light_labels_over_dark(PageDrawing& d) {
+  if (d.images.empty()) return;
+  for (const PageImage& image : d.images) cairo_surface_flush(image.surface.get());
+  for (Shape& s : d.shapes) {
+    if (s.layer != Layer::Labels || s.text.empty() || s.points.empty()) continue;
+    const double turn = s.angle_deg * std::numbers::pi / 180;
+    const Vec2 along{std::cos(turn), std::sin(turn)}, across{-along.y, along.x};
+    const double half_width = 0.5 * 0.6 * s.size * label_chars(s.text), half_height = 0.3 * s.size;
+    double sum = 0;
+    int n = 0;
+    for (const double u : {-0.8, -0.4, 0.0, 0.4, 0.8})
+      for (const double v : {-1.0, 0.0, 1.0}) {
+        sum += luminance_at(d.images,
+                            s.points[0] + (u * half_width) * along + (v * half_height) * across);
+        ++n;
+      }
+    s.light = sum / n < kDarkLuminance;
+  }
+}
+
 void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawing& d) {
   auto map = [&](Vec2 p) { return Vec2{at.x + (p.x - lo.x), at.y + (hi.y - p.y)}; };
   auto add = [&](Layer layer, std::vector<Vec2> pts, bool closed) {
@@ -319,8 +381,10 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
     d = draw_overview(layout, pages, index);
   else
     add_layout(layout, page.lo, page.hi, {m, m}, d);
-  if (colour && !page.overview)
+  if (colour && !page.overview) {
     d.images = colour_images(layout, *colour, page.lo, page.hi, {m, m}, d.clip_lo, d.clip_hi);
+    light_labels_over_dark(d);
+  }
   auto mark = [&](Vec2 a, Vec2 b) { d.shapes.push_back({Layer::Marks, {a, b}, false, {}, 0, 0}); };
   const double ov = pages.overlap, x1 = pages.width - m, y1 = pages.height - m;
   // Overlap marks: where the neighbouring tile's window begins, with ticks in the margin so the
@@ -349,7 +413,10 @@ PageDrawing draw_unpaged(const PrintLayout& layout, double margin_mm, const Prin
   d.clip_hi = {d.width, d.height};
   const Vec2 lo{-m, -m}, hi{layout.size.x + m, layout.size.y + m};
   add_layout(layout, lo, hi, {0, 0}, d);
-  if (colour) d.images = colour_images(layout, *colour, lo, hi, {0, 0}, d.clip_lo, d.clip_hi);
+  if (colour) {
+    d.images = colour_images(layout, *colour, lo, hi, {0, 0}, d.clip_lo, d.clip_hi);
+    light_labels_over_dark(d);
+  }
   return d;
 }
 

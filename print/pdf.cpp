@@ -55,6 +55,7 @@ void draw(cairo_t* cr, const PageDrawing& d) {
     for (const Shape& s : d.shapes) {
       if (s.layer != layer || s.text.empty()) continue;
       cairo_save(cr);
+      if (s.light) set_rgb(cr, 0xffffff);
       cairo_translate(cr, s.points[0].x, s.points[0].y);
       cairo_rotate(cr, s.angle_deg * 3.14159265358979323846 / 180);
       cairo_set_font_size(cr, s.size);

@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -32,6 +33,7 @@
 #include "engine/pipeline.h"
 #include "print/colour.h"
 #include "tests/support/job_input.h"
+#include "tests/support/svg.h"
 
 namespace papernet::test {
 namespace {
@@ -972,5 +974,75 @@ TEST(ColourPrintNone, LineArtLeavesTheFacesUncoloured) {
   EXPECT_LT(saturated, static_cast<std::size_t>(raster.width) * raster.height / 100);
 }
 
+// Labels over a dark colour print white (docs/print.md, "Labels"): on the milk truck, whose
+// tyres and body are near black, the page around a label the SVG draws white is dark in the
+// rendered PDF, and around one it draws dark grey light (the paper just past both ends of its
+// text); printed without colour, no label is white.
+TEST(ColourPrintLabels, LabelsOverDarkColourPrintWhite) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  for (const bool colour : {true, false}) {
+    JobOptions options;
+    options.colour = colour;
+    options.dpi = kDpi;
+    PipelineProgress quiet;
+    const UnfoldOutcome out = run_pipeline(data_file("CesiumMilkTruck/CesiumMilkTruck.gltf"),
+                                           options, {}, {.svg_pages = true, .pdf = true}, quiet);
+    ASSERT_TRUE(out.net.print);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "papernet_colour_labels.pdf").string();
+    {
+      std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "wb"), std::fclose);
+      std::fwrite(out.documents.pdf.data(), 1, out.documents.pdf.size(), f.get());
+    }
+    static const std::regex text(
+        "<text x=\"[-0-9.]+\" y=\"[-0-9.]+\" font-size=\"([0-9.]+)\"( fill=\"#ffffff\")? "
+        "stroke=\"none\" transform=\"rotate\\(([-0-9.]+) ([-0-9.]+) ([-0-9.]+)\\)\"[^>]*>([^<]+)"
+        "</text>");
+    std::size_t white = 0, white_on_dark = 0, grey = 0, grey_on_light = 0;
+    for (int page = 0; page < static_cast<int>(out.documents.svg_pages.size()); ++page) {
+      if (page == out.net.print->overview_page) continue;
+      const Raster raster = render(path, page + 1);
+      ASSERT_GT(raster.width, 0);
+      const std::string labels = svg_group(out.documents.svg_pages[page], "labels");
+      for (auto it = std::sregex_iterator(labels.begin(), labels.end(), text);
+           it != std::sregex_iterator(); ++it) {
+        const double size = std::stod((*it)[1]),
+                     turn = std::stod((*it)[3]) * std::numbers::pi / 180;
+        const Vec2 centre{std::stod((*it)[4]), std::stod((*it)[5])};
+        const double reach = 0.3 * size * static_cast<double>((*it)[6].length()) + 0.6 * size;
+        double sum = 0;
+        int n = 0;
+        for (const double side : {-1.0, 1.0}) {
+          const Vec2 at =
+              (kDpi / 25.4) * (centre + side * reach * Vec2{std::cos(turn), std::sin(turn)});
+          const int x = static_cast<int>(at.x), y = static_cast<int>(at.y);
+          if (x < 0 || y < 0 || x >= raster.width || y >= raster.height) continue;
+          const auto c = raster.at(x, y);
+          sum += 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+          ++n;
+        }
+        if (n == 0) continue;
+        const bool dark = sum / n < 0.4;
+        if ((*it)[2].matched) {
+          ++white;
+          white_on_dark += dark;
+        } else {
+          ++grey;
+          grey_on_light += !dark;
+        }
+      }
+    }
+    std::filesystem::remove(path);
+    SCOPED_TRACE(colour ? "in colour" : "without colour");
+    EXPECT_GT(grey, 100u);
+    EXPECT_GE(grey_on_light, grey * 9 / 10) << grey_on_light << " of " << grey;
+    if (!colour) {
+      EXPECT_EQ(white, 0u);
+      continue;
+    }
+    EXPECT_GT(white, 100u) << "the tyres and the body are near black";
+    EXPECT_GE(white_on_dark, white * 9 / 10) << white_on_dark << " of " << white;
+  }
+}
 }  // namespace
 }  // namespace papernet::test
