@@ -5,7 +5,11 @@
 // coordinates there giving texture coordinates and vertex colours.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <exception>
+#include <optional>
 
+#include "core/io/image.h"
 #include "core/mesh/face_tree.h"
 #include "engine/internal/steps.h"
 
@@ -39,7 +43,91 @@ bool folds_into_part(const Piece& piece, const Mesh& part) {
   return piece.mesh.faces.size() == part.faces.size() && piece.mesh.vertices == part.vertices;
 }
 
+// A texel of `image` at texture coordinates `uv` (glTF: v down), its nearest pixel, wrapped as
+// `sampler` says; linear RGBA.
+RGBA texel(const Image& image, const TextureSampler& sampler, UV uv) {
+  const auto wrap = [](double t, int mode) {
+    if (mode == 33071) return std::clamp(t, 0.0, 1.0);  // clamp
+    const double f = t - std::floor(t);
+    if (mode == 33648 && static_cast<long long>(std::floor(t)) % 2 != 0) return 1 - f;  // mirror
+    return f;
+  };
+  const auto linear = [](double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  };
+  const double u = wrap(uv[0], sampler.wrap_s), v = wrap(uv[1], sampler.wrap_t);
+  const int x = std::clamp(static_cast<int>(u * image.width), 0, image.width - 1);
+  const int y = std::clamp(static_cast<int>(v * image.height), 0, image.height - 1);
+  const std::uint8_t* p = &image.rgba[(static_cast<std::size_t>(y) * image.width + x) * 4];
+  return {linear(p[0] / 255.0), linear(p[1] / 255.0), linear(p[2] / 255.0), p[3] / 255.0};
+}
+
 }  // namespace
+
+MeshColour corner_colours(const Mesh& mesh, const Mesh& part, const MeshColour& colour,
+                          const MeshColour& library) {
+  // The textures, decoded once; one that does not decode samples as white (the print says so).
+  std::vector<std::optional<Image>> images(library.textures.size());
+  for (std::size_t t = 0; t < images.size(); ++t) {
+    try {
+      images[t] = decode_image(library.textures[t].bytes);
+      if (images[t]->width <= 0 || images[t]->height <= 0) images[t].reset();
+    } catch (const std::exception&) {
+      images[t].reset();
+    }
+  }
+  MeshColour out;
+  out.materials = library.materials;
+  out.textures = library.textures;
+  out.face_materials.assign(mesh.faces.size(), -1);
+  out.colours.assign(mesh.faces.size(), {});
+  // Texture coordinates where the part has them: none (null) on the coarser faces.
+  if (!colour.uvs.empty())
+    out.uvs.assign(mesh.faces.size(), {UV{ColourTriangle::kNone, ColourTriangle::kNone},
+                                       UV{ColourTriangle::kNone, ColourTriangle::kNone},
+                                       UV{ColourTriangle::kNone, ColourTriangle::kNone}});
+  const FaceTree tree(part);
+  int hint = -1;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 p = mesh.vertices[mesh.faces[f][k]];
+      RGBA rgba{1, 1, 1, 1};
+      const int g = tree.closest(p, hint).second;
+      if (g >= 0) {
+        hint = g;
+        const auto& s = part.faces[g];
+        // The nearest point of face g: p on its plane, its weights clamped to the face.
+        auto w =
+            plane_barycentric(p, part.vertices[s[0]], part.vertices[s[1]], part.vertices[s[2]]);
+        double sum = 0;
+        for (double& x : w) sum += (x = std::max(x, 0.0));
+        for (double& x : w) x = sum > 0 ? x / sum : 1.0 / 3;
+        const int m = static_cast<std::size_t>(g) < colour.face_materials.size()
+                          ? colour.face_materials[g]
+                          : -1;
+        if (m >= 0 && static_cast<std::size_t>(m) < library.materials.size()) {
+          const Material& material = library.materials[m];
+          rgba = material.base_color;
+          const int t = material.texture;
+          if (t >= 0 && static_cast<std::size_t>(t) < images.size() && images[t] &&
+              static_cast<std::size_t>(g) < colour.uvs.size()) {
+            const UV uv = blend(colour.uvs[g], w);
+            if (std::isfinite(uv[0]) && std::isfinite(uv[1])) {
+              const RGBA c = texel(*images[t], library.textures[t].sampler, uv);
+              for (int i = 0; i < 4; ++i) rgba[i] *= c[i];
+            }
+          }
+        }
+        if (static_cast<std::size_t>(g) < colour.colours.size()) {
+          const RGBA c = blend(colour.colours[g], w);
+          for (int i = 0; i < 4; ++i)
+            if (std::isfinite(c[i])) rgba[i] *= c[i];
+        }
+      }
+      out.colours[f][k] = rgba;
+    }
+  return out;
+}
 
 std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& pieces,
                                                      const Prepared& input, double scale) {

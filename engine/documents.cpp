@@ -108,13 +108,24 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
   doc.repairs = input.repairs;
   doc.colour.materials = input.colour.materials;
   doc.colour.textures = input.colour.textures;
-  std::size_t uncoloured = 0;
+  std::size_t vertex_coloured = 0, uncoloured = 0;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const Piece& piece = pieces[p];
     if (p < input.part_colours.size()) {
-      const std::optional<MeshColour> colour =
-          piece_colour(piece, input.parts[p], input.part_colours[p]);
-      uncoloured += !colour;
+      std::optional<MeshColour> colour = piece_colour(piece, input.parts[p], input.part_colours[p]);
+      // An approximate piece of a coloured part: colours at its corners, when the part has a
+      // material or vertex colours to take them from (texture coordinates alone have none).
+      const MeshColour& part_colour = input.part_colours[p];
+      const bool has_colour =
+          !part_colour.colours.empty() ||
+          std::any_of(part_colour.face_materials.begin(), part_colour.face_materials.end(),
+                      [&](int m) { return m >= 0; });
+      if (!colour && has_colour) {
+        colour = corner_colours(piece.mesh, input.parts[p], part_colour, input.colour);
+        ++vertex_coloured;
+      } else if (!colour) {
+        ++uncoloured;
+      }
       // Without: the same kinds of data, all NaN / -1 (no corner of the input maps there).
       const std::vector<std::array<int, 3>> none(piece.mesh.faces.size(),
                                                  {kNoCorner, kNoCorner, kNoCorner});
@@ -147,6 +158,15 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
                          : std::to_string(uncoloured) +
                                " approximate pieces fold into coarser meshes whose faces carry no "
                                "texture coordinates or colours (null in mesh.uvs)"});
+  if (vertex_coloured > 0)
+    doc.repairs.push_back(
+        {"approximate_pieces_vertex_coloured", vertex_coloured,
+         (vertex_coloured == 1
+              ? std::string("1 approximate piece folds into a coarser mesh whose faces")
+              : std::to_string(vertex_coloured) +
+                    " approximate pieces fold into coarser meshes whose faces") +
+             " carry vertex colours, the model's colour nearest each corner, and no texture "
+             "coordinates (mesh.colors; mesh.uvs null); the print bakes the colour finer"});
   // Coverage and aspect ratio of the pieces as the print sets them side by side.
   const double gap = piece_gap_mm(options) / print_scale(doc.mesh, print_options(options));
   const NetBoxMetrics box = net_metrics(doc.mesh, arrange_pieces(doc.net, doc.piece, gap));

@@ -99,6 +99,16 @@ std::optional<NetRepair> detail_warning(const std::vector<Piece>& pieces,
 std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& pieces,
                                                      const Prepared& input, double scale);
 
+/// The colour of an approximate piece's `mesh` in the net document (engine/colour.cpp): each
+/// corner's vertex colour is the input's colour at the point of `part` nearest to it (the
+/// material's base colour, times its texture's nearest texel there, times the input's vertex
+/// colour), no material and no texture coordinates. So a viewer of the folded net (the web
+/// demo, a storefront's own) shows the model's colours on the coarser faces; the print bakes
+/// them finer.
+/// `colour` is the part's per-face data, `library` the input's materials and textures.
+MeshColour corner_colours(const Mesh& mesh, const Mesh& part, const MeshColour& colour,
+                          const MeshColour& library);
+
 /// The pieces as one document: their meshes and nets side by side (engine/documents.cpp).
 NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
                      const JobOptions& options);

@@ -192,6 +192,35 @@ TEST(Pipeline, AnApproximatePieceSaysItHasNoUvs) {
   EXPECT_TRUE(said);
 }
 
+// The Duck at the defaults folds into a coarser mesh of its own faces, without texture
+// coordinates: each corner carries the model's colour nearest to it as a vertex colour
+// (mesh.colors), so a viewer of the folded net shows a yellow duck with an orange beak, not a
+// white one (the texture: a yellow body, an orange beak, black and white eyes).
+TEST(Pipeline, AnApproximatePieceOfATexturedModelCarriesItsColoursAtItsCorners) {
+  PipelineProgress quiet;
+  const UnfoldOutcome out = run_pipeline(data_file("Duck.glb"), {}, {}, {}, quiet);
+  expect_checked(out);
+  ASSERT_EQ(out.net.result, "approximate");
+  const MeshColour& c = out.net.colour;
+  ASSERT_EQ(c.colours.size(), out.net.mesh.faces.size());
+  for (const auto& f : c.uvs) EXPECT_TRUE(std::isnan(f[0][0]));
+  std::size_t corners = 0, yellow = 0, orange = 0;
+  for (const auto& face : c.colours)
+    for (const RGBA& rgba : face) {
+      ++corners;
+      for (const double x : rgba) ASSERT_TRUE(x >= 0 && x <= 1) << x;
+      // Linear light: the body's yellow is about (1, 0.69, 0), the beak's orange (0.9, 0.2, 0).
+      yellow += rgba[0] > 0.8 && rgba[1] > 0.4 && rgba[2] < 0.2;
+      orange += rgba[0] > 0.5 && rgba[1] > 0.05 && rgba[1] < 0.4 && rgba[2] < 0.1;
+    }
+  EXPECT_GT(yellow, corners * 8 / 10) << yellow << " of " << corners;
+  EXPECT_GT(orange, corners / 50) << orange << " of " << corners;
+  for (const int m : c.face_materials) EXPECT_EQ(m, -1);
+  bool said = false;
+  for (const NetRepair& r : out.net.repairs) said |= r.code == "approximate_pieces_vertex_coloured";
+  EXPECT_TRUE(said);
+}
+
 TEST(Pipeline, ATextureThatCannotBeUsedGivesANetAndANote) {
   // BoxTextured with its PNG cut short: the GLB's image buffer view keeps its length, the
   // bytes after the PNG's first 100 are zeros.
