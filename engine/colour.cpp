@@ -64,9 +64,7 @@ RGBA texel(const Image& image, const TextureSampler& sampler, UV uv) {
 
 }  // namespace
 
-MeshColour corner_colours(const Mesh& mesh, const Mesh& part, const MeshColour& colour,
-                          const MeshColour& library) {
-  // The textures, decoded once; one that does not decode samples as white (the print says so).
+std::vector<std::optional<Image>> decode_textures(const MeshColour& library) {
   std::vector<std::optional<Image>> images(library.textures.size());
   for (std::size_t t = 0; t < images.size(); ++t) {
     try {
@@ -76,6 +74,12 @@ MeshColour corner_colours(const Mesh& mesh, const Mesh& part, const MeshColour& 
       images[t].reset();
     }
   }
+  return images;
+}
+
+MeshColour corner_colours(const Mesh& mesh, const Mesh& part, const MeshColour& colour,
+                          const MeshColour& library,
+                          const std::vector<std::optional<Image>>& images) {
   MeshColour out;
   out.materials = library.materials;
   out.textures = library.textures;

@@ -109,6 +109,7 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
   doc.colour.materials = input.colour.materials;
   doc.colour.textures = input.colour.textures;
   std::size_t vertex_coloured = 0, uncoloured = 0;
+  std::optional<std::vector<std::optional<Image>>> images;  // decoded when first needed
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const Piece& piece = pieces[p];
     if (p < input.part_colours.size()) {
@@ -121,7 +122,8 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
           std::any_of(part_colour.face_materials.begin(), part_colour.face_materials.end(),
                       [&](int m) { return m >= 0; });
       if (!colour && has_colour) {
-        colour = corner_colours(piece.mesh, input.parts[p], part_colour, input.colour);
+        if (!images) images = decode_textures(input.colour);
+        colour = corner_colours(piece.mesh, input.parts[p], part_colour, input.colour, *images);
         ++vertex_coloured;
       } else if (!colour) {
         ++uncoloured;

@@ -270,8 +270,6 @@ bool box_meets(const std::vector<Vec2>& pts, Vec2 lo, Vec2 hi) {
   return a.x <= hi.x && b.x >= lo.x && a.y <= hi.y && b.y >= lo.y;
 }
 
-/// Adds the layout's shapes inside window [lo, hi] (layout coordinates), mapped to the page with
-/// the window's top-left corner at `at`.
 // The colour of the faces where no image covers them (print/pdf.cpp, print/svg.cpp), and the
 // relative luminance (linear light) under which white text reads better than the labels' dark
 // grey (#333333): the two have the same contrast ratio there.
@@ -330,6 +328,8 @@ void light_labels_over_dark(PageDrawing& d) {
   }
 }
 
+/// Adds the layout's shapes inside window [lo, hi] (layout coordinates), mapped to the page with
+/// the window's top-left corner at `at`.
 void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawing& d) {
   auto map = [&](Vec2 p) { return Vec2{at.x + (p.x - lo.x), at.y + (hi.y - p.y)}; };
   auto add = [&](Layer layer, std::vector<Vec2> pts, bool closed) {

@@ -8,6 +8,7 @@
 
 #include "api/net_json.h"
 #include "api/options.h"
+#include "core/io/image.h"
 #include "core/io/load.h"
 #include "core/mesh/colour.h"
 #include "core/mesh/mesh.h"
@@ -105,9 +106,15 @@ std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& p
 /// colour), no material and no texture coordinates. So a viewer of the folded net (the web
 /// demo, a storefront's own) shows the model's colours on the coarser faces; the print bakes
 /// them finer.
-/// `colour` is the part's per-face data, `library` the input's materials and textures.
+/// `colour` is the part's per-face data, `library` the input's materials and textures, `images`
+/// those textures decoded (decode_textures).
 MeshColour corner_colours(const Mesh& mesh, const Mesh& part, const MeshColour& colour,
-                          const MeshColour& library);
+                          const MeshColour& library,
+                          const std::vector<std::optional<Image>>& images);
+
+/// The textures of `library`, decoded; one that does not decode is empty (it samples as white;
+/// the print says so).
+std::vector<std::optional<Image>> decode_textures(const MeshColour& library);
 
 /// The pieces as one document: their meshes and nets side by side (engine/documents.cpp).
 NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
