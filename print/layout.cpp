@@ -142,6 +142,11 @@ void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Labe
   }
 }
 
+// The key of grid cell (x, y) in a hash map of cells.
+std::uint64_t cell_key(std::int64_t x, std::int64_t y) {
+  return static_cast<std::uint64_t>(x) << 32 ^ static_cast<std::uint32_t>(y);
+}
+
 /// The boxes of a net's labels on a grid of cells, as the labels move: which other label a box
 /// meets, on any face (a label moved beside its edge reaches over folds into other faces).
 class LabelBoxes {
@@ -191,8 +196,7 @@ class LabelBoxes {
     const auto lo_y = static_cast<std::int64_t>(std::floor(b.lo.y / kCell));
     const auto hi_y = static_cast<std::int64_t>(std::floor(b.hi.y / kCell));
     for (std::int64_t y = lo_y; y <= hi_y; ++y)
-      for (std::int64_t x = lo_x; x <= hi_x; ++x)
-        f(static_cast<std::uint64_t>(x) << 32 ^ static_cast<std::uint32_t>(y));
+      for (std::int64_t x = lo_x; x <= hi_x; ++x) f(cell_key(x, y));
   }
   const std::vector<Label>& labels_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
@@ -299,9 +303,8 @@ std::vector<char> faces_near_small_labels(const std::vector<std::array<Vec2, 3>>
                                           const std::vector<Label>& labels) {
   std::vector<char> near(faces.size(), 0);
   const auto cell = [](Vec2 p) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x / kCrowdedMm)))
-               << 32 ^
-           static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p.y / kCrowdedMm)));
+    return cell_key(static_cast<std::int64_t>(std::floor(p.x / kCrowdedMm)),
+                    static_cast<std::int64_t>(std::floor(p.y / kCrowdedMm)));
   };
   std::unordered_map<std::uint64_t, std::vector<Vec2>> small;
   for (const Label& l : labels)
