@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include "core/mesh/angle_defects.h"
@@ -241,41 +242,71 @@ bool Clearance::apply_compound(int tf, int tk, const std::vector<std::array<int,
     }
     return false;
   };
-  const auto glued = [&](int x, int j) {
-    for (const auto& sw : swaps)
-      if ((sw[2] == x && sw[3] == j) || (adj_[sw[2]][sw[3]] == x && adj_edge_[sw[2]][sw[3]] == j))
-        return true;
-    return false;
-  };
   const auto give_up = [&] {
     for (int x : moving_) is_moving_[x] = 0;
     return revert();
   };
-  // The new tree from the root, breadth first; a face that is reached twice or not at all means
-  // the links are no spanning tree.
-  std::fill(from_.begin(), from_.end(), -2);
+  // What the swaps change, taken together: links of the current tree cut (tops_, each the face
+  // below its link) and cut edges glued (glues_). A link cut and glued again by a later swap,
+  // or glued and cut again, changes nothing.
+  tops_.clear();
+  glues_.clear();
+  const auto tree_link = [&](int x, int j) {
+    const int y = adj_[x][j];
+    return y >= 0 && (parent_[x] == y || parent_[y] == x);
+  };
+  for (const auto& [lf, lk, cf, ck] : swaps) {
+    if (tree_link(lf, lk) && !linked(lf, lk)) {
+      const int top = parent_[lf] == adj_[lf][lk] ? lf : adj_[lf][lk];
+      if (std::find(tops_.begin(), tops_.end(), top) == tops_.end()) tops_.push_back(top);
+    }
+    if (adj_[cf][ck] >= 0 && !tree_link(cf, ck) && linked(cf, ck)) {
+      const std::pair<int, int> g{std::min(cf, adj_[cf][ck]),
+                                  cf < adj_[cf][ck] ? ck : adj_edge_[cf][ck]};
+      if (std::find(glues_.begin(), glues_.end(), g) == glues_.end()) glues_.push_back(g);
+    }
+  }
+  // Without the cut links the tree falls into parts (part_of); the links are a spanning tree
+  // again when the glued edges join those parts without a cycle.
+  const int n = static_cast<int>(tops_.size());
+  if (n == 0 || glues_.size() != tops_.size()) return revert();
+  std::vector<int> joined(n + 1);  // union-find over the parts
+  for (int i = 0; i <= n; ++i) joined[i] = i;
+  const auto set_of = [&](int i) {
+    while (joined[i] != i) i = joined[i] = joined[joined[i]];
+    return i;
+  };
+  for (const auto& [x, j] : glues_) {
+    const int a = set_of(part_of(tops_.data(), n, x)),
+              b = set_of(part_of(tops_.data(), n, adj_[x][j]));
+    if (a == b) return revert();  // a cycle
+    joined[a] = b;
+  }
+  // The faces whose way to `root` crosses a glued edge move: the parts other than root's, laid
+  // out from the edges glued to root's part on, breadth first.
+  const int root_part = part_of(tops_.data(), n, root);
   moving_.clear();
   new_pos_.clear();
-  order2_.assign(1, root);
-  from_[root] = -1;
-  std::size_t reached = 1;
-  for (std::size_t i = 0; i < order2_.size(); ++i) {
-    const int x = order2_[i];
+  for (const auto& [x, j] : glues_)
+    for (const auto& [a, b, k] : {std::tuple{x, adj_[x][j], adj_edge_[x][j]},
+                                  std::tuple{adj_[x][j], x, static_cast<std::int8_t>(j)}})
+      if (part_of(tops_.data(), n, a) == root_part && part_of(tops_.data(), n, b) != root_part) {
+        from_[b] = k;
+        is_moving_[b] = 1;
+        moving_.push_back(b);
+      }
+  for (std::size_t i = 0; i < moving_.size(); ++i) {
+    const int x = moving_[i];
     for (int k = 0; k < 3; ++k) {
       if (!linked(x, k)) continue;
       const int y = adj_[x][k];
-      if (from_[x] >= 0 && y == adj_[x][from_[x]]) continue;  // its parent
-      if (from_[y] != -2) return give_up();                   // a cycle
+      if (y == adj_[x][from_[x]]) continue;  // its parent
       from_[y] = adj_edge_[x][k];
-      order2_.push_back(y);
-      ++reached;
-      if (is_moving_[x] || glued(x, k)) {
-        is_moving_[y] = 1;
-        moving_.push_back(y);
-      }
+      is_moving_[y] = 1;
+      moving_.push_back(y);
     }
   }
-  if (reached != static_cast<std::size_t>(nf_) || moving_.empty()) return give_up();
+  if (moving_.empty()) return give_up();
   // Lay out the moved faces (parents first), each checked at once against the faces that stay
   // (most candidates fail here, early); then, when the swaps moved parts differently, each
   // against the moved ones placed before it.

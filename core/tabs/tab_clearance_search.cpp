@@ -11,16 +11,17 @@
 
 namespace papernet::tab_clearance_detail {
 
-template <class Degree, class Skip>
-std::vector<std::pair<int, int>> Clearance::crossing_glues(int top, std::array<int, 2> link_ends,
-                                                           Vec3 at, std::size_t most,
-                                                           Degree&& degree, Skip&& skip) const {
-  const bool sub_small = 2 * size_[top] <= nf_;
+template <class Sub, class SmallFaces, class Degree, class Skip>
+std::vector<std::pair<int, int>> Clearance::crossing_glues(Sub&& sub, bool sub_small,
+                                                           SmallFaces&& small_faces,
+                                                           std::array<int, 2> link_ends, Vec3 at,
+                                                           std::size_t most, Degree&& degree,
+                                                           Skip&& skip) const {
   std::vector<std::pair<double, std::pair<int, int>>> near;
-  const auto side = [&](int x) {  // the cut edges from face x of the smaller side
+  small_faces([&](int x) {  // the cut edges from face x of the smaller side
     for (int j = 0; j < 3; ++j) {
       const int y = adj_[x][j];
-      if (y < 0 || linked(x, j) || in_sub(top, y) == sub_small || skip(x, j)) continue;
+      if (y < 0 || linked(x, j) || sub(y) == sub_small || skip(x, j)) continue;
       const int a = mesh_.faces[x][j], b = mesh_.faces[x][(j + 1) % 3];
       const int gain_a = a == link_ends[0] || a == link_ends[1] ? 1 : 0;
       const int gain_b = b == link_ends[0] || b == link_ends[1] ? 1 : 0;
@@ -30,19 +31,31 @@ std::vector<std::pair<int, int>> Clearance::crossing_glues(int top, std::array<i
       const Vec3 m = 0.5 * (mesh_.vertices[a] + mesh_.vertices[b]);
       near.push_back({norm(m - at), {x, j}});
     }
-  };
-  const int lo = tin_[top], hi = tin_[top] + size_[top];
-  if (sub_small) {
-    for (int i = lo; i < hi; ++i) side(order_[i]);
-  } else {
-    for (int i = 0; i < lo; ++i) side(order_[i]);
-    for (int i = hi; i < nf_; ++i) side(order_[i]);
-  }
+  });
+  // Sorted by distance, then by edge: the same glues whatever order the faces came in.
   std::sort(near.begin(), near.end());
   if (near.size() > most) near.resize(most);
   std::vector<std::pair<int, int>> out;
   for (const auto& [d, g] : near) out.push_back(g);
   return out;
+}
+
+template <class Degree, class Skip>
+std::vector<std::pair<int, int>> Clearance::crossing_glues(int top, std::array<int, 2> link_ends,
+                                                           Vec3 at, std::size_t most,
+                                                           Degree&& degree, Skip&& skip) const {
+  const bool sub_small = 2 * size_[top] <= nf_;
+  const int lo = tin_[top], hi = tin_[top] + size_[top];
+  return crossing_glues([&](int x) { return in_sub(top, x); }, sub_small,
+                        [&](auto&& f) {
+                          if (sub_small) {
+                            for (int i = lo; i < hi; ++i) f(order_[i]);
+                          } else {
+                            for (int i = 0; i < lo; ++i) f(order_[i]);
+                            for (int i = hi; i < nf_; ++i) f(order_[i]);
+                          }
+                        },
+                        link_ends, at, most, degree, skip);
 }
 
 std::vector<std::pair<int, int>> Clearance::links_at(int a) const {
@@ -286,10 +299,10 @@ bool Clearance::try_compound(int f, int k, Sideways* sideways) {
       const int r = static_cast<int>(i * static_cast<std::size_t>(nf_) / kRoots);
       if (in_sub(atop, r) != a_small) roots[nroots++] = r;
     }
-    // The tree after the first swap, for the second swap's cycle.
+    // The tree after the first swap, for the second swap's cycle: its links, and its sides
+    // through the parts of the current tree (below), which stays rooted as it is.
     set_link(af, ak, false);
     set_link(gf, gk, true);
-    root_tree();
     const auto degree = [&](int x) {
       int d = cut_degree_[x];
       for (int w : {mesh_.faces[af][ak], mesh_.faces[af][(ak + 1) % 3]}) d += w == x ? 1 : 0;
@@ -301,25 +314,49 @@ bool Clearance::try_compound(int f, int k, Sideways* sideways) {
     for (const auto& [bf, bk] : links_at(tail)) {
       if (tabu(bf, bk) || (bf == af && bk == ak)) continue;
       const int b0 = mesh_.faces[bf][bk], b1 = mesh_.faces[bf][(bk + 1) % 3];
-      const int bp = adj_[bf][bk], btop = parent_[bf] == bp ? bf : bp;
-      const bool sub_small = 2 * size_[btop] <= nf_;
+      // The sides of that tree without link b: parts of the current tree without links a and b
+      // (part_of), two of them joined by the glued edge; without link a alone when b is the
+      // glued edge. `sub` marks the parts on the side without face 0 (which is in part 0).
+      std::array<int, 2> tops{atop, -1};
+      int n = 1;
+      std::array<bool, 3> sub{false, true, false};
+      std::array<int, 3> part_size{nf_ - size_[atop], size_[atop], 0};
+      if (canon(bf, bk) != canon(gf, gk)) {
+        const int bp = adj_[bf][bk];
+        tops[1] = parent_[bf] == bp ? bf : bp;
+        n = 2;
+        const int inner = in_sub(atop, tops[1]) ? 1 : in_sub(tops[1], atop) ? 0 : -1;
+        part_size[1] = size_[atop] - (inner == 1 ? size_[tops[1]] : 0);
+        part_size[2] = size_[tops[1]] - (inner == 0 ? size_[atop] : 0);
+        part_size[0] = nf_ - part_size[1] - part_size[2];
+        const int lone = 3 - part_of(tops.data(), 2, gf) - part_of(tops.data(), 2, adj_[gf][gk]);
+        for (int i = 0; i < 3; ++i) sub[i] = lone == 0 ? i != 0 : i == lone;
+      }
+      const auto in_sub1 = [&](int x) { return sub[part_of(tops.data(), n, x)]; };
+      int sub_size = 0;
+      for (int i = 0; i <= n; ++i) sub_size += sub[i] ? part_size[i] : 0;
+      const bool sub_small = 2 * sub_size <= nf_;
       int root = 0;
       for (std::size_t i = 0; i < nroots; ++i)
-        if (in_sub(btop, roots[i]) != sub_small) {
+        if (in_sub1(roots[i]) != sub_small) {
           root = roots[i];
           break;
         }
       const auto skip = [&](int x, int j) {
         return tabu(x, j) || (x == af && j == ak) || (adj_[x][j] == af && adj_edge_[x][j] == ak);
       };
-      for (const auto& g : crossing_glues(btop, {b0, b1}, at, kCompoundGlues, degree, skip)) {
+      const auto small_faces = [&](auto&& f) {
+        for_each_in_parts(
+            tops.data(), n, [&](int part) { return sub[part] == sub_small; }, f);
+      };
+      for (const auto& g : crossing_glues(in_sub1, sub_small, small_faces, {b0, b1}, at,
+                                          kCompoundGlues, degree, skip)) {
         seconds.push_back({bf, bk, g.first, g.second});
         second_root.push_back(root);
       }
     }
     set_link(gf, gk, false);
     set_link(af, ak, true);
-    root_tree();
     for (std::size_t i = 0; i < seconds.size(); ++i) {
       if (evaluations_ >= std::min(budget_, step_limit_)) return false;
       Change change;

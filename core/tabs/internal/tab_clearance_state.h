@@ -104,6 +104,40 @@ class Clearance {
   std::vector<std::pair<int, int>> crossing_glues(int top, std::array<int, 2> link_ends, Vec3 at,
                                                   std::size_t most, Degree&& degree,
                                                   Skip&& skip) const;
+  /// crossing_glues for a link of a tree given by its two sides rather than by the current
+  /// tree's subtree: `sub(x)` says whether face x is on the side without face 0, `sub_small`
+  /// whether that side is the smaller one (the side moved), `small_faces(f)` calls f on each
+  /// face of the smaller side.
+  template <class Sub, class SmallFaces, class Degree, class Skip>
+  std::vector<std::pair<int, int>> crossing_glues(Sub&& sub, bool sub_small,
+                                                  SmallFaces&& small_faces,
+                                                  std::array<int, 2> link_ends, Vec3 at,
+                                                  std::size_t most, Degree&& degree,
+                                                  Skip&& skip) const;
+  /// The current tree without the links above tops[0], ..., tops[n - 1] (each named by the face
+  /// below it) falls into n + 1 parts: part 0 holds face 0 (the tree's root), part i + 1 the
+  /// faces whose nearest cut link on the way to face 0 is the one above tops[i].
+  int part_of(const int* tops, int n, int x) const {
+    int part = 0;
+    for (int i = 0; i < n; ++i)
+      if (in_sub(tops[i], x) && (part == 0 || size_[tops[i]] < size_[tops[part - 1]])) part = i + 1;
+    return part;
+  }
+  /// Calls f(x) for each face x of the parts (numbered as part_of does) for which want(part)
+  /// holds, in the tree's pre-order: the work is that of those parts, not of the whole tree.
+  template <class Want, class F>
+  void for_each_in_parts(const int* tops, int n, Want&& want, F&& f) const {
+    // Between consecutive ends of the tops' ranges in the pre-order, every face is in one part.
+    std::vector<int> ends{0, nf_};
+    for (int i = 0; i < n; ++i)
+      ends.push_back(tin_[tops[i]]), ends.push_back(tin_[tops[i]] + size_[tops[i]]);
+    std::sort(ends.begin(), ends.end());
+    for (std::size_t e = 0; e + 1 < ends.size(); ++e) {
+      const int lo = ends[e], hi = ends[e + 1];
+      if (lo == hi || !want(part_of(tops, n, order_[lo]))) continue;
+      for (int i = lo; i < hi; ++i) f(order_[i]);
+    }
+  }
   std::vector<int> cut_neighbours(int x) const;
   std::vector<std::pair<int, int>> hair_links(int u, int v) const;
   /// A leaf of the cut tree at v does no harm: v is on the boundary or far from flat.
@@ -139,7 +173,8 @@ class Clearance {
   std::vector<std::uint32_t> tabu_until_;    // by canonical half-edge: step until which it stays
 
   // Scratch of apply_move.
-  std::vector<int> moving_, from_, mark_, order2_, slot_;
+  std::vector<int> moving_, from_, mark_, slot_, tops_;
+  std::vector<std::pair<int, int>> glues_;  // apply_compound: the edges its swaps glue
   std::vector<char> is_moving_;
   std::vector<Triangle2> new_pos_, old_pos_;
   std::vector<int> affected_;
