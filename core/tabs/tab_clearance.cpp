@@ -151,6 +151,45 @@ void Clearance::root_tree() {
   }
 }
 
+void Clearance::reroot_after_swap(int lf, int lk, int cf, int ck) {
+  const int lp = adj_[lf][lk];
+  const int top = parent_[lf] == lp ? lf : lp;  // the side cut off: top's subtree
+  int c = cf, d = adj_[cf][ck];
+  if (!in_sub(top, c)) std::swap(c, d);  // c on that side, d its new parent
+  const int s = size_[top], t0 = tin_[top];
+  for (int x = parent_[top]; x >= 0; x = parent_[x]) size_[x] -= s;
+  // The side's pre-order from c (the same walk as root_tree's), its parents and sizes.
+  block_.clear();
+  std::vector<int>& stack = stack_;
+  stack.assign(1, c);
+  parent_[c] = d;
+  while (!stack.empty()) {
+    const int x = stack.back();
+    stack.pop_back();
+    block_.push_back(x);
+    size_[x] = 1;
+    for (int k = 0; k < 3; ++k)
+      if (linked(x, k) && adj_[x][k] != parent_[x]) {
+        parent_[adj_[x][k]] = x;
+        stack.push_back(adj_[x][k]);
+      }
+  }
+  for (std::size_t i = block_.size(); i-- > 1;) size_[parent_[block_[i]]] += size_[block_[i]];
+  for (int x = d; x >= 0; x = parent_[x]) size_[x] += s;
+  // The block moves to right after d in the pre-order; the faces between shift by its size.
+  const int pd = tin_[d];
+  int lo = 0, hi = 0, at = 0;
+  if (pd < t0) {
+    std::copy_backward(order_.begin() + pd + 1, order_.begin() + t0, order_.begin() + t0 + s);
+    lo = at = pd + 1, hi = t0 + s;
+  } else {
+    std::copy(order_.begin() + t0 + s, order_.begin() + pd + 1, order_.begin() + t0);
+    lo = t0, hi = pd + 1, at = pd + 1 - s;
+  }
+  std::copy(block_.begin(), block_.end(), order_.begin() + at);
+  for (int i = lo; i < hi; ++i) tin_[order_[i]] = i;
+}
+
 void Clearance::place(int f, const Triangle2& p) {
   grid_.remove(f);
   pos_[f] = p;
@@ -434,7 +473,12 @@ void Clearance::commit() {
     --cut_degree_[mesh_.faces[cf][ck]], --cut_degree_[mesh_.faces[cf][(ck + 1) % 3]];
     ++moves_;
   }
-  root_tree();
+  if (pending_.size() == 1) {
+    const auto [lf, lk, cf, ck] = pending_[0];
+    reroot_after_swap(lf, lk, cf, ck);
+  } else {
+    root_tree();
+  }
 }
 }  // namespace tab_clearance_detail
 

@@ -68,7 +68,13 @@ class Clearance {
   bool blocked(int f, int k) const {
     return is_cut(f, k) && !side_has_room(f, k) && !side_has_room(adj_[f][k], adj_edge_[f][k]);
   }
+  /// parent_, tin_, size_ and order_ from the links: the tree rooted at face 0, in pre-order.
   void root_tree();
+  /// The same after one swap that commit() made (cut link lk of face lf, glued edge ck of face
+  /// cf), from the tree before it: the side cut off is rooted again at the glued edge and its
+  /// block of the pre-order moved after its new parent. Work in that side's size, the depth of
+  /// the tree and a shift of the pre-order, not a walk of the whole tree.
+  void reroot_after_swap(int lf, int lk, int cf, int ck);
   bool in_sub(int top, int x) const {
     return static_cast<unsigned>(tin_[x] - tin_[top]) < static_cast<unsigned>(size_[top]);
   }
@@ -172,8 +178,8 @@ class Clearance {
   std::uint32_t step_ = 0;                   // run()'s current step (tabu_until_)
   std::vector<std::uint32_t> tabu_until_;    // by canonical half-edge: step until which it stays
 
-  // Scratch of apply_move.
-  std::vector<int> moving_, from_, mark_, slot_, tops_;
+  // Scratch of the moves (apply_move, apply_compound, reroot_after_swap).
+  std::vector<int> moving_, from_, mark_, slot_, tops_, block_, stack_;
   std::vector<std::pair<int, int>> glues_;  // apply_compound: the edges its swaps glue
   std::vector<char> is_moving_;
   std::vector<Triangle2> new_pos_, old_pos_;
