@@ -243,21 +243,61 @@ bool Clearance::apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Chang
       if (clashes(new_pos_.back())) return give_up();
     }
   }
-  // Apply it, and drop it at once when the edge it is for still has no room.
+  // Drop it when the edge it is for would still have no room, before the moved faces change
+  // places in the grid (two thirds of the moves laid out without overlap end here); else apply
+  // it.
+  for (std::size_t i = 0; i < moving_.size(); ++i) slot_[moving_[i]] = static_cast<int>(i);
+  set_link(lf, lk, false);
+  set_link(cf, ck, true);
+  if (blocked_when_moved(tf, tk)) {
+    set_link(cf, ck, false);
+    set_link(lf, lk, true);
+    return give_up();
+  }
   old_pos_.resize(moving_.size());
   for (std::size_t i = 0; i < moving_.size(); ++i) {
     old_pos_[i] = pos_[moving_[i]];
     place(moving_[i], new_pos_[i]);
   }
-  set_link(lf, lk, false);
-  set_link(cf, ck, true);
   pending_.assign(1, {lf, lk, cf, ck});
-  if (blocked(tf, tk)) {
-    undo();
-    return false;
-  }
   recount(out);
   return true;
+}
+
+bool Clearance::blocked_when_moved(int f, int k) {
+  const auto at = [&](int x) -> const Triangle2& {
+    return is_moving_[x] ? new_pos_[slot_[x]] : pos_[x];
+  };
+  const int n = adj_[f][k], kn = adj_edge_[f][k];
+  if (n < 0 || linked(f, k) ||
+      sides_coincide(at(f)[k], at(f)[(k + 1) % 3], at(n)[kn], at(n)[(kn + 1) % 3]))
+    return false;  // not a cut edge
+  // The moved faces that may meet a tab on either side: a tab lies within its height of its edge.
+  Box2 reach = triangle_box({at(f)[k], at(f)[(k + 1) % 3], at(n)[kn]});
+  reach.add(at(n)[(kn + 1) % 3]);
+  const double grow = height_ + tol_;
+  reach = {{reach.lo.x - grow, reach.lo.y - grow}, {reach.hi.x + grow, reach.hi.y + grow}};
+  near_.clear();
+  for (std::size_t i = 0; i < moving_.size(); ++i)
+    if (boxes_overlap(reach, triangle_box(new_pos_[i]), 0)) near_.push_back(static_cast<int>(i));
+  // side_has_room with the moved faces where the move puts them.
+  const auto room = [&](int x, int j) {
+    return tab_fits(
+        at(x), j, shapes_, height_, [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
+          bool hit = false;
+          grid_.query(box, [&](int c) {
+            if (hit || is_moving_[c]) return;
+            hit = triangles_overlap(t0, pos_[c], tol_) || triangles_overlap(t1, pos_[c], tol_);
+          });
+          for (std::size_t i = 0; i < near_.size() && !hit; ++i) {
+            const Triangle2& q = new_pos_[near_[i]];
+            hit = boxes_overlap(box, triangle_box(q), tol_) &&
+                  (triangles_overlap(t0, q, tol_) || triangles_overlap(t1, q, tol_));
+          }
+          return hit;
+        });
+  };
+  return !room(f, k) && !room(n, kn);
 }
 
 // Makes the swaps together (each cuts link lk of face lf and glues cut edge ck of face cf) and

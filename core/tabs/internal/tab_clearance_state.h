@@ -70,6 +70,9 @@ class Clearance {
   }
   /// parent_, tin_, size_ and order_ from the links: the tree rooted at face 0, in pre-order.
   void root_tree();
+  /// blocked(f, k) once the move apply_move laid out (moving_, new_pos_, slot_, the links
+  /// swapped) is made, before its faces move in the grid.
+  bool blocked_when_moved(int f, int k);
   /// The same after one swap that commit() made (cut link lk of face lf, glued edge ck of face
   /// cf), from the tree before it: the side cut off is rooted again at the glued edge and its
   /// block of the pre-order moved after its new parent. Work in that side's size, the depth of
@@ -179,7 +182,7 @@ class Clearance {
   std::vector<std::uint32_t> tabu_until_;    // by canonical half-edge: step until which it stays
 
   // Scratch of the moves (apply_move, apply_compound, reroot_after_swap).
-  std::vector<int> moving_, from_, mark_, slot_, tops_, block_, stack_;
+  std::vector<int> moving_, from_, mark_, slot_, tops_, block_, stack_, near_;
   std::vector<std::pair<int, int>> glues_;  // apply_compound: the edges its swaps glue
   std::vector<char> is_moving_;
   std::vector<Triangle2> new_pos_, old_pos_;
