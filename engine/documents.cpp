@@ -387,7 +387,7 @@ void write_documents(const JobOptions& options, const DocumentRequest& request,
   report(progress, "write", 0.9);
   Documents& docs = outcome.documents;
   docs.net_json = write_net_json(outcome.net);
-  if (request.glb) docs.glb = write_glb(outcome.net.mesh);
+  if (request.glb) docs.glb = write_glb(outcome.net.mesh, outcome.net.colour);
   if (request.obj) docs.obj = write_obj(outcome.net.mesh);
 }
 

@@ -198,10 +198,25 @@ TEST(Pipeline, AnApproximatePieceSaysItHasNoUvs) {
 // white one (the texture: a yellow body, an orange beak, black and white eyes).
 TEST(Pipeline, AnApproximatePieceOfATexturedModelCarriesItsColoursAtItsCorners) {
   PipelineProgress quiet;
-  const UnfoldOutcome out = run_pipeline(data_file("Duck.glb"), {}, {}, {}, quiet);
+  const UnfoldOutcome out = run_pipeline(data_file("Duck.glb"), {}, {}, {.glb = true}, quiet);
   expect_checked(out);
   ASSERT_EQ(out.net.result, "approximate");
   const MeshColour& c = out.net.colour;
+  // The folded mesh (mesh.glb) carries the same colours at its corners.
+  const LoadedMesh folded = load_mesh(out.documents.glb, MeshFormat::Glb);
+  ASSERT_EQ(folded.mesh.faces.size(), out.net.mesh.faces.size());
+  ASSERT_EQ(folded.colour.colours.size(), out.net.mesh.faces.size());
+  std::vector<double> reds, greens;
+  for (const auto& face : c.colours)
+    for (const RGBA& rgba : face) reds.push_back(rgba[0]), greens.push_back(rgba[1]);
+  std::vector<double> back_reds, back_greens;
+  for (const auto& face : folded.colour.colours)
+    for (const RGBA& rgba : face) back_reds.push_back(rgba[0]), back_greens.push_back(rgba[1]);
+  for (auto* v : {&reds, &greens, &back_reds, &back_greens}) std::sort(v->begin(), v->end());
+  for (std::size_t i = 0; i < reds.size(); ++i) {  // the same colours (faces may be reordered)
+    EXPECT_NEAR(back_reds[i], reds[i], 1e-6);
+    EXPECT_NEAR(back_greens[i], greens[i], 1e-6);
+  }
   ASSERT_EQ(c.colours.size(), out.net.mesh.faces.size());
   for (const auto& f : c.uvs) EXPECT_TRUE(std::isnan(f[0][0]));
   std::size_t corners = 0, yellow = 0, orange = 0;

@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/io/load.h"
 #include "tests/support/meshes.h"
@@ -84,12 +88,104 @@ TEST(MeshExport, GlbReadsBackThroughTheGltfLoader) {
   }
 }
 
+// A face's corners as the GLB stores them (float32): the key that finds a face again after the
+// loader has welded the corners and the writer has grouped the faces by material.
+using CornerKey = std::array<float, 9>;
+CornerKey corner_key(const Mesh& mesh, std::size_t f) {
+  CornerKey key{};
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& v = mesh.vertices[mesh.faces[f][k]];
+    key[3 * k] = static_cast<float>(v.x);
+    key[3 * k + 1] = static_cast<float>(v.y);
+    key[3 * k + 2] = static_cast<float>(v.z);
+  }
+  return key;
+}
+
+TEST(MeshExport, ColouredGlbReadsBackWithItsMaterialsTexturesAndCornerColours) {
+  // A textured model of four materials (two of them plain colours), one with vertex colours,
+  // one textured with one material.
+  for (const std::string file :
+       {"CesiumMilkTruck/CesiumMilkTruck.gltf", "cubevc.glb", "Duck.glb"}) {
+    SCOPED_TRACE(file);
+    const std::string path = std::string(PAPERNET_TEST_DATA) + "/" + file;
+    LoadOptions options;  // a .gltf's buffers and images beside it
+    if (path.ends_with(".gltf"))
+      for (const std::string& uri : gltf_external_uris(read_mesh_file(path, options.max_bytes)))
+        options.external_files[uri] =
+            read_mesh_file(path.substr(0, path.rfind('/') + 1) + uri, options.max_bytes);
+    const LoadedMesh in = load_mesh_file(path, options);
+    ASSERT_FALSE(in.colour.empty());
+    const std::string glb = write_glb(in.mesh, in.colour);
+    const LoadedMesh back = load_mesh(glb, MeshFormat::Glb);
+    ASSERT_EQ(back.mesh.faces.size(), in.mesh.faces.size());
+    const MeshColour &a = in.colour, &b = back.colour;
+
+    // The materials as they were (faces without one would get a white one of their own), not
+    // metallic; the textures' images byte for byte, with their samplers.
+    const bool plain = std::any_of(a.face_materials.begin(), a.face_materials.end(),
+                                   [](int m) { return m < 0; }) ||
+                       a.face_materials.empty();
+    ASSERT_EQ(b.materials.size(), a.materials.size() + (plain ? 1 : 0));
+    for (std::size_t m = 0; m < a.materials.size(); ++m) {
+      EXPECT_EQ(b.materials[m].name, a.materials[m].name);
+      EXPECT_EQ(b.materials[m].texture, a.materials[m].texture);
+      EXPECT_EQ(b.materials[m].alpha_mode, a.materials[m].alpha_mode);
+      for (int i = 0; i < 4; ++i)
+        EXPECT_NEAR(b.materials[m].base_color[i], a.materials[m].base_color[i], 1e-12);
+    }
+    ASSERT_EQ(b.textures.size(), a.textures.size());
+    for (std::size_t t = 0; t < a.textures.size(); ++t) {
+      EXPECT_EQ(b.textures[t].bytes, a.textures[t].bytes);
+      EXPECT_EQ(b.textures[t].mime_type, a.textures[t].mime_type);
+      EXPECT_EQ(b.textures[t].sampler.wrap_s, a.textures[t].sampler.wrap_s);
+      EXPECT_EQ(b.textures[t].sampler.min_filter, a.textures[t].sampler.min_filter);
+    }
+    const auto gltf = nlohmann::json::parse(glb.substr(20, u32(glb, 12)));
+    for (const auto& m : gltf["materials"]) {
+      EXPECT_EQ(m["pbrMetallicRoughness"]["metallicFactor"], 0);
+      EXPECT_EQ(m["doubleSided"], true);
+    }
+
+    // Each face again, found by its corners: its material, and its corners' texture coordinates
+    // (where its material has a texture) and colours.
+    std::map<CornerKey, std::size_t> faces;
+    for (std::size_t f = 0; f < in.mesh.faces.size(); ++f) faces[corner_key(in.mesh, f)] = f;
+    ASSERT_EQ(faces.size(), in.mesh.faces.size()) << "two faces with the same corners";
+    std::size_t textured = 0, coloured = 0;
+    for (std::size_t f = 0; f < back.mesh.faces.size(); ++f) {
+      const auto it = faces.find(corner_key(back.mesh, f));
+      ASSERT_NE(it, faces.end()) << "face " << f << " of the GLB is not a face of the model";
+      const std::size_t g = it->second;
+      const int ma = a.face_materials.empty() ? -1 : a.face_materials[g];
+      const int mb = b.face_materials.at(f);
+      ASSERT_EQ(mb, ma < 0 ? static_cast<int>(a.materials.size()) : ma);
+      if (ma >= 0 && a.materials[ma].texture >= 0) {
+        ++textured;
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < 2; ++i) EXPECT_NEAR(b.uvs.at(f)[k][i], a.uvs[g][k][i], 1e-6);
+      }
+      if (!a.colours.empty()) {
+        ++coloured;
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < 4; ++i) EXPECT_NEAR(b.colours.at(f)[k][i], a.colours[g][k][i], 1e-6);
+      }
+    }
+    EXPECT_GT(textured + coloured, 0u);
+  }
+}
+
 TEST(MeshExport, RefusesBadMeshes) {
   EXPECT_THROW(write_glb(Mesh{}), std::invalid_argument);
   Mesh bad = test::tetrahedron();
   bad.faces[0][1] = 17;
   EXPECT_THROW(write_glb(bad), std::invalid_argument);
   EXPECT_THROW(write_obj(bad), std::invalid_argument);
+  // Colour that does not match the mesh.
+  MeshColour colour;
+  colour.face_materials = {0};
+  colour.materials.emplace_back();
+  EXPECT_THROW(write_glb(test::tetrahedron(), colour), std::invalid_argument);
 }
 
 }  // namespace
