@@ -54,6 +54,21 @@ std::string glb_container(const nlohmann::json& gltf, const std::string& bin) {
   return out;
 }
 
+// A material as paper shows it: not metallic, both sides.
+nlohmann::json paper_material(const RGBA& base, int texture, AlphaMode mode, double cutoff,
+                              const std::string& name) {
+  using nlohmann::json;
+  json pbr = json::object({{"baseColorFactor", json::array({base[0], base[1], base[2], base[3]})},
+                           {"metallicFactor", 0},
+                           {"roughnessFactor", 1}});
+  if (texture >= 0) pbr["baseColorTexture"] = json::object({{"index", texture}});
+  json m = json::object(
+      {{"pbrMetallicRoughness", pbr}, {"alphaMode", alpha_mode_name(mode)}, {"doubleSided", true}});
+  if (mode == AlphaMode::Mask) m["alphaCutoff"] = cutoff;
+  if (!name.empty()) m["name"] = name;
+  return m;
+}
+
 }  // namespace
 
 std::string write_glb(const Mesh& mesh) {
@@ -83,11 +98,13 @@ std::string write_glb(const Mesh& mesh) {
       {"scene", 0},
       {"scenes", json::array({{{"nodes", {0}}}})},
       {"nodes", json::array({{{"mesh", 0}, {"name", "folded"}}})},
-      {"meshes",
-       json::array(
-           {{{"name", "folded"},
-             {"primitives",
-              json::array({{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"mode", 4}}})}}})},
+      {"meshes", json::array({{{"name", "folded"},
+                               {"primitives", json::array({{{"attributes", {{"POSITION", 0}}},
+                                                            {"indices", 1},
+                                                            {"mode", 4},
+                                                            {"material", 0}}})}}})},
+      {"materials",
+       json::array({paper_material({1, 1, 1, 1}, -1, AlphaMode::Opaque, 0.5, "paper")})},
       {"buffers", json::array({{{"byteLength", bin.size()}}})},
       {"bufferViews",
        json::array(
@@ -195,26 +212,14 @@ std::string write_glb(const Mesh& mesh, const MeshColour& colour) {
                                        {"material", material >= 0 ? material : materials}}));
   }
 
-  // The materials as paper shows them: not metallic, both sides.
+  // The materials as paper shows them.
   json material_list = json::array();
-  const auto paper = [](const RGBA& base, int texture, AlphaMode mode, double cutoff,
-                        const std::string& name) {
-    json pbr = json::object({{"baseColorFactor", json::array({base[0], base[1], base[2], base[3]})},
-                             {"metallicFactor", 0},
-                             {"roughnessFactor", 1}});
-    if (texture >= 0) pbr["baseColorTexture"] = json::object({{"index", texture}});
-    json m = json::object({{"pbrMetallicRoughness", pbr},
-                           {"alphaMode", alpha_mode_name(mode)},
-                           {"doubleSided", true}});
-    if (mode == AlphaMode::Mask) m["alphaCutoff"] = cutoff;
-    if (!name.empty()) m["name"] = name;
-    return m;
-  };
   const int textures = static_cast<int>(colour.textures.size());
   for (const Material& m : colour.materials)
-    material_list.push_back(paper(m.base_color, m.texture < textures ? m.texture : -1, m.alpha_mode,
-                                  m.alpha_cutoff, m.name));
-  if (unmaterialed) material_list.push_back(paper({1, 1, 1, 1}, -1, AlphaMode::Opaque, 0.5, ""));
+    material_list.push_back(paper_material(m.base_color, m.texture < textures ? m.texture : -1,
+                                           m.alpha_mode, m.alpha_cutoff, m.name));
+  if (unmaterialed)
+    material_list.push_back(paper_material({1, 1, 1, 1}, -1, AlphaMode::Opaque, 0.5, ""));
 
   // The textures' images as they came, each with its sampler.
   json images = json::array(), samplers = json::array(), texture_list = json::array();

@@ -9,7 +9,8 @@ namespace papernet {
 
 /// The mesh as a binary glTF 2.0 (GLB): one mesh, one triangle primitive with POSITION
 /// (float32, with min/max) and uint32 indices, no normals (viewers then shade flat, as folded
-/// paper looks). Returns the file's bytes.
+/// paper looks), and a white material as paper shows it (not metallic, double-sided; glTF's
+/// default material is metallic, which viewers draw dark grey). Returns the file's bytes.
 /// \throw InvalidInputException when the mesh is empty or has a face index out of range.
 std::string write_glb(const Mesh& mesh);
 
