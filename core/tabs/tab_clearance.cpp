@@ -249,7 +249,8 @@ bool Clearance::apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Chang
   for (std::size_t i = 0; i < moving_.size(); ++i) slot_[moving_[i]] = static_cast<int>(i);
   set_link(lf, lk, false);
   set_link(cf, ck, true);
-  if (blocked_when_moved(tf, tk)) {
+  const Blocked before = blocked_when_moved(tf, tk);
+  if (before == Blocked::kYes) {
     set_link(cf, ck, false);
     set_link(lf, lk, true);
     return give_up();
@@ -260,26 +261,40 @@ bool Clearance::apply_move(int tf, int tk, int lf, int lk, int cf, int ck, Chang
     place(moving_[i], new_pos_[i]);
   }
   pending_.assign(1, {lf, lk, cf, ck});
+  if (before == Blocked::kUnknown && blocked(tf, tk)) {
+    undo();
+    return false;
+  }
   recount(out);
   return true;
 }
 
-bool Clearance::blocked_when_moved(int f, int k) {
+Clearance::Blocked Clearance::blocked_when_moved(int f, int k) {
   const auto at = [&](int x) -> const Triangle2& {
     return is_moving_[x] ? new_pos_[slot_[x]] : pos_[x];
   };
   const int n = adj_[f][k], kn = adj_edge_[f][k];
   if (n < 0 || linked(f, k) ||
       sides_coincide(at(f)[k], at(f)[(k + 1) % 3], at(n)[kn], at(n)[(kn + 1) % 3]))
-    return false;  // not a cut edge
+    return Blocked::kNo;  // not a cut edge
   // The moved faces that may meet a tab on either side: a tab lies within its height of its edge.
   Box2 reach = triangle_box({at(f)[k], at(f)[(k + 1) % 3], at(n)[kn]});
   reach.add(at(n)[(kn + 1) % 3]);
   const double grow = height_ + tol_;
   reach = {{reach.lo.x - grow, reach.lo.y - grow}, {reach.hi.x + grow, reach.hi.y + grow}};
   near_.clear();
-  for (std::size_t i = 0; i < moving_.size(); ++i)
-    if (boxes_overlap(reach, triangle_box(new_pos_[i]), 0)) near_.push_back(static_cast<int>(i));
+  // Beyond a few moved faces near the edge, where they are or where they go, the test after
+  // the move is faster: here each goes against every tab shape one by one, and the grid still
+  // holds them where they were (crowded slivers, the Twin plate).
+  std::size_t were_near = 0;
+  for (std::size_t i = 0; i < moving_.size(); ++i) {
+    if (boxes_overlap(reach, box_[moving_[i]], 0) && ++were_near > kNearMovedFaces)
+      return Blocked::kUnknown;
+    if (boxes_overlap(reach, triangle_box(new_pos_[i]), 0)) {
+      if (near_.size() == kNearMovedFaces) return Blocked::kUnknown;
+      near_.push_back(static_cast<int>(i));
+    }
+  }
   // side_has_room with the moved faces where the move puts them.
   const auto room = [&](int x, int j) {
     return tab_fits(
@@ -297,7 +312,7 @@ bool Clearance::blocked_when_moved(int f, int k) {
           return hit;
         });
   };
-  return !room(f, k) && !room(n, kn);
+  return !room(f, k) && !room(n, kn) ? Blocked::kYes : Blocked::kNo;
 }
 
 // Makes the swaps together (each cuts link lk of face lf and glues cut edge ck of face cf) and

@@ -31,6 +31,8 @@ constexpr int kStallSweeps = 3;
 constexpr int kRestarts = 4;
 constexpr std::size_t kRestartLevel = 1;
 constexpr std::array<std::size_t, 4> kStepCaps = {50, 200, 800, static_cast<std::size_t>(-1) / 2};
+// Moved faces near a move's edge that Clearance::blocked_when_moved tests one by one, at most.
+constexpr std::size_t kNearMovedFaces = 32;
 // Compound moves (Clearance::try_compound): glues tried per second link.
 constexpr std::size_t kCompoundGlues = 16;
 // ... and faces tried as the root of its layout (spread over the net).

@@ -71,8 +71,10 @@ class Clearance {
   /// parent_, tin_, size_ and order_ from the links: the tree rooted at face 0, in pre-order.
   void root_tree();
   /// blocked(f, k) once the move apply_move laid out (moving_, new_pos_, slot_, the links
-  /// swapped) is made, before its faces move in the grid.
-  bool blocked_when_moved(int f, int k);
+  /// swapped) is made, before its faces move in the grid; kUnknown when more than
+  /// kNearMovedFaces moved faces come near the edge (then blocked() after the move tells).
+  enum class Blocked { kNo, kYes, kUnknown };
+  Blocked blocked_when_moved(int f, int k);
   /// The same after one swap that commit() made (cut link lk of face lf, glued edge ck of face
   /// cf), from the tree before it: the side cut off is rooted again at the glued edge and its
   /// block of the pre-order moved after its new parent. Work in that side's size, the depth of
