@@ -167,11 +167,14 @@ std::string write_glb(const Mesh& mesh, const MeshColour& colour) {
   // One primitive per material (faces without one last), each corner a vertex of its own.
   json primitives = json::array();
   bool unmaterialed = false;
+  std::vector<std::vector<std::size_t>> by_material(materials + 1);  // the last: none
+  for (std::size_t f = 0; f < nf; ++f) {
+    const int m = material_of(f);
+    by_material[m < 0 ? materials : m].push_back(f);
+  }
   for (int m = 0; m <= materials; ++m) {
     const int material = m < materials ? m : -1;
-    std::vector<std::size_t> faces;
-    for (std::size_t f = 0; f < nf; ++f)
-      if (material_of(f) == material) faces.push_back(f);
+    const std::vector<std::size_t>& faces = by_material[m];
     if (faces.empty()) continue;
     unmaterialed |= material < 0;
     json attributes = json::object();
