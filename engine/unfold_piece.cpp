@@ -1,5 +1,6 @@
 // The pipeline's middle steps for one part: unfold it by the job's strategy, then make room for
 // glue tabs on its net.
+#include <algorithm>
 #include <chrono>
 #include <numbers>
 #include <utility>
@@ -15,6 +16,9 @@
 
 namespace papernet::engine_detail {
 namespace {
+
+// The share of a part's seconds the steps of detail auto for short edges may take (simplify_mesh).
+constexpr double kSimplifyShare = 0.5;
 
 // The tab room report's threshold for a flat vertex (angle defect); only its flat-leaf counts
 // depend on it, and those are not reported.
@@ -69,11 +73,18 @@ Piece unfold_piece(const Mesh& part, const JobOptions& options, const SimplifyTa
                    double seconds, const AfterUnfold& after, std::size_t input_faces,
                    Progress& progress) {
   // A low-poly version to print instead of the part, when asked for: the net is then
-  // approximate, its distance measured to the part.
+  // approximate, its distance measured to the part. Its time comes out of the part's: at most
+  // half of it for the steps for short edges.
+  const auto start = std::chrono::steady_clock::now();
+  SimplifyTarget limited = detail;
+  limited.seconds = kSimplifyShare * seconds;
   std::optional<Mesh> simple =
-      simplify_mesh(part, collapses_of(options.strategy), detail, progress);
-  if (!simple) return unfold_mesh(part, options, seconds, after, input_faces, progress);
-  Piece piece = unfold_mesh(*simple, options, seconds, after, input_faces, progress);
+      simplify_mesh(part, collapses_of(options.strategy), limited, progress);
+  const double left = std::max(
+      kLeastSeconds,
+      seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  if (!simple) return unfold_mesh(part, options, left, after, input_faces, progress);
+  Piece piece = unfold_mesh(*simple, options, left, after, input_faces, progress);
   piece.simplified = true;
   piece.complete = false;
   piece.hausdorff = approximation_distance(part, piece.mesh);

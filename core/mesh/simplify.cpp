@@ -1,6 +1,7 @@
 #include "core/mesh/simplify.h"
 
 #include <algorithm>
+#include <chrono>
 #include <utility>
 #include <vector>
 
@@ -41,7 +42,13 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   Mesh simple = pm.compact();
   const double diagonal = bounding_box_diagonal(mesh);
   std::size_t step = kShortEdgeStep;
-  while (too_short(simple)) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto out_of_time = [&] {
+    return target.seconds > 0 &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
+               target.seconds;
+  };
+  while (too_short(simple) && !out_of_time()) {
     const std::size_t before = pm.face_count();
     ProgressiveMesh tried = pm;
     collapse_further(tried, strategy, before - std::max<std::size_t>(1, before / step), progress);

@@ -21,6 +21,10 @@ struct SimplifyTarget {
   double short_edge = 0;
   double short_edges_allowed = 0;
   double max_distance = 0;
+  /// Seconds the steps for short edges may take (each measures the distance to `mesh`, which
+  /// on a dense mesh of slivers adds up to seconds); when they are spent, the mesh collapsed so
+  /// far is returned, and the result then depends on the machine's speed. <= 0: no limit.
+  double seconds = 0;
 };
 
 /// A low-poly version of `mesh` to print instead of it: collapsed with `strategy` (legal
