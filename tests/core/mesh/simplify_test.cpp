@@ -48,6 +48,27 @@ TEST(Simplify, ShortEdgesAreCollapsedWithinTheDistance) {
   EXPECT_FALSE(simplify_mesh(part, CollapseStrategy::QQ, target, quiet));
 }
 
+// The short-edge steps stop when their seconds are spent, with the mesh collapsed so far: none
+// at all leaves the collapse to the face target alone (a job's time limit bounds them).
+TEST(Simplify, ShortEdgeStepsStopWhenTheirSecondsAreSpent) {
+  const Mesh part = cad_part();
+  const double diagonal = bounding_box_diagonal(part);
+  SimplifyTarget target;
+  target.faces = 900;
+  target.short_edge = 0.01 * diagonal;
+  target.short_edges_allowed = 0.01;
+  target.max_distance = 0.01 * diagonal;
+  Progress quiet;
+  const std::optional<Mesh> unlimited = simplify_mesh(part, CollapseStrategy::QQ, target, quiet);
+  ASSERT_TRUE(unlimited);
+  EXPECT_LT(unlimited->faces.size(), 850u);  // the steps ran
+  target.seconds = 1e-12;
+  const std::optional<Mesh> limited = simplify_mesh(part, CollapseStrategy::QQ, target, quiet);
+  ASSERT_TRUE(limited);
+  EXPECT_GT(limited->faces.size(), 850u);  // only the collapse to 900 faces
+  EXPECT_LE(limited->faces.size(), 900u);
+}
+
 // With only a face target, the collapse stops there.
 TEST(Simplify, AFaceTargetAloneIsKept) {
   const Mesh part = cad_part();
