@@ -105,18 +105,6 @@ bool Clearance::coincident(int f, int k) const {
   return sides_coincide(pos_[f][k], pos_[f][(k + 1) % 3], pos_[n][kn], pos_[n][(kn + 1) % 3]);
 }
 
-bool Clearance::side_has_room(int f, int k) const {
-  return tab_fits(
-      pos_[f], k, shapes_, height_, [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
-        bool hit = false;
-        grid_.query(box, [&](int c) {
-          if (hit) return;
-          hit = triangles_overlap(t0, pos_[c], tol_) || triangles_overlap(t1, pos_[c], tol_);
-        });
-        return hit;
-      });
-}
-
 void Clearance::set_link(int f, int k, bool on) {
   const int n = adj_[f][k], kn = adj_edge_[f][k];
   if (on) {
@@ -297,19 +285,16 @@ Clearance::Blocked Clearance::blocked_when_moved(int f, int k) {
   }
   // side_has_room with the moved faces where the move puts them.
   const auto room = [&](int x, int j) {
-    return tab_fits(
-        at(x), j, shapes_, height_, [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
-          bool hit = false;
-          grid_.query(box, [&](int c) {
-            if (hit || is_moving_[c]) return;
-            hit = triangles_overlap(t0, pos_[c], tol_) || triangles_overlap(t1, pos_[c], tol_);
-          });
-          for (std::size_t i = 0; i < near_.size() && !hit; ++i) {
-            const Triangle2& q = new_pos_[near_[i]];
-            hit = boxes_overlap(box, triangle_box(q), tol_) &&
-                  (triangles_overlap(t0, q, tol_) || triangles_overlap(t1, q, tol_));
+    return room_beside(
+        at(x), j, [&](int c) { return is_moving_[c] != 0; },
+        [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
+          for (int i : near_) {
+            const Triangle2& q = new_pos_[i];
+            if (boxes_overlap(box, triangle_box(q), tol_) &&
+                (triangles_overlap(t0, q, tol_) || triangles_overlap(t1, q, tol_)))
+              return true;
           }
-          return hit;
+          return false;
         });
   };
   return !room(f, k) && !room(n, kn) ? Blocked::kYes : Blocked::kNo;

@@ -64,7 +64,26 @@ class Clearance {
   bool tabu(int f, int k) const { return tabu_until_[canon(f, k)] > step_; }
   bool coincident(int f, int k) const;
   bool is_cut(int f, int k) const { return adj_[f][k] >= 0 && !linked(f, k) && !coincident(f, k); }
-  bool side_has_room(int f, int k) const;
+  bool side_has_room(int f, int k) const {
+    return room_beside(
+        pos_[f], k, [](int) { return false; },
+        [](const Triangle2&, const Triangle2&, const Box2&) { return false; });
+  }
+  /// Whether a tab fits on the outside of edge k of triangle `face` (tab_fits): the faces in the
+  /// grid are obstacles where they are, except those `skip(c)` leaves out, and `more(t0, t1,
+  /// box)` says whether a tab's two triangles meet another obstacle.
+  template <class Skip, class More>
+  bool room_beside(const Triangle2& face, int k, Skip&& skip, More&& more) const {
+    return tab_fits(
+        face, k, shapes_, height_, [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
+          bool hit = false;
+          grid_.query(box, [&](int c) {
+            if (hit || skip(c)) return;
+            hit = triangles_overlap(t0, pos_[c], tol_) || triangles_overlap(t1, pos_[c], tol_);
+          });
+          return hit || more(t0, t1, box);
+        });
+  }
   bool blocked(int f, int k) const {
     return is_cut(f, k) && !side_has_room(f, k) && !side_has_room(adj_[f][k], adj_edge_[f][k]);
   }
