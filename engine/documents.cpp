@@ -202,7 +202,7 @@ struct FitPrint {
 };
 
 FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& print, double gap,
-                     const PageOptions& page) {
+                     const PageOptions& page, Vec2 alone) {
   // The pieces numbered in a build order, neighbours after each other (docs/print.md).
   FitPrint out{std::move(pieces), {}, {}, {}};
   out.graph = piece_graph(mesh, out.pieces.piece);
@@ -214,7 +214,7 @@ FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& pri
   renumber_pieces(out.pieces.piece, build_order(out.graph, area));
   out.graph = piece_graph(mesh, out.pieces.piece);
   out.layout = layout_net(mesh, arrange_pieces(out.pieces.net, out.pieces.piece, gap), print,
-                          out.pieces.piece);
+                          out.pieces.piece, LargeFaces{out.pieces.large, alone});
   out.pages = nest_pages(out.layout, out.pieces.piece, page, kCutSpacingMm);
   return out;
 }
@@ -239,10 +239,13 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   if (fit) {
     page.validate();
     // Tabs stick out by up to their height on each side; then the paper to cut along, and 3 mm
-    // to spare for the nesting grid's cells (print/nest.h).
-    const double tab_room = 2 * std::max(0.0, options.tab_height_mm) + kCutSpacingMm + 3;
-    const Vec2 room{page.paper.width - 2 * page.margin_mm - tab_room,
-                    page.paper.height - 2 * page.margin_mm - tab_room};
+    // to spare for the nesting grid's cells (print/nest.h). A face too large for that prints
+    // alone, its tabs on the faces beside it where they can (print/fit.h, FitRoom).
+    const double nest_room = kCutSpacingMm + 3;
+    const double tab_room = 2 * std::max(0.0, options.tab_height_mm);
+    const Vec2 alone{page.paper.width - 2 * page.margin_mm - nest_room,
+                     page.paper.height - 2 * page.margin_mm - nest_room};
+    const Vec2 room{alone.x - tab_room, alone.y - tab_room};
     if (!(room.x > 0 && room.y > 0))
       throw InvalidOptionException("option_out_of_range", "margin_mm",
                                    "the margins and tabs leave no room on the paper");
@@ -269,9 +272,9 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
       FitPieces cut;
       try {
         cut = i < std::size(kFitShrinks)
-                  ? cut_to_fit(outcome.net.net, outcome.net.piece, scale, room, page.paper.name,
-                               model_mm, kFitShrinks[i])
-                  : grow_to_fit(mesh, outcome.net.piece, scale, room,
+                  ? cut_to_fit(outcome.net.net, outcome.net.piece, scale, {room, alone},
+                               page.paper.name, model_mm, kFitShrinks[i])
+                  : grow_to_fit(mesh, outcome.net.piece, scale, {room, alone},
                                 grow_for_tabs ? tabs.min_height : 0, tabs.angle_deg);
       } catch (const InvalidOptionException& e) {
         // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
@@ -287,12 +290,12 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
         continue;
       }
       last_pieces = cut.pieces;
-      FitPrint tried = lay_out_fit(mesh, std::move(cut), print, gap, page);
+      FitPrint tried = lay_out_fit(mesh, std::move(cut), print, gap, page, alone);
       if (!chosen || tried.cost() < chosen->cost()) chosen = std::move(tried);
       report(progress, "layout", 0.6 * static_cast<double>(i + 1) / static_cast<double>(tries));
     }
   }
-  FitPieces pieces{outcome.net.net, outcome.net.piece, 0, 0};
+  FitPieces pieces{outcome.net.net, outcome.net.piece, 0, 0, {}};
   PieceGraph graph;
   PrintLayout layout;
   PageLayout pages;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 #include "core/errors.h"
 #include "core/unfold/net_metrics.h"
@@ -27,15 +28,37 @@ Vec2 box_along(const std::vector<Vec2>& hull, std::size_t i) {
   return {hi_u - lo_u, hi_n - lo_n};
 }
 
-/// The largest factor by which the hull can grow and still fit `room` at some edge's turn.
+// Width and height of the box of `hull` turned by `angle`.
+Vec2 box_turned(const std::vector<Vec2>& hull, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  double lo_x = std::numeric_limits<double>::infinity(), hi_x = -lo_x, lo_y = lo_x, hi_y = -lo_x;
+  for (Vec2 p : hull) {
+    const double x = c * p.x - s * p.y, y = s * p.x + c * p.y;
+    lo_x = std::min(lo_x, x), hi_x = std::max(hi_x, x);
+    lo_y = std::min(lo_y, y), hi_y = std::max(hi_y, y);
+  }
+  return {hi_x - lo_x, hi_y - lo_y};
+}
+
+// The turns hull_fits_turned tries besides the hull's edges: every quarter degree of a quarter
+// turn (the box of the next quarter turn is the same box, the other way round).
+constexpr int kQuarterDegrees = 360;
+
+double growth_in(Vec2 box, Vec2 room) {
+  if (!(box.x > 0 && box.y > 0)) return 0;
+  return std::max(std::min(room.x / box.x, room.y / box.y),
+                  std::min(room.y / box.x, room.x / box.y));
+}
+
+/// The largest factor by which the hull can grow and still fit `room` at some turn of
+/// hull_fits_turned.
 double growth_that_fits(const std::vector<Vec2>& hull, Vec2 room) {
   double best = 0;
-  for (std::size_t i = 0; i < hull.size(); ++i) {
-    const Vec2 b = box_along(hull, i);
-    if (!(b.x > 0 && b.y > 0)) continue;
+  for (std::size_t i = 0; i < hull.size(); ++i)
+    best = std::max(best, growth_in(box_along(hull, i), room));
+  for (int q = 0; q < kQuarterDegrees; ++q)
     best = std::max(
-        {best, std::min(room.x / b.x, room.y / b.y), std::min(room.y / b.x, room.x / b.y)});
-  }
+        best, growth_in(box_turned(hull, q * std::numbers::pi / (2 * kQuarterDegrees)), room));
   return best;
 }
 
@@ -50,6 +73,16 @@ bool hull_fits(const std::vector<Vec2>& hull, Vec2 room) {
   }
   for (std::size_t i = 0; i < hull.size(); ++i) {
     const Vec2 b = box_along(hull, i);
+    if ((b.x <= room.x && b.y <= room.y) || (b.x <= room.y && b.y <= room.x)) return true;
+  }
+  return false;
+}
+
+bool hull_fits_turned(const std::vector<Vec2>& hull, Vec2 room) {
+  if (hull_fits(hull, room)) return true;
+  if (hull.size() < 3) return false;
+  for (int q = 1; q < kQuarterDegrees; ++q) {
+    const Vec2 b = box_turned(hull, q * std::numbers::pi / (2 * kQuarterDegrees));
     if ((b.x <= room.x && b.y <= room.y) || (b.x <= room.y && b.y <= room.x)) return true;
   }
   return false;
@@ -71,31 +104,39 @@ std::string mm(double v) {
 
 }  // namespace
 
-FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
+FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, FitRoom fit,
                      const std::string& paper_name, double model_mm, double shrink) {
   const auto n = static_cast<int>(net.parent.size());
-  FitPieces out{net, piece, 0, 0};
+  const Vec2 room = fit.room;
+  const Vec2 alone = fit.alone.x > 0 && fit.alone.y > 0 ? fit.alone : fit.room;
+  FitPieces out{net, piece, 0, 0, std::vector<char>(n, 0)};
   for (int p : piece) out.pieces = std::max(out.pieces, p + 1);
   std::vector<std::vector<Vec2>> face_hull(n);
   int too_large = -1;
-  double growth = std::numeric_limits<double>::infinity();
   for (int f = 0; f < n; ++f) {
     std::vector<Vec2> pts;
     for (Vec2 p : net.points[f]) pts.push_back(scale * p);
     face_hull[f] = convex_hull(pts);
-    const double g = growth_that_fits(face_hull[f], room);
-    if (g > 0 && g < growth) growth = g;  // a face without area fits at any size
-    if (too_large < 0 && !hull_fits(face_hull[f], room)) too_large = f;
+    // A face larger than the room with tabs prints alone, turned as it fits the sheet.
+    const bool large = !hull_fits(face_hull[f], room);
+    out.large[f] = large;
+    if (too_large < 0 && large && !hull_fits_turned(face_hull[f], alone)) too_large = f;
   }
   if (too_large >= 0) {
+    // The largest model that prints: every face fits `alone` at some turn.
+    double growth = std::numeric_limits<double>::infinity();
+    for (int f = 0; f < n; ++f)
+      if (const double g = growth_that_fits(face_hull[f], alone); g > 0)  // 0: no area
+        growth = std::min(growth, g);
     const OrientedBox box = min_area_box(face_hull[too_large]);
     throw InvalidOptionException(
         "face_too_large", "size_mm",
         "face " + std::to_string(too_large) + " prints " + mm(std::max(box.width(), box.height())) +
             " x " + mm(std::min(box.width(), box.height())) + " mm, larger than " + paper_name +
-            " paper holds (" + mm(std::max(room.x, room.y)) + " x " + mm(std::min(room.x, room.y)) +
-            " mm with margins and room for tabs): at most " + mm(std::floor(model_mm * growth)) +
-            " mm (size_mm) prints on " + paper_name + ", or choose larger paper");
+            " paper holds (" + mm(std::max(alone.x, alone.y)) + " x " +
+            mm(std::min(alone.x, alone.y)) + " mm with margins, at any turn): at most " +
+            mm(std::floor(model_mm * growth)) + " mm (size_mm) prints on " + paper_name +
+            ", or choose larger paper");
   }
   std::vector<std::vector<int>> children(n);
   std::vector<int> order;  // roots first, then breadth-first: parents before children

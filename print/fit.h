@@ -15,6 +15,18 @@ struct FitPieces {
   std::vector<int> piece;  ///< piece of each face: the input's pieces, then the new ones
   int pieces = 0;
   int cut_links = 0;  ///< unfold-tree links cut (each a new piece and a new glued edge)
+  /// Faces too large for the room with tabs that fit the sheet as a piece of their own (each
+  /// 1 in this per-face list is such a piece): their tabs hang from the faces beside them where
+  /// they can (print/tabs.h, LargeFaces).
+  std::vector<char> large;
+};
+
+/// The room a piece has on a sheet (width x height, mm, at any turn).
+struct FitRoom {
+  Vec2 room;  ///< for a piece with its tabs all round it
+  /// For a single face that is larger than `room`: the sheet less what the nesting needs, tabs
+  /// not counted (they go on the faces beside it). Zero: `room`.
+  Vec2 alone;
 };
 
 /// Cuts the pieces of `net` (each face's piece in `piece`, each piece one tree of `parent`
@@ -25,11 +37,13 @@ struct FitPieces {
 /// off the largest ones (by hull area) when they do not, so a piece that fits is never cut and
 /// the pieces cut off are as large as the room allows. With `shrink` below 1, pieces are cut to
 /// fit `shrink` x `room` instead (smaller pieces nest onto fewer sheets: docs/print.md, "Fit
-/// layout"); a face larger than that is a piece of its own, as long as it fits `room`.
+/// layout"); a face larger than that is a piece of its own, as long as it fits `room`. A face
+/// larger than `room.room` that fits `room.alone` at some turn is a piece of its own too, listed
+/// in `large`.
 /// \throw InvalidOptionException ("face_too_large", option "size_mm") naming a face that fits
 ///        no room, its size, and the largest model size (`model_mm` is the model's size at
 ///        `scale`) at which every face fits.
-FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, Vec2 room,
+FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, FitRoom room,
                      const std::string& paper_name, double model_mm, double shrink = 1);
 
 /// Pieces grown from single faces instead of cut from a net (docs/print.md, "Fit layout"), as
@@ -39,18 +53,24 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
 /// piece lies flat without overlap (kOverlapTolerance of the mesh's diagonal) and, at `scale`
 /// millimetres per unit, fits `room` as cut_to_fit's pieces do. The pieces are compact where a
 /// net's subtrees sprawl. No piece takes faces of two parts (values of `piece`); `cut_links`
-/// counts the pieces beyond the parts. Every face must fit `room` (cut_to_fit throws otherwise).
+/// counts the pieces beyond the parts. Every face must fit `room.room`, or `room.alone` as a piece
+/// of its own (listed in `large`; cut_to_fit throws otherwise).
 /// With `tab_height` > 0 (model units) a join is also refused when it leaves a cut edge inside
 /// the joined piece (a slit: an edge whose two faces were in the two pieces, not glued) where a
 /// tab that high (of core/tabs' tab_shapes(`tab_angle_deg`), half the edge on a short one) fits
 /// on neither side without overlapping a face of the piece, unless its two sides lie on each
 /// other: more, smaller pieces, and tabs instead of glue strips on those cuts. Deterministic:
 /// the same mesh grows the same pieces.
-FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, Vec2 room,
+FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, FitRoom room,
                       double tab_height = 0, double tab_angle_deg = 45);
 
 /// True when the convex polygon `hull` (counter-clockwise) fits a `room` box turned along one of
 /// its edges, either way round.
 bool hull_fits(const std::vector<Vec2>& hull, Vec2 room);
+
+/// True when the convex polygon `hull` fits a `room` box at some turn: hull_fits, or turned by a
+/// multiple of a quarter degree (a long triangle fits a sheet across it, along none of its edges,
+/// as the nesting turns it: print/nest.h).
+bool hull_fits_turned(const std::vector<Vec2>& hull, Vec2 room);
 
 }  // namespace papernet

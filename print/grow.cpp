@@ -53,10 +53,11 @@ Rigid motion(Vec2 p0, Vec2 p1, Vec2 q0, Vec2 q1) {
 
 }  // namespace
 
-FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, Vec2 room,
+FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, FitRoom room,
                       double tab_height, double tab_angle_deg) {
   const auto n = static_cast<int>(mesh.faces.size());
   FitPieces out;
+  out.large.assign(n, 0);
   out.net.parent.assign(n, -1);
   out.net.points.resize(n);
   const DualGraph graph = build_dual_graph(mesh);
@@ -69,6 +70,9 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
     out.net.points[f] = place_root(mesh, f, face_shape(mesh, f));
     grown[f].faces = {f};
     grown[f].hull = convex_hull({out.net.points[f].begin(), out.net.points[f].end()});
+    std::vector<Vec2> mm;
+    for (Vec2 p : grown[f].hull) mm.push_back(scale * p);
+    out.large[f] = !hull_fits(mm, room.room);  // alone: no join fits either
     of[f] = f;
   }
 
@@ -116,7 +120,7 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
     for (Vec2 p : small.hull) points.push_back(move(p));
     for (Vec2& p : points) p = scale * p;
     std::vector<Vec2> hull = convex_hull(points);
-    if (!hull_fits(hull, room)) continue;
+    if (!hull_fits(hull, room.room)) continue;
     moved.clear();
     for (int h : small.faces) {
       const auto& t = out.net.points[h];

@@ -357,7 +357,7 @@ TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& 
 }
 
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options,
-                       const std::vector<int>& piece) {
+                       const std::vector<int>& piece, const LargeFaces& large) {
   options.validate();
   if (mesh.faces.empty()) throw InvalidInputException("nothing to print: the mesh has no faces");
   if (net.points.size() != mesh.faces.size() || net.parent.size() != mesh.faces.size())
@@ -376,6 +376,10 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   if (!piece.empty() && piece.size() != mesh.faces.size())
     throw InvalidInputException("the net has " + std::to_string(piece.size()) +
                                 " faces with a piece but the mesh has " +
+                                std::to_string(mesh.faces.size()));
+  if (!large.face.empty() && large.face.size() != mesh.faces.size())
+    throw InvalidInputException("the net has " + std::to_string(large.face.size()) +
+                                " faces marked large or not but the mesh has " +
                                 std::to_string(mesh.faces.size()));
   int pieces = 0;
   for (const int p : piece) {
@@ -397,7 +401,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   std::vector<int> bare;  // cut edges that get no tab on the net
   if (mode == TabMode::Auto) {
     const TabOptions tab_options{options.tab_height_mm, options.tab_angle_deg,
-                                 options.min_tab_height_mm, 1e-6};
+                                 options.min_tab_height_mm, 1e-6, large};
     TabPlacement placed = place_tabs(out.faces, out.edges, tab_options);
     out.tabs = std::move(placed.tabs);
     bare = std::move(placed.omitted);

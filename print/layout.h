@@ -123,11 +123,12 @@ std::string piece_name(int piece);
 /// Lays out a net for printing. With `piece` (each face's piece, numbered in build order:
 /// print/build_order.h), the two labels of a cut edge that joins two pieces also name the piece
 /// across it ("12→P3": edge 12 glues to piece 3; docs/print.md, "Build order"), and each piece
-/// of several gets its number (`piece_labels`).
+/// of several gets its number (`piece_labels`). `large` (rooms in millimetres) names the faces
+/// whose tabs hang from the faces beside them where they can (TabOptions::large).
 /// \throw InvalidOptionException for invalid options; InvalidInputException for an empty mesh or
 ///        a net that does not match the mesh (sizes, non-finite points, vertex indices out of
 ///        range).
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {},
-                       const std::vector<int>& piece = {});
+                       const std::vector<int>& piece = {}, const LargeFaces& large = {});
 
 }  // namespace papernet

@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "core/tabs/tab_clearance.h"
+#include "core/unfold/net_metrics.h"
+#include "print/fit.h"
 
 namespace papernet {
 
@@ -122,6 +124,7 @@ void make_room_between_tabs(const std::vector<std::array<Vec2, 3>>& faces,
     const double h = low(e);
     if (!(h > 0)) return out;
     for (EdgeSide side : {edge.a, edge.b}) {
+      if (options.large(side.face)) continue;  // its room was settled by place_tabs
       const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
       for (const TabShape& s : shapes) {
         const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
@@ -189,6 +192,16 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
   for (const auto& f : faces) grid.add(f);
 
   const std::vector<TabShape> shapes = tab_shapes(options.angle_deg);
+  // A large face's corners and the tabs it carries: with one more tab it must still fit.
+  std::vector<std::vector<Vec2>> large_points(options.large.face.empty() ? 0 : faces.size());
+  for (std::size_t f = 0; f < large_points.size(); ++f)
+    if (options.large(static_cast<int>(f)))
+      large_points[f].assign(faces[f].begin(), faces[f].end());
+  const auto fits_large = [&](int f, const std::array<Vec2, 4>& tab) {
+    std::vector<Vec2> points = large_points[f];
+    points.insert(points.end(), tab.begin(), tab.end());
+    return hull_fits_turned(convex_hull(std::move(points)), options.large.room);
+  };
 
   for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
     const NetEdge& edge = edges[e];
@@ -203,7 +216,11 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
     const double hi = std::max(lo, std::min(options.height, 0.5 * len));
     Tab best;
     double best_area = 0;
-    for (EdgeSide side : {edge.a, edge.b}) {
+    // A large face's side last, and only when the other has no tab.
+    const bool a_last = options.large(edge.a.face) && !options.large(edge.b.face);
+    for (EdgeSide side : {a_last ? edge.b : edge.a, a_last ? edge.a : edge.b}) {
+      const bool large = options.large(side.face);
+      if (large && best.edge >= 0) break;
       // Along side b the edge runs the other way: mirror the span so both sides mean the same
       // stretch of the edge.
       const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
@@ -223,7 +240,8 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
           if (!(h > 0)) continue;
         }
         const auto t = trapezoid(faces, side, shape, h);
-        if (const double ta = area(t); ta > best_area) best_area = ta, best = {e, side, t};
+        if (const double ta = area(t); ta > best_area && (!large || fits_large(side.face, t)))
+          best_area = ta, best = {e, side, t};
       }
       // A full-size tab over the whole edge cannot be beaten: leave side b alone.
       if (best.edge >= 0 && best_area >= area(trapezoid(faces, side, shapes.front(), hi)) - 1e-12)
@@ -234,6 +252,9 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
       continue;
     }
     grid.add(best.corners);
+    if (options.large(best.side.face))
+      large_points[best.side.face].insert(large_points[best.side.face].end(), best.corners.begin(),
+                                          best.corners.end());
     result.tabs.push_back(best);
   }
   if (!result.omitted.empty()) make_room_between_tabs(faces, edges, options, shapes, result);

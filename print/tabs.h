@@ -20,11 +20,22 @@ struct Tab {
   std::array<Vec2, 4> corners;
 };
 
+/// Faces that print as a piece of their own and only just fit a sheet (print/fit.h,
+/// FitPieces::large): a tab hangs from one only where none fits on the other side of its edge,
+/// and only when the face with its tabs still fits `room` (layout units, at some turn).
+struct LargeFaces {
+  std::vector<char> face;  ///< 1 for each such face; empty: none
+  Vec2 room;
+
+  bool operator()(int f) const { return !face.empty() && face[f]; }
+};
+
 struct TabOptions {
   double height = 6;        ///< tallest tab, in layout units
   double angle_deg = 45;    ///< slant of the tab's sides against the edge
   double min_height = 2;    ///< lowest tab worth printing (half the edge on shorter edges)
   double tolerance = 1e-6;  ///< penetration depth below which polygons only touch
+  LargeFaces large;
 };
 
 /// Result of placing tabs: at most one per interior cut edge.

@@ -9,10 +9,13 @@
 #include <vector>
 
 #include "api/net_json.h"
+#include "core/io/write_mesh.h"
 #include "core/unfold/net_check.h"
 #include "engine/internal/steps.h"
 #include "engine/pipeline.h"
 #include "tests/support/job_input.h"
+#include "tests/support/meshes.h"
+#include "tests/support/polygons.h"
 #include "tests/support/svg.h"
 
 namespace papernet::test {
@@ -113,6 +116,58 @@ TEST(FitSearch, GlueStripsPrintOnTheSheetOfTheirEdge) {
     }
   }
   EXPECT_EQ(strips, 2 * out.print->strips) << "each strip carries its number twice";
+}
+
+// A face larger than the room a piece needs for its tabs, but not than the sheet, prints as a
+// piece of its own, turned across the sheet, its tabs on the faces beside it (docs/print.md,
+// "Fit layout"). A flat box 200 x 200 x 20 mm: its top and bottom are two right triangles each,
+// 283 mm along the diagonal, that fit A4's 190 x 277 mm only turned by 20-70 degrees and not the
+// 173 x 260 mm left with 6 mm tabs all round. Checked from the drawn pages.
+TEST(FitSearch, AFaceLargerThanTheRoomForTabsPrintsAloneTurnedAcrossTheSheet) {
+  Mesh box = cube();
+  for (Vec3& v : box.vertices) v = Vec3{200 * v.x, 200 * v.y, 20 * v.z};
+  JobInput input;
+  input.mesh = write_obj(box);
+  input.format = MeshFormat::Obj;
+  JobOptions options;
+  options.layout = PageLayoutMode::Fit;  // a face that does not fit is an error, not tiles
+  options.overview = false;
+  PipelineProgress quiet;
+  UnfoldOutcome out;
+  ASSERT_NO_THROW(out = run_pipeline(input, options, {}, {.svg_pages = true}, quiet));
+  ASSERT_TRUE(out.print);
+  const PageOptions page;  // A4, 10 mm margins
+  std::size_t faces = 0, tabs = 0, strips = 0;
+  for (std::size_t k = 0; k < out.documents.svg_pages.size(); ++k) {
+    const std::string& svg = out.documents.svg_pages[k];
+    std::vector<std::vector<Vec2>> shapes = svg_polygons(svg_group(svg, "faces"));
+    faces += shapes.size();
+    const auto tab_shapes = svg_polygons(svg_group(svg, "tabs"));
+    const auto strip_shapes = svg_polygons(svg_group(svg, "strips"));
+    tabs += tab_shapes.size();
+    strips += strip_shapes.size();
+    shapes.insert(shapes.end(), tab_shapes.begin(), tab_shapes.end());
+    shapes.insert(shapes.end(), strip_shapes.begin(), strip_shapes.end());
+    for (const auto& shape : shapes)
+      for (Vec2 p : shape) {
+        EXPECT_GE(p.x, page.margin_mm - 1e-3) << "page " << k + 1;
+        EXPECT_GE(p.y, page.margin_mm - 1e-3) << "page " << k + 1;
+        EXPECT_LE(p.x, page.paper.width - page.margin_mm + 1e-3) << "page " << k + 1;
+        EXPECT_LE(p.y, page.paper.height - page.margin_mm + 1e-3) << "page " << k + 1;
+      }
+    for (std::size_t i = 0; i < shapes.size(); ++i)
+      for (std::size_t j = i + 1; j < shapes.size(); ++j)
+        EXPECT_LE(overlap_thickness(shapes[i], shapes[j]), 1e-3)
+            << "page " << k + 1 << ": shapes " << i << " and " << j << " overlap";
+  }
+  EXPECT_EQ(faces, box.faces.size());
+  // Every cut edge between pieces is glued by a tab or a strip.
+  EXPECT_EQ(tabs + strips, out.print->cut_edges);
+  const NetDocument doc = read_net_json(out.documents.net_json);
+  const NetCheckReport check = check_pieces(doc.mesh, doc.net, doc.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  std::printf("a 200 x 200 x 20 mm box on A4: %zu sheets, %d pieces, %zu tabs, %zu strips\n",
+              out.documents.svg_pages.size(), out.print->pieces, tabs, strips);
 }
 
 }  // namespace
