@@ -66,7 +66,7 @@ TEST(Fit, CutsALargeNetIntoTreesThatEachFitTheSheet) {
   ASSERT_FALSE(u.mesh.faces.empty());
   const double scale = print_scale(u.mesh, {});  // 200 mm
   const std::vector<int> one(u.mesh.faces.size(), 0);
-  const FitPieces fit = cut_to_fit(u.net, one, scale, {kRoom}, "A4", 200);
+  const FitPieces fit = cut_to_fit(u.net, one, scale, {kRoom, {}}, "A4", 200);
   ASSERT_GT(fit.pieces, 1) << "sample.obj at 200 mm is larger than a sheet";
   EXPECT_EQ(fit.cut_links, fit.pieces - 1);
   // Only links were cut: every face keeps its place, each piece is one tree of the old links.
@@ -95,7 +95,7 @@ TEST(Fit, CutsALargeNetIntoTreesThatEachFitTheSheet) {
   std::vector<Vec2> all;
   for (const auto& ps : points) all.insert(all.end(), ps.begin(), ps.end());
   EXPECT_FALSE(fits_at_some_turn(all, kRoom, 0));
-  const FitPieces small = cut_to_fit(u.net, one, 0.2 * scale, {kRoom}, "A4", 40);  // 40 mm
+  const FitPieces small = cut_to_fit(u.net, one, 0.2 * scale, {kRoom, {}}, "A4", 40);  // 40 mm
   EXPECT_EQ(small.pieces, 1);
   EXPECT_EQ(small.cut_links, 0);
   EXPECT_EQ(small.net.parent, u.net.parent);
@@ -106,8 +106,8 @@ TEST(Fit, ShrunkPiecesFitTheSmallerBoxAndAFaceLargerThanItIsAPieceAlone) {
   ASSERT_FALSE(u.mesh.faces.empty());
   const double scale = print_scale(u.mesh, {});  // 200 mm
   const std::vector<int> one(u.mesh.faces.size(), 0);
-  const FitPieces full = cut_to_fit(u.net, one, scale, {kRoom}, "A4", 200);
-  const FitPieces half = cut_to_fit(u.net, one, scale, {kRoom}, "A4", 200, 0.5);
+  const FitPieces full = cut_to_fit(u.net, one, scale, {kRoom, {}}, "A4", 200);
+  const FitPieces half = cut_to_fit(u.net, one, scale, {kRoom, {}}, "A4", 200, 0.5);
   EXPECT_GT(half.pieces, full.pieces);
   std::vector<std::vector<Vec2>> points(half.pieces);
   for (std::size_t f = 0; f < u.mesh.faces.size(); ++f)
@@ -125,10 +125,10 @@ TEST(Fit, ShrunkPiecesFitTheSmallerBoxAndAFaceLargerThanItIsAPieceAlone) {
   for (const auto& t : net.points)
     for (int k = 0; k < 3; ++k) side = std::max(side, norm(t[k] - t[(k + 1) % 3]));
   const double big = 0.5 * kRoom.x / side;  // the longest side half the room's width
-  const FitPieces alone = cut_to_fit(net, four, big, {kRoom}, "A4", 100, 0.1);
+  const FitPieces alone = cut_to_fit(net, four, big, {kRoom, {}}, "A4", 100, 0.1);
   EXPECT_EQ(alone.pieces, 4);
   EXPECT_EQ(alone.cut_links, 3);
-  EXPECT_THROW(cut_to_fit(net, four, 4 * big, {kRoom}, "A4", 400, 0.1), InvalidOptionException);
+  EXPECT_THROW(cut_to_fit(net, four, 4 * big, {kRoom, {}}, "A4", 400, 0.1), InvalidOptionException);
 }
 
 TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
@@ -136,7 +136,7 @@ TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
   const Net net = test::bfs_net(mesh);
   const std::vector<int> one(mesh.faces.size(), 0);
   try {
-    cut_to_fit(net, one, 1000, {kRoom}, "A4", 1000);
+    cut_to_fit(net, one, 1000, {kRoom, {}}, "A4", 1000);
     ADD_FAILURE() << "a face of about a metre fitted an A4 sheet";
   } catch (const InvalidOptionException& e) {
     EXPECT_EQ(e.code(), "face_too_large");
@@ -151,8 +151,8 @@ TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
     ASSERT_TRUE(std::regex_search(message, at_most, std::regex("at most ([0-9]+) mm"))) << message;
     const double largest = std::stod(at_most[1].str());
     EXPECT_GT(largest, 50);
-    EXPECT_NO_THROW(cut_to_fit(net, one, largest, {kRoom}, "A4", largest));
-    EXPECT_THROW(cut_to_fit(net, one, largest + 2, {kRoom}, "A4", largest + 2),
+    EXPECT_NO_THROW(cut_to_fit(net, one, largest, {kRoom, {}}, "A4", largest));
+    EXPECT_THROW(cut_to_fit(net, one, largest + 2, {kRoom, {}}, "A4", largest + 2),
                  InvalidOptionException);
   }
 }
@@ -186,12 +186,12 @@ TEST(Grow, PiecesAreNetsOfTheirFacesThatEachFitTheSheet) {
     ++meshes;
     const double scale = print_scale(mesh, {});  // 200 mm
     const std::vector<int> one(mesh.faces.size(), 0);
-    const FitPieces grown = grow_to_fit(mesh, one, scale, {kRoom});
+    const FitPieces grown = grow_to_fit(mesh, one, scale, {kRoom, {}});
     EXPECT_GT(grown.pieces, 1) << name << " at 200 mm is larger than a sheet";
     EXPECT_LT(grown.pieces, static_cast<int>(mesh.faces.size()) / 4) << name;
     EXPECT_EQ(grown.cut_links, grown.pieces - 1) << name;
     expect_nets_that_fit(mesh, grown, scale, name);
-    const FitPieces again = grow_to_fit(mesh, one, scale, {kRoom});
+    const FitPieces again = grow_to_fit(mesh, one, scale, {kRoom, {}});
     EXPECT_EQ(again.net.parent, grown.net.parent) << name;
     EXPECT_EQ(again.net.points, grown.net.points) << name;
     std::printf("%s: %zu faces grow into %d pieces\n", name.c_str(), mesh.faces.size(),
@@ -243,9 +243,9 @@ TEST(Grow, PiecesGrownForTabsLeaveRoomForATabOnEveryCutInside) {
     const double scale = print_scale(mesh, print);
     const TabClearanceOptions tabs = tab_clearance_options(mesh, print);
     const std::vector<int> one(mesh.faces.size(), 0);
-    const FitPieces large = grow_to_fit(mesh, one, scale, {kRoom});
+    const FitPieces large = grow_to_fit(mesh, one, scale, {kRoom, {}});
     const FitPieces for_tabs =
-        grow_to_fit(mesh, one, scale, {kRoom}, tabs.min_height, tabs.angle_deg);
+        grow_to_fit(mesh, one, scale, {kRoom, {}}, tabs.min_height, tabs.angle_deg);
     expect_nets_that_fit(mesh, for_tabs, scale, name);
     const std::size_t before = slits_without_tab_room(mesh, large, tabs);
     const std::size_t after = slits_without_tab_room(mesh, for_tabs, tabs);
@@ -273,8 +273,8 @@ TEST(Grow, PartsGrowApart) {
     part[f] = z > 0 ? 0 : 1;
   }
   const double scale = 0.1 * kRoom.x;  // 2 units across: a fifth of the room
-  const FitPieces apart = grow_to_fit(mesh, part, scale, {kRoom});
-  const FitPieces whole = grow_to_fit(mesh, std::vector<int>(mesh.faces.size(), 0), scale, {kRoom});
+  const FitPieces apart = grow_to_fit(mesh, part, scale, {kRoom, {}});
+  const FitPieces whole = grow_to_fit(mesh, std::vector<int>(mesh.faces.size(), 0), scale, {kRoom, {}});
   EXPECT_EQ(whole.pieces, 1);
   EXPECT_EQ(apart.pieces, 2);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
@@ -293,7 +293,7 @@ TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
   const PrintOptions print;
   const double scale = print_scale(u.mesh, print);
   const std::vector<int> one(u.mesh.faces.size(), 0);
-  const FitPieces fit = cut_to_fit(u.net, one, scale, {kRoom}, "A4", 200);
+  const FitPieces fit = cut_to_fit(u.net, one, scale, {kRoom, {}}, "A4", 200);
   PrintLayout layout = layout_net(u.mesh, arrange_pieces(fit.net, fit.piece, 20 / scale), print);
   ASSERT_GT(layout.tabs.size(), 0u);
   const PageOptions page;  // A4, 10 mm margins
