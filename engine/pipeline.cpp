@@ -3,7 +3,10 @@
 // in engine/internal/steps.h; this file runs them piece by piece and relays progress.
 #include "engine/pipeline.h"
 
+#include <time.h>
+
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <utility>
@@ -12,6 +15,7 @@
 #include "engine/internal/run_progress.h"
 #include "engine/internal/steps.h"
 #include "print/layout.h"
+#include "print/tabs.h"
 
 namespace papernet {
 namespace {
@@ -40,6 +44,51 @@ constexpr double kPrintTimeShare = 0.1;
 constexpr double kPrintSecondsPerFace = 175e-6;
 constexpr double kTabRoomSecondsPerFace = 25e-6;
 constexpr double kDistanceSecondsPerFace = 12e-6;
+
+// How much slower than the machine those times were measured on this one runs: a fixed piece of
+// the print's most common work (convex polygons tested for overlap through a PolygonGrid,
+// print/tabs.h), timed in the thread's CPU time (other processes' load aside) once per process,
+// the median of seven runs, against kProbeSeconds, its time there. The times per face above are
+// multiplied by it (never below a quarter), so that on a slower machine the unfolder leaves the
+// steps after it the time they take there (docs/architecture.md, "Time limit"). Measured on
+// session 43's machine: the probe 4.5 ms, rocker-arm's print 282 us per face (PDF, SVG and glTF
+// of an 11,258-face net in 3.18 s), 1.61 times the 175 us above; so 4.5 / 1.61 ms there.
+constexpr double kProbeSeconds = 2.8e-3;
+// Jobs of fewer faces do not time the machine: the time their nets need after the unfold is
+// within the print's share of any time limit.
+constexpr std::size_t kProbeFaces = 2'000;
+double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+double machine_slowness() {
+  static const double slowness = [] {
+    constexpr int kSide = 40;  // 2 x 40 x 40 triangles
+    PolygonGrid grid(1);
+    for (int i = 0; i < kSide; ++i)
+      for (int j = 0; j < kSide; ++j) {
+        const Vec2 p{static_cast<double>(i), static_cast<double>(j)};
+        grid.add(std::array{p, p + Vec2{1, 0}, p + Vec2{1, 1}});
+        grid.add(std::array{p, p + Vec2{1, 1}, p + Vec2{0, 1}});
+      }
+    std::array<double, 7> runs{};
+    std::size_t hits = 0;  // every query meets the grid; counted so that none is optimised away
+    for (double& seconds : runs) {
+      const double begin = thread_seconds();
+      for (int round = 0; round < 8; ++round)
+        for (int i = 0; i < kSide; ++i)
+          for (int j = 0; j < kSide; ++j) {
+            const Vec2 p{i + 0.1 * round, j + 0.05 * round};
+            hits += grid.overlaps(std::array{p, p + Vec2{0.9, 0.2}, p + Vec2{0.4, 0.8}}, 1e-6);
+          }
+      seconds = thread_seconds() - begin;
+    }
+    std::nth_element(runs.begin(), runs.begin() + 3, runs.end());
+    return hits > 0 ? std::max(0.25, runs[3] / kProbeSeconds) : 1;
+  }();
+  return slowness;
+}
 
 // An intermediate net is rendered at most this often: rendering costs time the unfolder could
 // use.
@@ -137,12 +186,16 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   // The steps after the unfolder keep their shares of the time limit (kTabRoomTimeShare, ...).
   const double print_share = plan.print ? kPrintTimeShare : 0;
   const double unfold_end = time_limit * (1 - print_share - (plan.tabs ? kTabRoomTimeShare : 0));
-  const double after_per_face = (plan.print ? kPrintSecondsPerFace : 0) +
-                                (plan.tabs ? kTabRoomSecondsPerFace : 0) + kDistanceSecondsPerFace;
   tracked.start(Stage::Prepare);
   const Prepared prepared = prepare(load_input(input, limits, tracked), options, tracked);
   std::size_t all_faces = 0;
   for (const Mesh& part : prepared.parts) all_faces += part.faces.size();
+  // The time per face of the steps after the unfold, on this machine.
+  const double slowness = all_faces >= kProbeFaces ? machine_slowness() : 1;
+  const double print_per_face = plan.print ? slowness * kPrintSecondsPerFace : 0;
+  const double tab_room_per_face = slowness * kTabRoomSecondsPerFace;
+  const double after_per_face =
+      print_per_face + (plan.tabs ? tab_room_per_face : 0) + slowness * kDistanceSecondsPerFace;
 
   // Each part unfolded in turn (collapsed first as `detail` says), with a share of the
   // unfolder's time left as large as its share of the faces left.
@@ -179,15 +232,14 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   // its report's time; none left, it does not run.
   std::size_t net_faces = 0;
   for (const Piece& piece : pieces) net_faces += piece.mesh.faces.size();
-  const double print_end =
-      time_limit - std::max(time_limit * print_share,
-                            plan.print ? kPrintSecondsPerFace * static_cast<double>(net_faces) : 0);
+  const double print_end = time_limit - std::max(time_limit * print_share,
+                                                 print_per_face * static_cast<double>(net_faces));
   const double left = print_end - seconds_since(start);
   faces_before = 0;
   for (std::size_t p = 0; p < pieces.size(); ++p) {
     const double piece_seconds =
         share(left, prepared.parts[p].faces.size(), all_faces) -
-        kTabRoomSecondsPerFace * static_cast<double>(pieces[p].mesh.faces.size());
+        tab_room_per_face * static_cast<double>(pieces[p].mesh.faces.size());
     relay.start(Stage::Tabs, p, faces_before, piece_seconds);
     const bool room = plan.tabs && piece_seconds > 0;
     if (room) {
