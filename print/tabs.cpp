@@ -33,29 +33,50 @@ bool convex_overlap(std::span<const Vec2> a, std::span<const Vec2> b, double tol
 
 PolygonGrid::PolygonGrid(double cell) : cell_(cell > 0 && std::isfinite(cell) ? cell : 1) {}
 
+namespace {
+
+std::array<double, 4> box_of(std::span<const Vec2> poly) {
+  std::array<double, 4> b{poly[0].x, poly[0].y, poly[0].x, poly[0].y};
+  for (Vec2 p : poly)
+    b = {std::min(b[0], p.x), std::min(b[1], p.y), std::max(b[2], p.x), std::max(b[3], p.y)};
+  return b;
+}
+
+}  // namespace
+
 template <class F>
 void PolygonGrid::for_cells(std::span<const Vec2> poly, F&& f) const {
-  double x0 = poly[0].x, x1 = x0, y0 = poly[0].y, y1 = y0;
-  for (Vec2 p : poly)
-    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-  const auto i0 = static_cast<std::int64_t>(std::floor(x0 / cell_));
-  const auto i1 = static_cast<std::int64_t>(std::floor(x1 / cell_));
-  const auto j0 = static_cast<std::int64_t>(std::floor(y0 / cell_));
-  const auto j1 = static_cast<std::int64_t>(std::floor(y1 / cell_));
+  const std::array<double, 4> b = box_of(poly);
+  const auto i0 = static_cast<std::int64_t>(std::floor(b[0] / cell_));
+  const auto i1 = static_cast<std::int64_t>(std::floor(b[2] / cell_));
+  const auto j0 = static_cast<std::int64_t>(std::floor(b[1] / cell_));
+  const auto j1 = static_cast<std::int64_t>(std::floor(b[3] / cell_));
+  // Beyond a box of 2 x 2 cells, only the cells the polygon meets (or nearly touches): two
+  // polygons that overlap share one of those.
+  const bool every = (i1 - i0 + 1) * (j1 - j0 + 1) <= 4;
   for (auto i = i0; i <= i1; ++i)
-    for (auto j = j0; j <= j1; ++j)
+    for (auto j = j0; j <= j1; ++j) {
+      if (!every) {
+        const double x = static_cast<double>(i) * cell_, y = static_cast<double>(j) * cell_;
+        const std::array<Vec2, 4> square{Vec2{x, y}, Vec2{x + cell_, y}, Vec2{x + cell_, y + cell_},
+                                         Vec2{x, y + cell_}};
+        if (!convex_overlap(poly, square, -1e-9 * cell_)) continue;
+      }
       f((static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint32_t>(j));
+    }
 }
 
 void PolygonGrid::add(std::span<const Vec2> poly) {
   const int id = static_cast<int>(polys_.size());
   polys_.emplace_back(poly.begin(), poly.end());
+  boxes_.push_back(box_of(poly));
   for_cells(poly, [&](std::uint64_t key) { cells_[key].push_back(id); });
 }
 
 bool PolygonGrid::overlaps(std::span<const Vec2> poly, double tolerance) {
   ++stamp_;
   seen_.resize(polys_.size(), 0);
+  const std::array<double, 4> box = box_of(poly);
   bool hit = false;
   for_cells(poly, [&](std::uint64_t key) {
     if (hit) return;
@@ -64,6 +85,9 @@ bool PolygonGrid::overlaps(std::span<const Vec2> poly, double tolerance) {
     for (int id : it->second) {
       if (seen_[id] == stamp_) continue;
       seen_[id] = stamp_;
+      // Boxes apart: the polygons are apart, and no axis sees them overlap.
+      const std::array<double, 4>& b = boxes_[id];
+      if (b[0] > box[2] || box[0] > b[2] || b[1] > box[3] || box[1] > b[3]) continue;
       if (convex_overlap(poly, polys_[id], tolerance)) {
         hit = true;
         return;

@@ -63,11 +63,15 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
 bool convex_overlap(std::span<const Vec2> a, std::span<const Vec2> b, double tolerance);
 
 /// Uniform hash grid over convex polygons, answering "does this polygon overlap any stored one".
+/// A polygon is listed in the cells it meets (not every cell of its box: a long slanted sliver
+/// would crowd the cells around it), and its box rules out most of the polygons of a cell
+/// before the separating-axis test.
 class PolygonGrid {
  public:
   explicit PolygonGrid(double cell);
   void add(std::span<const Vec2> poly);
-  /// True when `poly` overlaps a stored polygon by more than `tolerance` (convex_overlap).
+  /// True when `poly` overlaps a stored polygon by more than `tolerance` (convex_overlap;
+  /// `tolerance` >= 0).
   bool overlaps(std::span<const Vec2> poly, double tolerance);
 
  private:
@@ -76,6 +80,7 @@ class PolygonGrid {
 
   double cell_;
   std::vector<std::vector<Vec2>> polys_;
+  std::vector<std::array<double, 4>> boxes_;  ///< of each polygon: x0, y0, x1, y1
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
   std::vector<std::uint32_t> seen_;
   std::uint32_t stamp_ = 0;

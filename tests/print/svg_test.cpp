@@ -115,8 +115,9 @@ const std::vector<TabClearanceResult>& all_print_nets() {
       options.min_height = PrintOptions{}.min_tab_height_mm / print_scale(mesh, {});
       if (name.find("(TU)") == std::string::npos) options.max_evaluations = 20'000;
       if (mesh.faces.size() > 900) options.max_evaluations /= kLargeNetShare;
-      out.push_back(unfolded(name) ? clear_tab_room(mesh, net, options, quiet)
-                                   : TabClearanceResult{net, 0, 0, 0, 0});
+      TabClearanceResult as_is;  // no net to make room on: the net as it is
+      as_is.net = net;
+      out.push_back(unfolded(name) ? clear_tab_room(mesh, net, options, quiet) : as_is);
     }
     return out;
   }();
@@ -174,6 +175,32 @@ TEST(Tabs, ConvexOverlapIgnoresTouchingAndSeesCrossing) {
   // The independent clipping check measures what it should.
   EXPECT_NEAR(intersection_area(a, c), 0.01, 1e-12);  // corners (.4,.4) (.6,.4) (.5,.5)
   EXPECT_NEAR(intersection_area(a, b), 0, 1e-12);
+}
+
+// The grid of tabs and faces (print/tabs.h) lists a polygon only in the cells it meets and
+// skips polygons whose boxes are apart: on long slanted slivers across many cells (a Twin
+// plate's faces) and small tabs around them, it answers as testing every stored polygon does.
+TEST(Tabs, PolygonGridAnswersAsTestingEveryPolygon) {
+  std::vector<std::vector<Vec2>> stored;
+  for (int i = 0; i < 40; ++i) {  // slivers 30 to 70 cells long, at every slant
+    const double a = 0.157 * i, len = 30 + i;
+    const Vec2 p{0.37 * i, -0.21 * i}, u{std::cos(a), std::sin(a)}, n{-u.y, u.x};
+    stored.push_back({p, p + len * u, p + len * u + 0.05 * n});
+  }
+  PolygonGrid grid(1);
+  for (const auto& poly : stored) grid.add(poly);
+  int hits = 0;
+  for (int x = -50; x <= 50; ++x)
+    for (int y = -50; y <= 50; ++y) {
+      const Vec2 p{0.5 * x + 0.13, 0.5 * y + 0.29};
+      const std::vector<Vec2> tab = {p, p + Vec2{0.4, 0.05}, p + Vec2{0.3, 0.3},
+                                     p + Vec2{0.05, 0.35}};
+      bool any = false;
+      for (const auto& poly : stored) any = any || convex_overlap(tab, poly, 1e-9);
+      ASSERT_EQ(grid.overlaps(tab, 1e-9), any) << "a tab at " << p.x << ", " << p.y;
+      hits += any;
+    }
+  EXPECT_GT(hits, 100) << "the tabs should meet the slivers often";
 }
 
 /// The rectangle of a strip grown by `d` on every side.
