@@ -107,12 +107,13 @@ NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, doubl
   s.evaluations += room.evaluations;
   std::optional<NetCheckReport> report;
   std::size_t blocked = room.blocked_after;
+  bool rejected = false;  // the pass's net fails the check: the piece keeps its own
   if (room.moves > 0) {
     report = check_net(piece.mesh, room.net);
     if (report->ok()) {
       piece.net = room.net;
     } else {
-      s.rejected = true;
+      s.rejected = rejected = true;
       blocked = room.blocked_before;
       report.reset();
     }
@@ -121,7 +122,10 @@ NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, doubl
   if (blocked > 0) {
     // Why edges stay without room: a leaf of the cut tree at a nearly flat vertex always lacks
     // it, and a dense mesh has few vertices where a leaf can have it.
-    const TabRoomReport why = describe_tab_room(piece.mesh, piece.net, clearance, kFlatDefect);
+    // The pass's own list when its net is the piece's.
+    const std::vector<EdgeSide>* known = !rejected && room.blocked ? &*room.blocked : nullptr;
+    const TabRoomReport why =
+        describe_tab_room(piece.mesh, piece.net, clearance, kFlatDefect, known);
     s.leaves_without_room += why.leaves_without_room_blocked;
     s.leaf_room_vertices += why.leaf_room_vertices;
     s.interior_vertices += why.interior_vertices;

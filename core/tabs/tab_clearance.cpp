@@ -547,6 +547,8 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
   PassProgress pass(progress, (second ? 2 : 1) * options.max_evaluations,
                     options.time_limit_seconds, mesh.faces.size());
   Clearance state(mesh, net, options);
+  // The search's clock starts now: setting up its state (every edge's room) is part of the pass.
+  state.extend(0, seconds_left());
   result.blocked_before = state.blocked_count();
   state.run(pass);
   // The second round: when the search spent its budget with many edges left it goes on (its
@@ -564,8 +566,12 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
   result.evaluations = state.evaluations_;
   result.compound_moves = state.compound_moves_;
   if (result.moves > 0) result.net = state.net();
-  if (second && !result.searched_on && state.blocked_count() > 0)
+  result.blocked = state.blocked_edges();  // of result.net: the input, or the state's best
+  if (second && !result.searched_on && state.blocked_count() > 0) {
+    const std::size_t kicks = result.kicks;
     tab_clearance_detail::kick(mesh, options, seconds_left(), pass, result);
+    if (result.kicks != kicks) result.blocked.reset();
+  }
   pass.done(result.evaluations);
   return result;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "core/mesh/mesh.h"
@@ -96,6 +97,9 @@ struct TabClearanceResult {
   std::size_t compound_moves = 0;  ///< compound moves among `moves` (each counts two there)
   std::size_t kicks = 0;           ///< kicks that made `net` better (see clear_tab_room)
   bool searched_on = false;        ///< the second round was more of the tabu search
+  /// The cut edges of `net` without room (edges_without_tab_room), when the pass knows them
+  /// without looking again (not after a kick).
+  std::optional<std::vector<EdgeSide>> blocked;
 };
 
 /// Makes room for tabs: changes which edges of an overlap-free `net` are cut so that fewer cut

@@ -77,7 +77,8 @@ std::vector<char> leaf_room(const Mesh& mesh, const TabClearanceOptions& options
 }
 
 TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
-                                const TabClearanceOptions& options, double flat_defect) {
+                                const TabClearanceOptions& options, double flat_defect,
+                                const std::vector<EdgeSide>* blocked) {
   TabRoomReport r;
   r.blocked_leaf_defects.assign(180, 0);
   r.leaf_defects.assign(180, 0);
@@ -137,7 +138,7 @@ TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
     }
     return false;
   };
-  for (const EdgeSide& s : edges_without_tab_room(mesh, net, options)) {
+  for (const EdgeSide& s : blocked ? *blocked : edges_without_tab_room(mesh, net, options)) {
     ++r.blocked;
     const int a = mesh.faces[s.face][s.k], b = mesh.faces[s.face][(s.k + 1) % 3];
     if (leaf(a) || leaf(b)) {

@@ -37,8 +37,11 @@ struct TabRoomReport {
 
 /// Describes where `net`'s cut edges lack room for a tab of `options.min_height`; a vertex is
 /// flat when the size of its angle defect is below `flat_defect` (radians).
+/// `blocked`, when given, are net's cut edges without room, as the pass that made the net found
+/// them (TabClearanceResult::blocked): not looked for again.
 TabRoomReport describe_tab_room(const Mesh& mesh, const Net& net,
-                                const TabClearanceOptions& options, double flat_defect);
+                                const TabClearanceOptions& options, double flat_defect,
+                                const std::vector<EdgeSide>* blocked = nullptr);
 
 /// Interior vertices where a leaf of the cut tree can have room for a tab: with the faces around
 /// v laid out flat as one fan, opened at one of v's edges (a leaf's only cut edge), a tab of

@@ -274,7 +274,8 @@ TEST(Grow, PartsGrowApart) {
   }
   const double scale = 0.1 * kRoom.x;  // 2 units across: a fifth of the room
   const FitPieces apart = grow_to_fit(mesh, part, scale, {kRoom, {}});
-  const FitPieces whole = grow_to_fit(mesh, std::vector<int>(mesh.faces.size(), 0), scale, {kRoom, {}});
+  const FitPieces whole =
+      grow_to_fit(mesh, std::vector<int>(mesh.faces.size(), 0), scale, {kRoom, {}});
   EXPECT_EQ(whole.pieces, 1);
   EXPECT_EQ(apart.pieces, 2);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
