@@ -51,9 +51,10 @@ constexpr double kDistanceSecondsPerFace = 12e-6;
 // the median of seven runs, against kProbeSeconds, its time there. The times per face above are
 // multiplied by it (never below a quarter), so that on a slower machine the unfolder leaves the
 // steps after it the time they take there (docs/architecture.md, "Time limit"). Measured on
-// session 43's machine: the probe 4.5 ms, rocker-arm's print 282 us per face (PDF, SVG and glTF
-// of an 11,258-face net in 3.18 s), 1.61 times the 175 us above; so 4.5 / 1.61 ms there.
-constexpr double kProbeSeconds = 2.8e-3;
+// session 43's machine: the probe 1.74 ms (the median of 12 jobs; 3 of them took 1.4-2.1 times
+// as long), rocker-arm's print 282 us per face (PDF, SVG and glTF of an 11,258-face net in
+// 3.18 s), 1.61 times the 175 us above; so 1.74 / 1.61 ms there.
+constexpr double kProbeSeconds = 1.08e-3;
 // Jobs of fewer faces do not time the machine: the time their nets need after the unfold is
 // within the print's share of any time limit.
 constexpr std::size_t kProbeFaces = 2'000;
