@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <unordered_map>
 
 #include "core/errors.h"
@@ -155,8 +156,9 @@ class LabelBoxes {
     for (int i = 0; i < static_cast<int>(labels.size()); ++i) add(i);
   }
   /// True when `label`'s box meets the box of a label other than label `self`.
-  bool collides(const Label& label, int self) const {
-    const std::array<Vec2, 4> box = label_box(label);
+  bool collides(const Label& label, int self) const { return meets(label_box(label), self); }
+  /// True when `box` meets the box of a label other than label `self`.
+  bool meets(const std::array<Vec2, 4>& box, int self) const {
     bool hit = false;
     for_cells(box, [&](std::uint64_t key) {
       const auto it = cells_.find(key);
@@ -202,14 +204,99 @@ class LabelBoxes {
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
 
+/// What of a net is paper cut out with its pieces, on a grid of cells: its faces, and its cut
+/// lines (the sides of faces at cut edges and at the model's boundary).
+class PaperGrid {
+ public:
+  PaperGrid(const std::vector<std::array<Vec2, 3>>& faces, const std::vector<NetEdge>& edges,
+            const std::vector<int>& piece)
+      : faces_(faces), piece_(piece) {
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+      for_cells(faces[f], [&](std::uint64_t key) { cells_[key].faces.push_back(f); });
+    for (const NetEdge& e : edges) {
+      if (e.kind != EdgeKind::Cut) continue;
+      for (const EdgeSide side : {e.a, e.b}) {
+        if (side.face < 0) continue;
+        const auto& t = faces[side.face];
+        const std::array<Vec2, 2> cut{t[side.k], t[(side.k + 1) % 3]};
+        const auto index = static_cast<int>(cuts_.size());
+        cuts_.push_back(cut);
+        for_cells(cut, [&](std::uint64_t key) { cells_[key].cuts.push_back(index); });
+      }
+    }
+  }
+  /// True when `p` lies on a face of the piece of face `face` (on any face without pieces).
+  bool on_piece(Vec2 p, int face) const {
+    const auto it = cells_.find(key_of(p));
+    if (it == cells_.end()) return false;
+    for (const int f : it->second.faces) {
+      if (!piece_.empty() && piece_[f] != piece_[face]) continue;
+      const auto& t = faces_[f];
+      const double c0 = cross(t[1] - t[0], p - t[0]), c1 = cross(t[2] - t[1], p - t[1]);
+      const double c2 = cross(t[0] - t[2], p - t[2]);
+      constexpr double kSlack = 1e-9;  // mm^2: a point on a side between two faces is on both
+      if ((c0 >= -kSlack && c1 >= -kSlack && c2 >= -kSlack) ||
+          (c0 <= kSlack && c1 <= kSlack && c2 <= kSlack))
+        return true;
+    }
+    return false;
+  }
+  /// True when the convex polygon (or segment) `poly` meets a cut line, touching included.
+  bool meets_cut(std::span<const Vec2> poly) const {
+    bool hit = false;
+    for_cells(poly, [&](std::uint64_t key) {
+      const auto it = cells_.find(key);
+      if (hit || it == cells_.end()) return;
+      for (const int c : it->second.cuts)
+        if (convex_overlap(cuts_[c], poly, -1e-9)) {
+          hit = true;
+          return;
+        }
+    });
+    return hit;
+  }
+
+ private:
+  static constexpr double kCell = 4;  // mm
+  struct Cell {
+    std::vector<int> faces, cuts;
+  };
+  static std::int64_t cell(double v) { return static_cast<std::int64_t>(std::floor(v / kCell)); }
+  static std::uint64_t key_of(Vec2 p) { return cell_key(cell(p.x), cell(p.y)); }
+  template <class F>
+  static void for_cells(std::span<const Vec2> poly, F&& f) {
+    Box2 b = Box2::empty();
+    for (const Vec2 p : poly) b.add(p);
+    for (std::int64_t y = cell(b.lo.y); y <= cell(b.hi.y); ++y)
+      for (std::int64_t x = cell(b.lo.x); x <= cell(b.hi.x); ++x) f(cell_key(x, y));
+  }
+  const std::vector<std::array<Vec2, 3>>& faces_;
+  const std::vector<int>& piece_;
+  std::vector<std::array<Vec2, 2>> cuts_;
+  std::unordered_map<std::uint64_t, Cell> cells_;
+};
+
+/// True when a label's text lies on faces of the piece of face `face` (a label hanging past its
+/// piece's outline is cut away, one over a slit is cut in two): the centre of its box does, and
+/// no cut line meets the glyphs' box, which is label_box less an eighth of its height at top and
+/// bottom (digits are about 0.73 of the font size tall).
+bool box_on_piece(const PaperGrid& grid, const std::array<Vec2, 4>& box, int face) {
+  const Vec2 centre = 0.25 * (box[0] + box[1] + box[2] + box[3]);
+  if (!grid.on_piece(centre, face)) return false;
+  const Vec2 inset = 0.125 * (box[3] - box[0]);
+  const std::array<Vec2, 4> glyphs{box[0] + inset, box[1] + inset, box[2] - inset, box[3] - inset};
+  return !grid.meets_cut(glyphs);
+}
+
 /// Labels that did not fit their face at kLegibleLabelMm move where they print that large: onto
 /// the glue tab of their side when it has room (the tab is glued away, its face's partner label
 /// stays in view), else beside their edge at that size, on the face's side of it, reaching over
-/// folds into the faces around, where that is clear of every other label, of any face
+/// folds into the faces around, where that is on the piece (box_on_piece: `grid`) and clear of
+/// every other label, of any face
 /// (docs/print.md, "Labels"). Only the labels of the faces `only` marks move, when given.
 /// `fitted`: each label as size_labels placed it in its face (apart from the others there),
 /// where a moved label goes back when it meets another.
-void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
+void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const PaperGrid& grid,
                          const std::vector<Tab>& tabs, const std::vector<int>& tab_of,
                          std::vector<Label>& labels, const std::vector<Label>& fitted,
                          double max_size, const std::vector<char>* only = nullptr) {
@@ -275,6 +362,9 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces,
                                        {0.0, -kLegibleLabelMm},
                                        {1.0, kLegibleLabelMm}}) {
         beside.at = p0 + (part * len + past) * d + (in * kLegibleLabelMm) * up;
+        // Clear of the other labels (the cheaper test), and on the piece.
+        if (boxes.collides(beside, i) || !box_on_piece(grid, label_box(beside), label.side.face))
+          continue;
         if ((moved = move_to(i, beside))) break;
       }
       if (moved) break;
@@ -320,6 +410,106 @@ std::vector<char> faces_near_small_labels(const std::vector<std::array<Vec2, 3>>
             if (norm(p - q) <= kCrowdedMm) near[f] = 1;
         }
   return near;
+}
+
+/// The thin box a leader line from `a` to `b` covers, 0.2 mm wide, its ends 0.05 mm short.
+std::array<Vec2, 4> leader_box(Vec2 a, Vec2 b) {
+  const double len = norm(b - a);
+  const Vec2 d = len > 0 ? (1 / len) * (b - a) : Vec2{1, 0}, up{-0.1 * d.y, 0.1 * d.x};
+  const Vec2 s = a + 0.05 * d, e = b - 0.05 * d;
+  return {s - up, e - up, e + up, s + up};
+}
+
+// Labels under the legible size beyond which none is placed away from its edge: a mesh that
+// dense (the rocker arm with every face kept: 4,600) has no room for them, and trying took 2 s.
+constexpr std::size_t kMostFarLabels = 200;
+
+/// Labels left under kLegibleLabelMm by every place at their edge (a short cut edge at a small
+/// feature crowded with labels) print at that size farther away, on their piece's faces, clear
+/// of every label and of the leaders drawn before, with a leader line to their edge that runs
+/// over the piece and meets no other label (docs/print.md, "Labels"). Places are tried on rings
+/// around the edge's middle, 2 to 15 mm, nearest first, from the face's side round to the other,
+/// the text along the edge or level; a label that finds none keeps its size. None moves when
+/// more than kMostFarLabels are under the legible size.
+std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& faces,
+                                      const PaperGrid& grid, std::vector<Label>& labels) {
+  std::vector<Segment> leaders;
+  const auto small =
+      static_cast<std::size_t>(std::count_if(labels.begin(), labels.end(), [](const Label& l) {
+        return !l.text.empty() && l.size < kLegibleLabelMm;
+      }));
+  if (small == 0 || small > kMostFarLabels) return leaders;
+  LabelBoxes boxes(labels);
+  std::vector<std::array<Vec2, 4>> drawn;  // the leaders' boxes
+  for (int i = 0; i < static_cast<int>(labels.size()); ++i) {
+    const Label& label = labels[i];
+    if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
+    const int face = label.side.face;
+    const auto& tri = faces[face];
+    const Vec2 p0 = tri[label.side.k], p1 = tri[(label.side.k + 1) % 3];
+    const Vec2 p2 = tri[(label.side.k + 2) % 3];
+    const double len = norm(p1 - p0);
+    if (!(len > 0)) continue;
+    const Vec2 d = (1 / len) * (p1 - p0), middle = 0.5 * (p0 + p1);
+    Vec2 up{-d.y, d.x};
+    if (dot(p2 - middle, up) < 0) up = Vec2{0, 0} - up;
+    Label far = label;
+    far.size = kLegibleLabelMm;
+    const double half_w = 0.3 * far.size * label_chars(far.text), half_h = 0.5 * far.size;
+    Segment leader;
+    // True when the label fits at `at`, turned `angle`, with its leader (into `leader`).
+    const auto fits = [&](Vec2 at, double angle) {
+      far.at = at;
+      far.angle = angle;
+      turn_upright(far);
+      if (!grid.on_piece(at, face)) return false;  // the cheapest test first
+      const std::array<Vec2, 4> box = label_box(far);
+      if (boxes.meets(box, i) || !box_on_piece(grid, box, face)) return false;
+      for (const auto& l : drawn)
+        if (convex_overlap(box, l, 0)) return false;
+      // From the box's point nearest the edge's middle to the edge's point nearest that, else
+      // to other points of the edge's middle three fifths (it points at one edge, not at a
+      // corner of several).
+      const Vec2 along{std::cos(far.angle), std::sin(far.angle)}, across{-along.y, along.x};
+      const Vec2 rel = middle - at;
+      const Vec2 q = at + std::clamp(dot(rel, along), -half_w, half_w) * along +
+                     std::clamp(dot(rel, across), -half_h, half_h) * across;
+      const double nearest = std::clamp(dot(q - p0, d) / len, 0.2, 0.8);
+      for (const double part : {nearest, 0.5, 0.35, 0.65, 0.2, 0.8}) {
+        const Vec2 m = p0 + (part * len) * d;
+        const double reach = norm(m - q);
+        // It starts on the piece and crosses no cut line (it stops 0.05 mm short of its own
+        // edge for the test), so it runs over the piece; its middle is on the piece, so it
+        // reaches its edge from the face's side.
+        const std::array<Vec2, 2> line{q, q + std::max(0.0, 1 - 0.05 / reach) * (m - q)};
+        if (reach > 0.1 && (!grid.on_piece(q, face) || !grid.on_piece(0.5 * (q + m), face) ||
+                            grid.meets_cut(line) || boxes.meets(leader_box(q, m), i)))
+          continue;
+        leader = {q, m, face};
+        return true;
+      }
+      return false;
+    };
+    const double along_edge = std::atan2(d.y, d.x);
+    bool placed = false;
+    for (const double r : {2.0, 3.0, 4.0, 5.5, 7.0, 9.0, 11.5, 15.0}) {
+      for (int j = 0; j <= 12 && !placed; ++j)
+        for (const int sign : {1, -1}) {
+          if ((j == 0 || j == 12) && sign < 0) continue;
+          const double turn = sign * j * std::numbers::pi / 12;
+          const Vec2 at = middle + r * (std::cos(turn) * up + std::sin(turn) * d);
+          if ((placed = fits(at, along_edge) || fits(at, 0))) break;
+        }
+      if (placed) break;
+    }
+    if (!placed) continue;
+    boxes.remove(i);
+    labels[i] = far;
+    boxes.add(i);
+    drawn.push_back(leader_box(leader.a, leader.b));
+    leaders.push_back(leader);
+  }
+  return leaders;
 }
 
 /// "6" and "9" (and "16" and "91", ...) read as each other upside down: mark those with a dot.
@@ -478,14 +668,19 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   }
 
   size_labels(out.faces, out.labels, options.max_label_mm);
+  const PaperGrid on_paper(out.faces, out.edges, piece);
   std::vector<Label> fitted = out.labels;
-  make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm);
-  // A label naming the piece across ("12→P3") that prints under the legible size even so (a
-  // sliver with two cut edges) becomes the plain number, and its face's labels are placed again:
-  // its twin still names the piece (docs/print.md, "Build order").
+  make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
+                      options.max_label_mm);
+  // A label naming the piece across ("12→P3") that prints under the legible size even so, and
+  // even away from its edge with a leader line (a sliver with two cut edges), becomes the plain
+  // number, and its face's labels are placed again: its twin still names the piece
+  // (docs/print.md, "Build order").
+  std::vector<Label> trial = out.labels;
+  if (options.labels) place_far_labels(out.faces, on_paper, trial);
   std::vector<char> again(out.faces.size(), 0);
   bool shorten = false;
-  for (const Label& l : out.labels) {
+  for (const Label& l : trial) {
     if (l.size >= kLegibleLabelMm || l.text == label_text(out.edges[l.edge].cut_index + 1))
       continue;
     again[l.side.face] = 1;
@@ -497,23 +692,25 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
       if (!again[out.labels[i].side.face]) continue;
       Label l = out.labels[i];
-      if (l.size < kLegibleLabelMm) l.text = label_text(out.edges[l.edge].cut_index + 1);
+      if (trial[i].size < kLegibleLabelMm) l.text = label_text(out.edges[l.edge].cut_index + 1);
       index.push_back(i);
       redo.push_back(std::move(l));
     }
     size_labels(out.faces, redo, options.max_label_mm);
     for (std::size_t j = 0; j < index.size(); ++j)
       fitted[index[j]] = out.labels[index[j]] = redo[j];
-    make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm,
-                        &again);
+    make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
+                        options.max_label_mm, &again);
   }
-  // Where a label still prints under the legible size (a small feature with many short cut
-  // edges), the labels moved beside their edges around it give up naming the piece across, in
-  // place (their boxes shrink about their centres), and the small labels look for room again.
-  // Of the two labels of an edge one keeps the name: the one whose twin prints under the legible
-  // size or plain already, else the one on the edge's second side when both are crowded
-  // (docs/print.md, "Build order").
-  if (const std::vector<char> crowded = faces_near_small_labels(out.faces, out.labels);
+  // Where a label would still print under the legible size even away from its edge with a
+  // leader line (a small feature with many short cut edges), the labels moved beside their edges
+  // around it give up naming the piece across, in place (their boxes shrink about their
+  // centres), and the small labels look for room again. Of the two labels of an edge one keeps
+  // the name: the one whose twin prints under the legible size or plain already, else the one on
+  // the edge's second side when both are crowded (docs/print.md, "Build order").
+  trial = out.labels;
+  if (options.labels) place_far_labels(out.faces, on_paper, trial);
+  if (const std::vector<char> crowded = faces_near_small_labels(out.faces, trial);
       std::find(crowded.begin(), crowded.end(), 1) != crowded.end()) {
     std::vector<int> twin(out.labels.size(), -1), first(out.edges.size(), -1);
     for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
@@ -544,9 +741,12 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       gave = true;
     }
     if (gave)
-      make_labels_legible(out.faces, out.tabs, tab_of, out.labels, fitted, options.max_label_mm);
+      make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
+                          options.max_label_mm);
   }
-  if (pieces > 1) out.piece_labels = print_detail::place_piece_labels(out.faces, out.labels, piece);
+  if (options.labels) out.leaders = place_far_labels(out.faces, on_paper, out.labels);
+  if (pieces > 1)
+    out.piece_labels = print_detail::place_piece_labels(out.faces, out.labels, out.leaders, piece);
 
   // Translate so that everything starts at the origin.
   Box2 box = Box2::empty();
@@ -564,7 +764,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     for (Vec2& p : t.corners) p = p + shift;
   for (GlueStrip& t : out.strips)
     for (Vec2& p : t.corners) p = p + shift;
-  for (auto* list : {&out.cut, &out.mountain, &out.valley})
+  for (auto* list : {&out.cut, &out.mountain, &out.valley, &out.leaders})
     for (Segment& s : *list) s = {s.a + shift, s.b + shift, s.face};
   for (Label& l : out.labels) l.at = l.at + shift;
   for (Label& l : out.piece_labels) l.at = l.at + shift;

@@ -84,6 +84,9 @@ struct PrintLayout {
   std::vector<GlueStrip> strips;  ///< separate glue strips, for cut edges without a tab
   std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) with neither (TabMode::None)
   std::vector<Label> labels;
+  /// Leader lines (docs/print.md, "Labels"): from a label that found no legible place at its
+  /// edge, printed farther away on its piece, to its edge's middle (`face`: the label's).
+  std::vector<Segment> leaders;
   /// With several pieces, each piece's number ("P3", from 1 in build order) inside one of its
   /// faces (`side.face`; `edge` -1), larger than the edge labels where the face holds it.
   std::vector<Label> piece_labels;

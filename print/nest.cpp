@@ -141,7 +141,7 @@ PageLayout nest_pages(PrintLayout& layout, const std::vector<int>& piece,
     for (Vec2& p : layout.faces[f]) p = move(piece[f], p);
   for (Tab& t : layout.tabs)
     for (Vec2& p : t.corners) p = move(piece[t.side.face], p);
-  for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
+  for (auto* list : {&layout.cut, &layout.mountain, &layout.valley, &layout.leaders})
     for (Segment& s : *list)
       if (s.face >= 0) s.a = move(piece[s.face], s.a), s.b = move(piece[s.face], s.b);
   for (Label& l : layout.labels) {

@@ -138,7 +138,7 @@ void turn_quarter(PrintLayout& layout) {
     for (Vec2& p : t.corners) turn(p);
   for (GlueStrip& t : layout.strips)
     for (Vec2& p : t.corners) turn(p);
-  for (auto* list : {&layout.cut, &layout.mountain, &layout.valley})
+  for (auto* list : {&layout.cut, &layout.mountain, &layout.valley, &layout.leaders})
     for (Segment& s : *list) turn(s.a), turn(s.b);
   for (Label& l : layout.labels) {
     turn(l.at);
@@ -307,11 +307,18 @@ double luminance_at(const std::vector<PageImage>& images, Vec2 q) {
 }
 
 /// Labels over a dark colour (a black tyre, a dark texture) are drawn white: the mean luminance
-/// of 15 points over the text's box decides.
+/// of 15 points over the text's box decides. So are leader lines, by 5 points along them.
 void light_labels_over_dark(PageDrawing& d) {
   if (d.images.empty()) return;
   for (const PageImage& image : d.images) cairo_surface_flush(image.surface.get());
   for (Shape& s : d.shapes) {
+    if (s.layer == Layer::Leaders && s.points.size() == 2) {  // by five points along the line
+      double sum = 0;
+      for (const double t : {0.1, 0.3, 0.5, 0.7, 0.9})
+        sum += luminance_at(d.images, s.points[0] + t * (s.points[1] - s.points[0]));
+      s.light = sum / 5 < kDarkLuminance;
+      continue;
+    }
     if (s.layer != Layer::Labels || s.text.empty() || s.points.empty()) continue;
     const double turn = s.angle_deg * std::numbers::pi / 180;
     const Vec2 along{std::cos(turn), std::sin(turn)}, across{-along.y, along.x};
@@ -355,6 +362,7 @@ void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawin
   for (const Segment& s : layout.cut) add(Layer::Cut, {s.a, s.b}, false);
   for (const Segment& s : layout.mountain) add(Layer::Mountain, {s.a, s.b}, false);
   for (const Segment& s : layout.valley) add(Layer::Valley, {s.a, s.b}, false);
+  for (const Segment& s : layout.leaders) add(Layer::Leaders, {s.a, s.b}, false);
   for (const Label& l : layout.piece_labels) {
     if (l.text.empty()) continue;
     const auto box = label_box(l);

@@ -79,7 +79,7 @@ PageLayout paginate(PrintLayout& layout, const PageOptions& options);
 void turn_quarter(PrintLayout& layout);
 
 /// Which drawing layer a shape belongs to (one SVG group or one PDF drawing pass each).
-enum class Layer { Faces, Tabs, Strips, Cut, Mountain, Valley, Labels, Marks };
+enum class Layer { Faces, Tabs, Strips, Cut, Mountain, Valley, Leaders, Labels, Marks };
 
 /// A shape in page coordinates (mm, y down, origin at the page's top-left corner).
 struct Shape {
@@ -89,7 +89,8 @@ struct Shape {
   std::string text;      ///< non-empty for text
   double size = 0;       ///< text height, mm
   double angle_deg = 0;  ///< text baseline, degrees clockwise on the page (SVG rotate())
-  bool light = false;    ///< text: drawn white, over a dark colour (docs/print.md, "Labels")
+  bool light =
+      false;  ///< text, leader line: drawn white, over a dark colour (docs/print.md, "Labels")
 };
 
 /// Everything on one page, culled to the page's printable area (writers clip to `clip_*`).

@@ -46,7 +46,11 @@ void draw(cairo_t* cr, const PageDrawing& d) {
     cairo_set_line_width(cr, width);
     cairo_set_dash(cr, dash.size() ? dash.begin() : nullptr, static_cast<int>(dash.size()), 0);
     for (const Shape& s : d.shapes)
-      if (s.layer == layer && s.text.empty()) trace(cr, s);
+      if (s.layer == layer && s.text.empty() && !s.light) trace(cr, s);
+    cairo_stroke(cr);
+    set_rgb(cr, 0xffffff);  // lines over a dark colour, as light text is
+    for (const Shape& s : d.shapes)
+      if (s.layer == layer && s.text.empty() && s.light) trace(cr, s);
     cairo_stroke(cr);
   };
   auto text_layer = [&](Layer layer, unsigned rgb) {
@@ -96,6 +100,7 @@ void draw(cairo_t* cr, const PageDrawing& d) {
   stroke_layer(Layer::Cut, 0x000000, 0.25, {});
   stroke_layer(Layer::Mountain, 0xc0392b, 0.2, {2, 1});
   stroke_layer(Layer::Valley, 0x1f5fbf, 0.2, {2, 0.7, 0.4, 0.7});
+  stroke_layer(Layer::Leaders, 0x333333, 0.15, {});
   text_layer(Layer::Labels, 0x333333);
   text_layer(Layer::Strips, 0x333333);
   cairo_restore(cr);  // marks live in the margins: unclipped

@@ -44,6 +44,8 @@ constexpr LayerStyle kLayers[] = {
     {Layer::Valley, "valley",
      "fill=\"none\" stroke=\"#1f5fbf\" stroke-width=\"0.2\" "
      "stroke-dasharray=\"2 0.7 0.4 0.7\""},
+    {Layer::Leaders, "leaders",
+     "fill=\"none\" stroke=\"#333333\" stroke-width=\"0.15\" stroke-linecap=\"round\""},
     {Layer::Labels, "labels",
      "fill=\"#333333\" font-family=\"sans-serif\" "
      "text-anchor=\"middle\""},
@@ -111,6 +113,11 @@ std::string write_svg(const PageDrawing& d,
         for (std::size_t i = 0; i < s.points.size(); ++i)
           o << (i ? " " : "") << num(s.points[i].x) << ',' << num(s.points[i].y);
         o << "\"/>\n";
+      } else if (s.light) {  // a line over a dark colour, as light text is
+        o << "<path d=\"";
+        for (std::size_t i = 0; i < s.points.size(); ++i)
+          o << (i ? "L" : "M") << num(s.points[i].x) << ' ' << num(s.points[i].y);
+        o << "\" stroke=\"#ffffff\"" << ls.path_style << "/>\n";
       } else {
         for (std::size_t i = 0; i < s.points.size(); ++i) {
           path.append(i ? "L" : "M");

@@ -12,10 +12,11 @@ namespace papernet {
 std::string xml_escape(const std::string& s);
 
 /// One SVG document for a drawing: width/height in mm, a viewBox in mm, and one <g> per layer
-/// with ids faces, tabs, (colour: the drawing's images,) strips, cut, mountain, valley, labels,
-/// marks (strips: glue strips' outlines solid, their seams dotted, their labels). Cut lines are
-/// solid, mountain folds dashed, valley folds dash-dotted. `metadata` (e.g. omitted tab counts)
-/// goes into a <metadata> element as data-* attributes of a <papernet> element.
+/// with ids faces, tabs, (colour: the drawing's images,) strips, cut, mountain, valley, leaders,
+/// labels, marks (strips: glue strips' outlines solid, their seams dotted, their labels). Cut
+/// lines are solid, mountain folds dashed, valley folds dash-dotted, leader lines thin solid.
+/// `metadata` (e.g. omitted tab counts) goes into a <metadata> element as data-* attributes of a
+/// <papernet> element.
 std::string write_svg(const PageDrawing& drawing,
                       const std::vector<std::pair<std::string, std::string>>& metadata = {});
 

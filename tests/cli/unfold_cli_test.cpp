@@ -208,8 +208,9 @@ TEST(UnfoldCli, DetailAutoCollapsesShortEdgesOfACadPart) {
 
 // The milk truck's tyres and axles are small parts with edges printed under 3 mm. When a sixth of
 // the faces at once would move a part more than 3 mm, detail auto collapses fewer at a time: the
-// truck prints with no glue strip and no label under 1.5 mm (13 strips and one 0.38 mm label when
-// such a step ended the collapse).
+// truck prints with no glue strip (13 when such a step ended the collapse). Its labels under
+// 1.5 mm: none while labels could hang past their piece's outline (44 did), 17 since they must
+// print on their piece, on a part of slivers under 1.5 mm wide (docs/print.md, "Labels").
 TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
   const std::string base = ::testing::TempDir() + "papernet_detail_truck";
   std::string said;
@@ -224,7 +225,7 @@ TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
       said, m, std::regex(R"((\d+) glue strips.*smallest label [0-9.]+ mm \((\d+) under)")))
       << said;
   EXPECT_EQ(m[1].str(), "0") << said;
-  EXPECT_EQ(m[2].str(), "0") << said;
+  EXPECT_LE(std::stoi(m[2].str()), 20) << said;
   std::stringstream text;
   text << std::ifstream(base + ".json").rdbuf();
   const auto j = nlohmann::json::parse(text.str());
