@@ -374,7 +374,8 @@ TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
       // The edge: a cut line, or the hinge of its glue tab (drawn as a mountain fold).
       std::vector<std::array<Vec2, 2>> cuts = drawn_segments(page, "cut");
       for (const auto& hinge : drawn_segments(page, "mountain")) cuts.push_back(hinge);
-      for (const auto& [from, to] : drawn_segments(page, "leaders")) {
+      for (const std::array<Vec2, 2>& leader : drawn_segments(page, "leaders")) {
+        const Vec2 from = leader[0], to = leader[1];  // a lambda below takes `from`
         ++leaders;
         // Starts at a label's box (the drawn glyph box is a little smaller than the label's).
         const auto starts =
