@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "print/internal/grid_cells.h"
 #include "print/internal/piece_labels.h"
 
 namespace papernet {
@@ -69,6 +70,13 @@ std::array<Vec2, 4> label_box(const Label& label) {
   const double hh = 0.5 * label.size;
   return {label.at - hw * d - hh * up, label.at + hw * d - hh * up, label.at + hw * d + hh * up,
           label.at - hw * d + hh * up};
+}
+
+std::array<Vec2, 4> leader_box(Vec2 a, Vec2 b) {
+  const double len = norm(b - a);
+  const Vec2 d = len > 0 ? (1 / len) * (b - a) : Vec2{1, 0}, up{-0.1 * d.y, 0.1 * d.x};
+  const Vec2 s = a + 0.05 * d, e = b - 0.05 * d;
+  return {s - up, e - up, e + up, s + up};
 }
 
 LabelSizes label_sizes(const PrintLayout& layout) {
@@ -143,11 +151,6 @@ void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Labe
   }
 }
 
-// The key of grid cell (x, y) in a hash map of cells.
-std::uint64_t cell_key(std::int64_t x, std::int64_t y) {
-  return static_cast<std::uint64_t>(x) << 32 ^ static_cast<std::uint32_t>(y);
-}
-
 /// The boxes of a net's labels on a grid of cells, as the labels move: which other label a box
 /// meets, on any face (a label moved beside its edge reaches over folds into other faces).
 class LabelBoxes {
@@ -191,14 +194,9 @@ class LabelBoxes {
   static constexpr double kCell = 4;  // mm: about a label's length
   template <class F>
   static void for_cells(const std::array<Vec2, 4>& box, F&& f) {
-    Box2 b = Box2::empty();
-    for (Vec2 p : box) b.add(p);
-    const auto lo_x = static_cast<std::int64_t>(std::floor(b.lo.x / kCell));
-    const auto hi_x = static_cast<std::int64_t>(std::floor(b.hi.x / kCell));
-    const auto lo_y = static_cast<std::int64_t>(std::floor(b.lo.y / kCell));
-    const auto hi_y = static_cast<std::int64_t>(std::floor(b.hi.y / kCell));
-    for (std::int64_t y = lo_y; y <= hi_y; ++y)
-      for (std::int64_t x = lo_x; x <= hi_x; ++x) f(cell_key(x, y));
+    print_detail::cells_of(box, kCell).for_each([&](std::int64_t x, std::int64_t y) {
+      f(print_detail::cell_key(x, y));
+    });
   }
   const std::vector<Label>& labels_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
@@ -261,14 +259,15 @@ class PaperGrid {
   struct Cell {
     std::vector<int> faces, cuts;
   };
-  static std::int64_t cell(double v) { return static_cast<std::int64_t>(std::floor(v / kCell)); }
-  static std::uint64_t key_of(Vec2 p) { return cell_key(cell(p.x), cell(p.y)); }
+  static std::uint64_t key_of(Vec2 p) {
+    return print_detail::cell_key(print_detail::cell_of(p.x, kCell),
+                                  print_detail::cell_of(p.y, kCell));
+  }
   template <class F>
   static void for_cells(std::span<const Vec2> poly, F&& f) {
-    Box2 b = Box2::empty();
-    for (const Vec2 p : poly) b.add(p);
-    for (std::int64_t y = cell(b.lo.y); y <= cell(b.hi.y); ++y)
-      for (std::int64_t x = cell(b.lo.x); x <= cell(b.hi.x); ++x) f(cell_key(x, y));
+    print_detail::cells_of(poly, kCell).for_each([&](std::int64_t x, std::int64_t y) {
+      f(print_detail::cell_key(x, y));
+    });
   }
   const std::vector<std::array<Vec2, 3>>& faces_;
   const std::vector<int>& piece_;
@@ -301,13 +300,10 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
                          std::vector<Label>& labels, const std::vector<Label>& fitted,
                          double max_size, const std::vector<char>* only = nullptr) {
   LabelBoxes boxes(labels);
-  // Moves label `i` to `to` when that is clear of the others.
-  const auto move_to = [&](int i, const Label& to) {
-    if (boxes.collides(to, i)) return false;
+  const auto place = [&](int i, const Label& to) {
     boxes.remove(i);
     labels[i] = to;
     boxes.add(i);
-    return true;
   };
   for (int i = 0; i < static_cast<int>(labels.size()); ++i) {
     const Label& label = labels[i];
@@ -328,7 +324,10 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
           on_tab.angle = std::atan2(d.y, d.x);
           on_tab.size = size;
           turn_upright(on_tab);
-          if (move_to(i, on_tab)) continue;
+          if (!boxes.collides(on_tab, i)) {
+            place(i, on_tab);
+            continue;
+          }
         }
       }
     }
@@ -365,7 +364,9 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
         // Clear of the other labels (the cheaper test), and on the piece.
         if (boxes.collides(beside, i) || !box_on_piece(grid, label_box(beside), label.side.face))
           continue;
-        if ((moved = move_to(i, beside))) break;
+        place(i, beside);
+        moved = true;
+        break;
       }
       if (moved) break;
     }
@@ -376,9 +377,7 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
     changed = false;
     for (int i = 0; i < static_cast<int>(labels.size()); ++i)
       if (labels[i].size != fitted[i].size && boxes.collides(labels[i], i)) {
-        boxes.remove(i);
-        labels[i] = fitted[i];
-        boxes.add(i);
+        place(i, fitted[i]);
         changed = true;
       }
   }
@@ -393,8 +392,8 @@ std::vector<char> faces_near_small_labels(const std::vector<std::array<Vec2, 3>>
                                           const std::vector<Label>& labels) {
   std::vector<char> near(faces.size(), 0);
   const auto cell = [](Vec2 p) {
-    return cell_key(static_cast<std::int64_t>(std::floor(p.x / kCrowdedMm)),
-                    static_cast<std::int64_t>(std::floor(p.y / kCrowdedMm)));
+    return print_detail::cell_key(print_detail::cell_of(p.x, kCrowdedMm),
+                                  print_detail::cell_of(p.y, kCrowdedMm));
   };
   std::unordered_map<std::uint64_t, std::vector<Vec2>> small;
   for (const Label& l : labels)
@@ -410,14 +409,6 @@ std::vector<char> faces_near_small_labels(const std::vector<std::array<Vec2, 3>>
             if (norm(p - q) <= kCrowdedMm) near[f] = 1;
         }
   return near;
-}
-
-/// The thin box a leader line from `a` to `b` covers, 0.2 mm wide, its ends 0.05 mm short.
-std::array<Vec2, 4> leader_box(Vec2 a, Vec2 b) {
-  const double len = norm(b - a);
-  const Vec2 d = len > 0 ? (1 / len) * (b - a) : Vec2{1, 0}, up{-0.1 * d.y, 0.1 * d.x};
-  const Vec2 s = a + 0.05 * d, e = b - 0.05 * d;
-  return {s - up, e - up, e + up, s + up};
 }
 
 // Labels under the legible size beyond which none is placed away from its edge: a mesh that
@@ -709,7 +700,9 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
   // the name: the one whose twin prints under the legible size or plain already, else the one on
   // the edge's second side when both are crowded (docs/print.md, "Build order").
   trial = out.labels;
-  if (options.labels) place_far_labels(out.faces, on_paper, trial);
+  std::vector<Segment> trial_leaders;
+  if (options.labels) trial_leaders = place_far_labels(out.faces, on_paper, trial);
+  bool gave = false;
   if (const std::vector<char> crowded = faces_near_small_labels(out.faces, trial);
       std::find(crowded.begin(), crowded.end(), 1) != crowded.end()) {
     std::vector<int> twin(out.labels.size(), -1), first(out.edges.size(), -1);
@@ -733,7 +726,6 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
         return false;  // the twin prints small, or gave the name up before
       return !crowded[other.side.face] || l.side.face == out.edges[l.edge].a.face;
     };
-    bool gave = false;
     for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
       const std::string plain = label_text(out.edges[out.labels[i].edge].cut_index + 1);
       if (out.labels[i].text == plain || !gives_way(i)) continue;
@@ -744,7 +736,13 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
                           options.max_label_mm);
   }
-  if (options.labels) out.leaders = place_far_labels(out.faces, on_paper, out.labels);
+  // The last trial is the result unless labels gave up their names since.
+  if (!gave) {
+    out.labels = std::move(trial);
+    out.leaders = std::move(trial_leaders);
+  } else if (options.labels) {
+    out.leaders = place_far_labels(out.faces, on_paper, out.labels);
+  }
   if (pieces > 1)
     out.piece_labels = print_detail::place_piece_labels(out.faces, out.labels, out.leaders, piece);
 

@@ -70,6 +70,10 @@ double label_chars(const std::string& text);
 /// of 0.6 of the font size.
 std::array<Vec2, 4> label_box(const Label& label);
 
+/// Corners (counter-clockwise) of the thin box a leader line from `a` to `b` covers: 0.2 mm
+/// wide, its ends 0.05 mm short of `a` and `b` (so that it does not meet the edge it points at).
+std::array<Vec2, 4> leader_box(Vec2 a, Vec2 b);
+
 /// A net ready to draw: millimetres, y up, rotated into its minimum-area box, everything (faces,
 /// tabs, strips) inside [0, size.x] x [0, size.y]. Every interior cut edge has exactly one tab
 /// or one strip (unless TabMode::None), and none overlaps a face, a tab or a strip.
@@ -85,7 +89,7 @@ struct PrintLayout {
   std::vector<int> omitted_tabs;  ///< edges (indices into `edges`) with neither (TabMode::None)
   std::vector<Label> labels;
   /// Leader lines (docs/print.md, "Labels"): from a label that found no legible place at its
-  /// edge, printed farther away on its piece, to its edge's middle (`face`: the label's).
+  /// edge, printed farther away on its piece, to a point of its edge (`face`: the label's).
   std::vector<Segment> leaders;
   /// With several pieces, each piece's number ("P3", from 1 in build order) inside one of its
   /// faces (`side.face`; `edge` -1), larger than the edge labels where the face holds it.

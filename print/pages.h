@@ -89,8 +89,8 @@ struct Shape {
   std::string text;      ///< non-empty for text
   double size = 0;       ///< text height, mm
   double angle_deg = 0;  ///< text baseline, degrees clockwise on the page (SVG rotate())
-  bool light =
-      false;  ///< text, leader line: drawn white, over a dark colour (docs/print.md, "Labels")
+  /// Text or a leader line drawn white, over a dark colour (docs/print.md, "Labels").
+  bool light = false;
 };
 
 /// Everything on one page, culled to the page's printable area (writers clip to `clip_*`).

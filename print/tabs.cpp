@@ -8,6 +8,7 @@
 #include "core/tabs/tab_clearance.h"
 #include "core/unfold/net_metrics.h"
 #include "print/fit.h"
+#include "print/internal/grid_cells.h"
 
 namespace papernet {
 
@@ -46,24 +47,19 @@ std::array<double, 4> box_of(std::span<const Vec2> poly) {
 
 template <class F>
 void PolygonGrid::for_cells(std::span<const Vec2> poly, F&& f) const {
-  const std::array<double, 4> b = box_of(poly);
-  const auto i0 = static_cast<std::int64_t>(std::floor(b[0] / cell_));
-  const auto i1 = static_cast<std::int64_t>(std::floor(b[2] / cell_));
-  const auto j0 = static_cast<std::int64_t>(std::floor(b[1] / cell_));
-  const auto j1 = static_cast<std::int64_t>(std::floor(b[3] / cell_));
+  const print_detail::CellRange cells = print_detail::cells_of(poly, cell_);
   // Beyond a box of 2 x 2 cells, only the cells the polygon meets (or nearly touches): two
   // polygons that overlap share one of those.
-  const bool every = (i1 - i0 + 1) * (j1 - j0 + 1) <= 4;
-  for (auto i = i0; i <= i1; ++i)
-    for (auto j = j0; j <= j1; ++j) {
-      if (!every) {
-        const double x = static_cast<double>(i) * cell_, y = static_cast<double>(j) * cell_;
-        const std::array<Vec2, 4> square{Vec2{x, y}, Vec2{x + cell_, y}, Vec2{x + cell_, y + cell_},
-                                         Vec2{x, y + cell_}};
-        if (!convex_overlap(poly, square, -1e-9 * cell_)) continue;
-      }
-      f((static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint32_t>(j));
+  const bool every = cells.count() <= 4;
+  cells.for_each([&](std::int64_t i, std::int64_t j) {
+    if (!every) {
+      const double x = static_cast<double>(i) * cell_, y = static_cast<double>(j) * cell_;
+      const std::array<Vec2, 4> square{Vec2{x, y}, Vec2{x + cell_, y}, Vec2{x + cell_, y + cell_},
+                                       Vec2{x, y + cell_}};
+      if (!convex_overlap(poly, square, -1e-9 * cell_)) return;
     }
+    f(print_detail::cell_key(i, j));
+  });
 }
 
 void PolygonGrid::add(std::span<const Vec2> poly) {

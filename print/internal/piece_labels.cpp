@@ -66,12 +66,8 @@ std::vector<Label> place_piece_labels(const std::vector<std::array<Vec2, 3>>& fa
   std::vector<std::vector<std::array<Vec2, 4>>> boxes(faces_of.size());  // edge labels by piece
   for (const Label& l : labels)
     if (!l.text.empty() && l.size > 0) boxes[piece[l.side.face]].push_back(label_box(l));
-  for (const Segment& s : leaders) {  // a leader line as a box 0.2 mm wide
-    const double len = norm(s.b - s.a);
-    if (!(len > 0) || s.face < 0) continue;
-    const Vec2 across{-0.1 * (s.b - s.a).y / len, 0.1 * (s.b - s.a).x / len};
-    boxes[piece[s.face]].push_back({s.a - across, s.b - across, s.b + across, s.a + across});
-  }
+  for (const Segment& s : leaders)
+    if (s.face >= 0 && norm(s.b - s.a) > 0) boxes[piece[s.face]].push_back(leader_box(s.a, s.b));
   std::vector<Circle> circle(faces.size());
   for (std::size_t f = 0; f < faces.size(); ++f) circle[f] = incircle(faces[f]);
   std::vector<Label> out;

@@ -20,6 +20,7 @@
 #include "core/unfold/net_check.h"
 #include "engine/pipeline.h"
 #include "tests/support/job_input.h"
+#include "tests/support/polygons.h"
 #include "tests/support/svg.h"
 
 namespace papernet::test {
@@ -316,12 +317,6 @@ std::vector<std::array<Vec2, 2>> drawn_segments(const std::string& svg, const st
   return out;
 }
 
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const double len2 = dot(b - a, b - a);
-  const double t = len2 > 0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0;
-  return norm(p - (a + t * (b - a)));
-}
-
 /// True when `p` lies in the triangle or convex polygon `poly` (either orientation), up to
 /// 1e-6 mm^2 of slack.
 bool point_in_polygon(Vec2 p, const std::vector<Vec2>& poly) {
@@ -357,7 +352,7 @@ TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
         return std::any_of(faces.begin(), faces.end(), [&](const std::vector<Vec2>& f) {
           if (point_in_polygon(p, f)) return true;
           for (std::size_t j = 0; j < f.size(); ++j)
-            if (distance_to_segment(p, f[j], f[(j + 1) % f.size()]) <= 0.3) return true;
+            if (segment_distance(p, f[j], f[(j + 1) % f.size()]) <= 0.3) return true;
           return false;
         });
       };
@@ -383,7 +378,7 @@ TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
               const auto& c = t.corners;
               double d = INFINITY;
               for (int j = 0; j < 4; ++j)
-                d = std::min(d, distance_to_segment(from, c[j], c[(j + 1) % 4]));
+                d = std::min(d, segment_distance(from, c[j], c[(j + 1) % 4]));
               return d < 0.3 * 1.5;
             });
         ASSERT_NE(starts, edge_labels.end()) << "a leader on page " << k + 1 << " starts at ("
@@ -391,7 +386,7 @@ TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
         const double height = norm(starts->corners[3] - starts->corners[0]) / 0.7;
         EXPECT_GE(height, 1.5 - 1e-3) << "leader to \"" << starts->text << "\"";
         double to_cut = INFINITY;
-        for (const auto& [a, b] : cuts) to_cut = std::min(to_cut, distance_to_segment(to, a, b));
+        for (const auto& [a, b] : cuts) to_cut = std::min(to_cut, segment_distance(to, a, b));
         EXPECT_LT(to_cut, 1e-2) << "the leader of \"" << starts->text << "\" on page " << k + 1
                                 << " ends at (" << to.x << ", " << to.y << "), on no edge";
       }

@@ -29,6 +29,7 @@ using test::boxes_apart;
 using test::intersection_area;
 using test::near_pairs;
 using test::overlap_thickness;
+using test::segment_distance;
 using test::signed_area;
 
 bool point_in_triangle(Vec2 p, const std::array<Vec2, 3>& t, double tol) {
@@ -136,13 +137,6 @@ const std::vector<PrintLayout>& all_layouts() {
 }
 
 /// Height of a tab above its base.
-/// Distance from `p` to the segment from `a` to `b`.
-double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
-  const double len2 = dot(b - a, b - a);
-  const double t = len2 > 0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0;
-  return norm(p - (a + t * (b - a)));
-}
-
 double tab_height(const Tab& t) {
   const Vec2 e = t.corners[0] - t.corners[1];
   return std::max(std::abs(cross(e, t.corners[2] - t.corners[1])),

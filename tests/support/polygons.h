@@ -11,6 +11,13 @@
 
 namespace papernet::test {
 
+/// Distance from `p` to the segment from `a` to `b`.
+inline double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const double len2 = dot(b - a, b - a);
+  const double t = len2 > 0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0;
+  return norm(p - (a + t * (b - a)));
+}
+
 inline double signed_area(const std::vector<Vec2>& p) {
   double a = 0;  // relative to p[0]: absolute coordinates would drown tiny areas in rounding
   for (std::size_t i = 1; i + 1 < p.size(); ++i) a += cross(p[i] - p[0], p[i + 1] - p[0]);
