@@ -578,12 +578,54 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       out.faces[f][k] = out.scale * rotate(net.points[f][k], out.metrics.box.angle);
 
   out.edges = classify_edges(mesh, net, {options.flat_fold_degrees});
+  // The label of cut edge `e` on side `s`: across pieces it names the piece its edge glues to
+  // (docs/print.md).
+  const auto text_of = [&](int e, EdgeSide s) {
+    const NetEdge& edge = out.edges[e];
+    const int other = s.face == edge.a.face ? edge.b.face : edge.a.face;
+    const bool joins = !piece.empty() && other >= 0 && piece[other] != piece[s.face];
+    return joins ? std::to_string(edge.cut_index + 1) + "→" + piece_name(piece[other])
+                 : label_text(edge.cut_index + 1);
+  };
   const TabMode mode = options.tab_height_mm > 0 ? options.tabs : TabMode::None;
   std::vector<int> bare;  // cut edges that get no tab on the net
   if (mode == TabMode::Auto) {
-    const TabOptions tab_options{options.tab_height_mm, options.tab_angle_deg,
-                                 options.min_tab_height_mm, 1e-6, large};
+    TabOptions tab_options;
+    tab_options.height = options.tab_height_mm;
+    tab_options.angle_deg = options.tab_angle_deg;
+    tab_options.min_height = options.min_tab_height_mm;
+    tab_options.large = large;
+    // A side whose face holds its label only under the legible size wants the edge's tab: the
+    // label moves onto it (make_labels_legible), where a thin face has no room beside its edge.
+    // Only where the edge is long enough for a tab over it whose top holds the label at that
+    // size (45-degree ends, prefer_min_height tall): elsewhere the preference would move tabs
+    // for nothing.
+    if (options.labels) {
+      tab_options.prefer.assign(3 * out.faces.size(), 0);
+      for (int e = 0; e < static_cast<int>(out.edges.size()); ++e) {
+        if (out.edges[e].cut_index < 0) continue;
+        for (const EdgeSide s : {out.edges[e].a, out.edges[e].b}) {
+          if (s.face < 0) continue;
+          const auto& tri = out.faces[s.face];
+          const std::string text = text_of(e, s);
+          const double top =
+              norm(tri[(s.k + 1) % 3] - tri[s.k]) - 2 * tab_options.prefer_min_height;
+          if (top >= 1.15 * 0.6 * kLegibleLabelMm * label_chars(text) &&
+              make_label(tri, s, text, options.max_label_mm).size < kLegibleLabelMm)
+            tab_options.prefer[3 * s.face + s.k] = 1;
+        }
+      }
+    }
     TabPlacement placed = place_tabs(out.faces, out.edges, tab_options);
+    // The preference costs no glue strip: where it leaves more edges without a tab than placing
+    // without it does, the tabs are placed without it.
+    if (!placed.omitted.empty() && std::find(tab_options.prefer.begin(), tab_options.prefer.end(),
+                                             1) != tab_options.prefer.end()) {
+      tab_options.prefer.clear();
+      if (TabPlacement plain = place_tabs(out.faces, out.edges, tab_options);
+          plain.omitted.size() < placed.omitted.size())
+        placed = std::move(plain);
+    }
     out.tabs = std::move(placed.tabs);
     bare = std::move(placed.omitted);
   } else {
@@ -642,19 +684,8 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       } else {
         out.cut.push_back(side_segment(s));
       }
-      if (options.labels && edge.cut_index >= 0) {
-        // Across pieces, the label names the piece its edge glues to (docs/print.md).
-        const int other = s.face == edge.a.face ? edge.b.face : edge.a.face;
-        const bool joins = !piece.empty() && other >= 0 && piece[other] != piece[s.face];
-        out.labels.push_back(
-            {{},
-             0,
-             0,
-             joins ? std::to_string(edge.cut_index + 1) + "→" + piece_name(piece[other])
-                   : label_text(edge.cut_index + 1),
-             e,
-             s});
-      }
+      if (options.labels && edge.cut_index >= 0)
+        out.labels.push_back({{}, 0, 0, text_of(e, s), e, s});
     }
   }
 

@@ -235,9 +235,16 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
     const double lo = std::min(options.min_height, 0.5 * len);
     const double hi = std::max(lo, std::min(options.height, 0.5 * len));
     Tab best;
-    double best_area = 0;
-    // A large face's side last, and only when the other has no tab.
-    const bool a_last = options.large(edge.a.face) && !options.large(edge.b.face);
+    double best_area = 0, best_height = 0;
+    const auto preferred = [&](EdgeSide side) {
+      return side.face >= 0 && !options.prefer.empty() && options.prefer[3 * side.face + side.k];
+    };
+    // A large face's side last, and only when the other has no tab. Between two faces that are
+    // not large, a preferred side first, where it keeps a tab tall enough (keep_first).
+    const bool neither_large = !options.large(edge.a.face) && !options.large(edge.b.face);
+    const bool keep_first = neither_large && preferred(edge.a) != preferred(edge.b);
+    const bool a_last = (options.large(edge.a.face) && !options.large(edge.b.face)) ||
+                        (keep_first && preferred(edge.b));
     for (EdgeSide side : {a_last ? edge.b : edge.a, a_last ? edge.a : edge.b}) {
       const bool large = options.large(side.face);
       if (large && best.edge >= 0) break;
@@ -261,10 +268,14 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
         }
         const auto t = trapezoid(faces, side, shape, h);
         if (const double ta = area(t); ta > best_area && (!large || fits_large(side.face, t)))
-          best_area = ta, best = {e, side, t};
+          best_area = ta, best = {e, side, t}, best_height = h;
       }
-      // A full-size tab over the whole edge cannot be beaten: leave side b alone.
+      // A full-size tab over the whole edge cannot be beaten: leave side b alone. Nor can a
+      // preferred side's tab as tall as it needs to be.
       if (best.edge >= 0 && best_area >= area(trapezoid(faces, side, shapes.front(), hi)) - 1e-12)
+        break;
+      if (keep_first && best.edge >= 0 &&
+          best_height >= std::min(options.prefer_min_height, hi) - 1e-9)
         break;
     }
     if (best.edge < 0) {

@@ -36,6 +36,13 @@ struct TabOptions {
   double min_height = 2;    ///< lowest tab worth printing (half the edge on shorter edges)
   double tolerance = 1e-6;  ///< penetration depth below which polygons only touch
   LargeFaces large;
+  /// Face sides (3 x face + k) whose tab is wanted there when it can be: a side whose face is too
+  /// thin for its edge's label, which can print on the tab instead (print/layout.cpp). Empty:
+  /// none.
+  std::vector<char> prefer;
+  /// The lowest tab of a preferred side that is kept there although the other side has room for
+  /// a larger one.
+  double prefer_min_height = 2.5;
 };
 
 /// Result of placing tabs: at most one per interior cut edge.
@@ -53,8 +60,10 @@ struct TabPlacement {
 /// stretches of it (at least 40 % of the edge, at either end or in the middle) with each end
 /// slanted by `angle_deg` or by 40 % of it, each as tall as fits (bisection on the height); the
 /// side whose best tab has the
-/// larger area wins. Edges where no tab of min_height fits are listed as omitted (they need a glue
-/// strip, see strips.h). Faces are the net's triangles in layout coordinates, counter-clockwise.
+/// larger area wins, except that a side `prefer` marks, when the other is not marked, keeps a tab
+/// of at least `prefer_min_height` (or its tallest, when lower than that). Edges where no tab of
+/// min_height fits are listed as omitted (they need a glue strip, see strips.h). Faces are the
+/// net's triangles in layout coordinates, counter-clockwise.
 TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
                         const std::vector<NetEdge>& edges, const TabOptions& options = {});
 

@@ -204,6 +204,36 @@ TEST(Tabs, PolygonGridAnswersAsTestingEveryPolygon) {
   EXPECT_GT(hits, 100) << "the tabs should meet the slivers often";
 }
 
+// A face side marked `prefer` (print/layout.cpp marks the sides whose face holds its label only
+// under 1.5 mm) takes its edge's tab when a tab tall enough fits there, although the other side
+// has room for a larger one; where it has none, the larger tab wins as before.
+TEST(Tabs, APreferredSideTakesTheTabWhenOneTallEnoughFits) {
+  // Cut edge 0: side a on a large triangle (its side 0, from (0,0) to (20,0)), side b on a sliver
+  // 1 mm wide laid apart (its side 0 the same edge, running the other way).
+  std::vector<std::array<Vec2, 3>> faces = {{Vec2{0, 0}, Vec2{20, 0}, Vec2{10, 15}},
+                                            {Vec2{20, 40}, Vec2{0, 40}, Vec2{10, 39}}};
+  NetEdge edge;
+  edge.a = {0, 0};
+  edge.b = {1, 0};
+  edge.cut_index = 0;
+  const std::vector<NetEdge> edges = {edge};
+  TabOptions options;
+  const TabPlacement plain = place_tabs(faces, edges, options);
+  ASSERT_EQ(plain.tabs.size(), 1u);
+  EXPECT_EQ(plain.tabs[0].side.face, 0);  // side a first, and a full tab there ends the search
+  options.prefer.assign(3 * faces.size(), 0);
+  options.prefer[3 * 1 + 0] = 1;
+  const TabPlacement preferred = place_tabs(faces, edges, options);
+  ASSERT_EQ(preferred.tabs.size(), 1u);
+  EXPECT_EQ(preferred.tabs[0].side.face, 1);
+  // A face 1.5 mm beyond the sliver's edge leaves it room for tabs under 1.5 mm only: the large
+  // triangle's full tab wins.
+  faces.push_back({Vec2{-5, 41.5}, Vec2{25, 41.5}, Vec2{10, 50}});
+  const TabPlacement blocked = place_tabs(faces, edges, options);
+  ASSERT_EQ(blocked.tabs.size(), 1u);
+  EXPECT_EQ(blocked.tabs[0].side.face, 0);
+}
+
 /// The rectangle of a strip grown by `d` on every side.
 std::vector<Vec2> grown(const GlueStrip& strip, double d) {
   const auto& c = strip.corners;
