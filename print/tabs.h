@@ -41,7 +41,7 @@ struct TabOptions {
   /// none.
   std::vector<char> prefer;
   /// The lowest tab of a preferred side that is kept there although the other side has room for
-  /// a larger one.
+  /// a larger one (0.6 of it is the label's size on the tab: 1.5 mm).
   double prefer_min_height = 2.5;
 };
 
@@ -59,11 +59,11 @@ struct TabPlacement {
 /// shapes of tab_shapes (core/tabs/tab_clearance.h): trapezoids over the whole edge and over
 /// stretches of it (at least 40 % of the edge, at either end or in the middle) with each end
 /// slanted by `angle_deg` or by 40 % of it, each as tall as fits (bisection on the height); the
-/// side whose best tab has the
-/// larger area wins, except that a side `prefer` marks, when the other is not marked, keeps a tab
-/// of at least `prefer_min_height` (or its tallest, when lower than that). Edges where no tab of
-/// min_height fits are listed as omitted (they need a glue strip, see strips.h). Faces are the
-/// net's triangles in layout coordinates, counter-clockwise.
+/// side whose best tab has the larger area wins, except that a side `prefer` marks, when the
+/// other is not marked, keeps its best tab when that is at least `prefer_min_height` tall (or as
+/// tall as its edge allows, where that is lower). Edges where no tab of min_height fits are listed
+/// as omitted (they need a glue strip, see strips.h). Faces are the net's triangles in layout
+/// coordinates, counter-clockwise.
 TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
                         const std::vector<NetEdge>& edges, const TabOptions& options = {});
 
