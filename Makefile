@@ -87,7 +87,7 @@ sanitize-thread: deps
 fuzz-smoke: build-asan
 	bash fuzz/run_fuzzers.sh build-asan $(FUZZ_SMOKE_SECONDS)
 
-# The longer run (docs/reliability.md): FUZZ_SECONDS per target, one target after the other.
+# The longer run (docs/reliability.md): FUZZ_SECONDS per target, one per core at a time.
 fuzz: build-asan
 	bash fuzz/run_fuzzers.sh build-asan $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
