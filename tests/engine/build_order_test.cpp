@@ -21,6 +21,7 @@
 #include "engine/pipeline.h"
 #include "tests/support/job_input.h"
 #include "tests/support/polygons.h"
+#include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
 
 namespace papernet::test {
@@ -37,6 +38,7 @@ const Printed& duck() {
     JobOptions options;
     options.layout = PageLayoutMode::Fit;
     options.colour = false;  // the assembly aids are line art; colour is colour_print_test's
+    options.tab_room_budget = light_tab_room(options.tab_room_budget);
     PipelineProgress quiet;
     UnfoldOutcome out =
         run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true, .pdf = true}, quiet);
@@ -52,6 +54,7 @@ const Printed& cad_part() {
     JobOptions options;
     options.layout = PageLayoutMode::Fit;
     options.colour = false;
+    options.tab_room_budget = light_tab_room(options.tab_room_budget);
     PipelineProgress quiet;
     UnfoldOutcome out = run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {},
                                      {.svg_pages = true}, quiet);

@@ -33,6 +33,7 @@
 #include "engine/pipeline.h"
 #include "print/colour.h"
 #include "tests/support/job_input.h"
+#include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
 
 namespace papernet::test {
@@ -984,6 +985,7 @@ TEST(ColourPrintLabels, LabelsOverDarkColourPrintWhite) {
     JobOptions options;
     options.colour = colour;
     options.dpi = kDpi;
+    options.tab_room_budget = light_tab_room(options.tab_room_budget);
     PipelineProgress quiet;
     const UnfoldOutcome out = run_pipeline(data_file("CesiumMilkTruck/CesiumMilkTruck.gltf"),
                                            options, {}, {.svg_pages = true, .pdf = true}, quiet);

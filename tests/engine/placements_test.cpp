@@ -16,6 +16,7 @@
 #include "core/unfold/net_check.h"
 #include "engine/pipeline.h"
 #include "tests/support/job_input.h"
+#include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
 
 namespace papernet::test {
@@ -65,6 +66,7 @@ struct Printed {
 
 Printed print(const std::string& file, JobOptions options) {
   options.strategy = Strategy::TU;
+  options.tab_room_budget = light_tab_room(options.tab_room_budget);
   PipelineProgress quiet;
   const UnfoldOutcome out =
       run_pipeline(data_file(file), options, {}, {.svg_pages = true, .pdf = true}, quiet);
@@ -190,6 +192,7 @@ TEST(Placements, WithoutAPrintThePiecesAreTheParts) {
   JobOptions options;
   options.strategy = Strategy::TU;
   options.size_mm = 400;
+  options.tab_room_budget = light_tab_room(options.tab_room_budget);
   const UnfoldOutcome out = run_pipeline(data_file("sample.obj"), options, {}, {}, quiet);
   const NetDocument doc = read_net_json(out.documents.net_json);
   EXPECT_FALSE(doc.print);

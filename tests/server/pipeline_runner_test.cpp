@@ -44,12 +44,8 @@ JobOptions sample_options() {
   options.strategy = Strategy::TU;
   options.seed = 3;
   options.time_limit = 60;
-  options.detail = {DetailMode::Full, 0};  // all 1,000 faces
-#ifdef PAPERNET_TEST_SANITIZED
-  // The tab room pass runs 10-20 times slower sanitized: a tenth of its budget (as the service
-  // jobs of kTabRoomQuery), which still runs it.
-  options.tab_room_budget = 10'000;
-#endif
+  options.detail = {DetailMode::Full, 0};                                   // all 1,000 faces
+  options.tab_room_budget = test::light_tab_room(options.tab_room_budget);  // still runs
   return options;
 }
 

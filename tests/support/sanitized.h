@@ -2,6 +2,8 @@
 // Which sanitizer the test is built with (make sanitize): tests that would measure the speed of
 // a sanitized build rather than its correctness keep their work smaller there.
 
+#include <algorithm>
+#include <cstddef>
 #include <string>
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -30,5 +32,15 @@ inline const std::string kTabRoomQuery = "&tab_room_budget=10000";
 #else
 inline const std::string kTabRoomQuery;
 #endif
+
+/// The same for a job a test runs itself: `budget` (JobOptions::tab_room_budget), at most a tenth
+/// of the default sanitized.
+constexpr std::size_t light_tab_room(std::size_t budget) {
+#ifdef PAPERNET_TEST_SANITIZED
+  return std::min<std::size_t>(budget, 10'000);
+#else
+  return budget;
+#endif
+}
 
 }  // namespace papernet::test
