@@ -17,6 +17,7 @@
 #include "bench/bench_run.h"
 #include "bench/line_plot.h"
 #include "bench/paper_results.h"
+#include "tests/support/paths.h"
 
 namespace papernet::bench {
 namespace {
@@ -407,8 +408,8 @@ TEST(BenchRun, TimeoutKillsTheChild) {
 }
 
 TEST(PaperResults, MatchTheAppendixTable) {
-  const fs::path tex =
-      fs::path(PAPERNET_SHARED_DATA) / ".." / "seeds" / "progressive-mesh-unfolding.tex";
+  const fs::path tex = fs::path(papernet::test::shared_data_dir()) / ".." / "seeds" /
+                       "progressive-mesh-unfolding.tex";
   if (!fs::exists(tex)) GTEST_SKIP() << "needs ../shared/seeds/progressive-mesh-unfolding.tex";
   const std::string text = read_text(tex);
   const std::size_t from = text.find("\\label{app:Results}");
@@ -441,7 +442,8 @@ TEST(PaperResults, MatchTheAppendixTable) {
 TEST(BenchCommand, SmallRunWritesCsvReportAndPlots) {
   const fs::path dir = fresh_dir("run");
   fs::create_directories(dir / "bench" / "1000");
-  fs::copy_file(fs::path(PAPERNET_TEST_DATA) / "sample.obj", dir / "bench" / "1000" / "sample.obj");
+  fs::copy_file(fs::path(papernet::test::test_data_dir()) / "sample.obj",
+                dir / "bench" / "1000" / "sample.obj");
   // A file that cannot be loaded: an `invalid` run, which must count as a failure.
   std::ofstream(dir / "bench" / "1000" / "broken.obj") << "v 0 0 0\nf 1 2 3\n";
   const std::string cmd = std::string(PAPERNET_BENCH_PROGRAM) + " " + (dir / "bench").string() +

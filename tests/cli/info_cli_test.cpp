@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include "tests/support/paths.h"
 
 namespace {
 
@@ -20,7 +21,8 @@ struct CliRun {
 
 CliRun info(const std::string& args) {
   CliRun r;
-  FILE* p = popen((std::string(PAPERNET_BINARY) + " info " + args + " 2>/dev/null").c_str(), "r");
+  FILE* p =
+      popen((papernet::test::papernet_binary() + " info " + args + " 2>/dev/null").c_str(), "r");
   char buf[4096];
   for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
   const int status = pclose(p);
@@ -28,7 +30,7 @@ CliRun info(const std::string& args) {
   return r;
 }
 
-const std::string kData = PAPERNET_TEST_DATA;
+const std::string kData = papernet::test::test_data_dir();
 
 TEST(InfoCli, UnfoldableMeshExitsZeroWithItsCounts) {
   const CliRun r = info(kData + "/thingi10k_65004.stl --json");

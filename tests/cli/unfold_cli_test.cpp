@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/paths.h"
 #include "tests/support/run_program.h"
 
 namespace papernet::test {
@@ -19,7 +20,7 @@ TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
   const std::string out = ::testing::TempDir() + "papernet_progressive_cli.json";
   std::string said;
   ASSERT_EQ(
-      papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/sample.obj --detail full -o " + out,
+      papernet("unfold " + papernet::test::test_data_dir() + "/sample.obj --detail full -o " + out,
                &said),
       0)
       << said;
@@ -31,7 +32,7 @@ TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
   EXPECT_EQ(j["mesh"]["faces"].size(), 1000u);
   EXPECT_EQ(j["net"]["faces"].size(), 1000u);
   EXPECT_EQ(j["metrics"]["hausdorff"], 0.0);
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/mirror.ply --strategy se/mp " +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() + "/mirror.ply --strategy se/mp " +
                          "--target-faces 100 -o " + out,
                      &said),
             0)
@@ -47,7 +48,7 @@ TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
 TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
   const std::string out = ::testing::TempDir() + "papernet_strips_cli.svg";
   std::string said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/sample.obj --strategy TU " +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() + "/sample.obj --strategy TU " +
                          "--detail full --tab-room-budget 2000 --paper none -o " + out,
                      &said),
             0)
@@ -65,7 +66,7 @@ TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
   EXPECT_LE(std::stoi(why[1].str()), std::stoi(why[2].str()));
   EXPECT_LT(std::stoi(why[3].str()), 502);
   EXPECT_NE(said.find("print larger (--size)"), std::string::npos) << said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb --strategy TU " +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() + "/Box_Draco.glb --strategy TU " +
                          "--paper none -o " + out,
                      &said),
             0)
@@ -81,7 +82,7 @@ TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
 TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
   const std::string base = ::testing::TempDir() + "papernet_simplify_cli";
   std::string said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/Duck.glb --simplify 400 --paper none" + " -o " + base + ".json -o " +
                          base + ".svg",
                      &said),
@@ -107,7 +108,7 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
       << said;
   EXPECT_LE(std::stoi(m[1].str()), 5) << said;
   // Not below the mesh's own face count: the mesh itself, complete.
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/Box_Draco.glb --simplify 12 -o " + base + ".json",
                      &said),
             0)
@@ -115,7 +116,7 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
   text.str("");
   text << std::ifstream(base + ".json").rdbuf();
   EXPECT_EQ(nlohmann::json::parse(text.str())["result"], "complete");
-  EXPECT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+  EXPECT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/Box_Draco.glb --simplify 3 -o " + base + ".json",
                      &said),
             1);
@@ -131,7 +132,7 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
 TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
   const std::string base = ::testing::TempDir() + "papernet_detail_cli";
   std::string said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/Duck.glb -o " + base +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() + "/Duck.glb -o " + base +
                          ".json -o " + base + ".pdf",
                      &said),
             0)
@@ -153,7 +154,7 @@ TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
   EXPECT_LE(std::stoi(m[1].str()), 20) << said;  // 257 with every face
   EXPECT_GE(std::stod(m[2].str()), 1.5) << said;
   EXPECT_EQ(m[3].str(), "0") << said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/Duck.glb --detail full --tab-room-budget 0 -o " + base + ".json",
                      &said),
             0)
@@ -175,7 +176,7 @@ TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
 TEST(UnfoldCli, DetailAutoCollapsesShortEdgesOfACadPart) {
   const std::string base = ::testing::TempDir() + "papernet_detail_cad";
   std::string said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) + "/thingi10k_65004.stl -o " +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() + "/thingi10k_65004.stl -o " +
                          base + ".json -o " + base + ".pdf",
                      &said),
             0)
@@ -215,7 +216,7 @@ TEST(UnfoldCli, DetailAutoCollapsesShortEdgesOfACadPart) {
 TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
   const std::string base = ::testing::TempDir() + "papernet_detail_truck";
   std::string said;
-  ASSERT_EQ(papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/CesiumMilkTruck/CesiumMilkTruck.gltf --colour none -o " + base +
                          ".json -o " + base + ".pdf",
                      &said),
@@ -237,7 +238,7 @@ TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
 }
 
 TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
-  const std::string mesh = std::string(PAPERNET_TEST_DATA) + "/sample.obj -o /dev/null";
+  const std::string mesh = papernet::test::test_data_dir() + "/sample.obj -o /dev/null";
   EXPECT_EQ(papernet("unfold " + mesh + " --strategy QX"), 1);
   EXPECT_EQ(papernet("unfold " + mesh + " --target-faces 0"), 1);
 }
@@ -279,7 +280,7 @@ TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
   const std::string out = ::testing::TempDir() + "papernet_local.json";
   std::string said;
   ASSERT_EQ(
-      papernet("unfold " + std::string(PAPERNET_TEST_DATA) +
+      papernet("unfold " + papernet::test::test_data_dir() +
                    "/CesiumMilkTruck/CesiumMilkTruck.gltf --strategy TU --detail full -o " + out,
                &said),
       0)
@@ -294,12 +295,12 @@ TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
   const std::filesystem::path dir = ::testing::TempDir() + "papernet_local_models";
   std::filesystem::create_directories(dir);
   std::filesystem::copy_file(
-      std::string(PAPERNET_TEST_DATA) + "/CesiumMilkTruck/CesiumMilkTruck.gltf", dir / "truck.gltf",
+      papernet::test::test_data_dir() + "/CesiumMilkTruck/CesiumMilkTruck.gltf", dir / "truck.gltf",
       std::filesystem::copy_options::overwrite_existing);
   EXPECT_EQ(papernet("unfold " + (dir / "truck.gltf").string() + " -o " + out, &said), 2);
   EXPECT_NE(said.find("CesiumMilkTruck0.bin"), std::string::npos) << said;
 
-  std::filesystem::copy_file(std::string(PAPERNET_TEST_DATA) + "/sample.obj", dir / "fuze.obj",
+  std::filesystem::copy_file(papernet::test::test_data_dir() + "/sample.obj", dir / "fuze.obj",
                              std::filesystem::copy_options::overwrite_existing);
   std::ofstream(dir / "fuze.obj.mtl") << "newmtl a-super-duper-material\nKd 0.8 0.2 0.1\n";
   EXPECT_EQ(papernet("unfold " + (dir / "fuze.obj").string() + " --strategy TU -o " + out, &said),
@@ -315,7 +316,7 @@ TEST(UnfoldCli, WritesTheTexturesBesideTheJson) {
   const std::filesystem::path dir = ::testing::TempDir() + "papernet_textures_cli";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  const std::string data = PAPERNET_TEST_DATA;
+  const std::string data = papernet::test::test_data_dir();
   const auto read = [](const std::filesystem::path& p) {
     std::stringstream s;
     s << std::ifstream(p, std::ios::binary).rdbuf();

@@ -33,6 +33,7 @@
 #include "engine/pipeline.h"
 #include "print/colour.h"
 #include "tests/support/job_input.h"
+#include "tests/support/paths.h"
 #include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
 
@@ -412,7 +413,7 @@ struct SourceModel {
 };
 
 SourceModel box_textured() {
-  const LoadedMesh box = load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/BoxTextured.glb");
+  const LoadedMesh box = load_mesh_file(papernet::test::test_data_dir() + "/BoxTextured.glb");
   SourceModel m;
   for (std::size_t f = 0; f < box.mesh.faces.size(); ++f) {
     std::array<Vec3, 3> corners;

@@ -13,6 +13,7 @@
 #include "core/io/load.h"
 #include "core/unfold/net_check.h"
 #include "engine/pipeline.h"
+#include "tests/support/paths.h"
 
 namespace papernet::test {
 namespace {
@@ -20,7 +21,7 @@ namespace {
 // Runs `file` (in ../shared/data) with a 10 s limit, every face kept and every document, and
 // checks that it ends within 11 s with a checked net and its documents.
 void expect_within_limit(const std::string& name, MeshFormat format) {
-  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/meshes/" + name;
+  const std::string file = papernet::test::shared_data_dir() + "/meshes/" + name;
   if (!std::filesystem::exists(file))
     GTEST_SKIP() << "needs ../shared/data: " << file << " is absent";
   JobInput input;

@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "server/problem.h"
+#include "tests/support/paths.h"
 #include "tests/support/postgres.h"
 
 using namespace papernet;
@@ -24,7 +25,7 @@ INSTANTIATE_BOTH_STORES(JobServiceTest);
 namespace {
 
 std::string sample_mesh() {
-  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/sample.obj", std::ios::binary);
+  std::ifstream in(papernet::test::test_data_dir() + "/sample.obj", std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();

@@ -7,6 +7,7 @@
 #include <regex>
 #include <set>
 
+#include "tests/support/paths.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;
@@ -58,7 +59,9 @@ std::string stream_events(const Server& node, const std::string& id,
 // `papernet serve ARGS`, which is expected to fail: its exit code and what it printed. A serve
 // that starts after all is stopped after 20 s (and the test fails on its exit code).
 int papernet_serve(const std::string& args, std::string* output) {
-  FILE* p = popen(("timeout 20 " PAPERNET_BINARY " serve " + args + " 2>&1").c_str(), "r");
+  FILE* p = popen(
+      ("timeout 20 " + papernet::test::papernet_binary() + " serve " + args + " 2>&1").c_str(),
+      "r");
   char buf[4096];
   for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) output->append(buf, n);
   const int status = pclose(p);

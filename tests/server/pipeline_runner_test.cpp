@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/paths.h"
 #include "tests/support/sanitized.h"
 
 using namespace papernet;
@@ -29,7 +30,7 @@ struct RecordingSink : JobSink {
 };
 
 JobInput sample_input() {
-  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/sample.obj", std::ios::binary);
+  std::ifstream in(papernet::test::test_data_dir() + "/sample.obj", std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
   JobInput input;

@@ -7,6 +7,7 @@
 #include "api/net_json.h"
 #include "core/unfold/net_check.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 #include "tests/support/postgres.h"
 #include "tests/support/serve_process.h"
 
@@ -617,9 +618,10 @@ TEST_P(ServeTest, CommandLineAndServiceWriteTheSameNet) {
     ASSERT_EQ(wait_final(s, id)["status"], status);
     auto served = s.client().Get("/v1/jobs/" + id + "/net.json");
     ASSERT_EQ(served->status, 200);
-    const std::string cmd = std::string(PAPERNET_BINARY) + " unfold " +
-                            (fs::path(PAPERNET_TEST_DATA) / "mirror.ply").string() + " " + flags +
-                            " -o " + out.string() + " -o " + pdf.string() + " > /dev/null 2>&1";
+    const std::string cmd = papernet::test::papernet_binary() + " unfold " +
+                            (fs::path(papernet::test::test_data_dir()) / "mirror.ply").string() +
+                            " " + flags + " -o " + out.string() + " -o " + pdf.string() +
+                            " > /dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     const json cli = json::parse(read_file(out));
     EXPECT_EQ(without_seconds(cli), without_seconds(json::parse(served->body)));

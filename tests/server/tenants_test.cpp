@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "server/api_keys.h"
+#include "tests/support/paths.h"
 #include "tests/support/postgres.h"
 #include "tests/support/serve_process.h"
 
@@ -189,7 +190,7 @@ TEST_P(ServeTenants, WithoutKeysTheServiceIsOpenAndSaysSo) {
   EXPECT_EQ(s.client().Get("/v1/jobs")->status, 200);
   // A bad key file stops the start, naming the line.
   const fs::path keys = write_keys("shop-a 1234\n");
-  const std::string cmd = std::string(PAPERNET_BINARY) + " serve --port 0 --api-keys " +
+  const std::string cmd = papernet::test::papernet_binary() + " serve --port 0 --api-keys " +
                           keys.string() + " > " + (s.data() / "bad.txt").string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << status;

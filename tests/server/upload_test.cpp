@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "server/problem.h"
+#include "tests/support/paths.h"
 
 using namespace papernet;
 using namespace papernet::server;
@@ -15,7 +16,7 @@ using namespace papernet::server;
 namespace {
 
 std::string read(const std::string& name) {
-  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/" + name, std::ios::binary);
+  std::ifstream in(papernet::test::test_data_dir() + "/" + name, std::ios::binary);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();

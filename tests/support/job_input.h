@@ -6,6 +6,7 @@
 
 #include "core/io/load.h"
 #include "engine/pipeline.h"
+#include "tests/support/paths.h"
 
 namespace papernet::test {
 
@@ -13,7 +14,7 @@ namespace papernet::test {
 /// files of that folder, as the command line reads those beside the file.
 inline JobInput data_file(const std::string& name) {
   JobInput input;
-  const std::filesystem::path path = std::filesystem::path(PAPERNET_TEST_DATA) / name;
+  const std::filesystem::path path = std::filesystem::path(papernet::test::test_data_dir()) / name;
   input.mesh = read_mesh_file(path.string(), 64 << 20);
   input.format = format_from_extension(name);
   if (name.find('/') != std::string::npos)

@@ -8,6 +8,7 @@
 #include <queue>
 
 #include "core/io/load.h"
+#include "tests/support/paths.h"
 
 namespace papernet::test {
 
@@ -154,7 +155,7 @@ Net bfs_net(const Mesh& mesh) {
 
 std::vector<std::pair<std::string, Mesh>> test_data_meshes() {
   std::vector<std::pair<std::string, Mesh>> out;
-  for (const auto& entry : std::filesystem::directory_iterator(PAPERNET_TEST_DATA)) {
+  for (const auto& entry : std::filesystem::directory_iterator(papernet::test::test_data_dir())) {
     if (format_from_extension(entry.path().string()) == MeshFormat::Unknown) continue;
     out.emplace_back(entry.path().filename().string(), load_mesh_file(entry.path().string()).mesh);
   }

@@ -6,12 +6,14 @@
 #include <cstdio>
 #include <string>
 
+#include "tests/support/paths.h"
+
 namespace papernet::test {
 
 /// Runs `papernet ARGS` through the shell; returns its exit code (-1 when it did not exit) and,
 /// when `output` is given, what it wrote to stdout and stderr together.
 inline int papernet(const std::string& args, std::string* output = nullptr) {
-  FILE* p = popen((std::string(PAPERNET_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  FILE* p = popen((papernet::test::papernet_binary() + " " + args + " 2>&1").c_str(), "r");
   std::string text;
   char buf[4096];
   for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) text.append(buf, n);

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/paths.h"
 #include "tests/support/postgres.h"
 #include "tests/support/sanitized.h"
 
@@ -35,7 +36,7 @@ inline std::string read_file(const fs::path& path) {
 }
 
 inline std::string test_mesh(const std::string& name) {
-  return read_file(fs::path(PAPERNET_TEST_DATA) / name);
+  return read_file(fs::path(papernet::test::test_data_dir()) / name);
 }
 
 // One `papernet serve` process with its own data directory.
@@ -63,6 +64,7 @@ class Server {
     std::vector<std::string> args = {"papernet", "serve",        "--port",       "0",
                                      "--data",   data_.string(), "--access-log", "false"};
     args.insert(args.end(), flags_.begin(), flags_.end());
+    const std::string binary = papernet::test::papernet_binary();
     pid_ = fork();
     if (pid_ == 0) {
       const std::string log = (data_ / "server.log").string();
@@ -71,7 +73,7 @@ class Server {
       std::vector<char*> argv;
       for (auto& a : args) argv.push_back(a.data());
       argv.push_back(nullptr);
-      execv(PAPERNET_BINARY, argv.data());
+      execv(binary.c_str(), argv.data());
       _exit(127);
     }
     const std::string prefix = "listening on http://127.0.0.1:";

@@ -18,6 +18,7 @@
 #include "core/mesh/colour.h"
 #include "core/mesh/repair.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -73,7 +74,7 @@ std::vector<std::uint16_t> ushort_accessor(const Glb& glb, int index) {
   return out;
 }
 
-const std::string kBoxTextured = std::string(PAPERNET_TEST_DATA) + "/BoxTextured.glb";
+const std::string kBoxTextured = papernet::test::test_data_dir() + "/BoxTextured.glb";
 
 /// BoxTextured's PNG (CesiumLogoFlat.png) as the file holds it.
 std::string box_png() {
@@ -121,7 +122,7 @@ TEST(LoadColour, BoxTexturedUvsAreTheAccessorsValuesPerCorner) {
 }
 
 TEST(LoadColour, DuckHasATextureAndUvsOnEveryFace) {
-  const LoadedMesh duck = load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/Duck.glb");
+  const LoadedMesh duck = load_mesh_file(papernet::test::test_data_dir() + "/Duck.glb");
   ASSERT_EQ(duck.colour.uvs.size(), duck.mesh.faces.size());
   for (const auto& f : duck.colour.uvs)
     for (const UV& uv : f) ASSERT_TRUE(std::isfinite(uv[0]) && std::isfinite(uv[1]));
@@ -273,7 +274,7 @@ TEST(LoadColour, ImageDecoding) {
 }
 
 TEST(LoadColour, JpegDecodingAndItsTruncation) {
-  const std::string jpeg = read_file(std::string(PAPERNET_TEST_DATA) + "/gradient_16x8.jpg");
+  const std::string jpeg = read_file(papernet::test::test_data_dir() + "/gradient_16x8.jpg");
   ASSERT_EQ(sniff_image(jpeg), ImageFormat::Jpeg);
   const Image image = decode_image(jpeg);
   ASSERT_EQ(image.width, 16);

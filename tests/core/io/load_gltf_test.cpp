@@ -12,6 +12,7 @@
 #include "core/io/load.h"
 #include "tests/support/hostile_bytes.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -171,7 +172,7 @@ TEST(LoadGltf, JsonFloodsAndDeepNestingAreRefusedBeforeParsing) {
 }
 
 TEST(LoadGltf, DracoPayloadCountsAreCheckedBeforeTinygltfDecodesThem) {
-  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb", std::ios::binary);
+  std::ifstream in(papernet::test::test_data_dir() + "/Box_Draco.glb", std::ios::binary);
   const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::size_t draco = glb.find("DRACO");
   ASSERT_NE(draco, std::string::npos);
@@ -198,7 +199,7 @@ TEST(LoadGltf, DracoPayloadCountsAreCheckedBeforeTinygltfDecodesThem) {
 // Found by fuzz_upload: an accessor of a Draco primitive with an unknown componentType made
 // tinygltf size its decoded buffer as about 4 GB (component size -1) before checking anything.
 TEST(LoadGltf, DracoAccessorsWithoutAValidComponentTypeAreRefused) {
-  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/Box_Draco.glb", std::ios::binary);
+  std::ifstream in(papernet::test::test_data_dir() + "/Box_Draco.glb", std::ios::binary);
   const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_NO_THROW(load_mesh(glb, MeshFormat::Glb, {}));
   // The indices accessor (0) is 5121, the POSITION and NORMAL accessors (1, 2) are 5126; the
@@ -280,7 +281,7 @@ TEST(LoadGltf, NoSceneTakesAllMeshes) {
 TEST(LoadGltf, DuckPositionsEndWithinTheScaledAccessorBounds) {
   // Duck.glb's root node scales by 0.01; the POSITION accessor's min/max (written by the
   // exporter, read here independently of the loader) bound the raw positions.
-  std::ifstream in(std::string(PAPERNET_TEST_DATA) + "/Duck.glb", std::ios::binary);
+  std::ifstream in(papernet::test::test_data_dir() + "/Duck.glb", std::ios::binary);
   const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::uint32_t json_length = 0;
   std::memcpy(&json_length, glb.data() + 12, 4);

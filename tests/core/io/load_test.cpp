@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "tests/support/hostile_bytes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -18,7 +19,7 @@ namespace {
 using test::draco_header;
 using test::varint;
 
-const std::string kData = PAPERNET_TEST_DATA;
+const std::string kData = papernet::test::test_data_dir();
 
 // A tetrahedron, faces counter-clockwise from outside.
 const double kTetra[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};

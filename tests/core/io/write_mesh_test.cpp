@@ -12,6 +12,7 @@
 
 #include "core/io/load.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -108,7 +109,7 @@ TEST(MeshExport, ColouredGlbReadsBackWithItsMaterialsTexturesAndCornerColours) {
   for (const std::string file :
        {"CesiumMilkTruck/CesiumMilkTruck.gltf", "cubevc.glb", "Duck.glb"}) {
     SCOPED_TRACE(file);
-    const std::string path = std::string(PAPERNET_TEST_DATA) + "/" + file;
+    const std::string path = papernet::test::test_data_dir() + "/" + file;
     LoadOptions options;  // a .gltf's buffers and images beside it
     if (path.ends_with(".gltf"))
       for (const std::string& uri : gltf_external_uris(read_mesh_file(path, options.max_bytes)))

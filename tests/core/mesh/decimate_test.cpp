@@ -14,6 +14,7 @@
 #include "core/io/load.h"
 #include "core/mesh/hausdorff.h"
 #include "core/mesh/progressive_mesh.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -55,7 +56,7 @@ Mesh subdivided_cube(int n) {
   return m;
 }
 
-std::string test_file(const char* name) { return std::string(PAPERNET_TEST_DATA) + "/" + name; }
+std::string test_file(const char* name) { return papernet::test::test_data_dir() + "/" + name; }
 
 bool bitwise_equal(const Mesh& a, const Mesh& b) {
   if (a.vertices.size() != b.vertices.size() || a.faces != b.faces) return false;
@@ -273,7 +274,8 @@ TEST(Decimate, ReusedEvaluationsGiveTheSameCollapses) {
   // Closed, open (5 boundary loops), genus 2 and CAD-like flat sides, every strategy.
   const char* files[] = {"trimesh__ballA.obj", "draco__bun_zipper.obj", "thingi10k__472042.obj",
                          "trimesh__ADIS16480.obj"};
-  const std::filesystem::path dir = std::filesystem::path(PAPERNET_SHARED_DATA) / "bench/2000";
+  const std::filesystem::path dir =
+      std::filesystem::path(papernet::test::shared_data_dir()) / "bench/2000";
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "needs ../shared/data: " << dir;
   for (const char* file : files)
     for (CollapseStrategy s :
@@ -302,7 +304,8 @@ TEST(Decimate, BenchMeshesRoundTrip) {
                         {"trimesh__ADIS16480.obj", 24, 0},
                         {"draco__bun_zipper.obj", 0, 5},
                         {"draco__cube_subd.obj", 0, 0}};
-  const std::filesystem::path dir = std::filesystem::path(PAPERNET_SHARED_DATA) / "bench/2000";
+  const std::filesystem::path dir =
+      std::filesystem::path(papernet::test::shared_data_dir()) / "bench/2000";
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "needs ../shared/data: " << dir;
   for (const Case& c : cases) {
     SCOPED_TRACE(c.file);

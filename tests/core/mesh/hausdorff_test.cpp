@@ -8,6 +8,7 @@
 #include "core/errors.h"
 #include "core/io/load.h"
 #include "core/mesh/decimate.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -74,7 +75,7 @@ TEST(Hausdorff, ParallelPlanesAreTheirOffsetApart) {
 }
 
 TEST(Hausdorff, DecimatedMeshAgreesWithDenseSampling) {
-  const Mesh input = load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/sample.obj").mesh;
+  const Mesh input = load_mesh_file(papernet::test::test_data_dir() + "/sample.obj").mesh;
   Progress progress;
   const Mesh coarse = decimate(input, {CollapseStrategy::SEMP, 0}, progress).compact();
   const HausdorffResult r = hausdorff_distance(input, coarse);

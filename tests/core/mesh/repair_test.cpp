@@ -11,6 +11,7 @@
 #include "core/io/load.h"
 #include "core/mesh/validate.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet::test {
 namespace {
@@ -151,7 +152,7 @@ TEST(Repair, AFlapOfAFaceAndItsReverseGoesWhole) {
 // zero-area face. Whatever repair leaves, the validator accepts.
 TEST(Repair, ZeroAreaFacesLeftByFlipsInAClusterGoToo) {
   const LoadedMesh in =
-      load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/fuzz/stl_degenerate_cluster.stl");
+      load_mesh_file(papernet::test::test_data_dir() + "/fuzz/stl_degenerate_cluster.stl");
   const RepairResult r = repair_mesh(in.mesh, in.raw_faces);
   ASSERT_NE(find(r, "removed_degenerate_faces"), nullptr) << codes(r);
   EXPECT_EQ(blocking(r.mesh), "") << codes(r);

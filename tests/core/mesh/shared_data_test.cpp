@@ -20,12 +20,13 @@
 #include "core/errors.h"
 #include "core/io/load.h"
 #include "core/mesh/validate.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kMeshes = fs::path(PAPERNET_SHARED_DATA) / "meshes";
+const fs::path kMeshes = fs::path(papernet::test::shared_data_dir()) / "meshes";
 
 using Row = std::map<std::string, std::string>;
 

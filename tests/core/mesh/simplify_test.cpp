@@ -7,12 +7,13 @@
 #include "core/io/load.h"
 #include "core/mesh/hausdorff.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
 
 Mesh cad_part() {
-  return load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/thingi10k_65004.stl").mesh;
+  return load_mesh_file(papernet::test::test_data_dir() + "/thingi10k_65004.stl").mesh;
 }
 
 TEST(Simplify, ShortEdgesAreCountedOnce) {

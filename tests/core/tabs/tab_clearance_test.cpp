@@ -15,6 +15,7 @@
 #include "core/unfold/progressive.h"
 #include "core/unfold/unfolding.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -63,8 +64,8 @@ TEST(TabClearance, OpensNearSlitsAndKeepsTheNetValid) {
   EXPECT_EQ(left.size(), r.blocked_after);
   const NetCheckReport check = check_net(c.mesh, r.net);
   EXPECT_TRUE(check.ok()) << check.summary();
-  // Deterministic: the same net and options give the same net (at a tenth of the budget, which
-  // moves and kicks as well; KicksOpenEdgesTheSearchLeavesBlocked repeats a whole run).
+  // Deterministic: the same net and options give the same net (at a tenth of the budget;
+  // KicksOpenEdgesTheSearchLeavesBlocked repeats a whole run, kicks included).
   TabClearanceOptions brief = options;
   brief.max_evaluations = 10'000;
   const TabClearanceResult once = clear_tab_room(c.mesh, c.net, brief, quiet);
@@ -272,7 +273,7 @@ TEST(TabClearance, KicksOpenEdgesTheSearchLeavesBlocked) {
 // The showcase: the Stanford bunny (2000 faces) at 200 mm, progressive QQ.
 TEST(TabClearance, BunnyAt200mm) {
   const std::filesystem::path file =
-      std::filesystem::path(PAPERNET_SHARED_DATA) / "bench/2000/draco__bun_zipper.obj";
+      std::filesystem::path(papernet::test::shared_data_dir()) / "bench/2000/draco__bun_zipper.obj";
   if (!std::filesystem::exists(file))
     GTEST_SKIP() << "needs ../shared/data: " << file << " is absent";
   const Mesh mesh = load_mesh_file(file.string()).mesh;

@@ -12,6 +12,7 @@
 
 #include "core/io/load.h"
 #include "core/unfold/unfolding.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -199,8 +200,8 @@ TEST(OverlapGrid, StripOfSliversReturnsEachMeetingBoxOnce) {
 TEST(OverlapGrid, RealNetsMatchBruteForce) {
   for (const char* name : {"c3d__spot", "thingi10k__79741", "trimesh__1002_tray_bottom"}) {
     SCOPED_TRACE(name);
-    const std::filesystem::path file = std::filesystem::path(PAPERNET_SHARED_DATA) / "bench" /
-                                       "800" / (std::string(name) + ".obj");
+    const std::filesystem::path file = std::filesystem::path(papernet::test::shared_data_dir()) /
+                                       "bench" / "800" / (std::string(name) + ".obj");
     if (!std::filesystem::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
     const Mesh mesh = load_mesh_file(file.string()).mesh;
     const Unfolding u = Unfolding::steepest_edge(mesh, 1);
@@ -261,8 +262,8 @@ TEST(OverlapGrid, RealNetsMatchBruteForce) {
 TEST(TrianglesOverlap, InBoxesAgreesOnRealNets) {
   for (const char* name : {"c3d__spot", "thingi10k__79741"}) {
     SCOPED_TRACE(name);
-    const std::filesystem::path file = std::filesystem::path(PAPERNET_SHARED_DATA) / "bench" /
-                                       "800" / (std::string(name) + ".obj");
+    const std::filesystem::path file = std::filesystem::path(papernet::test::shared_data_dir()) /
+                                       "bench" / "800" / (std::string(name) + ".obj");
     if (!std::filesystem::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
     const Unfolding u = Unfolding::steepest_edge(load_mesh_file(file.string()).mesh, 1);
     const int nf = static_cast<int>(u.face_count());

@@ -18,12 +18,13 @@
 #include "core/unfold/net_check.h"
 #include "core/unfold/unfolding.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
 
 Mesh load_test_mesh(const char* name) {
-  const Mesh m = load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/" + name).mesh;
+  const Mesh m = load_mesh_file(papernet::test::test_data_dir() + "/" + name).mesh;
   EXPECT_FALSE(m.faces.empty()) << name;
   return m;
 }
@@ -168,7 +169,7 @@ TEST_P(ProgressiveSplitsPerUpdate, CompleteNetsOfTheInput) {
 // The Tabu work after splits has a budget (faces tested per input face): a run that spends it
 // returns the last overlap-free state, deterministically.
 TEST(Progressive, SplitWorkBudgetEndsWithTheLastOverlapFreeState) {
-  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/2000/trimesh__fixed_top.obj";
+  const std::string file = papernet::test::shared_data_dir() + "/bench/2000/trimesh__fixed_top.obj";
   if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
   const Mesh input = load_mesh_file(file).mesh;
   ProgressiveOptions options;
@@ -366,7 +367,7 @@ TEST(Progressive, CoarseFailureRetriesOnACoarserMesh) {
 // c3d__alligator at 99 faces has a dual graph that is a tree: no edge unfolding of it is
 // overlap-free, nor of its default coarse mesh. A coarser approximation is.
 TEST(Progressive, MeshWithoutAnyNetGivesAnApproximation) {
-  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/100/c3d__alligator.obj";
+  const std::string file = papernet::test::shared_data_dir() + "/bench/100/c3d__alligator.obj";
   if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
   const Mesh input = load_mesh_file(file).mesh;
   Progress quiet;
@@ -387,7 +388,7 @@ TEST(Progressive, MeshWithoutAnyNetGivesAnApproximation) {
 // a net: the result is complete.
 TEST(Progressive, TwinPlateIsCompleteOnceItsCoarseMeshResists) {
   const std::string file =
-      std::string(PAPERNET_SHARED_DATA) + "/bench/100/manifold__Generic_Twin_7081.1.t0_right.obj";
+      papernet::test::shared_data_dir() + "/bench/100/manifold__Generic_Twin_7081.1.t0_right.obj";
   if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
   const Mesh input = load_mesh_file(file).mesh;
   ProgressiveOptions options;
@@ -411,7 +412,7 @@ TEST(Progressive, TwinPlateIsCompleteOnceItsCoarseMeshResists) {
 // collapsed further without a Tabu run on it; the result is still an overlap-free net that the
 // checker accepts.
 TEST(Progressive, HopelessCoarseStartIsCollapsedFurtherAtOnce) {
-  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/2000/trimesh__ADIS16480.obj";
+  const std::string file = papernet::test::shared_data_dir() + "/bench/2000/trimesh__ADIS16480.obj";
   if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
   const Mesh input = load_mesh_file(file).mesh;
   Progress quiet;
@@ -440,7 +441,7 @@ TEST(Progressive, HopelessCoarseStartIsCollapsedFurtherAtOnce) {
 // (600 faces) spends its budget, the retry at 300 faces is unfolded. With a wall-clock cap on
 // that first attempt, the work it did (and so the count of tests) changed from run to run.
 TEST(Progressive, CoarseBudgetsDoNotDependOnTheMachinesLoad) {
-  const std::string file = std::string(PAPERNET_SHARED_DATA) + "/bench/600/trimesh__ADIS16480.obj";
+  const std::string file = papernet::test::shared_data_dir() + "/bench/600/trimesh__ADIS16480.obj";
   if (!std::ifstream(file).good()) GTEST_SKIP() << "needs ../shared/data: " << file;
   const Mesh input = load_mesh_file(file).mesh;
   ProgressiveOptions options;

@@ -15,6 +15,7 @@
 #include "core/unfold/net_check.h"
 #include "core/unfold/unfold_tree.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 
@@ -236,7 +237,8 @@ std::pair<std::vector<int>, std::size_t> brute_force_overlaps(const Unfolding& u
 // faces out of the grid), the edited faces one by one. The overlapping pairs must be exactly
 // those of a brute-force test of all pairs, after every edit.
 TEST(Unfold, LocalUpdatesOfARealNetMatchBruteForce) {
-  const fs::path file = fs::path(PAPERNET_SHARED_DATA) / "bench" / "2000" / "draco__bun_zipper.obj";
+  const fs::path file =
+      fs::path(papernet::test::shared_data_dir()) / "bench" / "2000" / "draco__bun_zipper.obj";
   if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
   const Mesh mesh = load_mesh_file(file.string()).mesh;
   Unfolding u = Unfolding::steepest_edge(mesh, 1);
@@ -266,7 +268,8 @@ TEST(Unfold, LocalUpdatesOfARealNetMatchBruteForce) {
 // date (moving the pre-order range of the re-hung subtree, or recomputing them all when the
 // root's side moves): they must be exactly what a fresh root_at gives, after every move.
 TEST(Unfold, PreorderAfterMovesMatchesAFreshOne) {
-  const fs::path file = fs::path(PAPERNET_SHARED_DATA) / "bench" / "800" / "c3d__spot.obj";
+  const fs::path file =
+      fs::path(papernet::test::shared_data_dir()) / "bench" / "800" / "c3d__spot.obj";
   if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
   Unfolding u = Unfolding::steepest_edge(load_mesh_file(file.string()).mesh, 1);
   using A = UnfoldingTestAccess;
@@ -330,7 +333,7 @@ void unfold_folder(const fs::path& dir, std::size_t max_faces) {
 }
 
 TEST(Unfold, EveryMeshInTestData) {
-  const fs::path dir = PAPERNET_TEST_DATA;
+  const fs::path dir = papernet::test::test_data_dir();
   if (!fs::is_directory(dir)) GTEST_SKIP() << "needs tests/data (added by the loader branch)";
   unfold_folder(dir, 5000);
 }
@@ -338,7 +341,7 @@ TEST(Unfold, EveryMeshInTestData) {
 // The organic meshes of the benchmark set at 400 faces. (The CAD meshes with long slivers,
 // where plain TU may run out of budget, are measured by `papernet bench`, not asserted here.)
 TEST(Unfold, BenchMeshesAt400Faces) {
-  const fs::path dir = fs::path(PAPERNET_SHARED_DATA) / "bench" / "400";
+  const fs::path dir = fs::path(papernet::test::shared_data_dir()) / "bench" / "400";
   if (!fs::is_directory(dir)) GTEST_SKIP() << "needs ../shared/data: bench/400";
   for (const char* name : {"c3d__spot", "c3d__igea", "c3d__homer", "c3d__fandisk",
                            "draco__bun_zipper", "trimesh__torus", "thingi10k__1706459"}) {
@@ -376,7 +379,7 @@ TEST(UnfoldTree, MinPerimeterTreeCutsTheShortestEdges) {
 // walk was often a large step up); the better-of-two start and the extra walks when stalled
 // resolve them. Same seed, same net, also on this path.
 TEST(Unfold, CadSliverMeshesAt400Faces) {
-  const fs::path dir = fs::path(PAPERNET_SHARED_DATA) / "bench" / "400";
+  const fs::path dir = fs::path(papernet::test::shared_data_dir()) / "bench" / "400";
   if (!fs::is_directory(dir)) GTEST_SKIP() << "needs ../shared/data: bench/400";
   for (const char* name : {"thingi10k__73416", "trimesh__ADIS16480", "trimesh__1002_tray_bottom"}) {
     SCOPED_TRACE(name);
@@ -394,8 +397,8 @@ TEST(Unfold, CadSliverMeshesAt400Faces) {
 // 2,510-6,898; before: 1,627-7,824). The difference between the walks shows on the benchmark
 // (thingi10k__79741 at 2,000 faces, docs/performance.md).
 TEST(Unfold, WalksTowardsAnOverlappingFaceResolveACadTray) {
-  const fs::path file =
-      fs::path(PAPERNET_SHARED_DATA) / "bench" / "800" / "trimesh__1002_tray_bottom.obj";
+  const fs::path file = fs::path(papernet::test::shared_data_dir()) / "bench" / "800" /
+                        "trimesh__1002_tray_bottom.obj";
   if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
   const Mesh mesh = load_mesh_file(file.string()).mesh;
   TabuOptions options;
@@ -416,7 +419,7 @@ TEST(Unfold, WalksTowardsAnOverlappingFaceResolveACadTray) {
 // there before was rounding of the float input (pairs of faces adjacent in 3D, 1e-8 of the
 // diagonal deep), which the overlap test now ignores as the net checker does.
 TEST(Unfold, TwinPlateOfSliversUnfolds) {
-  const fs::path file = fs::path(PAPERNET_SHARED_DATA) / "bench" / "100" /
+  const fs::path file = fs::path(papernet::test::shared_data_dir()) / "bench" / "100" /
                         "manifold__Generic_Twin_7081.1.t0_right.obj";
   if (!fs::exists(file)) GTEST_SKIP() << "needs ../shared/data: " << file.string();
   unfold_and_check(load_mesh_file(file.string()).mesh, 1, 20);

@@ -10,12 +10,13 @@
 #include "core/unfold/progressive.h"
 #include "core/unfold/unfolding.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
 
 Mesh load_test_mesh(const char* name) {
-  return load_mesh_file(std::string(PAPERNET_TEST_DATA) + "/" + name).mesh;
+  return load_mesh_file(papernet::test::test_data_dir() + "/" + name).mesh;
 }
 
 // The state's bookkeeping agrees with a fresh build, and the only faults the independent checker
@@ -93,7 +94,7 @@ TEST(LocalRepair, TinyBudgetStopsEarly) {
 // nets and every count must be those of evaluating it again, also when the test budget ends the
 // repair (the budget must run out after the same round).
 TEST(LocalRepair, RepeatedCutsGiveTheSameNetAndCounts) {
-  const std::string bunny = std::string(PAPERNET_SHARED_DATA) + "/bench/2000/draco__bun_zipper.obj";
+  const std::string bunny = papernet::test::shared_data_dir() + "/bench/2000/draco__bun_zipper.obj";
   std::vector<Unfolding> starts{Unfolding::steepest_edge(load_test_mesh("thingi10k_65004.stl"), 1),
                                 Unfolding::steepest_edge(load_test_mesh("thingi10k_65004.stl"), 4)};
   if (std::filesystem::exists(bunny))
