@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Runs every fuzz target (or those named) of a PAPERNET_FUZZ build for SECONDS each, FUZZ_JOBS
 # (default: one per core) at a time, from fresh seeds (make_corpus.sh) plus the corpus earlier
-# runs kept in BUILD/fuzz-corpus/<target>. Prints executions and corpus size per target; exits 1 when a target
-# found a crash, leaving the input in BUILD/fuzz-artifacts/ (make it a tests/ case).
+# runs kept in BUILD/fuzz-corpus/<target>. Prints executions and corpus size per target; exits 1
+# when a target found a crash, leaving the input in BUILD/fuzz-artifacts/ (make it a tests/ case).
 #   fuzz/run_fuzzers.sh BUILD SECONDS [TARGET...]
 # FUZZ_FLAGS adds libFuzzer flags: FUZZ_FLAGS=-max_len=4096 mutates small inputs only, which
 # runs the slow targets (whole glTF and Draco models, 5-40 executions a second under ASan with
@@ -52,11 +52,12 @@ failed=()
 printf '%-14s %10s %8s %8s %6s\n' target executions exec/s corpus result
 for t in "${targets[@]}"; do
   log="$build/fuzz-logs/$t.log"
+  corpus="$build/fuzz-corpus/$t"
   status=$(cat "$build/fuzz-logs/$t.status" 2>/dev/null || echo CRASH)
   [ "$status" = ok ] || failed+=("$t")
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
-  printf '%-14s %10s %8s %8s %6s\n' "$t" "${runs:-?}" "${speed:-?}" "$(ls "$build/fuzz-corpus/$t" | wc -l)" \
+  printf '%-14s %10s %8s %8s %6s\n' "$t" "${runs:-?}" "${speed:-?}" "$(ls "$corpus" | wc -l)" \
     "$status"
 done
 if [ ${#failed[@]} -gt 0 ]; then
