@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+
 #include "tests/support/paths.h"
+#include "tests/support/scratch_dir.h"
 
 namespace {
 
@@ -46,9 +48,8 @@ TEST(InfoCli, UnfoldableMeshExitsZeroWithItsCounts) {
 TEST(InfoCli, UnreadableFileExitsOneAndUnfoldableNotExitsTwo) {
   EXPECT_EQ(info(kData + "/LICENSES.md").code, 1);
   EXPECT_EQ(info(kData + "/does_not_exist.obj").code, 1);
-  const fs::path dir =
-      fs::temp_directory_path() / ("papernet_info_cli_" + std::to_string(getpid()));
-  fs::create_directories(dir);
+  const papernet::test::ScratchDir scratch("papernet_info_cli");
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "two.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\n"
                                     "f 1 2 3\nf 4 5 6\n";
   // Two parts: two pieces, unless --strict refuses a mesh in parts (or judges the largest).
@@ -74,8 +75,8 @@ TEST(InfoCli, UnreadableFileExitsOneAndUnfoldableNotExitsTwo) {
 }
 
 TEST(InfoCli, GltfReadsSiblingBuffersButNeverParentPaths) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("papernet_info_cli_" + std::to_string(getpid())) / "model";
+  const papernet::test::ScratchDir scratch("papernet_info_cli");
+  const fs::path dir = scratch.path() / "model";
   fs::create_directories(dir);
   const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   const std::string bin(reinterpret_cast<const char*>(p), sizeof p);

@@ -12,12 +12,14 @@
 
 #include "tests/support/paths.h"
 #include "tests/support/run_program.h"
+#include "tests/support/scratch_dir.h"
 
 namespace papernet::test {
 namespace {
 
 TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
-  const std::string out = ::testing::TempDir() + "papernet_progressive_cli.json";
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string out = scratch / "progressive.json";
   std::string said;
   ASSERT_EQ(
       papernet("unfold " + papernet::test::test_data_dir() + "/sample.obj --detail full -o " + out,
@@ -40,13 +42,13 @@ TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
   text.str("");
   text << std::ifstream(out).rdbuf();
   EXPECT_EQ(nlohmann::json::parse(text.str())["strategy"], "SEMP");
-  std::remove(out.c_str());
 }
 
 // When edges stay without room for a tab, the command says how many of them end at a leaf of
 // the cut tree where no leaf can have room, and what helps; a strip-free print says nothing.
 TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
-  const std::string out = ::testing::TempDir() + "papernet_strips_cli.svg";
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string out = scratch / "strips.svg";
   std::string said;
   ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() + "/sample.obj --strategy TU " +
                          "--detail full --tab-room-budget 2000 --paper none -o " + out,
@@ -73,14 +75,14 @@ TEST(UnfoldCli, SaysWhyGlueStripsRemain) {
       << said;
   EXPECT_NE(said.find("-> 0 cut edges without room"), std::string::npos) << said;
   EXPECT_EQ(said.find("where no leaf has room"), std::string::npos) << said;
-  std::remove(out.c_str());
 }
 
 // --simplify prints a low-poly version: the Duck's 4,212 faces keep hundreds of glue strips at
 // 200 mm (docs/tabs.md), its 400-face version next to none. The net is approximate, of the
 // simplified mesh, and the JSON says how far that is from the input.
 TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
-  const std::string base = ::testing::TempDir() + "papernet_simplify_cli";
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string base = scratch / "simplify";
   std::string said;
   ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/Duck.glb --simplify 400 --paper none" + " -o " + base + ".json -o " +
@@ -121,8 +123,6 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
                      &said),
             1);
   EXPECT_NE(said.find("--detail must be auto, full, or between 4 and"), std::string::npos) << said;
-  std::remove((base + ".json").c_str());
-  std::remove((base + ".svg").c_str());
 }
 
 // By default a model denser than a person can build at its size is printed with fewer, larger
@@ -130,7 +130,8 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
 // strips and labels under a millimetre, become a few hundred, every label at least 1.5 mm. Every
 // face kept (--detail full) prints, with a warning in the result.
 TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
-  const std::string base = ::testing::TempDir() + "papernet_detail_cli";
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string base = scratch / "detail";
   std::string said;
   ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() + "/Duck.glb -o " + base +
                          ".json -o " + base + ".pdf",
@@ -166,15 +167,14 @@ TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
   EXPECT_EQ(j["mesh"]["faces"].size(), 4212u);
   ASSERT_EQ(j["warnings"].size(), 1u) << j["warnings"];
   EXPECT_EQ(j["warnings"][0]["code"], "detail_unbuildable");
-  std::remove((base + ".json").c_str());
-  std::remove((base + ".pdf").c_str());
 }
 
 // A CAD part of slivers and small features (thingi10k 65004): by area it is buildable at 810 of
 // its 1,466 faces, which left 290 labels under 1.5 mm on edges of a millimetre or two. Detail auto
 // collapses on while edges print under 3 mm, moving the surface at most 3 mm.
 TEST(UnfoldCli, DetailAutoCollapsesShortEdgesOfACadPart) {
-  const std::string base = ::testing::TempDir() + "papernet_detail_cad";
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string base = scratch / "detail_cad";
   std::string said;
   ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() + "/thingi10k_65004.stl -o " +
                          base + ".json -o " + base + ".pdf",
@@ -204,8 +204,6 @@ TEST(UnfoldCli, DetailAutoCollapsesShortEdgesOfACadPart) {
       << said;
   // 290 before the short-edge rule; 4 before a thin face's side took its edge's tab (0 since).
   EXPECT_LE(std::stoi(m[1].str()), 2) << said;
-  std::remove((base + ".json").c_str());
-  std::remove((base + ".pdf").c_str());
 }
 
 // The milk truck's tyres and axles are small parts with edges printed under 3 mm. When a sixth of
@@ -214,7 +212,8 @@ TEST(UnfoldCli, DetailAutoCollapsesShortEdgesOfACadPart) {
 // 1.5 mm: none while labels could hang past their piece's outline (44 did), 17 since they must
 // print on their piece, on a part of slivers under 1.5 mm wide (docs/print.md, "Labels").
 TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
-  const std::string base = ::testing::TempDir() + "papernet_detail_truck";
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string base = scratch / "detail_truck";
   std::string said;
   ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/CesiumMilkTruck/CesiumMilkTruck.gltf --colour none -o " + base +
@@ -233,8 +232,6 @@ TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
   const auto j = nlohmann::json::parse(text.str());
   EXPECT_EQ(j["detail"]["mode"], "auto");
   EXPECT_LT(j["detail"]["faces"].get<int>(), 3624);
-  std::remove((base + ".json").c_str());
-  std::remove((base + ".pdf").c_str());
 }
 
 TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
@@ -246,11 +243,12 @@ TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
 // A mesh with faults is repaired, and the command says what it repaired; with --strict the
 // command refuses it (exit 2 with the validator's reason), never writing a net.
 TEST(UnfoldCli, RepairsWhatItCanAndStrictRefusesIt) {
-  const std::string obj = ::testing::TempDir() + "papernet_degenerate.obj";
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string obj = scratch / "degenerate.obj";
   // A tetrahedron plus a zero-area face glued to one of its edges (also non-manifold).
   std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 2 0 0\n"
                         "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 2 5\n";
-  const std::string out = ::testing::TempDir() + "papernet_degenerate.json";
+  const std::string out = scratch / "degenerate.json";
   std::string said;
   for (const char* strategy : {"QQ", "TU"}) {
     std::remove(out.c_str());
@@ -270,14 +268,13 @@ TEST(UnfoldCli, RepairsWhatItCanAndStrictRefusesIt) {
     EXPECT_EQ(j["repairs"][0]["code"], "removed_degenerate_faces");
     EXPECT_EQ(j["mesh"]["faces"].size(), 4u);
   }
-  std::remove(obj.c_str());
-  std::remove(out.c_str());
 }
 
 // A model that is a folder: a .gltf read with the buffer beside it, an OBJ with its material
 // library; a .gltf whose buffer is missing is refused naming it.
 TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
-  const std::string out = ::testing::TempDir() + "papernet_local.json";
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string out = scratch / "local.json";
   std::string said;
   ASSERT_EQ(
       papernet("unfold " + papernet::test::test_data_dir() +
@@ -292,7 +289,7 @@ TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
   EXPECT_GT(j["pieces"].size(), 10u) << "one piece per part of the truck";
   EXPECT_EQ(j["input"]["components"], j["pieces"].size());
 
-  const std::filesystem::path dir = ::testing::TempDir() + "papernet_local_models";
+  const std::filesystem::path dir = scratch.path() / "local_models";
   std::filesystem::create_directories(dir);
   std::filesystem::copy_file(
       papernet::test::test_data_dir() + "/CesiumMilkTruck/CesiumMilkTruck.gltf", dir / "truck.gltf",
@@ -306,16 +303,13 @@ TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
   EXPECT_EQ(papernet("unfold " + (dir / "fuze.obj").string() + " --strategy TU -o " + out, &said),
             0)
       << said;
-  std::filesystem::remove_all(dir);
-  std::remove(out.c_str());
 }
 
 // The textures of a local model: a .gltf's image and an OBJ's map_Kd are read from beside the
 // model and written beside the net JSON (OUT.texture-K.png).
 TEST(UnfoldCli, WritesTheTexturesBesideTheJson) {
-  const std::filesystem::path dir = ::testing::TempDir() + "papernet_textures_cli";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::filesystem::path& dir = scratch.path();
   const std::string data = papernet::test::test_data_dir();
   const auto read = [](const std::filesystem::path& p) {
     std::stringstream s;
@@ -352,7 +346,6 @@ TEST(UnfoldCli, WritesTheTexturesBesideTheJson) {
   ASSERT_EQ(k["materials"].size(), 1u);
   EXPECT_EQ(k["materials"][0]["texture"], 0);
   EXPECT_EQ(read(dir / "fuze.texture-0.png"), read(dir / "paint.png"));
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -133,7 +133,7 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   const json u = wait_final(s, unchanged);
   ASSERT_EQ(u["status"], "succeeded") << u.dump();
   EXPECT_EQ(u["options"]["tab_room_budget"], 0);
-  EXPECT_EQ(b["options"]["tab_room_budget"], kTabRoomQuery.empty() ? 100000 : 10000);
+  EXPECT_EQ(b["options"]["tab_room_budget"], light_tab_room(100'000));
   const std::string svg_u = c.Get("/v1/jobs/" + unchanged + "/net.svg")->body;
   EXPECT_GT(std::stoi(svg_data(svg_u, "strips")), 2 * std::stoi(svg_data(svg_b, "strips")));
   expect_problem(c.Post("/v1/jobs?tab_room_budget=-5", test_mesh("sample.obj"), "model/obj"), 400,

@@ -24,23 +24,23 @@
 
 namespace papernet::test {
 
-// The tab room pass runs 10-20 times slower sanitized: there, service jobs of tests that are not
-// about the pass give it a tenth of its default budget (a query option to append), so that a job
-// takes seconds, not minutes (sample.obj's TU net keeps 12 tabs to each strip).
+// The tab room pass runs 10-20 times slower sanitized: there, the jobs of tests that are not
+// about the pass give it at most a tenth of its default budget (JobOptions::tab_room_budget), so
+// that a job takes seconds, not minutes (sample.obj's TU net keeps 12 tabs to each strip).
 #ifdef PAPERNET_TEST_SANITIZED
-inline const std::string kTabRoomQuery = "&tab_room_budget=10000";
+inline constexpr std::size_t kLightTabRoomBudget = 10'000;
 #else
-inline const std::string kTabRoomQuery;
+inline constexpr std::size_t kLightTabRoomBudget = 0;  // no limit
 #endif
 
-/// The same for a job a test runs itself: `budget` (JobOptions::tab_room_budget), at most a tenth
-/// of the default sanitized.
+/// The budget for a job a test runs itself: `budget`, at most kLightTabRoomBudget sanitized.
 constexpr std::size_t light_tab_room(std::size_t budget) {
-#ifdef PAPERNET_TEST_SANITIZED
-  return std::min<std::size_t>(budget, 10'000);
-#else
-  return budget;
-#endif
+  return kLightTabRoomBudget == 0 ? budget : std::min(budget, kLightTabRoomBudget);
 }
+
+/// The same for a service job: a query option to append (empty when not sanitized).
+inline const std::string kTabRoomQuery =
+    kLightTabRoomBudget == 0 ? std::string()
+                             : "&tab_room_budget=" + std::to_string(kLightTabRoomBudget);
 
 }  // namespace papernet::test

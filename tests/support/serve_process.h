@@ -2,6 +2,7 @@
 // HTTP helpers they share.
 #pragma once
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <signal.h>
@@ -64,15 +65,20 @@ class Server {
     std::vector<std::string> args = {"papernet", "serve",        "--port",       "0",
                                      "--data",   data_.string(), "--access-log", "false"};
     args.insert(args.end(), flags_.begin(), flags_.end());
-    const std::string binary = papernet::test::papernet_binary();
+    // Everything the child needs is made before fork(): the test process has threads, and the
+    // child may only make async-signal-safe calls (open, dup2, execv) until it runs the server.
+    const std::string binary = papernet_binary();
+    const std::string log_path = (data_ / "server.log").string(), out_path = out.string();
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
     pid_ = fork();
     if (pid_ == 0) {
-      const std::string log = (data_ / "server.log").string();
-      freopen(log.c_str(), "a", stderr);
-      freopen(out.c_str(), "w", stdout);
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
+      const int err = open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      const int std_out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (err < 0 || std_out < 0 || dup2(err, STDERR_FILENO) < 0 ||
+          dup2(std_out, STDOUT_FILENO) < 0)
+        _exit(126);
       execv(binary.c_str(), argv.data());
       _exit(127);
     }

@@ -284,7 +284,7 @@ test("multipart bodies are encoded in full: Content-Length, closing boundary wit
 });
 
 test("apiKey: a server with --api-keys answers the key's tenant; no key is missing_api_key", async (t) => {
-  const { mkdtempSync, writeFileSync } = await import("node:fs");
+  const { mkdtempSync, rmSync, writeFileSync } = await import("node:fs");
   const { createHash } = await import("node:crypto");
   const { tmpdir } = await import("node:os");
   const { join } = await import("node:path");
@@ -315,6 +315,7 @@ test("apiKey: a server with --api-keys answers the key's tenant; no key is missi
     );
   } finally {
     await keyed.stop();
+    rmSync(dir, { recursive: true, force: true });
   }
 });
 
