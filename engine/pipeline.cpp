@@ -44,6 +44,11 @@ constexpr double kPrintTimeShare = 0.1;
 constexpr double kPrintSecondsPerFace = 175e-6;
 constexpr double kTabRoomSecondsPerFace = 25e-6;
 constexpr double kDistanceSecondsPerFace = 12e-6;
+// Seconds the print takes for each glue strip, besides its time per face: each strip is nested
+// onto the sheets as a part of its own (print/nest.h). The pass that makes room for tabs keeps
+// this much of its time per edge still without room. Measured on the Twin plate of
+// ../shared/data/bench (5,756 faces of slivers; docs/architecture.md, "Time limit").
+constexpr double kPrintSecondsPerStrip = 3e-3;
 
 // How much slower than the machine those times were measured on this one runs: a fixed piece of
 // the print's most common work (convex polygons tested for overlap through a PolygonGrid,
@@ -194,6 +199,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   // The time per face of the steps after the unfold, on this machine.
   const double slowness = all_faces >= kProbeFaces ? machine_slowness() : 1;
   const double print_per_face = plan.print ? slowness * kPrintSecondsPerFace : 0;
+  const double print_per_strip = plan.print ? slowness * kPrintSecondsPerStrip : 0;
   const double tab_room_per_face = slowness * kTabRoomSecondsPerFace;
   const double after_per_face =
       print_per_face + (plan.tabs ? tab_room_per_face : 0) + slowness * kDistanceSecondsPerFace;
@@ -249,9 +255,9 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
       info.faces = pieces[p].mesh.faces.size();
       relay.report(info);
     }
-    const NetCheckReport check =
-        room ? make_room_for_tabs(pieces[p], options, piece_seconds, relay, out.tab_room)
-             : check_net(pieces[p].mesh, pieces[p].net);
+    const NetCheckReport check = room ? make_room_for_tabs(pieces[p], options, piece_seconds,
+                                                           print_per_strip, relay, out.tab_room)
+                                      : check_net(pieces[p].mesh, pieces[p].net);
     if (!check.ok()) throw std::logic_error("the net fails the net checker: " + check.summary());
     faces_before += prepared.parts[p].faces.size();
   }

@@ -92,11 +92,13 @@ Piece unfold_piece(const Mesh& part, const JobOptions& options, const SimplifyTa
 }
 
 NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, double seconds,
-                                  Progress& progress, std::optional<TabRoomSummary>& summary) {
+                                  double seconds_per_strip, Progress& progress,
+                                  std::optional<TabRoomSummary>& summary) {
   PrintOptions print = print_options(options);
   if (!makes_tab_room(print)) return check_net(piece.mesh, piece.net);
   print.tab_room_seconds = seconds;
-  const TabClearanceOptions clearance = tab_clearance_options(piece.mesh, print);
+  TabClearanceOptions clearance = tab_clearance_options(piece.mesh, print);
+  clearance.seconds_per_blocked_edge = seconds_per_strip;
   const auto start = std::chrono::steady_clock::now();
   const TabClearanceResult room = clear_tab_room(piece.mesh, piece.net, clearance, progress);
   TabRoomSummary& s = summary ? *summary : summary.emplace();

@@ -56,6 +56,7 @@ Clearance::Clearance(const Mesh& mesh, const Net& net, const TabClearanceOptions
   height_ = options.min_height;
   budget_ = options.max_evaluations;
   time_limit_ = options.time_limit_seconds;
+  seconds_per_blocked_ = options.seconds_per_blocked_edge;
   shapes_ = tab_shapes(options.angle_deg);
   double total = 0;
   for (const auto& t : pos_)
@@ -538,8 +539,10 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
   result.net = net;
   if (!(options.min_height > 0) || mesh.faces.empty()) return result;
   const auto start = std::chrono::steady_clock::now();
-  const auto seconds_left = [&] {
+  // Less the time the caller reserves for the edges still without room.
+  const auto seconds_left = [&](std::size_t blocked) {
     return options.time_limit_seconds -
+           options.seconds_per_blocked_edge * static_cast<double>(blocked) -
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   // Both rounds' budget: the second is as long as the first (see below).
@@ -548,8 +551,8 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
                     options.time_limit_seconds, mesh.faces.size());
   Clearance state(mesh, net, options);
   // The search's clock starts now: setting up its state (every edge's room) is part of the pass.
-  state.extend(0, seconds_left());
   result.blocked_before = state.blocked_count();
+  state.extend(0, seconds_left(0));
   state.run(pass);
   // The second round: when the search spent its budget with many edges left it goes on (its
   // sweeps open many edges at a time: the Duck, reference.obj); else kicks, one edge at a time
@@ -558,7 +561,7 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
   result.searched_on = second && state.blocked_count() > 0 && state.evaluations_ >= budget &&
                        state.blocked_count() > kSearchOnBlocked;
   if (result.searched_on) {
-    state.extend(budget, seconds_left());
+    state.extend(budget, seconds_left(0));
     state.run(pass);
   }
   result.blocked_after = state.blocked_count();
@@ -569,7 +572,7 @@ TabClearanceResult clear_tab_room(const Mesh& mesh, const Net& net,
   result.blocked = state.blocked_edges();  // of result.net: the input, or the state's best
   if (second && !result.searched_on && state.blocked_count() > 0) {
     const std::size_t kicks = result.kicks;
-    tab_clearance_detail::kick(mesh, options, seconds_left(), pass, result);
+    tab_clearance_detail::kick(mesh, options, seconds_left(state.blocked_count()), pass, result);
     if (result.kicks != kicks) result.blocked.reset();
   }
   pass.done(result.evaluations);

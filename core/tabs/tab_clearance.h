@@ -67,6 +67,11 @@ struct TabClearanceOptions {
   /// job time limit); <= 0: none. When it stops the search, the best net so far is returned
   /// (overlap-free as always), and the result then depends on the machine's speed.
   double time_limit_seconds = 0;
+  /// With a clock limit: the seconds the caller's next steps take for each edge still without
+  /// room (the print nests a glue strip for each, docs/architecture.md "Time limit"). The
+  /// search stops this much per edge before its limit, so it stops earlier on a net with many
+  /// such edges, and later as it opens them.
+  double seconds_per_blocked_edge = 0;
   /// Refuse moves that take faces outside the input net's axis-aligned bounding box, so that
   /// the net does not grow while it makes room for tabs. Off by default: it leaves about a
   /// quarter more edges without room and does not bound the page count anyway (pages follow

@@ -94,6 +94,7 @@ void kick(const Mesh& mesh, const TabClearanceOptions& options, double seconds_l
           search_options.max_evaluations = std::min(
               std::max<std::size_t>(1, budget / kKickSearches), budget - std::min(budget, spent));
           if (timed) search_options.time_limit_seconds = std::max(1e-3, seconds_left - elapsed());
+          search_options.seconds_per_blocked_edge = 0;  // `seconds_left` has it taken off
           Clearance search(mesh, unfolding.net(), search_options);
           if (search.blocked_count() > result.blocked_after + kKickSlack) continue;
           // The search looks where the kick and the repair changed the net: edges at faces

@@ -401,7 +401,7 @@ void Clearance::run(PassProgress& progress, std::size_t evaluations_before) {
   const auto out_of_time = [&] {
     return time_limit_ > 0 &&
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
-               time_limit_;
+               time_limit_ - seconds_per_blocked_ * static_cast<double>(blocked_count_);
   };
   // Back to the best net seen.
   const auto back_to_best = [&] {

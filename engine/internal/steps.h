@@ -82,10 +82,12 @@ Piece unfold_piece(const Mesh& part, const JobOptions& options, const SimplifyTa
                    Progress& progress);
 
 /// Changes `piece`'s cuts so that more of its cut edges have room for a glue tab, within
-/// `seconds`, when the job prints tabs; keeps the new net only when it passes the net checker.
+/// `seconds` less `seconds_per_strip` for each edge still without room (the print's time for its
+/// glue strip), when the job prints tabs; keeps the new net only when it passes the net checker.
 /// Adds what it did to `summary`. Returns the checker's report on the net it leaves.
 NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, double seconds,
-                                  Progress& progress, std::optional<TabRoomSummary>& summary);
+                                  double seconds_per_strip, Progress& progress,
+                                  std::optional<TabRoomSummary>& summary);
 
 /// The warning a result carries when `detail` full or N printed parts clearly denser than
 /// buildable_faces ("detail_unbuildable", counting them); none with detail auto.

@@ -186,6 +186,7 @@ class Clearance {
   double tol_ = 0, height_ = 0;
   std::size_t budget_ = 0;
   double time_limit_ = 0;              // seconds; <= 0: none
+  double seconds_per_blocked_ = 0;     // TabClearanceOptions::seconds_per_blocked_edge
   std::size_t step_limit_ = 0;         // evaluations_ allowed up to in the current step of run()
   std::size_t far_glues_ = kFarGlues;  // cut edges farther along the cut tree tried per link
   bool endgame_ = false;               // after the first restart (see run): hair links too

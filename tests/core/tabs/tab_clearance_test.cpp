@@ -114,6 +114,35 @@ TEST(TabClearance, OpensNearSlitsAndKeepsTheNetValid) {
   EXPECT_TRUE(check_net(c.mesh, timed.net).ok());
 }
 
+// The job keeps time after the pass for each edge still without room (the print nests a glue
+// strip for each): when that time is more than the pass's limit, the pass returns the input net
+// without a move; when it is less, the pass searches as before.
+TEST(TabClearance, TheTimeKeptForEachEdgeWithoutRoomStopsThePassFirst) {
+  const Case c = unfolded("sample.obj");
+  ASSERT_FALSE(c.mesh.faces.empty());
+  TabClearanceOptions options;
+  options.min_height = c.min_height;
+  options.max_evaluations = 2'000;
+  options.time_limit_seconds = 600;
+  const std::size_t blocked = edges_without_tab_room(c.mesh, c.net, options).size();
+  ASSERT_GT(blocked, 50u) << "sample.obj's dense net has near-slits";
+  Progress quiet;
+  options.seconds_per_blocked_edge = 2 * options.time_limit_seconds / double(blocked);
+  const TabClearanceResult kept = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_EQ(kept.blocked_before, blocked);
+  EXPECT_EQ(kept.evaluations, 0u);
+  EXPECT_EQ(kept.moves, 0u);
+  EXPECT_EQ(kept.kicks, 0u);
+  EXPECT_EQ(kept.blocked_after, blocked);
+  EXPECT_EQ(kept.net.parent, c.net.parent);
+  // A millisecond an edge: time enough for the whole budget.
+  options.seconds_per_blocked_edge = 1e-3;
+  const TabClearanceResult searched = clear_tab_room(c.mesh, c.net, options, quiet);
+  EXPECT_GT(searched.moves, 0u);
+  EXPECT_LT(searched.blocked_after, blocked);
+  EXPECT_TRUE(check_net(c.mesh, searched.net).ok());
+}
+
 // Where the blocked edges are: leaves of the cut tree at nearly flat vertices (their two sides
 // meet at the vertex's angle defect) and hairs; the pass turns flat leaves into path vertices.
 TEST(TabClearance, FlatLeavesAreNearSlitsAndThePassRemovesThem) {
