@@ -74,8 +74,9 @@ class Server {
     argv.push_back(nullptr);
     pid_ = fork();
     if (pid_ == 0) {
-      const int err = open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-      const int std_out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      // Close-on-exec: the server keeps the two files as its stderr and stdout only.
+      const int err = open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+      const int std_out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
       if (err < 0 || std_out < 0 || dup2(err, STDERR_FILENO) < 0 ||
           dup2(std_out, STDOUT_FILENO) < 0)
         _exit(126);
