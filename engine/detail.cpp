@@ -28,6 +28,16 @@ constexpr double kShortEdgeMm = 3;
 constexpr double kShortEdgesAllowed = 0.01;
 constexpr double kDetailDistanceMm = 3;
 
+// A tunnel through a part (a hole through a plate) whose loop around prints shorter than this is
+// plugged when the collapse for short edges is stuck: a hole under 6 mm across, with walls of
+// 3 mm edges and their glue tabs, is not built in card.
+constexpr double kTunnelLoopMm = 6 * kShortEdgeMm;
+
+// A face printed lower than this over its longest edge (a sliver along a CAD part's edge, a fan
+// of them on a flat side) holds its labels only under 1.5 mm: its edges are flipped where that
+// makes it thicker, within a quarter of the distance bound (core/mesh/thin_faces.h).
+constexpr double kThinFaceMm = kShortEdgeMm;
+
 // A part is collapsed only when it has this much more than the buildable faces: a model a
 // little denser is printed as it is rather than approximated.
 constexpr double kDetailSlack = 1.25;
@@ -78,6 +88,8 @@ SimplifyTarget detail_target(const Mesh& part, const JobOptions& options, double
     target.short_edge = kShortEdgeMm / scale;
     target.short_edges_allowed = kShortEdgesAllowed;
     target.max_distance = kDetailDistanceMm / scale;
+    target.max_tunnel_loop = kTunnelLoopMm / scale;
+    target.thin_face = kThinFaceMm / scale;
   }
   return target;
 }

@@ -40,9 +40,11 @@ void bound(Patch& patch, const FaceTree& tree) {
 }
 
 // One direction, from the surface of `from` to the one in `tree`. Raises `attained` to the
-// largest distance reached by a sampled point; returns an upper bound of the direction.
+// largest distance reached by a sampled point; returns an upper bound of the direction. With a
+// finite `enough`, it stops as soon as `attained` passes it, and refines no patch whose bound is
+// within it.
 double one_side(const Mesh& from, const FaceTree& tree, double& attained, double rel, double abs,
-                std::size_t max_refinements) {
+                std::size_t max_refinements, double enough) {
   std::vector<double> vd(from.vertices.size(), -1);
   std::vector<int> vn(from.vertices.size(), -1);
   int hint = -1;
@@ -53,8 +55,12 @@ double one_side(const Mesh& from, const FaceTree& tree, double& attained, double
       vd[v] = std::sqrt(d2);
       vn[v] = hint = face;
       attained = std::max(attained, vd[v]);
+      if (attained > enough) return attained;
     }
-  auto done = [&](double upper) { return upper <= std::max(attained * (1 + rel), attained + abs); };
+  const double settled = std::isfinite(enough) ? enough : 0;  // no patch within this is refined
+  auto done = [&](double upper) {
+    return upper <= std::max({attained * (1 + rel), attained + abs, settled});
+  };
   std::priority_queue<Patch> heap;
   for (const auto& f : from.faces) {
     Patch patch;
@@ -70,6 +76,7 @@ double one_side(const Mesh& from, const FaceTree& tree, double& attained, double
   while (!heap.empty()) {
     const Patch top = heap.top();
     if (done(top.upper) || refined >= max_refinements) return std::max(top.upper, attained);
+    if (attained > enough) return attained;
     heap.pop();
     ++refined;
     std::array<Vec3, 3> m;
@@ -98,7 +105,10 @@ double one_side(const Mesh& from, const FaceTree& tree, double& attained, double
 
 }  // namespace
 
-HausdorffResult hausdorff_distance(const Mesh& a, const Mesh& b, const HausdorffOptions& options) {
+namespace {
+
+HausdorffResult two_sided(const Mesh& a, const Mesh& b, const HausdorffOptions& options,
+                          double enough) {
   if (a.faces.empty() || b.faces.empty())
     throw InvalidInputException("Hausdorff distance needs two meshes with faces");
   const double diagonal = bounding_box_diagonal(a);
@@ -106,21 +116,39 @@ HausdorffResult hausdorff_distance(const Mesh& a, const Mesh& b, const Hausdorff
   const double abs = options.absolute_accuracy * scale;
   const FaceTree tree_a(a), tree_b(b);
   double attained = 0;
-  const double ab =
-      one_side(a, tree_b, attained, options.relative_accuracy, abs, options.max_refinements);
-  const double ba =
-      one_side(b, tree_a, attained, options.relative_accuracy, abs, options.max_refinements);
+  enough *= scale;
+  const double ab = one_side(a, tree_b, attained, options.relative_accuracy, abs,
+                             options.max_refinements, enough);
+  const double ba = attained > enough ? attained
+                                      : one_side(b, tree_a, attained, options.relative_accuracy,
+                                                 abs, options.max_refinements, enough);
   // Bounds from the first direction were judged against a smaller `attained`: still valid.
   return {attained / scale, std::max({ab, ba, attained}) / scale};
 }
 
-double approximation_distance(const Mesh& input, const Mesh& approximation) {
-  // A bounded amount of refinement (20,000 triangles per direction): CAD meshes kept exactly by
-  // the quadrics would otherwise refine their flat sides towards the absolute accuracy for a
-  // long time.
+// A bounded amount of refinement (20,000 triangles per direction): CAD meshes kept exactly by
+// the quadrics would otherwise refine their flat sides towards the absolute accuracy for a long
+// time.
+HausdorffOptions approximation_accuracy() {
   HausdorffOptions accuracy;
   accuracy.max_refinements = 20'000;
-  return hausdorff_distance(input, approximation, accuracy).distance;
+  return accuracy;
+}
+
+}  // namespace
+
+HausdorffResult hausdorff_distance(const Mesh& a, const Mesh& b, const HausdorffOptions& options) {
+  return two_sided(a, b, options, std::numeric_limits<double>::infinity());
+}
+
+double approximation_distance(const Mesh& input, const Mesh& approximation) {
+  return two_sided(input, approximation, approximation_accuracy(),
+                   std::numeric_limits<double>::infinity())
+      .distance;
+}
+
+bool approximation_within(const Mesh& input, const Mesh& approximation, double distance) {
+  return two_sided(input, approximation, approximation_accuracy(), distance).distance <= distance;
 }
 
 }  // namespace papernet

@@ -42,4 +42,9 @@ HausdorffResult hausdorff_distance(const Mesh& a, const Mesh& b,
 /// of a second at most).
 double approximation_distance(const Mesh& input, const Mesh& approximation);
 
+/// True when approximation_distance(input, approximation) <= `distance` (relative to the input's
+/// diagonal, as it), found with less work: it stops at the first point farther than `distance`,
+/// and refines no part of a surface known to be within it.
+bool approximation_within(const Mesh& input, const Mesh& approximation, double distance);
+
 }  // namespace papernet

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <utility>
 #include <vector>
 
 #include "core/mesh/hausdorff.h"
+#include "core/mesh/thin_faces.h"
+#include "core/mesh/tunnels.h"
 
 namespace papernet {
 namespace {
@@ -13,6 +16,9 @@ namespace {
 // Each step of the collapse for short edges removes this part of the faces left (then half of
 // that, and so on, after a step that moved the surface too far).
 constexpr std::size_t kShortEdgeStep = 6;
+
+// The part of the distance allowed that one flip for thin faces may move the surface.
+constexpr double kThinFaceMove = 0.25;
 
 }  // namespace
 
@@ -48,21 +54,70 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
                target.seconds;
   };
+  // The distance allowed, relative to the diagonal (as approximation_within measures).
+  const double allowed =
+      diagonal > 0 ? target.max_distance / diagonal : std::numeric_limits<double>::infinity();
+  // Takes `m` for the mesh collapsed so far when it is no farther than the distance allowed.
+  const auto take = [&](Mesh& m) {
+    if (!approximation_within(mesh, m, allowed)) return false;
+    pm = ProgressiveMesh(m);
+    simple = std::move(m);
+    step = kShortEdgeStep;
+    return true;
+  };
+  // When no collapse is left that keeps the surface close enough, the small tunnels (a hole
+  // through a plate, a gap under a handle) are plugged, else edges of thin faces are flipped,
+  // and the collapse goes on from there; again only after it has collapsed further (plugs add
+  // faces, and flips stop where no flip thickens a face).
+  bool reshaped = false;
+  std::size_t stuck_at = std::numeric_limits<std::size_t>::max();
+  const auto unstuck = [&] {
+    if (pm.face_count() >= stuck_at) return false;
+    stuck_at = pm.face_count();
+    Mesh m = simple;
+    std::size_t plugs = 0;
+    while (target.max_tunnel_loop > 0 && !out_of_time())
+      if (const std::optional<std::vector<int>> loop =
+              shortest_tunnel_loop(m, target.max_tunnel_loop)) {
+        m = plug_tunnel(m, *loop);
+        ++plugs;
+      } else {
+        break;
+      }
+    if (plugs > 0 && take(m)) return reshaped = true;
+    m = simple;
+    if (target.thin_face > 0 &&
+        thicken_thin_faces(m, target.thin_face, kThinFaceMove * target.max_distance) > 0 && take(m))
+      return reshaped = true;
+    return false;
+  };
   while (too_short(simple) && !out_of_time()) {
     const std::size_t before = pm.face_count();
     ProgressiveMesh tried = pm;
     collapse_further(tried, strategy, before - std::max<std::size_t>(1, before / step), progress);
-    if (tried.face_count() >= before) break;  // no legal collapse left
+    if (tried.face_count() >= before) {  // no legal collapse left
+      if (unstuck()) continue;
+      break;
+    }
     Mesh next = tried.compact();
-    if (approximation_distance(mesh, next) * diagonal > target.max_distance) {
-      if (before / step <= 1) break;
+    if (!approximation_within(mesh, next, allowed)) {
+      if (before / step <= 1) {
+        if (unstuck()) continue;
+        break;
+      }
       step *= 2;
       continue;
     }
     pm = std::move(tried);
     simple = std::move(next);
   }
-  if (simple.faces.size() >= n) return std::nullopt;
+  // Thin faces left where the short edges are few enough: their edges are flipped as well.
+  if (target.thin_face > 0 && !out_of_time()) {
+    Mesh m = simple;
+    if (thicken_thin_faces(m, target.thin_face, kThinFaceMove * target.max_distance) > 0 && take(m))
+      reshaped = true;
+  }
+  if (simple.faces.size() >= n && !reshaped) return std::nullopt;
   return simple;
 }
 

@@ -21,6 +21,14 @@ struct SimplifyTarget {
   double short_edge = 0;
   double short_edges_allowed = 0;
   double max_distance = 0;
+  /// When those steps find no collapse left, tunnels whose loop around (shortest_tunnel_loop,
+  /// core/mesh/tunnels.h) is at most this long are plugged, and the steps go on, unless that
+  /// took the surface farther than `max_distance`. 0: none is plugged.
+  double max_tunnel_loop = 0;
+  /// Faces lower than this over their longest edge have edges flipped (thicken_thin_faces,
+  /// core/mesh/thin_faces.h), each flip moving the surface at most a quarter of `max_distance`:
+  /// when the steps find no collapse left, and at the end. 0: no flips.
+  double thin_face = 0;
   /// Seconds the steps for short edges may take (each measures the distance to `mesh`, which
   /// on a dense mesh of slivers adds up to seconds); when they are spent, the mesh collapsed so
   /// far is returned, and the result then depends on the machine's speed. <= 0: no limit.

@@ -116,6 +116,23 @@ TEST(Hausdorff, DecimatedMeshAgreesWithDenseSampling) {
   EXPECT_GT(brute, 0.5 * r.distance);  // the dense samples see most of it
 }
 
+// The yes-or-no question answers as the distance does, on both sides of it: the decimated sample
+// mesh, and the nested cubes (whose farthest points are corners, found before any refinement).
+TEST(Hausdorff, WithinADistanceAgreesWithTheDistance) {
+  const Mesh input = load_mesh_file(papernet::test::test_data_dir() + "/sample.obj").mesh;
+  Progress progress;
+  const Mesh coarse = decimate(input, {CollapseStrategy::SEMP, 0}, progress).compact();
+  const double d = approximation_distance(input, coarse);
+  ASSERT_GT(d, 0);
+  EXPECT_TRUE(approximation_within(input, coarse, 1.02 * d));
+  EXPECT_FALSE(approximation_within(input, coarse, 0.98 * d));
+  const Mesh inner = box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5});
+  const Mesh outer = box({-1, -1, -1}, {1, 1, 1});
+  EXPECT_TRUE(approximation_within(inner, outer, 0.5));
+  EXPECT_FALSE(approximation_within(inner, outer, 0.49));
+  EXPECT_TRUE(approximation_within(inner, inner, 0));
+}
+
 TEST(Hausdorff, EmptyMeshIsRefused) {
   EXPECT_THROW(hausdorff_distance(Mesh{}, box({0, 0, 0}, {1, 1, 1})), InvalidInputException);
 }
