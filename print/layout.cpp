@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <span>
 #include <unordered_map>
 
@@ -287,6 +288,16 @@ bool box_on_piece(const PaperGrid& grid, const std::array<Vec2, 4>& box, int fac
   return !grid.meets_cut(glyphs);
 }
 
+/// The labels' indices, smallest first (then in order): the labels with the least room in their
+/// face look for a place elsewhere before those with more.
+std::vector<int> smallest_first(const std::vector<Label>& labels) {
+  std::vector<int> order(labels.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return labels[a].size < labels[b].size; });
+  return order;
+}
+
 /// Labels that did not fit their face at kLegibleLabelMm move where they print that large: onto
 /// the glue tab of their side when it has room (the tab is glued away, its face's partner label
 /// stays in view), else beside their edge at that size, on the face's side of it, reaching over
@@ -305,7 +316,7 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
     labels[i] = to;
     boxes.add(i);
   };
-  for (int i = 0; i < static_cast<int>(labels.size()); ++i) {
+  for (const int i : smallest_first(labels)) {
     const Label& label = labels[i];
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
     if (only && !(*only)[label.side.face]) continue;
@@ -432,7 +443,7 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
   if (small == 0 || small > kMostFarLabels) return leaders;
   LabelBoxes boxes(labels);
   std::vector<std::array<Vec2, 4>> drawn;  // the leaders' boxes
-  for (int i = 0; i < static_cast<int>(labels.size()); ++i) {
+  for (const int i : smallest_first(labels)) {
     const Label& label = labels[i];
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
     const int face = label.side.face;
