@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/errors.h"
 #include "core/mesh/hausdorff.h"
 #include "core/mesh/thin_faces.h"
 #include "core/mesh/tunnels.h"
@@ -60,7 +61,11 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   // Takes `m` for the mesh collapsed so far when it is no farther than the distance allowed.
   const auto take = [&](Mesh& m) {
     if (!approximation_within(mesh, m, allowed)) return false;
-    pm = ProgressiveMesh(m);
+    try {
+      pm = ProgressiveMesh(m);
+    } catch (const InvalidInputException&) {
+      return false;  // not manifold and oriented after all: the collapse keeps what it has
+    }
     simple = std::move(m);
     step = kShortEdgeStep;
     return true;
