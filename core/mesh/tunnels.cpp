@@ -7,6 +7,7 @@
 #include <limits>
 #include <queue>
 #include <set>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
