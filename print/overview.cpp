@@ -58,19 +58,24 @@ struct Box {
 };
 
 /// The centre nearest `at` for a text box of half-size `half` that lies inside `inside` and
-/// overlaps none of `taken`: `at` itself, else the first free place on rings around it (eight
-/// directions, each ring a text box farther out); `at` when none is free.
+/// overlaps none of `taken`: `at` itself, else the first free place on rings around it (each
+/// ring a text box farther out, with eight places on the first and more on each ring after, out
+/// to rings that reach past `inside`); `at` when none is free.
 Vec2 free_place(Vec2 at, Vec2 half, const Box& inside, const std::vector<Box>& taken) {
-  constexpr int kRings = 8;
-  for (int r = 0; r <= kRings; ++r)
-    for (int k = 0; k < (r == 0 ? 1 : 8); ++k) {
-      const double a = k * std::numbers::pi / 4;
+  const double reach =
+      (inside.x1 - inside.x0) / (2 * half.x) + (inside.y1 - inside.y0) / (2 * half.y);
+  const int rings = std::max(8, static_cast<int>(std::ceil(reach)));
+  for (int r = 0; r <= rings; ++r) {
+    const int places = r == 0 ? 1 : 8 * r;
+    for (int k = 0; k < places; ++k) {
+      const double a = k * 2 * std::numbers::pi / places;
       const Vec2 c{at.x + r * 2 * half.x * std::cos(a), at.y + r * 2 * half.y * std::sin(a)};
       const Box box{c.x - half.x, c.y - half.y, c.x + half.x, c.y + half.y};
       if (!inside.holds(box)) continue;
       if (std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(box); }))
         return c;
     }
+  }
   return at;
 }
 
