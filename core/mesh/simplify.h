@@ -26,8 +26,8 @@ struct SimplifyTarget {
   /// took the surface farther than `max_distance`. 0: none is plugged.
   double max_tunnel_loop = 0;
   /// Faces lower than this over their longest edge have edges flipped (thicken_thin_faces,
-  /// core/mesh/thin_faces.h), each flip moving the surface at most a quarter of `max_distance`:
-  /// when the steps find no collapse left, and at the end. 0: no flips.
+  /// core/mesh/thin_faces.h), the flips of one round moving the surface at most a quarter of
+  /// `max_distance`: when the steps find no collapse left, and at the end. 0: no flips.
   double thin_face = 0;
   /// Seconds the steps for short edges may take (each measures the distance to `mesh`, which
   /// on a dense mesh of slivers adds up to seconds); when they are spent, the mesh collapsed so
