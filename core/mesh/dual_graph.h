@@ -37,4 +37,9 @@ inline std::uint64_t half_edge_key(int a, int b) {
          static_cast<std::uint32_t>(b);
 }
 
+/// Key of the undirected edge {a, b}, for hash maps over edges: half_edge_key from its lower end.
+inline std::uint64_t edge_key(int a, int b) {
+  return a < b ? half_edge_key(a, b) : half_edge_key(b, a);
+}
+
 }  // namespace papernet

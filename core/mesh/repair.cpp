@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "core/mesh/dual_graph.h"
 #include "core/mesh/internal/describe.h"
 #include "core/union_find.h"
 
@@ -20,11 +21,6 @@ namespace {
 
 using mesh_detail::plural;
 using mesh_detail::position;
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
 
 // A face while it is repaired: its corners, the loader's vertex of each corner, the input face
 // it comes from, whether it is still there, and the input corner (3 * face + k) whose texture

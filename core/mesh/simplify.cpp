@@ -70,6 +70,13 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
     step = kShortEdgeStep;
     return true;
   };
+  // Flips edges of the thin faces of the mesh collapsed so far, and takes the result.
+  const auto thickened = [&] {
+    Mesh m = simple;
+    return target.thin_face > 0 &&
+           thicken_thin_faces(m, target.thin_face, kThinFaceMove * target.max_distance) > 0 &&
+           take(m);
+  };
   // When no collapse is left that keeps the surface close enough, the small tunnels (a hole
   // through a plate, a gap under a handle) are plugged, else edges of thin faces are flipped,
   // and the collapse goes on from there; again only after it has collapsed further (plugs add
@@ -89,11 +96,7 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
       } else {
         break;
       }
-    if (plugs > 0 && take(m)) return reshaped = true;
-    m = simple;
-    if (target.thin_face > 0 &&
-        thicken_thin_faces(m, target.thin_face, kThinFaceMove * target.max_distance) > 0 && take(m))
-      return reshaped = true;
+    if ((plugs > 0 && take(m)) || thickened()) return reshaped = true;
     return false;
   };
   while (too_short(simple) && !out_of_time()) {
@@ -117,11 +120,7 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
     simple = std::move(next);
   }
   // Thin faces left where the short edges are few enough: their edges are flipped as well.
-  if (target.thin_face > 0 && !out_of_time()) {
-    Mesh m = simple;
-    if (thicken_thin_faces(m, target.thin_face, kThinFaceMove * target.max_distance) > 0 && take(m))
-      reshaped = true;
-  }
+  if (!out_of_time() && thickened()) reshaped = true;
   if (simple.faces.size() >= n && !reshaped) return std::nullopt;
   return simple;
 }

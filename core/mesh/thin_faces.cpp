@@ -8,16 +8,13 @@
 #include <utility>
 #include <vector>
 
+#include "core/mesh/dual_graph.h"
+
 namespace papernet {
 namespace {
 
 // Flip passes at most: each pass flips at most one edge of each face, and thin faces are few.
 constexpr int kMostPasses = 20;
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
 
 double distance2_to_segment(Vec3 p, Vec3 a, Vec3 b) {
   const Vec3 ab = b - a;

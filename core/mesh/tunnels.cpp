@@ -11,13 +11,10 @@
 #include <unordered_map>
 #include <utility>
 
+#include "core/mesh/dual_graph.h"
+
 namespace papernet {
 namespace {
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
 
 // The faces at each edge, the edges at each vertex, and the vertices where the surface is not a
 // closed disc (on a boundary, or at an edge of more than two faces).
