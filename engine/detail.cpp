@@ -90,6 +90,7 @@ SimplifyTarget detail_target(const Mesh& part, const JobOptions& options, double
     target.max_distance = kDetailDistanceMm / scale;
     target.max_tunnel_loop = kTunnelLoopMm / scale;
     target.thin_face = kThinFaceMm / scale;
+    target.thin_plates = true;
   }
   return target;
 }

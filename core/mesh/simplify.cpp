@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "core/mesh/hausdorff.h"
 #include "core/mesh/thin_faces.h"
+#include "core/mesh/thin_plates.h"
 #include "core/mesh/tunnels.h"
 
 namespace papernet {
@@ -43,11 +44,27 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
     return target.short_edge > 0 && double(count_short_edges(m, target.short_edge)) >
                                         target.short_edges_allowed * double(m.faces.size());
   };
-  const bool collapse = target.faces > 0 && target.faces < n;
-  if (!collapse && !too_short(mesh)) return std::nullopt;
-  ProgressiveMesh pm = decimate(mesh, {strategy, collapse ? target.faces : n}, progress);
-  Mesh simple = pm.compact();
   const double diagonal = bounding_box_diagonal(mesh);
+  // The distance allowed, relative to the diagonal (as approximation_within measures).
+  const double allowed =
+      diagonal > 0 ? target.max_distance / diagonal : std::numeric_limits<double>::infinity();
+  // A thin plate, its walls too narrow to fold, label or glue, is printed as one layer of card:
+  // the larger of its sides, when that is within the distance allowed.
+  const auto one_side = [&](const Mesh& m) -> std::optional<Mesh> {
+    if (!target.thin_plates) return std::nullopt;
+    std::optional<Mesh> side = plate_side(m);
+    if (side && !approximation_within(mesh, *side, allowed)) side.reset();
+    return side;
+  };
+  // The plate's side first (the collapse would keep its walls: no collapse may join its two
+  // sides), then once more at the end (a part the collapse left a plate).
+  const std::optional<Mesh> side = one_side(mesh);
+  const Mesh& from = side ? *side : mesh;
+  const bool collapse = target.faces > 0 && target.faces < from.faces.size();
+  if (!collapse && !too_short(from)) return side;
+  ProgressiveMesh pm =
+      decimate(from, {strategy, collapse ? target.faces : from.faces.size()}, progress);
+  Mesh simple = pm.compact();
   std::size_t step = kShortEdgeStep;
   const auto start = std::chrono::steady_clock::now();
   const auto out_of_time = [&] {
@@ -55,9 +72,6 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >=
                target.seconds;
   };
-  // The distance allowed, relative to the diagonal (as approximation_within measures).
-  const double allowed =
-      diagonal > 0 ? target.max_distance / diagonal : std::numeric_limits<double>::infinity();
   // Takes `m` for the mesh collapsed so far when it is no farther than the distance allowed.
   const auto take = [&](Mesh& m) {
     if (!approximation_within(mesh, m, allowed)) return false;
@@ -121,7 +135,9 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   }
   // Thin faces left where the short edges are few enough: their edges are flipped as well.
   if (!out_of_time() && thickened()) reshaped = true;
-  if (simple.faces.size() >= n && !reshaped) return std::nullopt;
+  if (!out_of_time())
+    if (std::optional<Mesh> last = one_side(simple); last && take(*last)) reshaped = true;
+  if (simple.faces.size() >= n && !reshaped && !side) return std::nullopt;
   return simple;
 }
 

@@ -89,6 +89,27 @@ TEST(Simplify, AFaceTargetAloneIsKept) {
   EXPECT_GT(simple->faces.size(), 850u);
 }
 
+// A plate 1 thick (a box of 40 x 20 x 1, no short edge to collapse) becomes one of its large
+// sides when thin plates are asked for and 1 is within the distance allowed; not when the
+// distance allowed is less, nor when thin plates are not asked for.
+TEST(Simplify, AThinPlateBecomesOneSideWithinTheDistance) {
+  Mesh plate = test::cube();
+  for (Vec3& v : plate.vertices) v = {40 * v.x, 20 * v.y, v.z};
+  SimplifyTarget target;
+  target.max_distance = 1.5;
+  target.thin_plates = true;
+  Progress quiet;
+  const std::optional<Mesh> side = simplify_mesh(plate, CollapseStrategy::QQ, target, quiet);
+  ASSERT_TRUE(side);
+  EXPECT_EQ(side->faces.size(), 2u);
+  EXPECT_EQ(validate(*side).boundary_loops, 1u);
+  target.max_distance = 0.5;
+  EXPECT_FALSE(simplify_mesh(plate, CollapseStrategy::QQ, target, quiet));
+  target.max_distance = 1.5;
+  target.thin_plates = false;
+  EXPECT_FALSE(simplify_mesh(plate, CollapseStrategy::QQ, target, quiet));
+}
+
 // A CAD part with 24 small through-holes (trimesh ADIS16480) printed 200 mm long: its collapse
 // for short edges gets stuck at 380 faces, the holes' rims still short. Plugging the tunnels with
 // loops under 18 mm and flipping slivers under 3 mm lets it go on, within the same distance.
