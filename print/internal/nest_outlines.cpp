@@ -74,6 +74,10 @@ struct Shape {
 // How many cells of a mask are probed first (Shape::probes).
 constexpr std::size_t kProbes = 24;
 
+// How many times the parts of the last sheet are moved to the front of the order at most (each
+// time that saves a sheet).
+constexpr int kLastSheetRounds = 3;
+
 Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, double angle,
                 std::int64_t grow) {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -270,11 +274,28 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
       }),
   };
   std::vector<NestedOutline> out;
+  std::vector<std::size_t> best;
   std::size_t fewest = std::numeric_limits<std::size_t>::max();
-  for (const auto& order : orders) {
+  const auto keep_if_fewer = [&](const std::vector<std::size_t>& order) {
     std::vector<NestedOutline> tried(parts.size());
     const std::size_t sheets = fill(order, tried);
-    if (sheets < fewest) fewest = sheets, out = std::move(tried);
+    if (sheets >= fewest) return false;
+    fewest = sheets, out = std::move(tried), best = order;
+    return true;
+  };
+  for (const auto& order : orders) keep_if_fewer(order);
+  // Then the parts the best order left on its last sheet go first, the others after them in the
+  // same order: a long part placed late finds no room left on the sheets before, where placed
+  // early it does (the milk truck's two long treads took a sheet of their own). Kept when that
+  // takes fewer sheets, and tried again from there.
+  for (int round = 0; round < kLastSheetRounds && fewest > 1; ++round) {
+    const auto last = static_cast<int>(fewest) - 1;
+    std::vector<std::size_t> order;
+    for (const std::size_t i : best)
+      if (out[i].sheet == last) order.push_back(i);
+    for (const std::size_t i : best)
+      if (out[i].sheet != last) order.push_back(i);
+    if (!keep_if_fewer(order)) break;
   }
   return out;
 }

@@ -412,5 +412,29 @@ TEST(Nest, PartsFillHollowsWithoutOverlapsInsideTheSheet) {
         EXPECT_LE(test::overlap_thickness(shapes[i], shapes[j]), 1e-6) << "sheet " << sheet;
 }
 
+// Six rectangles on sheets of 100 x 100 mm, each 1 mm short of whole tens (so that their cells
+// do not spill into the next ten): largest first, each way of ranking them (area, longest side,
+// box) takes 4 sheets; the parts of the last of those sheets placed first, 3 (the whole sheet's
+// part alone on one, the others on two; 254 of 300 tens squared).
+TEST(Nest, PartsLeftOnTheLastSheetGoFirstWhenThatSavesASheet) {
+  using print_detail::IntPoint;
+  constexpr std::int64_t mm = 1000;
+  const auto rectangle = [](std::int64_t a, std::int64_t b) {
+    const std::int64_t x = (10 * a - 1) * mm, y = (10 * b - 1) * mm;
+    return print_detail::NestPart{{{0, 0}, {x, 0}, {x, y}, {0, y}, {0, 0}}};
+  };
+  const std::vector<print_detail::NestPart> parts = {rectangle(3, 9), rectangle(5, 9),
+                                                     rectangle(8, 3), rectangle(10, 10),
+                                                     rectangle(7, 4), rectangle(5, 6)};
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(parts, 0, 100 * mm, 100 * mm);
+  std::set<int> sheets;
+  for (const auto& p : placed) {
+    ASSERT_GE(p.sheet, 0);
+    sheets.insert(p.sheet);
+  }
+  EXPECT_EQ(sheets.size(), 3u);
+}
+
 }  // namespace
 }  // namespace papernet
