@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <numbers>
-#include <numeric>
 #include <vector>
 
 #include "core/mesh/dual_graph.h"
+#include "core/union_find.h"
 
 namespace papernet {
 namespace {
@@ -22,11 +22,6 @@ constexpr double kMostSideShare = 0.6;
 
 // A vertex whose angles add up to 360 degrees within this (radians) is flat.
 constexpr double kFlatAngle = 1e-4;
-
-int root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
 
 // True when the faces `keep` marks are one fan at each of their vertices (two fans of them that
 // touch at a vertex are not manifold there). Around a vertex of a manifold mesh the faces are one
@@ -64,15 +59,14 @@ std::optional<Mesh> plate_side(const Mesh& mesh) {
     unit[f] = length > 0 ? (1 / length) * n : Vec3{0, 0, 0};
     total += 0.5 * length;
   }
-  std::vector<int> sheet(mesh.faces.size());
-  std::iota(sheet.begin(), sheet.end(), 0);
+  UnionFind sheet(mesh.faces.size());
   for (int f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const int g = graph.neighbour[f][k];
-      if (g > f && dot(unit[f], unit[g]) > kSheetFoldCos) sheet[root(sheet, f)] = root(sheet, g);
+      if (g > f && dot(unit[f], unit[g]) > kSheetFoldCos) sheet.unite(f, g);
     }
   std::vector<double> area(mesh.faces.size(), 0);
-  for (int f = 0; f < nf; ++f) area[root(sheet, f)] += face_area(mesh, f);
+  for (int f = 0; f < nf; ++f) area[sheet.find(f)] += face_area(mesh, f);
   // Of the sheets that hold the least share, the one with fewest vertices inside it that are
   // not flat (each needs a cut to lie flat: the apex of a low pyramid), then the larger.
   std::vector<int> curved(mesh.faces.size(), 0);
@@ -84,7 +78,7 @@ std::optional<Mesh> plate_side(const Mesh& mesh) {
         ++faces_at[v];
         // -1: no face yet; -2: faces of two sheets (a vertex on a sheet's rim).
         int& s = sheet_at[v];
-        s = s == -1 || s == root(sheet, f) ? root(sheet, f) : -2;
+        s = s == -1 || s == sheet.find(f) ? sheet.find(f) : -2;
       }
     for (int f = 0; f < nf; ++f)
       for (int k = 0; k < 3; ++k) {
@@ -100,7 +94,7 @@ std::optional<Mesh> plate_side(const Mesh& mesh) {
   }
   int side = -1;
   for (int f = 0; f < nf; ++f) {
-    if (root(sheet, f) != f || !(area[f] >= kLeastSideShare * total) ||
+    if (sheet.find(f) != f || !(area[f] >= kLeastSideShare * total) ||
         area[f] > kMostSideShare * total)
       continue;
     if (side < 0 || curved[f] < curved[side] || (curved[f] == curved[side] && area[f] > area[side]))
@@ -110,7 +104,7 @@ std::optional<Mesh> plate_side(const Mesh& mesh) {
   std::vector<char> keep(mesh.faces.size(), 0);
   std::size_t kept = 0;
   for (int f = 0; f < nf; ++f)
-    if (root(sheet, f) == side) {
+    if (sheet.find(f) == side) {
       keep[f] = 1;
       ++kept;
     }
