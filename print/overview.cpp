@@ -3,9 +3,16 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "print/tabs.h"
 
 namespace papernet {
 namespace {
@@ -57,26 +64,161 @@ struct Box {
   bool holds(const Box& o) const { return o.x0 >= x0 && o.x1 <= x1 && o.y0 >= y0 && o.y1 <= y1; }
 };
 
-/// The centre nearest `at` for a text box of half-size `half` that lies inside `inside` and
-/// overlaps none of `taken`: `at` itself, else the first free place on rings around it (each
-/// ring a text box farther out, with eight places on the first and more on each ring after, out
-/// to rings that reach past `inside`); `at` when none is free.
-Vec2 free_place(Vec2 at, Vec2 half, const Box& inside, const std::vector<Box>& taken) {
-  const double reach =
-      (inside.x1 - inside.x0) / (2 * half.x) + (inside.y1 - inside.y0) / (2 * half.y);
-  const int rings = std::max(8, static_cast<int>(std::ceil(reach)));
+// Cells of a thumbnail, for finding the lines and faces near a place.
+constexpr double kCellMm = 4;
+
+/// Calls `f` with the key of each cell that the box (x0, y0)-(x1, y1) meets.
+template <class F>
+void for_cells(double x0, double y0, double x1, double y1, F&& f) {
+  const auto lo_x = static_cast<std::int64_t>(std::floor(x0 / kCellMm));
+  const auto hi_x = static_cast<std::int64_t>(std::floor(x1 / kCellMm));
+  const auto lo_y = static_cast<std::int64_t>(std::floor(y0 / kCellMm));
+  const auto hi_y = static_cast<std::int64_t>(std::floor(y1 / kCellMm));
+  for (std::int64_t y = lo_y; y <= hi_y; ++y)
+    for (std::int64_t x = lo_x; x <= hi_x; ++x) f(y * (std::int64_t{1} << 32) + x);
+}
+
+/// The cut lines drawn on a thumbnail, on a grid of cells.
+class Lines {
+ public:
+  void add(Vec2 a, Vec2 b) {
+    const auto i = static_cast<int>(lines_.size());
+    lines_.push_back({a, b});
+    for_cells(std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y),
+              [&](std::int64_t key) { cells_[key].push_back(i); });
+  }
+  /// True when a line meets `box`.
+  bool cross(const Box& box) const {
+    const std::array<Vec2, 4> corners{
+        {{box.x0, box.y0}, {box.x1, box.y0}, {box.x1, box.y1}, {box.x0, box.y1}}};
+    bool hit = false;
+    for_cells(box.x0, box.y0, box.x1, box.y1, [&](std::int64_t key) {
+      const auto it = cells_.find(key);
+      if (hit || it == cells_.end()) return;
+      // A line has no inside: it meets the box where it touches it (tolerance below 0).
+      for (const int i : it->second)
+        if (convex_overlap(lines_[i], corners, -1e-9)) {
+          hit = true;
+          return;
+        }
+    });
+    return hit;
+  }
+
+ private:
+  std::vector<std::array<Vec2, 2>> lines_;
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+};
+
+/// True when `p` lies in the triangle `t` (either orientation, sides included).
+bool in_triangle(Vec2 p, const std::array<Vec2, 3>& t) {
+  const double c0 = cross(t[1] - t[0], p - t[0]), c1 = cross(t[2] - t[1], p - t[1]);
+  const double c2 = cross(t[0] - t[2], p - t[2]);
+  return (c0 >= 0 && c1 >= 0 && c2 >= 0) || (c0 <= 0 && c1 <= 0 && c2 <= 0);
+}
+
+/// The paper of the pieces drawn on a thumbnail (faces and tabs as triangles), on a grid.
+class Paper {
+ public:
+  void add(const std::array<Vec2, 3>& t, int piece) {
+    const auto i = static_cast<int>(triangles_.size());
+    triangles_.push_back({t, piece});
+    for_cells(std::min({t[0].x, t[1].x, t[2].x}), std::min({t[0].y, t[1].y, t[2].y}),
+              std::max({t[0].x, t[1].x, t[2].x}), std::max({t[0].y, t[1].y, t[2].y}),
+              [&](std::int64_t key) { cells_[key].push_back(i); });
+  }
+  /// True when `p` lies on the paper of a piece other than `piece`.
+  bool elsewhere(Vec2 p, int piece) const {
+    bool on = false;
+    for_cells(p.x, p.y, p.x, p.y, [&](std::int64_t key) {
+      const auto it = cells_.find(key);
+      if (it == cells_.end()) return;
+      for (const int i : it->second)
+        if (triangles_[i].second != piece && in_triangle(p, triangles_[i].first)) on = true;
+    });
+    return on;
+  }
+
+ private:
+  std::vector<std::pair<std::array<Vec2, 3>, int>> triangles_;
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+};
+
+/// The centre nearest `at` of a text box of half-size `half` inside `inside` for which
+/// `free(box)` holds: `at` itself, else the first such place on rings around it (each ring a text
+/// box farther out, with eight places on the first and more on each ring after), out to `rings`.
+template <class Free>
+std::optional<Vec2> ring_place(Vec2 at, Vec2 half, const Box& inside, int rings, Free free) {
   for (int r = 0; r <= rings; ++r) {
     const int places = r == 0 ? 1 : 8 * r;
     for (int k = 0; k < places; ++k) {
       const double a = k * 2 * std::numbers::pi / places;
       const Vec2 c{at.x + r * 2 * half.x * std::cos(a), at.y + r * 2 * half.y * std::sin(a)};
       const Box box{c.x - half.x, c.y - half.y, c.x + half.x, c.y + half.y};
-      if (!inside.holds(box)) continue;
-      if (std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(box); }))
-        return c;
+      if (inside.holds(box) && free(box)) return c;
     }
   }
-  return at;
+  return std::nullopt;
+}
+
+// Rings out to which a piece's number looks for a place on its piece or beside it (about 12 mm
+// from its label at 4 mm), where a line back to it still reads as its.
+constexpr int kNearRings = 4;
+
+// The sizes a piece's number takes on its thumbnail, largest first: a small piece's number
+// shrinks to print on it clear of its cut lines.
+constexpr std::array<double, 3> kPieceSizesMm{kPieceMm, 3, 2.5};
+
+/// A piece's number on its thumbnail: where, and how large.
+struct Placed {
+  Vec2 at;
+  double size = kPieceMm;
+  Vec2 half;  ///< half-size of its box
+};
+
+/// Where the number `name` of piece `piece` goes on its thumbnail, and how large. Its box must
+/// overlap none of `taken`; the first of these found is taken: the place nearest `at` (its
+/// piece's label) where the box crosses no cut line of `lines` and its centre is on no other
+/// piece of `paper` (on its own piece, or beside it on free paper), at each size of
+/// kPieceSizesMm in turn, within kNearRings, then anywhere out to the far side of `inside`; then
+/// the nearest place clear of the lines over another piece, at the smallest size; then at the
+/// largest size the nearest place on no other piece, within kNearRings, that may cross lines;
+/// then the nearest place at all; `at` when none is free. Away from `at`, the caller draws a
+/// line back to it.
+Placed place_number(const std::string& name, int piece, Vec2 at, const Box& inside,
+                    const std::vector<Box>& taken, const Lines& lines, const Paper& paper) {
+  const auto apart = [&](const Box& box) {
+    return std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(box); });
+  };
+  const auto near = [&](const Box& box) {
+    return apart(box) &&
+           !paper.elsewhere(Vec2{0.5 * (box.x0 + box.x1), 0.5 * (box.y0 + box.y1)}, piece);
+  };
+  const auto clear = [&](const Box& box) { return near(box) && !lines.cross(box); };
+  const auto half_of = [&](double size) {
+    return Vec2{0.5 * text_width(name, size) + 0.3, 0.5 * size + 0.3};
+  };
+  const auto rings_of = [&](Vec2 half) {
+    const double reach =
+        (inside.x1 - inside.x0) / (2 * half.x) + (inside.y1 - inside.y0) / (2 * half.y);
+    return std::max(kNearRings, static_cast<int>(std::ceil(reach)));
+  };
+  for (const bool far : {false, true})
+    for (const double size : kPieceSizesMm) {
+      const Vec2 half = half_of(size);
+      if (const std::optional<Vec2> place =
+              ring_place(at, half, inside, far ? rings_of(half) : kNearRings, clear))
+        return {*place, size, half};
+    }
+  // Over another piece, clear of its lines, at the smallest size.
+  const Vec2 small = half_of(kPieceSizesMm.back());
+  const auto between = [&](const Box& box) { return apart(box) && !lines.cross(box); };
+  if (const std::optional<Vec2> place = ring_place(at, small, inside, rings_of(small), between))
+    return {*place, kPieceSizesMm.back(), small};
+  const Vec2 half = half_of(kPieceMm);
+  if (const std::optional<Vec2> place = ring_place(at, half, inside, kNearRings, near))
+    return {*place, kPieceMm, half};
+  return {ring_place(at, half, inside, rings_of(half), apart).value_or(at), kPieceMm, half};
 }
 
 struct Writer {
@@ -146,24 +288,48 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
                                       {x0 + sw * scale, y0 + sh * scale},
                                       {x0, y0 + sh * scale}}};
     for (int k = 0; k < 4; ++k) out.line(Layer::Marks, {corner[k], corner[(k + 1) % 4]});
+    Lines cuts;
     for (const Segment& s : layout.cut)
-      if (holds(page, s.a) && holds(page, s.b)) out.line(Layer::Cut, {map(s.a), map(s.b)});
+      if (holds(page, s.a) && holds(page, s.b)) {
+        out.line(Layer::Cut, {map(s.a), map(s.b)});
+        cuts.add(map(s.a), map(s.b));
+      }
     for (const GlueStrip& g : layout.strips)
-      if (std::all_of(g.corners.begin(), g.corners.end(), [&](Vec2 p) { return holds(page, p); }))
+      if (std::all_of(g.corners.begin(), g.corners.end(), [&](Vec2 p) { return holds(page, p); })) {
         out.line(Layer::Cut, {map(g.corners[0]), map(g.corners[1]), map(g.corners[2]),
                               map(g.corners[3]), map(g.corners[0])});
-    // Each piece's number at its label, or, where it would cover a number already there, at
-    // the nearest free place around it inside the thumbnail, with a line back to the piece.
+        for (int k = 0; k < 4; ++k) cuts.add(map(g.corners[k]), map(g.corners[(k + 1) % 4]));
+      }
+    // Each piece's number at its label, or, where it would cover a number already there or
+    // cross a cut line (a small piece), at the nearest place around it inside the thumbnail on
+    // its piece or on free paper, with a line back to the piece.
     const Box inside{x0, y0, x0 + sw * scale, y0 + sh * scale};
+    // The paper of each piece on the sheet, as drawn: its faces and its tabs (two triangles).
+    Paper paper;
+    const auto piece_of = [&](int face) {
+      return face >= 0 && face < static_cast<int>(overview.piece.size()) ? overview.piece[face]
+                                                                         : -1;
+    };
+    for (std::size_t f = 0; f < layout.faces.size(); ++f) {
+      const auto& t = layout.faces[f];
+      if (holds(page, (1.0 / 3) * (t[0] + t[1] + t[2])))
+        paper.add({map(t[0]), map(t[1]), map(t[2])}, piece_of(static_cast<int>(f)));
+    }
+    for (const Tab& t : layout.tabs) {
+      const auto& c = t.corners;
+      if (!holds(page, 0.25 * (c[0] + c[1] + c[2] + c[3]))) continue;
+      paper.add({map(c[0]), map(c[1]), map(c[2])}, piece_of(t.side.face));
+      paper.add({map(c[0]), map(c[2]), map(c[3])}, piece_of(t.side.face));
+    }
     std::vector<Box> taken;
     for (const int p : on_sheet[i]) {
       if (p >= static_cast<int>(layout.piece_labels.size())) continue;
       const Vec2 at = map(layout.piece_labels[p].at);
       const std::string name = piece_name(p);
-      const Vec2 half{0.5 * text_width(name, kPieceMm) + 0.3, 0.5 * kPieceMm + 0.3};
-      const Vec2 place = free_place(at, half, inside, taken);
+      const Placed number = place_number(name, p, at, inside, taken, cuts, paper);
+      const Vec2 place = number.at, half = number.half;
       taken.push_back({place.x - half.x, place.y - half.y, place.x + half.x, place.y + half.y});
-      out.text(Layer::Labels, place, name, kPieceMm);
+      out.text(Layer::Labels, place, name, number.size);
       const Vec2 edge{std::clamp(at.x, place.x - half.x, place.x + half.x),
                       std::clamp(at.y, place.y - half.y, place.y + half.y)};
       if (norm(edge - at) > 0.5) out.line(Layer::Marks, {at, edge});
@@ -195,6 +361,7 @@ void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
     for (int k = 0; k < static_cast<int>(pages.pages.size()) && page < 0; ++k)
       if (holds(pages.pages[k], centre)) page = k + 1;  // + 1: the overview goes first
   }
+  overview->piece = piece;
   overview->graph = std::move(graph);
   Page first;
   first.overview = true;

@@ -12,8 +12,9 @@ namespace papernet {
 /// sheet drawn small with its pieces and their numbers, the sheet list (which pieces each page
 /// holds) and the build order (which earlier pieces each piece glues to).
 struct Overview {
-  std::vector<int> page;  ///< each piece's page (index into PageLayout::pages), -1: none
-  PieceGraph graph;       ///< which pieces glue to which
+  std::vector<int> page;   ///< each piece's page (index into PageLayout::pages), -1: none
+  std::vector<int> piece;  ///< each face's piece
+  PieceGraph graph;        ///< which pieces glue to which
 };
 
 /// Puts an overview page first in `pages` (a fit layout: nest_pages), so every other page moves

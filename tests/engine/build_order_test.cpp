@@ -14,6 +14,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "api/net_json.h"
@@ -474,8 +475,8 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
 
 // No text on the overview covers another: the pieces' numbers on the thumbnails, where small
 // pieces lie close, included (on this part's 47 pieces four numbers covered others when each sat
-// at its piece's label). Boxes of half an em per character and 0.7 em high (digits and
-// capitals), from the drawn SVG.
+// at its piece's label), and no piece's number crosses a cut line. Boxes of half an em per
+// character and 0.7 em high (digits and capitals), from the drawn SVG.
 TEST(AssemblyAids, NoTextOnTheOverviewCoversAnother) {
   JobOptions options;
   options.layout = PageLayoutMode::Fit;
@@ -512,6 +513,45 @@ TEST(AssemblyAids, NoTextOnTheOverviewCoversAnother) {
       EXPECT_FALSE(p.x0 < q.x1 && q.x0 < p.x1 && p.y0 < q.y1 && q.y0 < p.y1)
           << "\"" << p.text << "\" covers \"" << q.text << "\"";
     }
+  // No piece's number crosses a cut line of the thumbnails (a small piece's number goes beside
+  // it, with a line back to it): each segment of the cut layer's paths ("Mx yLx yLx y..."),
+  // clipped to each number's box.
+  const std::string cut = svg_group(printed.pages[0], "cut");
+  static const std::regex subpath("M([-0-9. L]+)"), point("([-0-9.]+) ([-0-9.]+)");
+  std::size_t lines = 0;
+  for (auto it = std::sregex_iterator(cut.begin(), cut.end(), subpath);
+       it != std::sregex_iterator(); ++it) {
+    const std::string run = (*it)[1];
+    std::vector<Vec2> points;
+    for (auto p = std::sregex_iterator(run.begin(), run.end(), point); p != std::sregex_iterator();
+         ++p)
+      points.push_back({std::stod((*p)[1]), std::stod((*p)[2])});
+    for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+      ++lines;
+      const Vec2 a = points[k], b = points[k + 1];
+      for (const Box& box : boxes) {
+        if (!std::regex_match(box.text, std::regex("P[0-9]+"))) continue;
+        // Liang-Barsky: the part of a + t (b - a), t in [0, 1], inside the box.
+        double t0 = 0, t1 = 1;
+        const Vec2 d = b - a;
+        for (const auto& [p, q] : {std::pair{-d.x, a.x - box.x0}, std::pair{d.x, box.x1 - a.x},
+                                   std::pair{-d.y, a.y - box.y0}, std::pair{d.y, box.y1 - a.y}}) {
+          if (p == 0) {
+            if (q < 0) t0 = 2;  // parallel to this side and outside it
+            continue;
+          }
+          const double t = q / p;
+          if (p < 0)
+            t0 = std::max(t0, t);
+          else
+            t1 = std::min(t1, t);
+        }
+        EXPECT_FALSE(t0 < t1) << "\"" << box.text << "\" crosses the cut line (" << a.x << ", "
+                              << a.y << ") - (" << b.x << ", " << b.y << ")";
+      }
+    }
+  }
+  EXPECT_GT(lines, 100u) << "the thumbnails' cut lines";
 }
 
 // overview no: the sheets alone, from page 1, in build order too; the net JSON has no
