@@ -49,7 +49,7 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   const double allowed =
       diagonal > 0 ? target.max_distance / diagonal : std::numeric_limits<double>::infinity();
   // A thin plate, its walls too narrow to fold, label or glue, is printed as one layer of card:
-  // the larger of its sides, when that is within the distance allowed.
+  // one of its sides (plate_side), when that is within the distance allowed.
   const auto one_side = [&](const Mesh& m) -> std::optional<Mesh> {
     if (!target.thin_plates) return std::nullopt;
     std::optional<Mesh> side = plate_side(m);

@@ -29,9 +29,9 @@ struct SimplifyTarget {
   /// core/mesh/thin_faces.h), the flips of one round moving the surface at most a quarter of
   /// `max_distance`: when the steps find no collapse left, and at the end. 0: no flips.
   double thin_face = 0;
-  /// When true, a part that is a thin plate, within `max_distance` of the larger of its sides
-  /// (plate_side, core/mesh/thin_plates.h), becomes that side at the end: an open surface, one
-  /// layer of card.
+  /// When true, a part that is a thin plate, within `max_distance` of one of its sides
+  /// (plate_side, core/mesh/thin_plates.h), becomes that side (an open surface, one layer of
+  /// card): the part as given, before the collapse, and once more the collapsed mesh at the end.
   bool thin_plates = false;
   /// Seconds the steps for short edges may take (each measures the distance to `mesh`, which
   /// on a dense mesh of slivers adds up to seconds); when they are spent, the mesh collapsed so

@@ -1,5 +1,6 @@
 #include "core/mesh/thin_plates.h"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -67,15 +68,15 @@ std::optional<Mesh> plate_side(const Mesh& mesh) {
     }
   std::vector<double> area(mesh.faces.size(), 0);
   for (int f = 0; f < nf; ++f) area[sheet.find(f)] += face_area(mesh, f);
-  // Of the sheets that hold the least share, the one with fewest vertices inside it that are
-  // not flat (each needs a cut to lie flat: the apex of a low pyramid), then the larger.
+  // Of the sides (sheets of a share between the two), the one with fewest vertices inside it
+  // that are not flat (each needs a cut to lie flat: the apex of a low pyramid), then the larger.
+  // A vertex is inside a sheet when all its faces are of the sheet and it is on no boundary.
   std::vector<int> curved(mesh.faces.size(), 0);
   {
     std::vector<double> angles(mesh.vertices.size(), 0);
-    std::vector<int> faces_at(mesh.vertices.size(), 0), sheet_at(mesh.vertices.size(), -1);
+    std::vector<int> sheet_at(mesh.vertices.size(), -1);
     for (int f = 0; f < nf; ++f)
       for (const int v : mesh.faces[f]) {
-        ++faces_at[v];
         // -1: no face yet; -2: faces of two sheets (a vertex on a sheet's rim).
         int& s = sheet_at[v];
         s = s == -1 || s == sheet.find(f) ? sheet.find(f) : -2;
@@ -102,13 +103,8 @@ std::optional<Mesh> plate_side(const Mesh& mesh) {
   }
   if (side < 0) return std::nullopt;
   std::vector<char> keep(mesh.faces.size(), 0);
-  std::size_t kept = 0;
-  for (int f = 0; f < nf; ++f)
-    if (sheet.find(f) == side) {
-      keep[f] = 1;
-      ++kept;
-    }
-  if (kept == mesh.faces.size() || !one_fan_at_each_vertex(mesh, graph, keep)) return std::nullopt;
+  for (int f = 0; f < nf; ++f) keep[f] = sheet.find(f) == side;
+  if (!one_fan_at_each_vertex(mesh, graph, keep)) return std::nullopt;
   Mesh out;
   std::vector<int> index(mesh.vertices.size(), -1);
   for (int f = 0; f < nf; ++f) {
