@@ -7,11 +7,13 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "print/internal/grid_cells.h"
 #include "print/tabs.h"
 
 namespace papernet {
@@ -67,15 +69,12 @@ struct Box {
 // Cells of a thumbnail, for finding the lines and faces near a place.
 constexpr double kCellMm = 4;
 
-/// Calls `f` with the key of each cell that the box (x0, y0)-(x1, y1) meets.
+/// Calls `f` with the key of each cell of the bounding box of `points`.
 template <class F>
-void for_cells(double x0, double y0, double x1, double y1, F&& f) {
-  const auto lo_x = static_cast<std::int64_t>(std::floor(x0 / kCellMm));
-  const auto hi_x = static_cast<std::int64_t>(std::floor(x1 / kCellMm));
-  const auto lo_y = static_cast<std::int64_t>(std::floor(y0 / kCellMm));
-  const auto hi_y = static_cast<std::int64_t>(std::floor(y1 / kCellMm));
-  for (std::int64_t y = lo_y; y <= hi_y; ++y)
-    for (std::int64_t x = lo_x; x <= hi_x; ++x) f(y * (std::int64_t{1} << 32) + x);
+void for_cells(std::span<const Vec2> points, F&& f) {
+  print_detail::cells_of(points, kCellMm).for_each([&](std::int64_t x, std::int64_t y) {
+    f(print_detail::cell_key(x, y));
+  });
 }
 
 /// The cut lines drawn on a thumbnail, on a grid of cells.
@@ -84,15 +83,14 @@ class Lines {
   void add(Vec2 a, Vec2 b) {
     const auto i = static_cast<int>(lines_.size());
     lines_.push_back({a, b});
-    for_cells(std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y),
-              [&](std::int64_t key) { cells_[key].push_back(i); });
+    for_cells(lines_.back(), [&](std::uint64_t key) { cells_[key].push_back(i); });
   }
   /// True when a line meets `box`.
   bool cross(const Box& box) const {
     const std::array<Vec2, 4> corners{
         {{box.x0, box.y0}, {box.x1, box.y0}, {box.x1, box.y1}, {box.x0, box.y1}}};
     bool hit = false;
-    for_cells(box.x0, box.y0, box.x1, box.y1, [&](std::int64_t key) {
+    for_cells(corners, [&](std::uint64_t key) {
       const auto it = cells_.find(key);
       if (hit || it == cells_.end()) return;
       // A line has no inside: it meets the box where it touches it (tolerance below 0).
@@ -107,7 +105,7 @@ class Lines {
 
  private:
   std::vector<std::array<Vec2, 2>> lines_;
-  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
 
 /// True when `p` lies in the triangle `t` (either orientation, sides included).
@@ -123,14 +121,12 @@ class Paper {
   void add(const std::array<Vec2, 3>& t, int piece) {
     const auto i = static_cast<int>(triangles_.size());
     triangles_.push_back({t, piece});
-    for_cells(std::min({t[0].x, t[1].x, t[2].x}), std::min({t[0].y, t[1].y, t[2].y}),
-              std::max({t[0].x, t[1].x, t[2].x}), std::max({t[0].y, t[1].y, t[2].y}),
-              [&](std::int64_t key) { cells_[key].push_back(i); });
+    for_cells(t, [&](std::uint64_t key) { cells_[key].push_back(i); });
   }
   /// True when `p` lies on the paper of a piece other than `piece`.
   bool elsewhere(Vec2 p, int piece) const {
     bool on = false;
-    for_cells(p.x, p.y, p.x, p.y, [&](std::int64_t key) {
+    for_cells(std::span<const Vec2>(&p, 1), [&](std::uint64_t key) {
       const auto it = cells_.find(key);
       if (it == cells_.end()) return;
       for (const int i : it->second)
@@ -141,7 +137,7 @@ class Paper {
 
  private:
   std::vector<std::pair<std::array<Vec2, 3>, int>> triangles_;
-  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
 
 /// The centre nearest `at` of a text box of half-size `half` inside `inside` for which

@@ -286,15 +286,13 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
   for (const auto& order : orders) keep_if_fewer(order);
   // Then the parts the best order left on its last sheet go first, the others after them in the
   // same order: a long part placed late finds no room left on the sheets before, where placed
-  // early it does (the milk truck's two long treads took a sheet of their own). Kept when that
-  // takes fewer sheets, and tried again from there.
+  // early it does (thingi10k 1063852 at 1,000 faces: 6 sheets became 5). Kept when that takes
+  // fewer sheets, and tried again from there.
   for (int round = 0; round < kLastSheetRounds && fewest > 1; ++round) {
     const auto last = static_cast<int>(fewest) - 1;
-    std::vector<std::size_t> order;
-    for (const std::size_t i : best)
-      if (out[i].sheet == last) order.push_back(i);
-    for (const std::size_t i : best)
-      if (out[i].sheet != last) order.push_back(i);
+    std::vector<std::size_t> order = best;
+    std::stable_partition(order.begin(), order.end(),
+                          [&](std::size_t i) { return out[i].sheet == last; });
     if (!keep_if_fewer(order)) break;
   }
   return out;
