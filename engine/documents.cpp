@@ -188,6 +188,10 @@ constexpr double kFitShrinks[] = {1, 0.85, 0.7, 0.6, 0.5, 0.4};
 // is worth up to this many more pieces and strips to cut out and glue.
 constexpr double kPiecesPerSheet = 20;
 
+// Grown pieces of at most this many faces are grown again face by face in the search's last try
+// (grow_to_fit's `regrow_faces`).
+constexpr std::size_t kRegrowFaces = 6;
+
 // The net cut into pieces, numbered in build order, laid out and nested onto sheets.
 struct FitPrint {
   FitPieces pieces;
@@ -256,8 +260,9 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     };
     // The cuts of kFitShrinks, then pieces grown from single faces (grow_to_fit): as large as
-    // they grow, then only as large as leaves room for a tab on every cut inside a piece.
-    const std::size_t tries = std::size(kFitShrinks) + 2;
+    // they grow, then only as large as leaves room for a tab on every cut inside a piece, then
+    // that with its small pieces grown again face by face (kRegrowFaces).
+    const std::size_t tries = std::size(kFitShrinks) + 3;
     const TabClearanceOptions tabs = tab_clearance_options(mesh, print);
     int last_pieces = -1;
     for (std::size_t i = 0; i < tries; ++i) {
@@ -268,6 +273,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
         if (seconds() * (i + 1) / i > search_seconds || chosen->pages.pages.size() <= 1) break;
       }
       const bool grow_for_tabs = i > std::size(kFitShrinks);
+      const bool regrow = i > std::size(kFitShrinks) + 1;
       if (grow_for_tabs && print.tabs != TabMode::Auto) break;  // no tabs: the same as the last
       FitPieces cut;
       try {
@@ -275,7 +281,8 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
                   ? cut_to_fit(outcome.net.net, outcome.net.piece, scale, {room, alone},
                                page.paper.name, model_mm, kFitShrinks[i])
                   : grow_to_fit(mesh, outcome.net.piece, scale, {room, alone},
-                                grow_for_tabs ? tabs.min_height : 0, tabs.angle_deg);
+                                grow_for_tabs ? tabs.min_height : 0, tabs.angle_deg,
+                                regrow ? kRegrowFaces : 0);
       } catch (const InvalidOptionException& e) {
         // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
         if (options.layout || e.code() != "face_too_large") throw;
@@ -283,12 +290,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
         layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
         break;
       }
-      if (i < std::size(kFitShrinks)) {
-        if (cut.pieces == last_pieces) continue;  // the same cuts as the try before
-      } else if (const NetCheckReport check = check_pieces(mesh, cut.net, cut.piece); !check.ok()) {
-        // A new net, unlike the cuts of a checked one: printed only when it passes the check.
-        continue;
-      }
+      // The same cuts as the try before (regrown: no fewer pieces, the growth as it was).
+      if ((i < std::size(kFitShrinks) || regrow) && cut.pieces == last_pieces) continue;
+      if (i >= std::size(kFitShrinks) && !check_pieces(mesh, cut.net, cut.piece).ok())
+        continue;  // a new net, unlike the cuts of a checked one: printed only when it passes
       last_pieces = cut.pieces;
       FitPrint tried = lay_out_fit(mesh, std::move(cut), print, gap, page, alone);
       if (!chosen || tried.cost() < chosen->cost()) chosen = std::move(tried);

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "core/unfold/net_metrics.h"
+#include "core/union_find.h"
 
 namespace papernet {
 namespace {
@@ -102,6 +103,57 @@ std::string mm(double v) {
   return buf;
 }
 
+// Glues cut links back where the two pieces they join fit `target` together, the smallest such
+// joined piece (by hull area) first, until none is left: cutting the largest subtrees first
+// from the leaves up can cut one whose remainder would have fitted with it after the next cut,
+// and leave a small remainder that its parent cuts off again. `order` lists parents before
+// children; `cut[f]` says f's link to its parent is cut.
+void glue_back(const Net& net, const std::vector<int>& order,
+               const std::vector<std::vector<Vec2>>& face_hull, Vec2 target,
+               std::vector<char>& cut) {
+  const auto n = static_cast<int>(net.parent.size());
+  std::vector<int> root(n);
+  for (int f : order) root[f] = cut[f] || net.parent[f] < 0 ? f : root[net.parent[f]];
+  std::vector<std::vector<Vec2>> hull(n);  // of each piece, at its root
+  {
+    std::vector<std::vector<Vec2>> pts(n);
+    for (int f = 0; f < n; ++f)
+      pts[root[f]].insert(pts[root[f]].end(), face_hull[f].begin(), face_hull[f].end());
+    for (int f = 0; f < n; ++f)
+      if (root[f] == f) hull[f] = convex_hull(std::move(pts[f]));
+  }
+  std::vector<int> links;
+  for (int f : order)
+    if (cut[f]) links.push_back(f);
+  UnionFind pieces(static_cast<std::size_t>(n));
+  // Pieces only grow, so a link whose pieces do not fit together never will.
+  std::vector<char> never(n, 0);
+  for (;;) {
+    int best = -1;
+    double best_area = std::numeric_limits<double>::infinity();
+    std::vector<Vec2> best_hull;
+    for (int c : links) {
+      if (!cut[c] || never[c]) continue;
+      const int a = pieces.find(root[c]), b = pieces.find(root[net.parent[c]]);
+      std::vector<Vec2> pts = hull[a];
+      pts.insert(pts.end(), hull[b].begin(), hull[b].end());
+      std::vector<Vec2> h = convex_hull(std::move(pts));
+      if (!hull_fits_turned(h, target)) {
+        never[c] = 1;
+        continue;
+      }
+      if (const double area = hull_area(h); area < best_area) {
+        best = c, best_area = area;
+        best_hull = std::move(h);
+      }
+    }
+    if (best < 0) return;
+    cut[best] = 0;
+    pieces.unite(root[best], root[net.parent[best]]);
+    hull[pieces.find(root[best])] = std::move(best_hull);
+  }
+}
+
 }  // namespace
 
 FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, FitRoom fit,
@@ -172,6 +224,7 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
       kept.pop_back();
     }
   }
+  glue_back(net, order, face_hull, target, cut);
   // The cut subtrees become pieces, numbered after the input's.
   for (int f : order) {
     if (!cut[f]) {

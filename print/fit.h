@@ -61,8 +61,13 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
 /// on neither side without overlapping a face of the piece, unless its two sides lie on each
 /// other: more, smaller pieces, and tabs instead of glue strips on those cuts. Deterministic:
 /// the same mesh grows the same pieces.
+/// With `regrow_faces` > 0, the pieces of at most that many faces left when no join is left
+/// (small pieces between larger ones, which no join of a whole piece fitted) are taken apart
+/// again, and their faces, one at a time, join the pieces around them first, then each other;
+/// the result is kept when it has fewer pieces.
 FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, FitRoom room,
-                      double tab_height = 0, double tab_angle_deg = 45);
+                      double tab_height = 0, double tab_angle_deg = 45,
+                      std::size_t regrow_faces = 0);
 
 /// True when the convex polygon `hull` (counter-clockwise) fits a `room` box turned along one of
 /// its edges, either way round.

@@ -51,31 +51,228 @@ Rigid motion(Vec2 p0, Vec2 p1, Vec2 q0, Vec2 q1) {
   return m;
 }
 
-}  // namespace
-
-FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, FitRoom room,
-                      double tab_height, double tab_angle_deg) {
-  const auto n = static_cast<int>(mesh.faces.size());
+// The pieces grown so far: each face's place in its piece's frame and tree (`out.net`), the
+// pieces by the index of a face in `grown`, and the piece each face is in.
+struct Growth {
   FitPieces out;
+  std::vector<Grown> grown;
+  std::vector<int> of;
+};
+
+// Joins pieces across edges (grow_to_fit): the growth's constants and scratch space.
+class Grower {
+ public:
+  Grower(const Mesh& mesh, double scale, FitRoom room, double tab_height, double tab_angle_deg)
+      : mesh_(mesh),
+        graph_(build_dual_graph(mesh)),
+        tolerance_(kOverlapTolerance * bounding_box_diagonal(mesh)),
+        cell_(std::max(median_edge_length(mesh), 1e-12)),
+        scale_(scale),
+        room_(room),
+        tab_height_(tab_height),
+        shapes_(tab_shapes(tab_angle_deg)),
+        slot_(mesh.faces.size(), -1) {}
+
+  const DualGraph& graph() const { return graph_; }
+
+  // Every face a piece of its own, laid flat.
+  Growth start() const;
+  // Joins the pieces on the two sides of j's edge when the joined piece lies flat without
+  // overlap, fits the room and (with a tab height) leaves no slit without room for a tab.
+  void join(Growth& growth, const Join& j);
+  // Piece p's faces become pieces of their own again, each where it lies.
+  void dissolve(Growth& growth, int p) const;
+  // A copy of `growth` (its grids built again).
+  Growth copy(const Growth& growth) const;
+
+ private:
+  void add_grid(Grown& piece, const Net& net) const {
+    piece.grid = std::make_unique<OverlapGrid>();
+    piece.grid->reset(cell_);
+    for (int h : piece.faces) piece.grid->insert(h, triangle_box(net.points[h]));
+  }
+  std::vector<Vec2> face_hull(const Net& net, int f) const {
+    return convex_hull({net.points[f].begin(), net.points[f].end()});
+  }
+
+  const Mesh& mesh_;
+  const DualGraph graph_;
+  const double tolerance_, cell_, scale_;
+  const FitRoom room_;
+  const double tab_height_;
+  const std::vector<TabShape> shapes_;
+  std::vector<std::array<Vec2, 3>> moved_;
+  std::vector<Vec2> points_;
+  std::vector<int> slot_;  // a face of the piece being moved: its place in `moved_`
+};
+
+Growth Grower::start() const {
+  const auto n = static_cast<int>(mesh_.faces.size());
+  Growth growth;
+  FitPieces& out = growth.out;
   out.large.assign(n, 0);
   out.net.parent.assign(n, -1);
   out.net.points.resize(n);
-  const DualGraph graph = build_dual_graph(mesh);
-  const double tolerance = kOverlapTolerance * bounding_box_diagonal(mesh);
-  const double cell = std::max(median_edge_length(mesh), 1e-12);
-
-  std::vector<Grown> grown(n);
-  std::vector<int> of(n);  // the piece each face is in, by its index in `grown`
+  growth.grown.resize(n);
+  growth.of.resize(n);
   for (int f = 0; f < n; ++f) {
-    out.net.points[f] = place_root(mesh, f, face_shape(mesh, f));
-    grown[f].faces = {f};
-    grown[f].hull = convex_hull({out.net.points[f].begin(), out.net.points[f].end()});
+    out.net.points[f] = place_root(mesh_, f, face_shape(mesh_, f));
+    growth.grown[f].faces = {f};
+    growth.grown[f].hull = face_hull(out.net, f);
     std::vector<Vec2> mm;
-    for (Vec2 p : grown[f].hull) mm.push_back(scale * p);
-    out.large[f] = !hull_fits(mm, room.room);  // alone: no join fits either
-    of[f] = f;
+    for (Vec2 p : growth.grown[f].hull) mm.push_back(scale_ * p);
+    out.large[f] = !hull_fits(mm, room_.room);  // alone: no join fits either
+    growth.of[f] = f;
   }
+  return growth;
+}
 
+void Grower::dissolve(Growth& growth, int p) const {
+  const std::vector<int> faces = std::move(growth.grown[p].faces);
+  for (int h : faces) {
+    growth.out.net.parent[h] = -1;
+    growth.grown[h] = Grown{{h}, face_hull(growth.out.net, h), nullptr};
+    growth.of[h] = h;
+  }
+}
+
+Growth Grower::copy(const Growth& growth) const {
+  Growth out{growth.out, std::vector<Grown>(growth.grown.size()), growth.of};
+  for (std::size_t p = 0; p < growth.grown.size(); ++p) {
+    out.grown[p].faces = growth.grown[p].faces;
+    out.grown[p].hull = growth.grown[p].hull;
+    if (growth.grown[p].grid) add_grid(out.grown[p], out.out.net);
+  }
+  return out;
+}
+
+void Grower::join(Growth& growth, const Join& j) {
+  Net& net = growth.out.net;
+  std::vector<int>& of = growth.of;
+  int f = j.f, k = j.k;
+  int g = graph_.neighbour[f][k], kg = graph_.neighbour_edge[f][k];
+  // The smaller piece moves onto the larger one's frame.
+  if (growth.grown[of[f]].faces.size() < growth.grown[of[g]].faces.size())
+    std::swap(f, g), std::swap(k, kg);
+  const int a = of[f], b = of[g];
+  if (a == b) return;
+  const auto& pf = net.points[f];
+  const auto& pg = net.points[g];
+  // g's edge kg runs the other way round f's edge k.
+  const Vec2 f0 = pf[k], f1 = pf[(k + 1) % 3], g0 = pg[kg], g1 = pg[(kg + 1) % 3];
+  if (!(norm(f1 - f0) > 0) || !(norm(g1 - g0) > 0)) return;
+  const Rigid move = motion(g0, g1, f1, f0);
+  Grown& big = growth.grown[a];
+  Grown& small = growth.grown[b];
+  points_ = big.hull;
+  for (Vec2 p : small.hull) points_.push_back(move(p));
+  for (Vec2& p : points_) p = scale_ * p;
+  std::vector<Vec2> hull = convex_hull(points_);
+  if (!hull_fits(hull, room_.room)) return;
+  moved_.clear();
+  for (int h : small.faces) {
+    const auto& t = net.points[h];
+    moved_.push_back({move(t[0]), move(t[1]), move(t[2])});
+  }
+  // The glued edge exactly where f's is.
+  const std::size_t gi = static_cast<std::size_t>(
+      std::find(small.faces.begin(), small.faces.end(), g) - small.faces.begin());
+  moved_[gi][kg] = f1;
+  moved_[gi][(kg + 1) % 3] = f0;
+  bool overlaps = false;
+  for (std::size_t i = 0; i < moved_.size() && !overlaps; ++i) {
+    const Box2 box = triangle_box(moved_[i]);
+    const auto test = [&](int c) {
+      if (!overlaps && triangles_overlap(moved_[i], net.points[c], tolerance_)) overlaps = true;
+    };
+    if (big.grid)
+      big.grid->query(box, test);
+    else
+      for (int c : big.faces) test(c);
+  }
+  if (overlaps) return;
+  if (tab_height_ > 0) {
+    for (std::size_t i = 0; i < moved_.size(); ++i) slot_[small.faces[i]] = static_cast<int>(i);
+    const auto at = [&](int c) -> const std::array<Vec2, 3>& {
+      return slot_[c] >= 0 ? moved_[slot_[c]] : net.points[c];
+    };
+    const Rigid back = motion(f1, f0, g0, g1);  // big's frame to small's
+    // Whether a tab fits outside edge k of face h, over no other face of the joined piece.
+    const auto room_for_tab = [&](int h, int k) {
+      return tab_fits(
+          at(h), k, shapes_, tab_height_,
+          [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
+            bool hit = false;
+            const auto test = [&](int c) {
+              if (!hit && c != h)
+                hit = triangles_overlap(t0, at(c), tolerance_) ||
+                      triangles_overlap(t1, at(c), tolerance_);
+            };
+            if (big.grid)
+              big.grid->query(box, test);
+            else
+              for (int c : big.faces) test(c);
+            if (small.grid) {
+              Box2 back_box = Box2::empty();
+              for (Vec2 p : {box.lo, box.hi, Vec2{box.lo.x, box.hi.y}, Vec2{box.hi.x, box.lo.y}})
+                back_box.add(back(p));
+              small.grid->query(back_box, test);
+            } else {
+              for (int c : small.faces) test(c);
+            }
+            return hit;
+          });
+    };
+    // Every edge this join makes a cut inside one piece (but the glued one) needs a tab's
+    // room on one side, or its two sides on each other.
+    bool slit = false;
+    for (std::size_t i = 0; i < moved_.size() && !slit; ++i) {
+      const int h = small.faces[i];
+      for (int k = 0; k < 3 && !slit; ++k) {
+        const int c = graph_.neighbour[h][k];
+        if (c < 0 || of[c] != a || (h == g && k == kg)) continue;
+        const int kc = graph_.neighbour_edge[h][k];
+        if (sides_coincide(moved_[i][k], moved_[i][(k + 1) % 3], at(c)[kc], at(c)[(kc + 1) % 3]))
+          continue;  // glued, not cut
+        slit = !room_for_tab(h, k) && !room_for_tab(c, kc);
+      }
+    }
+    for (int h : small.faces) slot_[h] = -1;
+    if (slit) return;
+  }
+  // Join: small's faces move into big's frame, its tree re-hung from g under f.
+  for (std::size_t i = 0; i < moved_.size(); ++i) {
+    const int h = small.faces[i];
+    net.points[h] = moved_[i];
+    of[h] = a;
+    big.faces.push_back(h);
+    if (big.grid) big.grid->insert(h, triangle_box(moved_[i]));
+  }
+  for (int prev = f, cur = g; cur >= 0;) {
+    const int next = net.parent[cur];
+    net.parent[cur] = prev;
+    prev = cur;
+    cur = next;
+  }
+  for (Vec2& p : hull) p = (1 / scale_) * p;
+  big.hull = std::move(hull);
+  if (!big.grid && big.faces.size() > kGridFaces) add_grid(big, net);
+  small = Grown{};
+}
+
+int count_pieces(const Growth& growth) {
+  int pieces = 0;
+  for (const Grown& p : growth.grown) pieces += !p.faces.empty();
+  return pieces;
+}
+
+}  // namespace
+
+FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, FitRoom room,
+                      double tab_height, double tab_angle_deg, std::size_t regrow_faces) {
+  const auto n = static_cast<int>(mesh.faces.size());
+  Grower grower(mesh, scale, room, tab_height, tab_angle_deg);
+  const DualGraph& graph = grower.graph();
   const auto edge_length = [&](int f, int k) {
     return norm(mesh.vertices[mesh.faces[f][(k + 1) % 3]] - mesh.vertices[mesh.faces[f][k]]);
   };
@@ -97,125 +294,28 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
   std::stable_sort(joins.begin(), joins.end(),
                    [](const Join& a, const Join& b) { return a.priority < b.priority; });
 
-  std::vector<std::array<Vec2, 3>> moved;
-  std::vector<Vec2> points;
-  std::vector<int> slot(n, -1);  // a face of the piece being moved: its place in `moved`
-  const std::vector<TabShape> shapes = tab_shapes(tab_angle_deg);
-  for (const Join& j : joins) {
-    int f = j.f, k = j.k;
-    int g = graph.neighbour[f][k], kg = graph.neighbour_edge[f][k];
-    // The smaller piece moves onto the larger one's frame.
-    if (grown[of[f]].faces.size() < grown[of[g]].faces.size()) std::swap(f, g), std::swap(k, kg);
-    const int a = of[f], b = of[g];
-    if (a == b) continue;
-    const auto& pf = out.net.points[f];
-    const auto& pg = out.net.points[g];
-    // g's edge kg runs the other way round f's edge k.
-    const Vec2 f0 = pf[k], f1 = pf[(k + 1) % 3], g0 = pg[kg], g1 = pg[(kg + 1) % 3];
-    if (!(norm(f1 - f0) > 0) || !(norm(g1 - g0) > 0)) continue;
-    const Rigid move = motion(g0, g1, f1, f0);
-    Grown& big = grown[a];
-    Grown& small = grown[b];
-    points = big.hull;
-    for (Vec2 p : small.hull) points.push_back(move(p));
-    for (Vec2& p : points) p = scale * p;
-    std::vector<Vec2> hull = convex_hull(points);
-    if (!hull_fits(hull, room.room)) continue;
-    moved.clear();
-    for (int h : small.faces) {
-      const auto& t = out.net.points[h];
-      moved.push_back({move(t[0]), move(t[1]), move(t[2])});
+  Growth growth = grower.start();
+  for (const Join& j : joins) grower.join(growth, j);
+
+  // Small pieces left between large ones (no join of the whole fitted): their faces, each
+  // alone, join the pieces around them first, then each other.
+  if (regrow_faces > 0) {
+    Growth again = grower.copy(growth);
+    std::vector<char> loose(n, 0);
+    for (int p = 0; p < n; ++p) {
+      const std::size_t size = again.grown[p].faces.size();
+      if (size == 0 || size > regrow_faces) continue;
+      for (int h : again.grown[p].faces) loose[h] = 1;
+      grower.dissolve(again, p);
     }
-    // The glued edge exactly where f's is.
-    const std::size_t gi = static_cast<std::size_t>(
-        std::find(small.faces.begin(), small.faces.end(), g) - small.faces.begin());
-    moved[gi][kg] = f1;
-    moved[gi][(kg + 1) % 3] = f0;
-    bool overlaps = false;
-    for (std::size_t i = 0; i < moved.size() && !overlaps; ++i) {
-      const Box2 box = triangle_box(moved[i]);
-      const auto test = [&](int c) {
-        if (!overlaps && triangles_overlap(moved[i], out.net.points[c], tolerance)) overlaps = true;
-      };
-      if (big.grid)
-        big.grid->query(box, test);
-      else
-        for (int c : big.faces) test(c);
-    }
-    if (overlaps) continue;
-    if (tab_height > 0) {
-      for (std::size_t i = 0; i < moved.size(); ++i) slot[small.faces[i]] = static_cast<int>(i);
-      const auto at = [&](int c) -> const std::array<Vec2, 3>& {
-        return slot[c] >= 0 ? moved[slot[c]] : out.net.points[c];
-      };
-      const Rigid back = motion(f1, f0, g0, g1);  // big's frame to small's
-      // Whether a tab fits outside edge k of face h, over no other face of the joined piece.
-      const auto room_for_tab = [&](int h, int k) {
-        return tab_fits(
-            at(h), k, shapes, tab_height,
-            [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
-              bool hit = false;
-              const auto test = [&](int c) {
-                if (!hit && c != h)
-                  hit = triangles_overlap(t0, at(c), tolerance) ||
-                        triangles_overlap(t1, at(c), tolerance);
-              };
-              if (big.grid)
-                big.grid->query(box, test);
-              else
-                for (int c : big.faces) test(c);
-              if (small.grid) {
-                Box2 back_box = Box2::empty();
-                for (Vec2 p : {box.lo, box.hi, Vec2{box.lo.x, box.hi.y}, Vec2{box.hi.x, box.lo.y}})
-                  back_box.add(back(p));
-                small.grid->query(back_box, test);
-              } else {
-                for (int c : small.faces) test(c);
-              }
-              return hit;
-            });
-      };
-      // Every edge this join makes a cut inside one piece (but the glued one) needs a tab's
-      // room on one side, or its two sides on each other.
-      bool slit = false;
-      for (std::size_t i = 0; i < moved.size() && !slit; ++i) {
-        const int h = small.faces[i];
-        for (int k = 0; k < 3 && !slit; ++k) {
-          const int c = graph.neighbour[h][k];
-          if (c < 0 || of[c] != a || (h == g && k == kg)) continue;
-          const int kc = graph.neighbour_edge[h][k];
-          if (sides_coincide(moved[i][k], moved[i][(k + 1) % 3], at(c)[kc], at(c)[(kc + 1) % 3]))
-            continue;  // glued, not cut
-          slit = !room_for_tab(h, k) && !room_for_tab(c, kc);
-        }
-      }
-      for (int h : small.faces) slot[h] = -1;
-      if (slit) continue;
-    }
-    // Join: small's faces move into big's frame, its tree re-hung from g under f.
-    for (std::size_t i = 0; i < moved.size(); ++i) {
-      const int h = small.faces[i];
-      out.net.points[h] = moved[i];
-      of[h] = a;
-      big.faces.push_back(h);
-      if (big.grid) big.grid->insert(h, triangle_box(moved[i]));
-    }
-    for (int prev = f, cur = g; cur >= 0;) {
-      const int next = out.net.parent[cur];
-      out.net.parent[cur] = prev;
-      prev = cur;
-      cur = next;
-    }
-    for (Vec2& p : hull) p = (1 / scale) * p;
-    big.hull = std::move(hull);
-    if (!big.grid && big.faces.size() > kGridFaces) {
-      big.grid = std::make_unique<OverlapGrid>();
-      big.grid->reset(cell);
-      for (int h : big.faces) big.grid->insert(h, triangle_box(out.net.points[h]));
-    }
-    small = Grown{};
+    for (const Join& j : joins)
+      if (loose[j.f] != loose[graph.neighbour[j.f][j.k]]) grower.join(again, j);
+    for (const Join& j : joins) grower.join(again, j);
+    if (count_pieces(again) < count_pieces(growth)) growth = std::move(again);
   }
 
+  FitPieces& out = growth.out;
+  const std::vector<int>& of = growth.of;
   // Pieces numbered by their first face.
   std::vector<int> number(n, -1);
   out.piece.assign(n, 0);
@@ -227,7 +327,7 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
     out.piece[f] = id;
   }
   out.cut_links = std::max(0, out.pieces - inputs);
-  return out;
+  return std::move(growth.out);
 }
 
 }  // namespace papernet

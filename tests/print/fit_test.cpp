@@ -131,6 +131,37 @@ TEST(Fit, ShrunkPiecesFitTheSmallerBoxAndAFaceLargerThanItIsAPieceAlone) {
   EXPECT_THROW(cut_to_fit(net, four, 4 * big, {kRoom, {}}, "A4", 400, 0.1), InvalidOptionException);
 }
 
+// Every cut is needed: no two pieces on the two sides of a cut link fit the box together (the
+// links glued back where they do: cutting the largest subtrees first from the leaves up can cut
+// one that fits with what is left once the next is cut). Checked at every turn, the room a
+// millimetre smaller (the cut's own test turns the box along the hull's edges only).
+TEST(Fit, NoTwoPiecesAcrossACutFitTogether) {
+  int cuts = 0;
+  for (const std::string file : {"sample.obj", "thingi10k_65004.stl"}) {
+    const Unfolded u = tabu_net(file);
+    ASSERT_FALSE(u.mesh.faces.empty()) << file;
+    const double scale = print_scale(u.mesh, {});  // 200 mm
+    const std::vector<int> one(u.mesh.faces.size(), 0);
+    for (const double shrink : {1.0, 0.7, 0.5, 0.4}) {
+      const FitPieces fit = cut_to_fit(u.net, one, scale, {kRoom, {}}, "A4", 200, shrink);
+      EXPECT_TRUE(check_pieces(u.mesh, fit.net, fit.piece).ok()) << file;
+      std::vector<std::vector<Vec2>> points(fit.pieces);
+      for (std::size_t f = 0; f < u.mesh.faces.size(); ++f)
+        for (Vec2 q : u.net.points[f]) points[fit.piece[f]].push_back(scale * q);
+      for (std::size_t f = 0; f < u.mesh.faces.size(); ++f) {
+        if (fit.net.parent[f] >= 0 || u.net.parent[f] < 0) continue;
+        ++cuts;
+        std::vector<Vec2> both = points[fit.piece[f]];
+        const auto& other = points[fit.piece[u.net.parent[f]]];
+        both.insert(both.end(), other.begin(), other.end());
+        EXPECT_FALSE(fits_at_some_turn(both, shrink * kRoom, -1))
+            << file << " at " << shrink << ": face " << f << " could hang from its parent";
+      }
+    }
+  }
+  EXPECT_GT(cuts, 50);
+}
+
 TEST(Fit, AFaceLargerThanTheSheetIsAnErrorNamingItAndTheSizeThatPrints) {
   const Mesh mesh = test::tetrahedron();
   const Net net = test::bfs_net(mesh);
@@ -260,6 +291,38 @@ TEST(Grow, PiecesGrownForTabsLeaveRoomForATabOnEveryCutInside) {
         name.c_str(), large.pieces, before, for_tabs.pieces, after);
   }
   EXPECT_EQ(meshes, 2) << "tests/data lacks a mesh of this test";
+}
+
+// Small pieces left between larger ones grown again face by face (grow_to_fit's
+// `regrow_faces`): fewer pieces, still nets that fit the room, each cut inside with room for a
+// tab, and the same pieces every time.
+TEST(Grow, SmallPiecesGrownAgainFaceByFaceLeaveFewerPieces) {
+  int meshes = 0, fewer = 0;
+  for (const auto& [name, mesh] : test::test_data_meshes()) {
+    if (name != "sample.obj" && name != "thingi10k_65004.stl" &&
+        name != "trimesh_ADIS16480_600.obj")
+      continue;
+    ++meshes;
+    PrintOptions print;
+    const double scale = print_scale(mesh, print);
+    const TabClearanceOptions tabs = tab_clearance_options(mesh, print);
+    const std::vector<int> one(mesh.faces.size(), 0);
+    const FitPieces grown =
+        grow_to_fit(mesh, one, scale, {kRoom, {}}, tabs.min_height, tabs.angle_deg);
+    const FitPieces regrown =
+        grow_to_fit(mesh, one, scale, {kRoom, {}}, tabs.min_height, tabs.angle_deg, 6);
+    expect_nets_that_fit(mesh, regrown, scale, name);
+    EXPECT_EQ(slits_without_tab_room(mesh, regrown, tabs), 0u) << name;
+    EXPECT_LE(regrown.pieces, grown.pieces) << name;
+    fewer += regrown.pieces < grown.pieces;
+    const FitPieces again =
+        grow_to_fit(mesh, one, scale, {kRoom, {}}, tabs.min_height, tabs.angle_deg, 6);
+    EXPECT_EQ(again.net.parent, regrown.net.parent) << name;
+    std::printf("%s: %d pieces grown for tabs, %d with the small ones grown again\n", name.c_str(),
+                grown.pieces, regrown.pieces);
+  }
+  EXPECT_EQ(meshes, 3) << "tests/data lacks a mesh of this test";
+  EXPECT_GE(fewer, 2);
 }
 
 // A piece never takes faces of two parts: an octahedron whose upper and lower halves are given
