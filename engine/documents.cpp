@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <future>
 #include <iterator>
 #include <map>
@@ -180,9 +182,25 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
 
 namespace {
 
-// How far the pieces of a fit layout are shrunk below a sheet's room, tried in turn (docs/print.md,
-// "Fit layout"): smaller pieces nest into each other's hollows and often fill fewer sheets.
-constexpr double kFitShrinks[] = {1, 0.85, 0.7, 0.6, 0.5, 0.4};
+// One way the fit search makes pieces (docs/print.md, "Fit layout").
+struct FitWay {
+  enum Kind { Cut, Grow, GrowForTabs, Regrow } kind;
+  // Cut: the net cut into pieces that fit `shrink` x the room (smaller pieces nest into each
+  // other's hollows and often fill fewer sheets), then glued back while two fit `glue` x the room.
+  double shrink = 1, glue = 0;
+};
+
+// The ways, tried in turn: the net's cuts at six sizes; pieces grown from single faces
+// (grow_to_fit) as large as they grow, then only as large as leaves room for a tab on every cut
+// inside a piece, then that with its small pieces grown again face by face (kRegrowFaces); then
+// small cuts glued back up to 0.7 and 0.85 of the room (fewer pieces than the cuts at those
+// sizes, shaped otherwise).
+constexpr FitWay kFitWays[] = {
+    {FitWay::Cut, 1},        {FitWay::Cut, 0.85},     {FitWay::Cut, 0.7},
+    {FitWay::Cut, 0.6},      {FitWay::Cut, 0.5},      {FitWay::Cut, 0.4},
+    {FitWay::Grow},          {FitWay::GrowForTabs},   {FitWay::Regrow},
+    {FitWay::Cut, 0.5, 0.7}, {FitWay::Cut, 0.4, 0.7}, {FitWay::Cut, 0.6, 0.85},
+    {FitWay::Cut, 0.4, 0.85}};
 
 // What a piece, or a glue strip, costs against a sheet when the cuts are chosen: one sheet fewer
 // is worth up to this many more pieces and strips to cut out and glue.
@@ -224,9 +242,8 @@ FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& pri
 }
 
 // The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
-// net document as printed (describe_print). A fit layout tries the cuts of kFitShrinks in turn,
-// then pieces grown from single faces, while `search_seconds` last (at least the first), and
-// keeps the cheapest.
+// net document as printed (describe_print). A fit layout tries the ways of kFitWays in turn
+// while `search_seconds` last (at least the first), and keeps the cheapest.
 void write_print(const JobOptions& options, const DocumentRequest& request, UnfoldOutcome& outcome,
                  double search_seconds, Progress& progress) {
   const Mesh& mesh = outcome.net.mesh;
@@ -259,12 +276,9 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     const auto seconds = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     };
-    // The cuts of kFitShrinks, then pieces grown from single faces (grow_to_fit): as large as
-    // they grow, then only as large as leaves room for a tab on every cut inside a piece, then
-    // that with its small pieces grown again face by face (kRegrowFaces).
-    const std::size_t tries = std::size(kFitShrinks) + 3;
+    const std::size_t tries = std::size(kFitWays);
     const TabClearanceOptions tabs = tab_clearance_options(mesh, print);
-    int last_pieces = -1;
+    int last_cut = -1, last_grown = -1;  // pieces of the last cut and the last growth laid out
     for (std::size_t i = 0; i < tries; ++i) {
       if (i > 0) {
         if (progress.cancelled()) throw CancelledException();
@@ -272,17 +286,18 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
         // the best so far leaves sheets to save.
         if (seconds() * (i + 1) / i > search_seconds || chosen->pages.pages.size() <= 1) break;
       }
-      const bool grow_for_tabs = i > std::size(kFitShrinks);
-      const bool regrow = i > std::size(kFitShrinks) + 1;
-      if (grow_for_tabs && print.tabs != TabMode::Auto) break;  // no tabs: the same as the last
+      const FitWay way = kFitWays[i];
+      // Without tabs, the growths for tabs are the growth before.
+      if (way.kind != FitWay::Cut && way.kind != FitWay::Grow && print.tabs != TabMode::Auto)
+        continue;
       FitPieces cut;
       try {
-        cut = i < std::size(kFitShrinks)
+        cut = way.kind == FitWay::Cut
                   ? cut_to_fit(outcome.net.net, outcome.net.piece, scale, {room, alone},
-                               page.paper.name, model_mm, kFitShrinks[i])
+                               page.paper.name, model_mm, way.shrink, way.glue)
                   : grow_to_fit(mesh, outcome.net.piece, scale, {room, alone},
-                                grow_for_tabs ? tabs.min_height : 0, tabs.angle_deg,
-                                regrow ? kRegrowFaces : 0);
+                                way.kind == FitWay::Grow ? 0 : tabs.min_height, tabs.angle_deg,
+                                way.kind == FitWay::Regrow ? kRegrowFaces : 0);
       } catch (const InvalidOptionException& e) {
         // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
         if (options.layout || e.code() != "face_too_large") throw;
@@ -290,11 +305,17 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
         layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
         break;
       }
-      // The same cuts as the try before (regrown: no fewer pieces, the growth as it was).
-      if ((i < std::size(kFitShrinks) || regrow) && cut.pieces == last_pieces) continue;
-      if (i >= std::size(kFitShrinks) && !check_pieces(mesh, cut.net, cut.piece).ok())
-        continue;  // a new net, unlike the cuts of a checked one: printed only when it passes
-      last_pieces = cut.pieces;
+      // The same pieces as the cut before, or the growth before (regrown: no fewer pieces, the
+      // growth kept as it was).
+      if (way.kind == FitWay::Cut) {
+        if (cut.pieces == last_cut) continue;
+        last_cut = cut.pieces;
+      } else {
+        if (way.kind == FitWay::Regrow && cut.pieces == last_grown) continue;
+        // A new net, unlike the cuts of a checked one: printed only when it passes the check.
+        if (!check_pieces(mesh, cut.net, cut.piece).ok()) continue;
+        last_grown = cut.pieces;
+      }
       FitPrint tried = lay_out_fit(mesh, std::move(cut), print, gap, page, alone);
       if (!chosen || tried.cost() < chosen->cost()) chosen = std::move(tried);
       report(progress, "layout", 0.6 * static_cast<double>(i + 1) / static_cast<double>(tries));

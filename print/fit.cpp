@@ -157,7 +157,7 @@ void glue_back(const Net& net, const std::vector<int>& order,
 }  // namespace
 
 FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, FitRoom fit,
-                     const std::string& paper_name, double model_mm, double shrink) {
+                     const std::string& paper_name, double model_mm, double shrink, double glue) {
   const auto n = static_cast<int>(net.parent.size());
   const Vec2 room = fit.room;
   const Vec2 alone = fit.alone.x > 0 && fit.alone.y > 0 ? fit.alone : fit.room;
@@ -224,7 +224,7 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
       kept.pop_back();
     }
   }
-  glue_back(net, order, face_hull, target, cut);
+  glue_back(net, order, face_hull, std::clamp(std::max(shrink, glue), 0.0, 1.0) * room, cut);
   // The cut subtrees become pieces, numbered after the input's.
   for (int f : order) {
     if (!cut[f]) {

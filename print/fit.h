@@ -39,12 +39,15 @@ struct FitRoom {
 /// fit `shrink` x `room` instead (smaller pieces nest onto fewer sheets: docs/print.md, "Fit
 /// layout"); a face larger than that is a piece of its own, as long as it fits `room`. A face
 /// larger than `room.room` that fits `room.alone` at some turn is a piece of its own too, listed
-/// in `large`.
+/// in `large`. Then every cut link whose two pieces fit `glue` x `room` together (`shrink` x
+/// `room` when `glue` is smaller) at some turn is glued back, the smallest joined piece first,
+/// until none is left.
 /// \throw InvalidOptionException ("face_too_large", option "size_mm") naming a face that fits
 ///        no room, its size, and the largest model size (`model_mm` is the model's size at
 ///        `scale`) at which every face fits.
 FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale, FitRoom room,
-                     const std::string& paper_name, double model_mm, double shrink = 1);
+                     const std::string& paper_name, double model_mm, double shrink = 1,
+                     double glue = 0);
 
 /// Pieces grown from single faces instead of cut from a net (docs/print.md, "Fit layout"), as
 /// Blender's paper-model exporter grows its islands: every face of `mesh` starts as a piece of

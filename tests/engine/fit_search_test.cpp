@@ -62,7 +62,7 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
               largest.pieces, searched.pages, searched.pieces);
 }
 
-// Pieces grown from single faces (grow_to_fit) are the last way the search tries: on a CAD part
+// Pieces grown from single faces (grow_to_fit) are one way the search tries: on a CAD part
 // whose net sprawls, they take fewer sheets than any cut of it, and the print is theirs; the
 // net document then holds the grown pieces (new places for the faces, not the unfolded ones).
 TEST(FitSearch, PiecesGrownFromFacesWhenTheyTakeFewerSheets) {
