@@ -2,8 +2,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <future>
 #include <iterator>
 #include <map>
@@ -186,7 +184,8 @@ namespace {
 struct FitWay {
   enum Kind { Cut, Grow, GrowForTabs, Regrow } kind;
   // Cut: the net cut into pieces that fit `shrink` x the room (smaller pieces nest into each
-  // other's hollows and often fill fewer sheets), then glued back while two fit `glue` x the room.
+  // other's hollows and often fill fewer sheets), then glued back while two fit `glue` (at least
+  // `shrink`) x the room together.
   double shrink = 1, glue = 0;
 };
 
@@ -213,7 +212,7 @@ constexpr double kPiecesPerSheet = 20;
 // faces asked for, small labels come from the detail, and the choice is sheets and pieces alone.
 constexpr double kPiecesPerIllegibleLabel = 3;
 
-// Grown pieces of at most this many faces are grown again face by face in the search's last try
+// Grown pieces of at most this many faces are grown again face by face in the search's ninth way
 // (grow_to_fit's `regrow_faces`).
 constexpr std::size_t kRegrowFaces = 6;
 

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <queue>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/unfold/net_metrics.h"
@@ -107,10 +109,10 @@ std::string mm(double v) {
 // joined piece (by hull area) first, until none is left: cutting the largest subtrees first
 // from the leaves up can cut one whose remainder would have fitted with it after the next cut,
 // and leave a small remainder that its parent cuts off again. `order` lists parents before
-// children; `cut[f]` says f's link to its parent is cut.
+// children; `cut[f]` says f's link to its parent is cut. A face `large` marks stays alone.
 void glue_back(const Net& net, const std::vector<int>& order,
-               const std::vector<std::vector<Vec2>>& face_hull, Vec2 target,
-               std::vector<char>& cut) {
+               const std::vector<std::vector<Vec2>>& face_hull, const std::vector<char>& large,
+               Vec2 target, std::vector<char>& cut) {
   const auto n = static_cast<int>(net.parent.size());
   std::vector<int> root(n);
   for (int f : order) root[f] = cut[f] || net.parent[f] < 0 ? f : root[net.parent[f]];
@@ -122,35 +124,47 @@ void glue_back(const Net& net, const std::vector<int>& order,
     for (int f = 0; f < n; ++f)
       if (root[f] == f) hull[f] = convex_hull(std::move(pts[f]));
   }
-  std::vector<int> links;
-  for (int f : order)
-    if (cut[f]) links.push_back(f);
   UnionFind pieces(static_cast<std::size_t>(n));
-  // Pieces only grow, so a link whose pieces do not fit together never will.
-  std::vector<char> never(n, 0);
-  for (;;) {
-    int best = -1;
-    double best_area = std::numeric_limits<double>::infinity();
-    std::vector<Vec2> best_hull;
-    for (int c : links) {
-      if (!cut[c] || never[c]) continue;
-      const int a = pieces.find(root[c]), b = pieces.find(root[net.parent[c]]);
-      std::vector<Vec2> pts = hull[a];
-      pts.insert(pts.end(), hull[b].begin(), hull[b].end());
-      std::vector<Vec2> h = convex_hull(std::move(pts));
-      if (!hull_fits_turned(h, target)) {
-        never[c] = 1;
-        continue;
-      }
-      if (const double area = hull_area(h); area < best_area) {
-        best = c, best_area = area;
-        best_hull = std::move(h);
-      }
+  // Each piece's stamp, at its representative, new when it grows; a candidate is the joined
+  // piece of a link, with the stamps of its two pieces when it was made. Pieces only grow, so a
+  // link whose pieces do not fit together never will, and a stale candidate's area is at most
+  // the link's now: popped, it is made again, and the smallest is still taken first.
+  std::vector<int> stamp(n, 0);
+  int stamps = 0;
+  struct Candidate {
+    double area;
+    int link, stamp_a, stamp_b;
+    bool operator>(const Candidate& o) const {
+      return std::pair{area, link} > std::pair{o.area, o.link};
     }
-    if (best < 0) return;
-    cut[best] = 0;
-    pieces.unite(root[best], root[net.parent[best]]);
-    hull[pieces.find(root[best])] = std::move(best_hull);
+  };
+  std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue;
+  std::vector<std::vector<Vec2>> joined(n);  // the hull of each candidate in the queue
+  const auto consider = [&](int c) {
+    const int a = pieces.find(root[c]), b = pieces.find(root[net.parent[c]]);
+    std::vector<Vec2> pts = hull[a];
+    pts.insert(pts.end(), hull[b].begin(), hull[b].end());
+    std::vector<Vec2> h = convex_hull(std::move(pts));
+    if (!hull_fits_turned(h, target)) return;
+    queue.push({hull_area(h), c, stamp[a], stamp[b]});
+    joined[c] = std::move(h);
+  };
+  for (int f : order)
+    if (cut[f] && !large[f] && !large[net.parent[f]]) consider(f);
+  while (!queue.empty()) {
+    const Candidate top = queue.top();
+    queue.pop();
+    const int c = top.link;
+    const int a = pieces.find(root[c]), b = pieces.find(root[net.parent[c]]);
+    if (stamp[a] != top.stamp_a || stamp[b] != top.stamp_b) {
+      consider(c);
+      continue;
+    }
+    cut[c] = 0;
+    pieces.unite(a, b);
+    const int joint = pieces.find(a);
+    hull[joint] = std::move(joined[c]);
+    stamp[joint] = ++stamps;
   }
 }
 
@@ -224,7 +238,8 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
       kept.pop_back();
     }
   }
-  glue_back(net, order, face_hull, std::clamp(std::max(shrink, glue), 0.0, 1.0) * room, cut);
+  glue_back(net, order, face_hull, out.large, std::clamp(std::max(shrink, glue), 0.0, 1.0) * room,
+            cut);
   // The cut subtrees become pieces, numbered after the input's.
   for (int f : order) {
     if (!cut[f]) {
