@@ -298,6 +298,58 @@ std::vector<int> smallest_first(const std::vector<Label>& labels) {
   return order;
 }
 
+/// Places for a label on its edge's glue tab, at kLegibleLabelMm or more, best first: as large
+/// as the tab holds (at most `max_size`), its box a tenth of its height clear of the tab's fold
+/// and of its top, inside the tab's ends with 5 % to spare at the box's top and bottom and with
+/// 0.6 of its height to spare at either end of the text's middle line (the text does not touch
+/// a cut line); the middle of the tab first, then slid towards either end; then the same at
+/// kLegibleLabelMm. Low on the tab, where a tall tab over a short edge is widest, a label finds
+/// room that the tab's narrow top would not give it. None when the tab is too small.
+std::vector<Label> labels_on_tab(const Tab& tab, const Label& label, double max_size) {
+  std::vector<Label> out;
+  const auto& c = tab.corners;  // c[0], c[1] along the edge; c[2] above c[1], c[3] above c[0]
+  const double base = norm(c[1] - c[0]);
+  if (!(base > 0)) return out;
+  const Vec2 d = (1 / base) * (c[1] - c[0]), up{-d.y, d.x};
+  const double height = dot(c[2] - c[1], up);
+  if (!(height > 0)) return out;
+  // The tab's ends in the edge's frame: at height y they are at left(y) and right(y), and the
+  // tab is narrower by `narrowing` per mm of height (positive for ends that lean in).
+  const double u3 = dot(c[3] - c[0], d), u2 = dot(c[2] - c[0], d);
+  const auto left = [&](double y) { return u3 * y / height; };
+  const auto right = [&](double y) { return base + (u2 - base) * y / height; };
+  const double narrowing = (u3 + base - u2) / height;
+  const double text = 0.6 * label_chars(label.text);  // the text's width per mm of its height
+  constexpr double kGap = 0.1;                        // of the text's height
+  // Heights (per mm of text height) and the width wanted there.
+  const std::array<std::pair<double, double>, 3> rows{
+      {{kGap, 1.05 * text}, {1 + kGap, 1.05 * text}, {0.5 + kGap, text + 1.2}}};
+  double fits = height / (1 + 2 * kGap);
+  for (const auto& [y, width] : rows) fits = std::min(fits, base / (width + narrowing * y));
+  for (const double size : {std::min(max_size, fits), kLegibleLabelMm}) {
+    if (size < kLegibleLabelMm || size > fits) continue;
+    // Where the text's middle can go: inside the ends, with room to spare, at every row.
+    double lowest = -INFINITY, highest = INFINITY;
+    for (const auto& [y, width] : rows) {
+      lowest = std::max(lowest, left(y * size) + 0.5 * width * size);
+      highest = std::min(highest, right(y * size) - 0.5 * width * size);
+    }
+    if (!(lowest <= highest)) continue;
+    const double middle = 0.5 * (lowest + highest), slack = 0.5 * (highest - lowest);
+    for (const double slide : {0.0, -0.5, 0.5, -1.0, 1.0}) {
+      Label on_tab = label;
+      on_tab.at = c[0] + (middle + slide * slack) * d + ((0.5 + kGap) * size) * up;
+      on_tab.angle = std::atan2(d.y, d.x);
+      on_tab.size = size;
+      turn_upright(on_tab);
+      out.push_back(on_tab);
+      if (slack <= 0) break;
+    }
+    if (size == kLegibleLabelMm) break;
+  }
+  return out;
+}
+
 /// Labels that did not fit their face at kLegibleLabelMm move where they print that large: onto
 /// the glue tab of their side when it has room (the tab is glued away, its face's partner label
 /// stays in view), else beside their edge at that size, on the face's side of it, reaching over
@@ -320,27 +372,16 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
     const Label& label = labels[i];
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
     if (only && !(*only)[label.side.face]) continue;
-    const double chars = label_chars(label.text);
     const int t = tab_of[label.edge];
     if (t >= 0 && tabs[t].side.face == label.side.face && tabs[t].side.k == label.side.k) {
-      const auto& c = tabs[t].corners;
-      const double base = norm(c[1] - c[0]);
-      if (base > 0) {
-        const Vec2 d = (1 / base) * (c[1] - c[0]), up{-d.y, d.x};
-        const double height = dot(c[2] - c[1], up), top = norm(c[3] - c[2]);
-        const double size = std::min({max_size, 0.6 * height, top / (1.15 * 0.6 * chars)});
-        if (size >= kLegibleLabelMm) {
-          Label on_tab = label;
-          on_tab.at = 0.25 * (c[0] + c[1] + c[2] + c[3]);
-          on_tab.angle = std::atan2(d.y, d.x);
-          on_tab.size = size;
-          turn_upright(on_tab);
-          if (!boxes.collides(on_tab, i)) {
-            place(i, on_tab);
-            continue;
-          }
+      bool moved = false;
+      for (const Label& on_tab : labels_on_tab(tabs[t], label, max_size))
+        if (!boxes.collides(on_tab, i)) {
+          place(i, on_tab);
+          moved = true;
+          break;
         }
-      }
+      if (moved) continue;
     }
     const auto& tri = faces[label.side.face];
     const Vec2 p0 = tri[label.side.k], p1 = tri[(label.side.k + 1) % 3];

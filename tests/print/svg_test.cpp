@@ -603,6 +603,50 @@ TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
   }
 }
 
+// A label its face holds only under 1.5 mm prints on its glue tab wherever the tab has room for
+// it at 1.5 mm: low on a tall tab over a short edge, where the tab is widest, although its narrow
+// top would not hold the text (the milk truck's wheel arches had 0.5 mm labels so). Room, from
+// the tab's corners alone: a box of the text's width (0.6 of its height a character) and 0.6 of
+// its height more at each end, and 0.1 of its height more above and below, inside the tab.
+TEST(Labels, ASmallLabelMovesOntoItsTabWhereTheTabHoldsIt) {
+  std::size_t on_tabs = 0, checked = 0;
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& layout = all_layouts()[n];
+    for (const Label& l : layout.labels) {
+      const Tab* tab = nullptr;
+      for (const Tab& t : layout.tabs)
+        if (t.edge == l.edge && t.side.face == l.side.face && t.side.k == l.side.k) tab = &t;
+      if (tab == nullptr || l.text.empty()) continue;
+      const auto box = label_box(l);
+      bool on_tab = true;
+      for (Vec2 p : box) on_tab = on_tab && point_in_quad(p, tab->corners);
+      on_tabs += on_tab;
+      if (l.size >= kLegibleLabelMm) continue;
+      ++checked;
+      // Where the text would go, in the tab's frame: along its base, upwards.
+      const auto& c = tab->corners;
+      const double base = norm(c[1] - c[0]);
+      const Vec2 d = (1 / base) * (c[1] - c[0]), up{-d.y, d.x};
+      const double h = dot(c[3] - c[0], up), size = kLegibleLabelMm;
+      const double half_w = 0.5 * (0.6 * size * label_chars(l.text)) + 0.6 * size;
+      bool room = false;
+      for (double y = 0; y + 1.2 * size <= h && !room; y += 0.05)
+        for (double u = half_w; u + half_w <= base && !room; u += 0.05) {
+          const Vec2 at = c[0] + u * d + (y + 0.6 * size) * up;
+          room = true;
+          for (const double sx : {-1.0, 1.0})
+            for (const double sy : {-1.0, 1.0})
+              room = room && point_in_quad(at + (sx * half_w) * d + (sy * 0.6 * size) * up, c);
+        }
+      EXPECT_FALSE(room) << name << ": label " << l.text << " prints at " << l.size
+                         << " mm although its tab holds it at 1.5 mm";
+    }
+  }
+  EXPECT_GT(checked, 100u) << "labels under 1.5 mm with a tab: the test checks too few";
+  EXPECT_GT(on_tabs, 50u);
+}
+
 TEST(Layout, ScaleMakesTheLongestModelSideTheTargetSize) {
   Mesh m = test::cube();
   for (Vec3& v : m.vertices) v = Vec3{3 * v.x, v.y, 0.5 * v.z};  // 3 x 1 x 0.5 box
