@@ -472,7 +472,8 @@ constexpr std::size_t kMostFarLabels = 200;
 /// of every label and of the leaders drawn before, with a leader line to their edge that runs
 /// over the piece and meets no other label (docs/print.md, "Labels"). Places are tried on rings
 /// around the edge's middle, 2 to 15 mm, nearest first, from the face's side round to the other,
-/// the text along the edge or level; a label that finds none keeps its size. None moves when
+/// the text along the edge, level, or across the edge (along a narrow strip that ends at the
+/// edge); a label that finds none keeps its size. None moves when
 /// more than kMostFarLabels are under the legible size.
 std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& faces,
                                       const PaperGrid& grid, std::vector<Label>& labels) {
@@ -541,7 +542,9 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
           if ((j == 0 || j == 12) && sign < 0) continue;
           const double turn = sign * j * std::numbers::pi / 12;
           const Vec2 at = middle + r * (std::cos(turn) * up + std::sin(turn) * d);
-          if ((placed = fits(at, along_edge) || fits(at, 0))) break;
+          if ((placed = fits(at, along_edge) || fits(at, 0) ||
+                        fits(at, along_edge + std::numbers::pi / 2)))
+            break;
         }
       if (placed) break;
     }

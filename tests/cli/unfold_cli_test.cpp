@@ -251,11 +251,13 @@ DetailRun run_detail(const std::string& file, const std::string& options,
 // 1.5 mm: none while labels could hang past their piece's outline (44 did), 17 since they must
 // print on their piece, on parts of slivers under 1.5 mm wide (docs/print.md, "Labels"). Those
 // parts are thin plates (the closed ones 0.3 and 0.5 mm thick at 200 mm, by twice their volume
-// over their area), each printed since as one layer of card, one of its sides: 3 labels.
+// over their area), each printed since as one layer of card, one of its sides: 3 labels; 1 since
+// labels on their glue tab sit low where a tall tab is widest, none since a label led away from
+// its edge may also read across it, along a narrow strip that ends there (docs/print.md, "Labels").
 TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
   const DetailRun run = run_detail("CesiumMilkTruck/CesiumMilkTruck.gltf", "--colour none", ".pdf");
   EXPECT_EQ(run.strips, 0);
-  EXPECT_LE(run.small_labels, 6);
+  EXPECT_EQ(run.small_labels, 0);
   EXPECT_EQ(run.net["detail"]["mode"], "auto");
   EXPECT_LT(run.net["detail"]["faces"].get<int>(), 3624);
   // No closed part of the printed mesh is thinner than 1 mm at the print's scale.
@@ -297,11 +299,12 @@ TEST(UnfoldCli, DetailAutoCollapsesSmallPartsInSmallerStepsNearTheDistance) {
 
 // A CAD part with 24 holes through it under 2 mm across, and slivers along its edges (trimesh
 // ADIS16480): the collapse for short edges got stuck at 380 faces with 32 labels under 1.5 mm and
-// 3 glue strips. Detail auto plugs the small tunnels and flips the slivers' edges, and goes on.
+// 3 glue strips. Detail auto plugs the small tunnels and flips the slivers' edges, and goes on
+// (7 labels under 1.5 mm left, 5 since the tab and leader placements of 2026-11-29).
 TEST(UnfoldCli, DetailAutoPlugsSmallTunnelsAndThickensSlivers) {
   const DetailRun run = run_detail("trimesh_ADIS16480_600.obj", "", ".svg");
   EXPECT_EQ(run.strips, 0);
-  EXPECT_LE(run.small_labels, 12);
+  EXPECT_LE(run.small_labels, 5);
   EXPECT_LT(run.net["detail"]["faces"].get<int>(), 320);
   // Genus from V - E + F = 2 - 2g of the printed mesh (closed, one part).
   const long v = static_cast<long>(run.net["mesh"]["vertices"].size());
