@@ -4,8 +4,11 @@
 #include <cmath>
 #include <future>
 #include <iterator>
+#include <limits>
 #include <map>
+#include <mutex>
 #include <optional>
+#include <stdexcept>
 
 #include "core/io/write_mesh.h"
 #include "core/mesh/mesh.h"
@@ -250,11 +253,191 @@ FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& pri
   return out;
 }
 
+// The fit search (docs/print.md, "Fit layout"): the ways of kFitWays in turn, `threads` at a
+// time, while `seconds` last (at least the first); the cheapest print is kept. The ways are
+// started in order and the choice is made in order, so that it is the one a search of one way
+// at a time makes: the cheapest of the ways tried, the first of those that cost the same, and
+// none after the best so far prints on one sheet (no sheet left to save).
+class FitSearch {
+ public:
+  FitSearch(const NetDocument& net, const Mesh& mesh, const PrintOptions& print,
+            const PageOptions& page, TabClearanceOptions tabs, double scale, double gap,
+            double model_mm, double label_price, FitRoom room, double seconds, bool may_tile,
+            int threads)
+      : net_(net),
+        mesh_(mesh),
+        print_(print),
+        page_(page),
+        tabs_(tabs),
+        scale_(scale),
+        gap_(gap),
+        model_mm_(model_mm),
+        label_price_(label_price),
+        room_(room),
+        seconds_(seconds),
+        may_tile_(may_tile),
+        threads_(std::max(1, threads)) {}
+
+  // The cheapest print; none when a face is too large for the paper and the layout was not
+  // asked for (tiled_because() says why).
+  std::optional<FitPrint> run(Progress& progress) {
+    std::vector<std::future<void>> helpers;
+    for (int t = 1; t < threads_; ++t)
+      helpers.push_back(std::async(std::launch::async, [this] { work(nullptr); }));
+    work(&progress);
+    for (auto& helper : helpers) helper.get();
+    if (error_) std::rethrow_exception(error_);
+    if (cancelled_) throw CancelledException();
+    if (!tiled_because_.empty()) return std::nullopt;
+    // The choice a search of one way at a time makes (the ways laid out are a prefix of the
+    // list, less those it skips too).
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < std::size(kFitWays); ++i) {
+      if (!tried_[i].cost) continue;
+      if (!best || *tried_[i].cost < *tried_[*best].cost) best = i;
+      if (tried_[*best].pages <= 1) break;
+    }
+    if (!best) throw std::logic_error("the fit search laid out no way");
+    return std::move(kept_.at(*best));
+  }
+
+  const std::string& tiled_because() const { return tiled_because_; }
+
+ private:
+  struct Tried {
+    std::optional<double> cost;  // none: not laid out (yet)
+    std::size_t pages = 0;
+  };
+
+  // Takes the next way, makes its pieces and lays them out, until the ways or the time run out.
+  // Only the thread with `progress` reports and looks for cancellation.
+  void work(Progress* progress) {
+    try {
+      for (;;) {
+        std::size_t i;
+        FitPieces cut;
+        {
+          std::lock_guard lock(mutex_);
+          if (progress) {
+            report(*progress, "layout", 0.6 * static_cast<double>(passed_) / std::size(kFitWays));
+            if (progress->cancelled()) cancelled_ = true;
+          }
+          if (!next_pieces(i, cut)) return;
+        }
+        const auto started = std::chrono::steady_clock::now();
+        FitPrint print = lay_out_fit(mesh_, std::move(cut), print_, gap_, page_, room_.alone);
+        const double took =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        std::lock_guard lock(mutex_);
+        laid_out_seconds_ += took;
+        ++laid_out_;
+        ++passed_;
+        keep(i, std::move(print));
+      }
+    } catch (...) {
+      std::lock_guard lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+    }
+  }
+
+  // The next way's pieces, under the lock: false when the search is over (the time, a print on
+  // one sheet, an error, a cancellation, or a face too large for the paper). Ways that give the
+  // pieces of the way before (skipped by a search of one way at a time) are passed over here.
+  bool next_pieces(std::size_t& i, FitPieces& cut) {
+    for (;;) {
+      if (next_ >= std::size(kFitWays) || error_ || cancelled_ || !tiled_because_.empty())
+        return false;
+      if (next_ > 0) {
+        // Another way only while one more as long as the average ends in the time left, and
+        // while the best so far leaves sheets to save.
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+        if (laid_out_ > 0 && elapsed + laid_out_seconds_ / laid_out_ > seconds_) return false;
+        if (best_pages_ <= 1) return false;
+      }
+      i = next_++;
+      const FitWay way = kFitWays[i];
+      // Without tabs, the growths for tabs are the growth before.
+      if (way.kind != FitWay::Cut && way.kind != FitWay::Grow && print_.tabs != TabMode::Auto) {
+        ++passed_;
+        continue;
+      }
+      try {
+        cut = way.kind == FitWay::Cut
+                  ? cut_to_fit(net_.net, net_.piece, scale_, room_, page_.paper.name, model_mm_,
+                               way.shrink, way.glue)
+                  : grow_to_fit(mesh_, net_.piece, scale_, room_,
+                                way.kind == FitWay::Grow ? 0 : tabs_.min_height, tabs_.angle_deg,
+                                way.kind == FitWay::Regrow ? kRegrowFaces : 0);
+      } catch (const InvalidOptionException& e) {
+        // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
+        if (!may_tile_ || e.code() != "face_too_large") throw;
+        tiled_because_ = e.what();
+        return false;
+      }
+      // The same pieces as the cut before, or the growth before (regrown: no fewer pieces, the
+      // growth kept as it was).
+      bool same = false;
+      if (way.kind == FitWay::Cut) {
+        same = cut.pieces == last_cut_;
+        last_cut_ = cut.pieces;
+      } else {
+        // A new net, unlike the cuts of a checked one: printed only when it passes the check.
+        same = (way.kind == FitWay::Regrow && cut.pieces == last_grown_) ||
+               !check_pieces(mesh_, cut.net, cut.piece).ok();
+        if (!same) last_grown_ = cut.pieces;
+      }
+      if (!same) return true;
+      ++passed_;
+    }
+  }
+
+  // Keeps way i's print, under the lock, while it can still be the choice: while no way before
+  // it costs as little. Those after it that cost as much or more go, so that of the prints kept
+  // each costs less than those before it.
+  void keep(std::size_t i, FitPrint print) {
+    const double cost = print.cost(label_price_);
+    tried_[i] = {cost, print.pages.pages.size()};
+    for (std::size_t j = 0; j < i; ++j)
+      if (tried_[j].cost && *tried_[j].cost <= cost) return;
+    for (auto it = kept_.upper_bound(i); it != kept_.end();)
+      it = *tried_[it->first].cost >= cost ? kept_.erase(it) : std::next(it);
+    kept_.emplace(i, std::move(print));
+    // Each print kept costs less than those kept before it: the best so far is the last.
+    best_pages_ = tried_[kept_.rbegin()->first].pages;
+  }
+
+  const NetDocument& net_;
+  const Mesh& mesh_;
+  const PrintOptions& print_;
+  const PageOptions& page_;
+  const TabClearanceOptions tabs_;
+  const double scale_, gap_, model_mm_, label_price_;
+  const FitRoom room_;
+  const double seconds_;
+  const bool may_tile_;
+  const int threads_;
+  const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+
+  std::mutex mutex_;  // guards what follows
+  std::size_t next_ = 0, passed_ = 0;
+  int last_cut_ = -1, last_grown_ = -1;
+  double laid_out_seconds_ = 0;
+  std::size_t laid_out_ = 0;
+  std::size_t best_pages_ = std::numeric_limits<std::size_t>::max();
+  std::array<Tried, std::size(kFitWays)> tried_{};
+  std::map<std::size_t, FitPrint> kept_;
+  std::exception_ptr error_;
+  bool cancelled_ = false;
+  std::string tiled_because_;
+};
+
 // The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
-// net document as printed (describe_print). A fit layout tries the ways of kFitWays in turn
-// while `search_seconds` last (at least the first), and keeps the cheapest.
+// net document as printed (describe_print). A fit layout tries the ways of kFitWays in turn,
+// `search_threads` at a time, while `search_seconds` last (at least the first), and keeps the
+// cheapest (FitSearch).
 void write_print(const JobOptions& options, const DocumentRequest& request, UnfoldOutcome& outcome,
-                 double search_seconds, Progress& progress) {
+                 double search_seconds, Progress& progress, int search_threads) {
   const Mesh& mesh = outcome.net.mesh;
   Documents& docs = outcome.documents;
   const PrintOptions print = print_options(options);
@@ -281,55 +464,25 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
                                    "the margins and tabs leave no room on the paper");
     const Vec3 extent = bounding_box(mesh).size();
     const double model_mm = scale * std::max({extent.x, extent.y, extent.z});
-    const auto started = std::chrono::steady_clock::now();
-    const auto seconds = [&] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    };
-    const std::size_t tries = std::size(kFitWays);
     const double label_price =
         options.detail.mode == DetailMode::Auto ? kPiecesPerIllegibleLabel : 0;
-    const TabClearanceOptions tabs = tab_clearance_options(mesh, print);
-    int last_cut = -1, last_grown = -1;  // pieces of the last cut and the last growth laid out
-    for (std::size_t i = 0; i < tries; ++i) {
-      if (i > 0) {
-        if (progress.cancelled()) throw CancelledException();
-        // Another try only while one more as long as the average fits the time left, and while
-        // the best so far leaves sheets to save.
-        if (seconds() * (i + 1) / i > search_seconds || chosen->pages.pages.size() <= 1) break;
-      }
-      const FitWay way = kFitWays[i];
-      // Without tabs, the growths for tabs are the growth before.
-      if (way.kind != FitWay::Cut && way.kind != FitWay::Grow && print.tabs != TabMode::Auto)
-        continue;
-      FitPieces cut;
-      try {
-        cut = way.kind == FitWay::Cut
-                  ? cut_to_fit(outcome.net.net, outcome.net.piece, scale, {room, alone},
-                               page.paper.name, model_mm, way.shrink, way.glue)
-                  : grow_to_fit(mesh, outcome.net.piece, scale, {room, alone},
-                                way.kind == FitWay::Grow ? 0 : tabs.min_height, tabs.angle_deg,
-                                way.kind == FitWay::Regrow ? kRegrowFaces : 0);
-      } catch (const InvalidOptionException& e) {
-        // Asked for, fit is what the user gets or an error; by default, a kit taped from tiles.
-        if (options.layout || e.code() != "face_too_large") throw;
-        fit = false;
-        layout_note = std::string(e.what()) + "; tiled across pages instead (layout tile)";
-        break;
-      }
-      // The same pieces as the cut before, or the growth before (regrown: no fewer pieces, the
-      // growth kept as it was).
-      if (way.kind == FitWay::Cut) {
-        if (cut.pieces == last_cut) continue;
-        last_cut = cut.pieces;
-      } else {
-        if (way.kind == FitWay::Regrow && cut.pieces == last_grown) continue;
-        // A new net, unlike the cuts of a checked one: printed only when it passes the check.
-        if (!check_pieces(mesh, cut.net, cut.piece).ok()) continue;
-        last_grown = cut.pieces;
-      }
-      FitPrint tried = lay_out_fit(mesh, std::move(cut), print, gap, page, alone);
-      if (!chosen || tried.cost(label_price) < chosen->cost(label_price)) chosen = std::move(tried);
-      report(progress, "layout", 0.6 * static_cast<double>(i + 1) / static_cast<double>(tries));
+    FitSearch search{outcome.net,
+                     mesh,
+                     print,
+                     page,
+                     tab_clearance_options(mesh, print),
+                     scale,
+                     gap,
+                     model_mm,
+                     label_price,
+                     {room, alone},
+                     search_seconds,
+                     !options.layout.has_value(),
+                     search_threads};
+    chosen = search.run(progress);
+    if (!chosen) {
+      fit = false;
+      layout_note = search.tiled_because() + "; tiled across pages instead (layout tile)";
     }
   }
   FitPieces pieces{outcome.net.net, outcome.net.piece, 0, 0, {}};
@@ -422,8 +575,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
 }  // namespace
 
 void write_documents(const JobOptions& options, const DocumentRequest& request,
-                     UnfoldOutcome& outcome, double layout_seconds, Progress& progress) {
-  if (request.print()) write_print(options, request, outcome, layout_seconds, progress);
+                     UnfoldOutcome& outcome, double layout_seconds, Progress& progress,
+                     int search_threads) {
+  if (request.print())
+    write_print(options, request, outcome, layout_seconds, progress, search_threads);
   report(progress, "write", 0.9);
   Documents& docs = outcome.documents;
   docs.net_json = write_net_json(outcome.net);

@@ -118,6 +118,10 @@ MeshColour corner_colours(const Mesh& mesh, const Mesh& part, const MeshColour& 
 /// the print says so).
 std::vector<std::optional<Image>> decode_textures(const MeshColour& library);
 
+/// Ways of making a print's pieces that the fit search lays out at once (each is laid out and
+/// nested on its own, and that is most of the search's time).
+constexpr int kFitSearchThreads = 2;
+
 /// The pieces as one document: their meshes and nets side by side (engine/documents.cpp).
 NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
                      const JobOptions& options);
@@ -127,9 +131,11 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
 /// a sheet, its `print` placements) before the net JSON is written. Progress: phase "layout" (a
 /// print's pieces cut to fit, tabs, nesting), then "write", each with its phase_fraction. A fit
 /// layout tries several cuts while `layout_seconds` last, at least one, and keeps the one that
-/// needs the fewest sheets for its pieces (docs/print.md, "Fit layout").
+/// needs the fewest sheets for its pieces (docs/print.md, "Fit layout"), laying out
+/// `search_threads` of them at a time (the choice is the same for any number).
 /// \throw InvalidOptionException when the print refuses the options.
 void write_documents(const JobOptions& options, const DocumentRequest& request,
-                     UnfoldOutcome& outcome, double layout_seconds, Progress& progress);
+                     UnfoldOutcome& outcome, double layout_seconds, Progress& progress,
+                     int search_threads = kFitSearchThreads);
 
 }  // namespace papernet::engine_detail
