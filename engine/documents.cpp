@@ -196,13 +196,14 @@ struct FitWay {
 // (grow_to_fit) as large as they grow, then only as large as leaves room for a tab on every cut
 // inside a piece, then that with its small pieces grown again face by face (kRegrowFaces); then
 // small cuts glued back up to 0.7 and 0.85 of the room (fewer pieces than the cuts at those
-// sizes, shaped otherwise).
+// sizes, shaped otherwise), and up to the whole room (fewer still, where they nest as well).
 constexpr FitWay kFitWays[] = {
-    {FitWay::Cut, 1},        {FitWay::Cut, 0.85},     {FitWay::Cut, 0.7},
-    {FitWay::Cut, 0.6},      {FitWay::Cut, 0.5},      {FitWay::Cut, 0.4},
-    {FitWay::Grow},          {FitWay::GrowForTabs},   {FitWay::Regrow},
-    {FitWay::Cut, 0.5, 0.7}, {FitWay::Cut, 0.4, 0.7}, {FitWay::Cut, 0.6, 0.85},
-    {FitWay::Cut, 0.4, 0.85}};
+    {FitWay::Cut, 1},         {FitWay::Cut, 0.85},     {FitWay::Cut, 0.7},
+    {FitWay::Cut, 0.6},       {FitWay::Cut, 0.5},      {FitWay::Cut, 0.4},
+    {FitWay::Grow},           {FitWay::GrowForTabs},   {FitWay::Regrow},
+    {FitWay::Cut, 0.5, 0.7},  {FitWay::Cut, 0.4, 0.7}, {FitWay::Cut, 0.6, 0.85},
+    {FitWay::Cut, 0.4, 0.85}, {FitWay::Cut, 0.7, 1},   {FitWay::Cut, 0.5, 1},
+    {FitWay::Cut, 0.4, 1}};
 
 // What a piece, or a glue strip, costs against a sheet when the cuts are chosen: one sheet fewer
 // is worth up to this many more pieces and strips to cut out and glue.
