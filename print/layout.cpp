@@ -325,7 +325,9 @@ std::vector<Label> labels_on_tab(const Tab& tab, const Label& label, double max_
   const std::array<std::pair<double, double>, 3> rows{
       {{kGap, 1.05 * text}, {1 + kGap, 1.05 * text}, {0.5 + kGap, text + 1.2}}};
   double fits = height / (1 + 2 * kGap);
-  for (const auto& [y, width] : rows) fits = std::min(fits, base / (width + narrowing * y));
+  for (const auto& [y, width] : rows)
+    if (const double wanted = width + narrowing * y; wanted > 0)  // ends leaning out: no bound
+      fits = std::min(fits, base / wanted);
   for (const double size : {std::min(max_size, fits), kLegibleLabelMm}) {
     if (size < kLegibleLabelMm || size > fits) continue;
     // Where the text's middle can go: inside the ends, with room to spare, at every row.

@@ -67,6 +67,27 @@ const Printed& cad_part() {
   return printed;
 }
 
+/// The edge labels drawn on the sheets (the overview's text aside): each one's text and size, mm.
+std::vector<std::pair<std::string, double>> sheet_labels(const Printed& printed) {
+  static const std::regex label("font-size=\"([0-9.]+)\"[^>]*>([^<]+)</text>");
+  std::vector<std::pair<std::string, double>> out;
+  for (std::size_t k = 0; k < printed.pages.size(); ++k) {
+    if (printed.doc.print && static_cast<int>(k) == printed.doc.print->overview_page) continue;
+    const std::string g = svg_group(printed.pages[k], "labels");
+    for (auto it = std::sregex_iterator(g.begin(), g.end(), label); it != std::sregex_iterator();
+         ++it)
+      out.emplace_back((*it)[2].str(), std::stod((*it)[1]));
+  }
+  return out;
+}
+
+/// Those of sheet_labels under 1.5 mm.
+std::vector<std::pair<std::string, double>> small_labels(const Printed& printed) {
+  std::vector<std::pair<std::string, double>> out = sheet_labels(printed);
+  std::erase_if(out, [](const auto& label) { return label.second >= 1.5 - 1e-3; });
+  return out;
+}
+
 /// Which pieces share a mesh edge, from the mesh's faces (edges by their two vertices) and each
 /// face's piece; `cross_edges` counts the edges between different pieces.
 struct Adjacency {
@@ -217,17 +238,8 @@ TEST(AssemblyAids, CrowdedLabelsGiveUpThePieceNameForRoom) {
   ASSERT_TRUE(printed.doc.print);
   const std::size_t cross_edges = adjacency(printed.doc).cross_edges;
   expect_labels_name_the_pieces_they_join(printed, cross_edges, cross_edges / 12);
-  static const std::regex size("font-size=\"([0-9.]+)\"");
-  std::size_t labels = 0, small = 0;
-  for (std::size_t k = 0; k < printed.pages.size(); ++k) {
-    if (static_cast<int>(k) == printed.doc.print->overview_page) continue;
-    const std::string g = svg_group(printed.pages[k], "labels");
-    for (auto it = std::sregex_iterator(g.begin(), g.end(), size); it != std::sregex_iterator();
-         ++it) {
-      ++labels;
-      small += std::stod((*it)[1]) < 1.5 - 1e-3;
-    }
-  }
+  const auto labels = sheet_labels(printed).size();
+  const auto small = small_labels(printed).size();
   EXPECT_GT(labels, 300u) << "the part no longer has many labels";
   EXPECT_LE(small, 35u) << "of " << labels << " labels, under 1.5 mm";
 }
@@ -242,9 +254,7 @@ TEST(AssemblyAids, ANamedLabelLeftSmallIsThePlainNumberInTheNextRound) {
   const std::string file = shared_data_dir() + "/bench/400/trimesh__groups.obj";
   if (!std::filesystem::exists(file))
     GTEST_SKIP() << "needs ../shared/data: " << file << " is absent";
-  JobInput input;
-  input.mesh = read_mesh_file(file, 64 << 20);
-  input.format = MeshFormat::Obj;
+  const JobInput input = file_input(file);
   JobOptions options;
   options.layout = PageLayoutMode::Fit;
   options.colour = false;
@@ -253,22 +263,13 @@ TEST(AssemblyAids, ANamedLabelLeftSmallIsThePlainNumberInTheNextRound) {
   const UnfoldOutcome out = run_pipeline(input, options, {}, {.svg_pages = true}, quiet);
   ASSERT_TRUE(out.print);
   const Printed printed{read_net_json(out.documents.net_json), out.documents.svg_pages, {}};
-  static const std::regex label("font-size=\"([0-9.]+)\"[^>]*>([^<]+)</text>");
-  std::size_t named = 0, small = 0;
-  for (std::size_t k = 0; k < printed.pages.size(); ++k) {
-    if (static_cast<int>(k) == printed.doc.print->overview_page) continue;
-    const std::string g = svg_group(printed.pages[k], "labels");
-    for (auto it = std::sregex_iterator(g.begin(), g.end(), label); it != std::sregex_iterator();
-         ++it) {
-      const bool names = (*it)[2].str().find("→P") != std::string::npos;
-      named += names;
-      if (std::stod((*it)[1]) < 1.5 - 1e-3) {
-        ++small;
-        ADD_FAILURE() << "label " << (*it)[2] << " at " << (*it)[1] << " mm";
-      }
-    }
-  }
-  EXPECT_EQ(small, 0u);
+  std::size_t named = 0;
+  for (const auto& [text, size] : sheet_labels(printed))
+    named += text.find("→P") != std::string::npos;
+  const auto small = small_labels(printed);
+  for (const auto& [text, size] : small)
+    ADD_FAILURE() << "label " << text << " at " << size << " mm";
+  EXPECT_EQ(small.size(), 0u);
   EXPECT_EQ(out.print->small_labels, 0u);
   EXPECT_GT(named, 20u) << "the labels between pieces name the piece across";
   const NetCheckReport check = check_pieces(printed.doc.mesh, printed.doc.net, printed.doc.piece);

@@ -106,9 +106,7 @@ TEST(FitSearch, AtDetailAutoTheScanPrintsEveryLabelLegibly) {
   const std::string file = shared_data_dir() + "/meshes/thingi-like/thingi10k__73416.stl";
   if (!std::filesystem::exists(file))
     GTEST_SKIP() << "needs ../shared/data: " << file << " is absent";
-  JobInput input;
-  input.mesh = read_mesh_file(file, 64 << 20);
-  input.format = MeshFormat::Stl;
+  const JobInput input = file_input(file);
   JobOptions options;  // detail auto, A4 at 200 mm
   options.colour = false;
   PipelineProgress quiet;

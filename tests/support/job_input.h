@@ -25,4 +25,12 @@ inline JobInput data_file(const std::string& name) {
   return input;
 }
 
+/// A model file anywhere (the meshes of ../shared/data), read as the command line reads it.
+inline JobInput file_input(const std::string& path) {
+  JobInput input;
+  input.mesh = read_mesh_file(path, 64 << 20);
+  input.format = format_from_extension(path);
+  return input;
+}
+
 }  // namespace papernet::test
