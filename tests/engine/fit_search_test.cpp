@@ -71,10 +71,11 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
 
 // The search lays out several ways at once, and chooses as a search of one way at a time does:
 // the same pieces, sheets and drawing with 1, 2 and 3 threads (with more than one, the ways
-// finish in an order that varies from run to run). The cheapest way is neither the first nor the
-// last: the fifth of 16 on sample.obj, the eighth on ADIS16480.
+// finish in an order that varies from run to run). On ADIS16480 the cheapest way is the eighth
+// of 16 (a growth, checked before it is laid out), neither the first nor the last. One mesh: the
+// test takes 90 s under ASan with two.
 TEST(FitSearch, TheChoiceIsTheSameWithAnyNumberOfThreads) {
-  for (const char* file : {"sample.obj", "trimesh_ADIS16480_600.obj"}) {
+  for (const char* file : {"trimesh_ADIS16480_600.obj"}) {
     SCOPED_TRACE(file);
     JobOptions options;
     PipelineProgress quiet;
