@@ -4,7 +4,6 @@
 #include <cmath>
 #include <future>
 #include <iterator>
-#include <limits>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -354,7 +353,7 @@ class FitSearch {
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
         if (laid_out_ > 0 && elapsed + laid_out_seconds_ / laid_out_ > seconds_) return false;
-        if (best_pages_ <= 1) return false;
+        if (!kept_.empty() && kept_.rbegin()->second.pages.pages.size() <= 1) return false;
       }
       i = next_++;
       const FitWay way = kFitWays[i];
@@ -404,8 +403,6 @@ class FitSearch {
     for (auto it = kept_.upper_bound(i); it != kept_.end();)
       it = *tried_[it->first].cost >= cost ? kept_.erase(it) : std::next(it);
     kept_.emplace(i, std::move(print));
-    // Each print kept costs less than those kept before it: the best so far is the last.
-    best_pages_ = tried_[kept_.rbegin()->first].pages;
   }
 
   const NetDocument& net_;
@@ -425,8 +422,8 @@ class FitSearch {
   int last_cut_ = -1, last_grown_ = -1;
   double laid_out_seconds_ = 0;
   std::size_t laid_out_ = 0;
-  std::size_t best_pages_ = std::numeric_limits<std::size_t>::max();
   std::array<Tried, std::size(kFitWays)> tried_{};
+  // Each print kept costs less than those kept before it: the best so far is the last.
   std::map<std::size_t, FitPrint> kept_;
   std::exception_ptr error_;
   bool cancelled_ = false;

@@ -19,7 +19,6 @@
 #include <vector>
 
 #include "api/net_json.h"
-#include "core/io/load.h"
 #include "core/unfold/net_check.h"
 #include "engine/pipeline.h"
 #include "tests/support/job_input.h"

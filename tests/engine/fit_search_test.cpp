@@ -75,27 +75,25 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
 // of 16 (a growth, checked before it is laid out), neither the first nor the last. One mesh: the
 // test takes 90 s under ASan with two.
 TEST(FitSearch, TheChoiceIsTheSameWithAnyNumberOfThreads) {
-  for (const char* file : {"trimesh_ADIS16480_600.obj"}) {
-    SCOPED_TRACE(file);
-    JobOptions options;
-    PipelineProgress quiet;
-    const UnfoldOutcome unfolded = run_pipeline(data_file(file), options, {}, {}, quiet);
-    std::string one_svg;
-    const Printed one = print(unfolded, options, 60, 1, &one_svg);
-    const std::string one_json = write_net_json(one.doc);
-    for (const int threads : {2, 3}) {
-      std::string svg;
-      const Printed many = print(unfolded, options, 60, threads, &svg);
-      EXPECT_EQ(many.pages, one.pages) << threads << " threads";
-      EXPECT_EQ(many.pieces, one.pieces) << threads << " threads";
-      EXPECT_TRUE(write_net_json(many.doc) == one_json) << threads << " threads";
-      EXPECT_TRUE(svg == one_svg) << threads << " threads";
-    }
-    const NetCheckReport check = check_pieces(one.doc.mesh, one.doc.net, one.doc.piece);
-    EXPECT_TRUE(check.ok()) << check.summary();
-    std::printf("%s: %zu pages, %d pieces with any number of threads\n", file, one.pages,
-                one.pieces);
+  JobOptions options;
+  PipelineProgress quiet;
+  const UnfoldOutcome unfolded =
+      run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {}, {}, quiet);
+  std::string one_svg;
+  const Printed one = print(unfolded, options, 60, 1, &one_svg);
+  const std::string one_json = write_net_json(one.doc);
+  for (const int threads : {2, 3}) {
+    std::string svg;
+    const Printed many = print(unfolded, options, 60, threads, &svg);
+    EXPECT_EQ(many.pages, one.pages) << threads << " threads";
+    EXPECT_EQ(many.pieces, one.pieces) << threads << " threads";
+    EXPECT_TRUE(write_net_json(many.doc) == one_json) << threads << " threads";
+    EXPECT_TRUE(svg == one_svg) << threads << " threads";
   }
+  const NetCheckReport check = check_pieces(one.doc.mesh, one.doc.net, one.doc.piece);
+  EXPECT_TRUE(check.ok()) << check.summary();
+  std::printf("trimesh_ADIS16480_600.obj: %zu pages, %d pieces with any number of threads\n",
+              one.pages, one.pieces);
 }
 
 // With detail=auto the search prices a label under 1.5 mm as three pieces: on a 76,840-face
