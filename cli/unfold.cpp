@@ -224,6 +224,8 @@ int unfold(int argc, char** argv) {
               << (r.code == "skipped_on_load" || r.code == "dropped_components" ? "note"
                                                                                 : "repaired")
               << ": " << r.message << "\n";
+  for (const NetRepair& w : doc.warnings)
+    std::cerr << "papernet unfold: " << file << ": warning: " << w.message << "\n";
   // Printed with layout fit, a part may be cut into several pieces: each names its part.
   std::set<std::size_t> parts;
   for (const NetPiece& p : doc.pieces) parts.insert(p.component);

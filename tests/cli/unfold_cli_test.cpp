@@ -175,6 +175,10 @@ TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
   EXPECT_EQ(j["mesh"]["faces"].size(), 4212u);
   ASSERT_EQ(j["warnings"].size(), 1u) << j["warnings"];
   EXPECT_EQ(j["warnings"][0]["code"], "detail_unbuildable");
+  // The command line says it too, as it says what it repaired.
+  EXPECT_NE(said.find("Duck.glb: warning: 4212 faces printed where a person can build about"),
+            std::string::npos)
+      << said;
 }
 
 // A CAD part of slivers and small features (thingi10k 65004): by area it is buildable at 810 of
