@@ -82,7 +82,7 @@ struct NetDocument {
   std::vector<NetRepair> repairs;
   NetDetail detail;
   /// What a user should know before printing the result (code, count, message as repairs):
-  /// "detail_unbuildable".
+  /// "detail_unbuildable", "small_parts_left_out", "texture_not_printed", ...
   std::vector<NetRepair> warnings;
   Mesh mesh;
   /// The mesh's colour (docs/colour.md): `mesh.uvs`, `mesh.colors`, `mesh.face_materials`,

@@ -1,7 +1,12 @@
 // How many faces each part is printed with (docs/print.md, "Detail").
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/internal/steps.h"
 #include "print/layout.h"
@@ -38,6 +43,14 @@ constexpr double kTunnelLoopMm = 6 * kShortEdgeMm;
 // makes it thicker, within a quarter of the distance bound (core/mesh/thin_faces.h).
 constexpr double kThinFaceMm = kShortEdgeMm;
 
+// A part with folds whose bounding box's diagonal prints under this is left out with detail auto:
+// its edges print at a few millimetres, too short for a glue tab a person folds or a 1.5 mm
+// label beside them, and a part that small is not folded and glued in card (the ogre's teeth and
+// claws at 200 mm, 2 to 7 mm across, printed 114 labels under 1.5 mm). A flat part (a decal) is
+// only cut out, and stays. The truck's smallest parts, its lights, are 13 mm across
+// (docs/print.md, "Detail").
+constexpr double kSmallestPartMm = 10;
+
 // A part is collapsed only when it has this much more than the buildable faces: a model a
 // little denser is printed as it is rather than approximated.
 constexpr double kDetailSlack = 1.25;
@@ -49,6 +62,22 @@ double area(const Mesh& mesh) {
     a += 0.5 * norm(cross(q - p, r - p));
   }
   return a;
+}
+
+// True when two faces of `part` meet at an edge at more than a flat fold: their normals' angle's
+// cosine under `flat` (a flat part, a decal, is only cut out).
+bool folds(const Mesh& part, double flat) {
+  std::map<std::pair<int, int>, int> first;  // an edge, and the face first seen on it
+  for (int f = 0; f < static_cast<int>(part.faces.size()); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = part.faces[f][k], b = part.faces[f][(k + 1) % 3];
+      const auto [it, added] = first.try_emplace({std::min(a, b), std::max(a, b)}, f);
+      if (added) continue;
+      const Vec3 n = face_normal(part, it->second), m = face_normal(part, f);
+      const double lengths = norm(n) * norm(m);
+      if (lengths > 0 && dot(n, m) < flat * lengths) return true;
+    }
+  return false;
 }
 
 }  // namespace
@@ -93,6 +122,47 @@ SimplifyTarget detail_target(const Mesh& part, const JobOptions& options, double
     target.thin_plates = true;
   }
   return target;
+}
+
+std::optional<NetRepair> leave_out_small_parts(Prepared& prepared, const JobOptions& options,
+                                               double scale) {
+  if (options.detail.mode != DetailMode::Auto || prepared.parts.size() < 2) return std::nullopt;
+  std::vector<char> small(prepared.parts.size(), 0);
+  std::size_t parts = 0, faces = 0;
+  double largest_mm = 0;
+  const double flat = std::cos(options.flat_fold_degrees * std::numbers::pi / 180);
+  for (std::size_t p = 1; p < prepared.parts.size(); ++p) {  // the largest part stays
+    const Mesh& part = prepared.parts[p];
+    if (part.vertices.empty()) continue;
+    const Box3 box = bounding_box(part);
+    const double mm = norm(box.hi - box.lo) * scale;
+    if (!(mm < kSmallestPartMm) || !folds(part, flat)) continue;
+    small[p] = 1;
+    ++parts;
+    faces += part.faces.size();
+    largest_mm = std::max(largest_mm, mm);
+  }
+  if (parts == 0) return std::nullopt;
+  const std::size_t all = prepared.parts.size();
+  std::vector<Mesh> kept;
+  std::vector<MeshColour> kept_colours;
+  for (std::size_t p = 0; p < all; ++p) {
+    if (small[p]) continue;
+    kept.push_back(std::move(prepared.parts[p]));
+    if (p < prepared.part_colours.size())
+      kept_colours.push_back(std::move(prepared.part_colours[p]));
+  }
+  prepared.parts = std::move(kept);
+  prepared.part_colours = std::move(kept_colours);
+  char largest[32];
+  std::snprintf(largest, sizeof largest, "%.1f", largest_mm);
+  return NetRepair{"small_parts_left_out", parts,
+                   "left out " + std::to_string(parts) + " of " + std::to_string(all) + " parts (" +
+                       std::to_string(faces) + " faces) with folds, each under " +
+                       std::to_string(int(kSmallestPartMm)) +
+                       " mm across at this size (the largest " + largest +
+                       " mm): too small to fold and glue in card; detail full keeps them, or "
+                       "print larger"};
 }
 
 std::optional<NetRepair> detail_warning(const std::vector<Piece>& pieces,

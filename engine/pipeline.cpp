@@ -193,7 +193,10 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   const double print_share = plan.print ? kPrintTimeShare : 0;
   const double unfold_end = time_limit * (1 - print_share - (plan.tabs ? kTabRoomTimeShare : 0));
   tracked.start(Stage::Prepare);
-  const Prepared prepared = prepare(load_input(input, limits, tracked), options, tracked);
+  Prepared prepared = prepare(load_input(input, limits, tracked), options, tracked);
+  // The model's size on paper is the whole model's, small parts included.
+  const double scale = parts_print_scale(prepared.parts, options);
+  std::optional<NetRepair> small_parts = leave_out_small_parts(prepared, options, scale);
   std::size_t all_faces = 0;
   for (const Mesh& part : prepared.parts) all_faces += part.faces.size();
   // The time per face of the steps after the unfold, on this machine.
@@ -206,7 +209,6 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
 
   // Each part unfolded in turn (collapsed first as `detail` says), with a share of the
   // unfolder's time left as large as its share of the faces left.
-  const double scale = parts_print_scale(prepared.parts, options);
   UnfoldOutcome out;
   std::vector<Piece> pieces;
   Relay relay(tracked, prepared, options, documents, pieces);
@@ -274,6 +276,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
       out.net.mesh.faces.size()};
   if (auto warning = detail_warning(pieces, prepared.parts, options, scale))
     out.net.warnings.push_back(std::move(*warning));
+  if (small_parts) out.net.warnings.push_back(std::move(*small_parts));
   out.net.metrics.seconds = seconds;
   if (options.colour && documents.print()) out.baked_colour = bake_colour(pieces, prepared, scale);
   // The layout's search for fewer sheets may take half of the time left; drawing the rest.

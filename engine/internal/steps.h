@@ -63,6 +63,12 @@ std::size_t buildable_faces(const Mesh& part, double scale);
 SimplifyTarget detail_target(const Mesh& part, const JobOptions& options, double scale,
                              std::size_t all_faces);
 
+/// With detail auto, leaves out of `prepared` the parts (and their colours) whose bounding box's
+/// diagonal prints under 10 mm at `scale`, never the largest (engine/detail.cpp,
+/// kSmallestPartMm): the warning "small_parts_left_out" counting them, or none.
+std::optional<NetRepair> leave_out_small_parts(Prepared& prepared, const JobOptions& options,
+                                               double scale);
+
 /// Seconds a step gets at least (a time limit of 0 means none to the algorithms): the
 /// progressive unfolder then returns the coarsest net it finds at once.
 inline constexpr double kLeastSeconds = 1e-3;

@@ -333,6 +333,70 @@ const std::pair<std::string, std::string> kDefects[] = {
      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 4 1\n"},
 };
 
+// With detail auto a part with folds that prints under 10 mm across is left out, and a warning
+// says how many (docs/print.md, "Detail"); the largest part never is; detail full keeps every
+// part. The milk truck's 14 parts: at 60 mm its four lights (13 mm across at 200 mm) print 4 mm
+// across; at 20 mm all but the body are under 10 mm.
+TEST(Pipeline, DetailAutoLeavesOutPartsTooSmallToBuild) {
+  PipelineProgress quiet;
+  const auto parts_of = [](const UnfoldOutcome& out) {
+    std::set<std::size_t> parts;
+    for (const NetPiece& p : out.net.pieces) parts.insert(p.component);
+    return parts.size();
+  };
+  const auto left_out = [](const UnfoldOutcome& out) -> const NetRepair* {
+    for (const NetRepair& w : out.net.warnings)
+      if (w.code == "small_parts_left_out") return &w;
+    return nullptr;
+  };
+  JobOptions options;
+  options.size_mm = 60;
+  const UnfoldOutcome sixty =
+      run_pipeline(data_file("CesiumMilkTruck/CesiumMilkTruck.gltf"), options, {}, {}, quiet);
+  expect_checked(sixty);
+  EXPECT_EQ(sixty.net.input.components, 14u);
+  EXPECT_EQ(parts_of(sixty), 10u);
+  const NetRepair* warning = left_out(sixty);
+  ASSERT_NE(warning, nullptr);
+  EXPECT_EQ(warning->count, 4u);
+  EXPECT_NE(warning->message.find("left out 4 of 14 parts"), std::string::npos) << warning->message;
+  // The colour stays with its part: every face printed has its colour.
+  EXPECT_EQ(sixty.net.colour.face_materials.size(), sixty.net.mesh.faces.size());
+
+  options.size_mm = 20;
+  const UnfoldOutcome twenty =
+      run_pipeline(data_file("CesiumMilkTruck/CesiumMilkTruck.gltf"), options, {}, {}, quiet);
+  expect_checked(twenty);
+  EXPECT_EQ(parts_of(twenty), 1u);
+  warning = left_out(twenty);
+  ASSERT_NE(warning, nullptr);
+  EXPECT_EQ(warning->count, 13u);
+
+  // A flat part is only cut out, and stays however small: AlphaBlendModeTest's seven decals, 5
+  // and 7 mm across at 200 mm.
+  const JobInput alpha = data_file("AlphaBlendModeTest/AlphaBlendModeTest.glb");
+  const UnfoldOutcome decals = run_pipeline(alpha, JobOptions{}, {}, {}, quiet);
+  expect_checked(decals);
+  EXPECT_EQ(parts_of(decals), 19u);
+  EXPECT_EQ(left_out(decals), nullptr);
+
+  // Detail full keeps every part: at 9 mm one of AlphaBlendModeTest's parts with folds is 9.1 mm
+  // across, and left out with detail auto.
+  options = {};
+  options.size_mm = 9;
+  const UnfoldOutcome tiny = run_pipeline(alpha, options, {}, {}, quiet);
+  expect_checked(tiny);
+  EXPECT_EQ(parts_of(tiny), 18u);
+  warning = left_out(tiny);
+  ASSERT_NE(warning, nullptr);
+  EXPECT_EQ(warning->count, 1u);
+  options.detail = {DetailMode::Full, 0};
+  const UnfoldOutcome full = run_pipeline(alpha, options, {}, {}, quiet);
+  expect_checked(full);
+  EXPECT_EQ(parts_of(full), 19u);
+  EXPECT_EQ(left_out(full), nullptr);
+}
+
 TEST(Pipeline, EachDefectIsRepairedAndReportedAndStrictRefusesIt) {
   PipelineProgress quiet;
   std::ostringstream all;  // every defect in one model, each part apart
