@@ -232,7 +232,7 @@ int unfold(int argc, char** argv) {
   if (parts.size() > 1)
     std::cerr << "papernet unfold: " << file << ": " << parts.size()
               << " parts, each unfolded into a piece of its own\n";
-  if (out.simplified)
+  if (out.simplified && doc.mesh.faces.size() < doc.input.faces)
     std::cerr << "papernet unfold: " << file << ": simplified from " << doc.input.faces << " to "
               << doc.mesh.faces.size() << " faces\n";
   if (out.tab_room) say_tab_room(*out.tab_room);
@@ -246,8 +246,13 @@ int unfold(int argc, char** argv) {
             << " check=ok\n";
   if (doc.result == "approximate")
     std::cerr << "papernet unfold: " << file << ": approximate result: the net folds into a "
-              << "coarser mesh of " << doc.mesh.faces.size() << " of " << doc.input.faces
-              << " faces, Hausdorff distance " << doc.metrics.hausdorff
+              << (doc.mesh.faces.size() < doc.input.faces
+                      ? "coarser mesh of " + std::to_string(doc.mesh.faces.size()) + " of " +
+                            std::to_string(doc.input.faces) + " faces"
+                      : "mesh of " + std::to_string(doc.mesh.faces.size()) +
+                            " faces, edges flipped from the input's " +
+                            std::to_string(doc.input.faces))
+              << ", Hausdorff distance " << doc.metrics.hausdorff
               << " of the bounding-box diagonal\n";
   for (const std::string& output : c->outputs) {
     try {

@@ -61,7 +61,21 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   const std::optional<Mesh> side = one_side(mesh);
   const Mesh& from = side ? *side : mesh;
   const bool collapse = target.faces > 0 && target.faces < from.faces.size();
-  if (!collapse && !too_short(from)) return side;
+  if (!collapse && !too_short(from)) {
+    // Nothing to collapse, but thin faces may be left (a sliver across a T-junction of a CAD
+    // export, all its edges long): their edges are flipped as at the end below.
+    Mesh m = from;
+    if (target.thin_face > 0 &&
+        thicken_thin_faces(m, target.thin_face, kThinFaceMove * target.max_distance) > 0 &&
+        approximation_within(mesh, m, allowed)) {
+      try {
+        [[maybe_unused]] const ProgressiveMesh manifold(m);  // and oriented, as `take` asks
+        return m;
+      } catch (const InvalidInputException&) {
+      }
+    }
+    return side;
+  }
   ProgressiveMesh pm =
       decimate(from, {strategy, collapse ? target.faces : from.faces.size()}, progress);
   Mesh simple = pm.compact();

@@ -397,6 +397,44 @@ TEST(Pipeline, DetailAutoLeavesOutPartsTooSmallToBuild) {
   EXPECT_EQ(left_out(full), nullptr);
 }
 
+// The lowest face of a mesh over its longest edge, in the mesh's units.
+double lowest_face(const Mesh& mesh) {
+  double lowest = INFINITY;
+  for (const auto& t : mesh.faces) {
+    const Vec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    const double longest = std::max({norm(b - a), norm(c - b), norm(a - c)});
+    lowest = std::min(lowest, norm(cross(b - a, c - a)) / longest);
+  }
+  return lowest;
+}
+
+// With detail auto, a sliver with no short edge (the 7/8 cube's face across a T-junction: three
+// corners on a line, 283 mm long and 1e-5 mm high at 200 mm, which printed on a sheet of its
+// own with labels of 1e-5 mm) has its edges flipped though nothing is collapsed: the same
+// surface, faces a person can label (docs/print.md, "Detail"). Detail full keeps it.
+TEST(Pipeline, DetailAutoFlipsTheEdgesOfASliverWithNoShortEdge) {
+  PipelineProgress quiet;
+  JobOptions options;  // detail auto, 200 mm
+  const UnfoldOutcome out =
+      run_pipeline(data_file("seven_eighths_cube/7_8ths_cube.stl"), options, {}, {}, quiet);
+  expect_checked(out);
+  EXPECT_EQ(out.net.result, "approximate");
+  EXPECT_EQ(out.net.mesh.faces.size(), 24u);
+  EXPECT_LT(out.net.metrics.hausdorff, 1e-9);  // the same surface
+  options.detail = {DetailMode::Full, 0};
+  const UnfoldOutcome full =
+      run_pipeline(data_file("seven_eighths_cube/7_8ths_cube.stl"), options, {}, {}, quiet);
+  expect_checked(full);
+  // Millimetres per unit: the cube's side prints at 200 mm.
+  const Mesh& cube = full.net.mesh;
+  double lo = INFINITY, hi = -INFINITY;
+  for (const Vec3& v : cube.vertices) lo = std::min(lo, v.x), hi = std::max(hi, v.x);
+  const double mm = 200 / (hi - lo);
+  EXPECT_GE(lowest_face(out.net.mesh) * mm, 3) << "a face printed lower than 3 mm";
+  EXPECT_EQ(full.net.result, "complete");
+  EXPECT_LT(lowest_face(full.net.mesh) * mm, 1e-3);
+}
+
 TEST(Pipeline, EachDefectIsRepairedAndReportedAndStrictRefusesIt) {
   PipelineProgress quiet;
   std::ostringstream all;  // every defect in one model, each part apart
