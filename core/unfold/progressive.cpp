@@ -538,6 +538,10 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     t.phase = "uncollapse";
     t.input_faces = input_faces;
     if (limit > 0) t.time_limit_seconds = std::max(1e-3, left_for(input_faces));
+    if (options.complete_first_seconds > 0)
+      t.time_limit_seconds = t.time_limit_seconds > 0
+                                 ? std::min(t.time_limit_seconds, options.complete_first_seconds)
+                                 : options.complete_first_seconds;
     relay.context.faces = input_faces;
     UnfoldResult full;
     try {

@@ -57,6 +57,9 @@ struct ProgressiveOptions {
   /// applied to it (unfold_tabu_from, with its restarts). The result is approximate only when
   /// that finds no net either.
   bool complete_first = false;
+  /// Seconds complete_first's run on the input may take at most (0: what is left of the time
+  /// limit). The pipeline caps it where the input is itself an approximation (detail auto).
+  double complete_first_seconds = 0;
   /// Seconds per face of the net that the steps after the uncollapse take (the caller's print and
   /// glue tabs, the distance of an approximate net to the input), of which
   /// `after_seconds_reserved` are already outside tabu.time_limit_seconds. Under a time limit the
