@@ -63,9 +63,10 @@ std::size_t buildable_faces(const Mesh& part, double scale);
 SimplifyTarget detail_target(const Mesh& part, const JobOptions& options, double scale,
                              std::size_t all_faces);
 
-/// With detail auto, leaves out of `prepared` the parts (and their colours) whose bounding box's
-/// diagonal prints under 10 mm at `scale`, never the largest (engine/detail.cpp,
-/// kSmallestPartMm): the warning "small_parts_left_out" counting them, or none.
+/// With detail auto, leaves out of `prepared` the parts with folds (and their colours) whose
+/// bounding box's diagonal prints under 10 mm at `scale`, never the largest; a flat part stays
+/// (engine/detail.cpp, kSmallestPartMm): the warning "small_parts_left_out" counting them, or
+/// none. The result's `input` still counts every part.
 std::optional<NetRepair> leave_out_small_parts(Prepared& prepared, const JobOptions& options,
                                                double scale);
 
