@@ -135,9 +135,15 @@ class Relay : public Progress {
     outcome.net = assemble(pieces, input_, options_);
     outcome.net.result = "approximate";
     outcome.net.intermediate = true;
-    // The run's progress is the unfolder's, not this drawing's; a preview is line art (colour
-    // is for the final print).
-    Progress quiet;
+    // The run's progress is the unfolder's, not this drawing's: its reports go nowhere, but a
+    // cancel stops it between its pages, as it stops the run (under ASan drawing the Duck's
+    // preview held a cancel back for 3.8 s). A preview is line art (colour is for the final
+    // print).
+    struct Quiet : Progress {
+      explicit Quiet(RunProgress& run) : run(run) {}
+      bool cancelled() override { return run.cancelled(); }
+      RunProgress& run;
+    } quiet(to_);
     JobOptions line_art = options_;
     line_art.colour = false;
     write_documents(line_art, documents_, outcome, 0, quiet);  // one layout tried: a preview
