@@ -8,6 +8,7 @@
 #include <set>
 
 #include "tests/support/paths.h"
+#include "tests/support/sanitized.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;
@@ -215,7 +216,13 @@ TEST_F(MultiNode, OtherNodesShowProgressServeIntermediatesAndCancelWithinASecond
   std::cout << "[ figures  ] cancel sent to B, job cancelled on A after "
             << std::chrono::duration<double>(took).count() << " s\n";
   EXPECT_EQ(status, "cancelled");
+#ifdef PAPERNET_TEST_SANITIZED
+  // Sanitized, the job's steps between two looks at the cancel (laying out the preview of an
+  // intermediate net) run ten times slower: 3.7-3.8 s under ASan on 2026-11-29.
+  EXPECT_LT(took, 6s);
+#else
   EXPECT_LT(took, 1s);
+#endif
   EXPECT_NE(a.log().find("job " + id + " running -> cancelled"), std::string::npos) << a.log();
   expect_problem(c.Get("/v1/jobs/" + id + "/net.json"), 410, "job_cancelled");
 }
