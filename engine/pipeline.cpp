@@ -136,9 +136,8 @@ class Relay : public Progress {
     outcome.net.result = "approximate";
     outcome.net.intermediate = true;
     // The run's progress is the unfolder's, not this drawing's: its reports go nowhere, but a
-    // cancel stops it between its pages, as it stops the run (under ASan drawing the Duck's
-    // preview held a cancel back for 3.8 s). A preview is line art (colour is for the final
-    // print).
+    // cancel stops it between its pages, as it stops the run. A preview is line art (colour is
+    // for the final print).
     struct Quiet : Progress {
       explicit Quiet(RunProgress& run) : run(run) {}
       bool cancelled() override { return run.cancelled(); }
