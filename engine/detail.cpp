@@ -2,12 +2,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/mesh/dual_graph.h"
 #include "engine/internal/steps.h"
 #include "print/layout.h"
 
@@ -67,13 +67,11 @@ double area(const Mesh& mesh) {
 // True when two faces of `part` meet at an edge at more than a flat fold: their normals' angle's
 // cosine under `flat` (a flat part, a decal, is only cut out).
 bool folds(const Mesh& part, double flat) {
-  std::map<std::pair<int, int>, int> first;  // an edge, and the face first seen on it
+  const DualGraph graph = build_dual_graph(part);
   for (int f = 0; f < static_cast<int>(part.faces.size()); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = part.faces[f][k], b = part.faces[f][(k + 1) % 3];
-      const auto [it, added] = first.try_emplace({std::min(a, b), std::max(a, b)}, f);
-      if (added) continue;
-      const Vec3 n = face_normal(part, it->second), m = face_normal(part, f);
+    for (const int g : graph.neighbour[f]) {
+      if (g <= f) continue;  // each edge once; -1 on a boundary
+      const Vec3 n = face_normal(part, f), m = face_normal(part, g);
       const double lengths = norm(n) * norm(m);
       if (lengths > 0 && dot(n, m) < flat * lengths) return true;
     }
