@@ -343,8 +343,9 @@ std::string markdown_report(const std::vector<BenchRun>& runs, const ReportConte
     std::vector<std::pair<int, std::string>> order;
     for (const auto& [mesh, n] : fail_count) order.push_back({-n, mesh});
     std::sort(order.begin(), order.end());
-    out << "Status: `budget` no overlap-free net within the time limit (at once when no move "
-           "exists, e.g. a mesh whose dual graph is a tree), `timeout` killed after the limit "
+    out << "Status: `budget` no overlap-free net in one piece within the time limit (at once "
+           "when no move exists, e.g. a mesh whose dual graph is a tree; the run then writes the "
+           "mesh in pieces grown from single faces), `timeout` killed after the limit "
            "plus a grace period, `invalid` the mesh was rejected, `crash`/`error` see the CSV's "
            "note.\n\n"
         << "| mesh | failed runs | strategy: status at resolutions |\n|---|---:|---|\n";

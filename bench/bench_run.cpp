@@ -53,6 +53,9 @@ void record_child_result(const ChildResult& r, BenchRun& run) {
   } else if (r.signal) {
     run.status = "crash";
     run.note = "signal " + std::to_string(r.signal);
+  } else if (r.exit_code == 0 && summary_number(r.out, "grown", 0) > 0) {
+    // Unfolded in grown pieces: the unfolder found no overlap-free net in one piece.
+    run.status = "budget";
   } else if (r.exit_code == 0) {
     run.status = summary_value(r.out, "result") == "approximate" ? "approx" : "ok";
     if (run.status == "approx") run.hausdorff = summary_number(r.out, "hausdorff", 0);
@@ -60,8 +63,6 @@ void record_child_result(const ChildResult& r, BenchRun& run) {
     run.aspect_ratio = summary_number(r.out, "aspect_ratio", -1);
   } else if (r.exit_code == 2) {
     run.status = "invalid";
-  } else if (r.exit_code == 3) {
-    run.status = "budget";
   } else {
     run.status = "error";
   }

@@ -25,7 +25,8 @@ struct ChildResult {
 ChildResult run_child(const std::vector<std::string>& argv, double timeout_seconds);
 
 /// Fills `run` from how a child `papernet unfold` ended: its status (timeout, crash, ok,
-/// approx, invalid for exit 2, budget for exit 3, error otherwise), times, the figures of its
+/// approx, budget for a net in grown pieces (grown=K > 0: no overlap-free net in one piece),
+/// invalid for exit 2, error otherwise), times, the figures of its
 /// summary line (faces, overlaps, check, hausdorff, coverage, aspect_ratio) and, for a run that
 /// is not "ok", the last line of its stderr as the note. A timeout or crash never has a net.
 void record_child_result(const ChildResult& child, BenchRun& run);

@@ -98,6 +98,9 @@ Outcome run_one(const std::string& papernet, const fs::path& dir, const fs::path
       << " faces, " << net["result"].get<std::string>();
     for (const auto& repair : net.value("repairs", nlohmann::json::array()))
       d << "; " << repair["code"].get<std::string>() << " " << repair["count"].get<long>();
+    for (const auto& warning : net.value("warnings", nlohmann::json::array()))
+      d << "; warning " << warning["code"].get<std::string>() << " "
+        << warning["count"].get<long>();
     o.detail = d.str();
   }
   return o;

@@ -139,6 +139,11 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
     }
     const int vertex_base = static_cast<int>(doc.mesh.vertices.size());
     const int face_base = static_cast<int>(doc.mesh.faces.size());
+    // One piece of the document per tree of the net (several when grown).
+    const int piece_base = static_cast<int>(doc.pieces.size());
+    const std::size_t trees = piece.grown ? piece.grown->pieces : 1;
+    for (std::size_t t = 0; t < trees; ++t)
+      doc.pieces.push_back({p, piece.complete ? "complete" : "approximate", 0, piece.hausdorff});
     doc.mesh.vertices.insert(doc.mesh.vertices.end(), piece.mesh.vertices.begin(),
                              piece.mesh.vertices.end());
     for (std::size_t f = 0; f < piece.mesh.faces.size(); ++f) {
@@ -147,10 +152,10 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
       const int parent = piece.net.parent[f];
       doc.net.parent.push_back(parent < 0 ? -1 : parent + face_base);
       doc.net.points.push_back(piece.net.points[f]);
-      doc.piece.push_back(static_cast<int>(p));
+      const int tree = piece_base + (piece.grown ? piece.grown->piece[f] : 0);
+      doc.piece.push_back(tree);
+      ++doc.pieces[static_cast<std::size_t>(tree)].faces;
     }
-    doc.pieces.push_back(
-        {p, piece.complete ? "complete" : "approximate", piece.mesh.faces.size(), piece.hausdorff});
     if (!piece.complete) doc.result = "approximate";
     doc.metrics.hausdorff = std::max(doc.metrics.hausdorff, piece.hausdorff);
   }

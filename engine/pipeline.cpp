@@ -130,7 +130,7 @@ class Relay : public Progress {
     rendered_ = true;
     last_ = now;
     std::vector<Piece> pieces = done_;
-    pieces.push_back({mesh, net, false, false, 0, 0});
+    pieces.push_back({mesh, net, false, false, 0, 0, {}});
     UnfoldOutcome outcome;
     outcome.net = assemble(pieces, input_, options_);
     outcome.net.result = "approximate";
@@ -171,17 +171,27 @@ double share(double total, std::size_t faces, std::size_t all) {
   return all == 0 ? total : total * static_cast<double>(faces) / static_cast<double>(all);
 }
 
-}  // namespace
+// The warning "unfolded_in_pieces" when a part's net is grown pieces (unfold_piece), or none.
+std::optional<NetRepair> grown_warning(const std::vector<Piece>& pieces) {
+  std::size_t parts = 0, grown = 0, faces = 0, overlaps = 0;
+  for (const Piece& piece : pieces) {
+    if (!piece.grown) continue;
+    ++parts;
+    grown += piece.grown->pieces;
+    faces += piece.mesh.faces.size();
+    overlaps += piece.grown->overlaps;
+  }
+  if (parts == 0) return std::nullopt;
+  return NetRepair{"unfolded_in_pieces", parts,
+                   "no overlap-free net in one piece within the time limit for " +
+                       std::to_string(parts) + (parts == 1 ? " part" : " parts") + " of " +
+                       std::to_string(faces) + " faces (the best left " + std::to_string(overlaps) +
+                       " overlapping face pairs): unfolded in " + std::to_string(grown) +
+                       " pieces grown from single faces instead; a longer time limit or "
+                       "another seed may find one piece"};
+}
 
-UnfoldFailedException::UnfoldFailedException(std::size_t overlaps, std::size_t iterations,
-                                             std::size_t faces, std::size_t input_faces)
-    : std::runtime_error("no overlap-free net within the time limit (" + std::to_string(overlaps) +
-                         " overlapping face pairs left after " + std::to_string(iterations) +
-                         " iterations); try another seed or strategy, or a longer time limit"),
-      overlaps(overlaps),
-      iterations(iterations),
-      faces(faces),
-      input_faces(input_faces) {}
+}  // namespace
 
 UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
                            const PipelineLimits& limits, const DocumentRequest& documents,
@@ -228,13 +238,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
     // The print's share of the part is outside its seconds already.
     const AfterUnfold after{after_per_face,
                             share(time_limit * print_share, part.faces.size(), all_faces)};
-    try {
-      pieces.push_back(
-          unfold_piece(part, options, detail, seconds, after, part.faces.size(), relay));
-    } catch (UnfoldFailedException& e) {
-      e.seconds = seconds_since(start);
-      throw;
-    }
+    pieces.push_back(unfold_piece(part, options, detail, seconds, after, part.faces.size(), relay));
     out.simplified |= pieces.back().simplified;
     out.iterations += pieces.back().iterations;
     faces_before += part.faces.size();
@@ -255,7 +259,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
         share(left, prepared.parts[p].faces.size(), all_faces) -
         tab_room_per_face * static_cast<double>(pieces[p].mesh.faces.size());
     relay.start(Stage::Tabs, p, faces_before, piece_seconds);
-    const bool room = plan.tabs && piece_seconds > 0;
+    const bool room = plan.tabs && piece_seconds > 0 && !pieces[p].grown;
     if (room) {
       ProgressInfo info;
       info.phase = "tabs";  // changing cuts so that glue tabs fit (docs/tabs.md, stage 0)
@@ -264,7 +268,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
     }
     const NetCheckReport check = room ? make_room_for_tabs(pieces[p], options, piece_seconds,
                                                            print_per_strip, relay, out.tab_room)
-                                      : check_net(pieces[p].mesh, pieces[p].net);
+                                      : check_piece(pieces[p]);
     if (!check.ok()) throw std::logic_error("the net fails the net checker: " + check.summary());
     faces_before += prepared.parts[p].faces.size();
   }
@@ -282,6 +286,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   if (auto warning = detail_warning(pieces, prepared.parts, options, scale))
     out.net.warnings.push_back(std::move(*warning));
   if (small_parts) out.net.warnings.push_back(std::move(*small_parts));
+  if (auto warning = grown_warning(pieces)) out.net.warnings.push_back(std::move(*warning));
   out.net.metrics.seconds = seconds;
   if (options.colour && documents.print()) out.baked_colour = bake_colour(pieces, prepared, scale);
   // The layout's search for fewer sheets may take half of the time left; drawing the rest.

@@ -120,21 +120,14 @@ struct InputReport {
 InputReport inspect_input(const JobInput& input, const JobOptions& options,
                           const PipelineLimits& limits = {});
 
-/// No overlap-free net was found within the job's limits.
-class UnfoldFailedException : public std::runtime_error {
- public:
-  UnfoldFailedException(std::size_t overlaps, std::size_t iterations, std::size_t faces,
-                        std::size_t input_faces);
-  std::size_t overlaps, iterations, faces, input_faces;
-  double seconds = 0;  ///< from the start of the run to the failure
-};
-
 /// The one pipeline of papernet (docs/architecture.md), for the command line and the service:
 /// load, validate, (simplify), unfold by the job's strategy, measure an approximation's distance,
 /// make room for glue tabs, check the net, and write the documents asked for. `options` must
-/// have passed validate_options.
+/// have passed validate_options. A part with no overlap-free net in one piece within the time
+/// limit, not even of a coarser mesh, is unfolded in several pieces (warning
+/// "unfolded_in_pieces"): every mesh that passes validation gets a net.
 /// \throw IOException (unreadable; LimitExceededException over a limit), InvalidMeshException
-///        (the mesh cannot be unfolded, with the validator's report), UnfoldFailedException,
+///        (the mesh cannot be unfolded, with the validator's report),
 ///        InvalidOptionException (options the print refuses), CancelledException; a net that
 ///        fails the net check is a bug: std::logic_error.
 UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,

@@ -12,6 +12,7 @@
 #include "core/unfold/progressive.h"
 #include "core/unfold/tabu.h"
 #include "engine/internal/steps.h"
+#include "print/fit.h"
 #include "print/layout.h"
 
 namespace papernet::engine_detail {
@@ -47,6 +48,27 @@ CollapseStrategy collapses_of(Strategy strategy) {
   return CollapseStrategy::QQ;
 }
 
+// Pieces of `mesh` grown from single faces (grow_to_fit, with no sheet to fit: as large as they
+// lie flat), for a mesh the unfolder found no single-piece net of, whose best had `overlaps` left.
+// When the job prints tabs, a join that leaves a cut inside a piece without room for a tab is
+// refused: the pass that makes room for tabs works on one tree, and does not run on these.
+Piece grow_pieces(const Mesh& mesh, const JobOptions& options, std::size_t overlaps,
+                  std::size_t iterations) {
+  const PrintOptions print = print_options(options);
+  const TabClearanceOptions tabs = tab_clearance_options(mesh, print);
+  constexpr double kNoSheet = 1e300;
+  FitPieces grown = grow_to_fit(mesh, std::vector<int>(mesh.faces.size(), 0), 1,
+                                FitRoom{{kNoSheet, kNoSheet}, {}},
+                                makes_tab_room(print) ? tabs.min_height : 0, tabs.angle_deg);
+  return {mesh,
+          std::move(grown.net),
+          true,
+          false,
+          0,
+          iterations,
+          GrownPieces{std::move(grown.piece), static_cast<std::size_t>(grown.pieces), overlaps}};
+}
+
 // `collapsed`: `mesh` is the part collapsed by detail (kCollapsedFinishSeconds).
 Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
                   const AfterUnfold& after, std::size_t input_faces, bool collapsed,
@@ -60,9 +82,8 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
     const double kept = after.per_face * static_cast<double>(mesh.faces.size()) - after.reserved;
     tabu.time_limit_seconds = std::max(kLeastSeconds, seconds - std::max(0.0, kept));
     UnfoldResult r = unfold_tabu(mesh, tabu, progress);
-    if (!r.overlap_free)
-      throw UnfoldFailedException(r.overlaps, r.stats.iterations, mesh.faces.size(), input_faces);
-    return {mesh, std::move(r.net), true, false, 0, r.stats.iterations};
+    if (!r.overlap_free) return grow_pieces(mesh, options, r.overlaps, r.stats.iterations);
+    return {mesh, std::move(r.net), true, false, 0, r.stats.iterations, {}};
   }
   ProgressiveOptions p;
   p.strategy = collapses_of(options.strategy);
@@ -75,9 +96,9 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
   p.after_seconds_per_face = after.per_face;
   p.after_seconds_reserved = after.reserved;
   ProgressiveResult r = unfold_progressive(mesh, p, progress);
-  if (!r.overlap_free)
-    throw UnfoldFailedException(r.overlaps, r.stats.iterations, r.mesh.faces.size(), input_faces);
-  return {std::move(r.mesh), std::move(r.net), r.complete, false, r.hausdorff, r.stats.iterations};
+  if (!r.overlap_free) return grow_pieces(mesh, options, r.overlaps, r.stats.iterations);
+  return {std::move(r.mesh), std::move(r.net),   r.complete, false,
+          r.hausdorff,       r.stats.iterations, {}};
 }
 
 }  // namespace
@@ -104,11 +125,16 @@ Piece unfold_piece(const Mesh& part, const JobOptions& options, const SimplifyTa
   return piece;
 }
 
+NetCheckReport check_piece(const Piece& piece) {
+  return piece.grown ? check_pieces(piece.mesh, piece.net, piece.grown->piece)
+                     : check_net(piece.mesh, piece.net);
+}
+
 NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, double seconds,
                                   double seconds_per_strip, Progress& progress,
                                   std::optional<TabRoomSummary>& summary) {
   PrintOptions print = print_options(options);
-  if (!makes_tab_room(print)) return check_net(piece.mesh, piece.net);
+  if (!makes_tab_room(print)) return check_piece(piece);
   print.tab_room_seconds = seconds;
   TabClearanceOptions clearance = tab_clearance_options(piece.mesh, print);
   clearance.seconds_per_blocked_edge = seconds_per_strip;

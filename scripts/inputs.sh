@@ -33,8 +33,8 @@ status=0
   echo "\`papernet unfold FILE -o net.json --time-limit $TIME_LIMIT --tab-room-budget 0\` with every"
   echo "other option at its default: repair on, every part its own piece. *net*: a net was written"
   echo "(it passed the net checker: the command checks every piece before it writes); *refused*:"
-  echo "exit 2 with the reason; *failed*: a crash, a timeout or no net (exit 1 or 3)."
-  echo "Repairs are listed by code and count (core/mesh/repair.h; \`skipped_on_load\`: what the"
+  echo "exit 2 with the reason; *failed*: a crash, a timeout or no net (exit 1)."
+  echo "Repairs, and the result's warnings (\`warning CODE COUNT\`), are listed by code and count (core/mesh/repair.h; \`skipped_on_load\`: what the"
   echo "loader left out, such as point or line primitives)."
   echo
   echo "Made by \`scripts/inputs.sh\` from commit $commit on $(date -u +%Y-%m-%d)."

@@ -118,8 +118,6 @@ Problem problem_from_exception(std::exception_ptr error) {
     return invalid_mesh(e.report());
   } catch (const InvalidInputException& e) {
     return make_problem("invalid_mesh", e.what());
-  } catch (const UnfoldFailedException& e) {
-    return make_problem("unfold_failed", e.what());
   } catch (const IOException& e) {
     return make_problem("unreadable_mesh", e.what());
   } catch (const CancelledException&) {

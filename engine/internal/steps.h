@@ -39,7 +39,16 @@ LoadedMesh load_input(const JobInput& job, const PipelineLimits& limits, Progres
 /// fails here. \throw InvalidMeshException (with the validator's report), CancelledException.
 Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progress);
 
-/// One part unfolded into one piece (engine/unfold_piece.cpp).
+/// A net of several pieces grown from single faces (unfold_piece, when the unfolder found no
+/// overlap-free net in one piece): each face's piece, from 0, and how many; `overlaps` is what
+/// the unfolder's best single piece had left.
+struct GrownPieces {
+  std::vector<int> piece;
+  std::size_t pieces = 0;
+  std::size_t overlaps = 0;
+};
+
+/// One part unfolded into one piece (engine/unfold_piece.cpp), or into grown pieces.
 struct Piece {
   Mesh mesh;  ///< what the net folds into (a coarser mesh when approximate)
   Net net;
@@ -47,6 +56,7 @@ struct Piece {
   bool simplified = false;
   double hausdorff = 0;
   std::size_t iterations = 0;
+  std::optional<GrownPieces> grown;  ///< none when `net` is one tree
 };
 
 /// Millimetres per model unit of the print of `parts` (print_scale of them all).
@@ -83,14 +93,20 @@ struct AfterUnfold {
 
 /// Unfolds `part` with the job's strategy within `seconds`, less what the steps `after` it need
 /// for the net it reaches (a low-poly version collapsed as `detail` says, when that collapses).
-/// \throw UnfoldFailedException, CancelledException.
+/// When no overlap-free net in one piece is found, not even of a coarser mesh, the mesh is
+/// unfolded in several pieces instead, grown from single faces as the print grows its pieces
+/// (print/fit.h, grow_to_fit; `Piece::grown`). \throw CancelledException.
 Piece unfold_piece(const Mesh& part, const JobOptions& options, const SimplifyTarget& detail,
                    double seconds, const AfterUnfold& after, std::size_t input_faces,
                    Progress& progress);
 
+/// The net checker's report on `piece`'s net: check_net, or check_pieces when it is grown pieces.
+NetCheckReport check_piece(const Piece& piece);
+
 /// Changes `piece`'s cuts so that more of its cut edges have room for a glue tab, within
 /// `seconds` less `seconds_per_strip` for each edge still without room (the print's time for its
 /// glue strip), when the job prints tabs; keeps the new net only when it passes the net checker.
+/// `piece`'s net must be one tree (not grown).
 /// Adds what it did to `summary`. Returns the checker's report on the net it leaves.
 NetCheckReport make_room_for_tabs(Piece& piece, const JobOptions& options, double seconds,
                                   double seconds_per_strip, Progress& progress,

@@ -352,6 +352,34 @@ TEST(UnfoldCli, RepairsWhatItCanAndStrictRefusesIt) {
   }
 }
 
+// With no overlap-free net in one piece within the time limit (Tabu Unfolding given a millisecond
+// for a CAD part of 1,466 faces), the command still writes a net, in pieces grown from single
+// faces: exit 0, the warning on stderr, grown=1 in the summary line.
+TEST(UnfoldCli, WithNoNetInOnePieceWritesGrownPiecesAndSaysSo) {
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string out = scratch / "grown.json";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + test_data_dir() + "/thingi10k_65004.stl -o " + out +
+                         " --strategy TU --detail full --time-limit 0.001",
+                     &said),
+            0)
+      << said;
+  EXPECT_NE(said.find("thingi10k_65004.stl: warning: no overlap-free net in one piece within the "
+                      "time limit for 1 part of 1466 faces"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find(" grown=1 check=ok"), std::string::npos) << said;
+  std::stringstream text;
+  text << std::ifstream(out).rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["result"], "complete");
+  EXPECT_GT(j["pieces"].size(), 1u);
+  std::size_t grown = 0;
+  for (const auto& w : j["warnings"])
+    if (w["code"] == "unfolded_in_pieces") grown = w["count"].get<std::size_t>();
+  EXPECT_EQ(grown, 1u) << j["warnings"];
+}
+
 // A model that is a folder: a .gltf read with the buffer beside it, an OBJ with its material
 // library; a .gltf whose buffer is missing is refused naming it.
 TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {

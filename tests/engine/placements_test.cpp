@@ -206,6 +206,45 @@ TEST(Placements, WithoutAPrintThePiecesAreTheParts) {
   EXPECT_FALSE(read_net_json(unpaged.documents.net_json).print);
 }
 
+// A part with no overlap-free net in one piece (plain Tabu Unfolding, which took 1.6 s here to
+// remove the steepest-edge start's overlaps on this CAD part of 1,466 faces, given a millisecond)
+// is unfolded in pieces grown from single faces (14), with a warning: every face folds into its
+// own place, each piece is one tree the net checker passes, and the print lands every face on
+// its page.
+TEST(Placements, APartWithNoNetInOnePieceIsUnfoldedInGrownPieces) {
+  JobOptions options;
+  options.detail = {DetailMode::Full, 0};
+  options.time_limit = 1e-3;
+  const Printed printed = print("thingi10k_65004.stl", options);
+  const NetDocument& doc = printed.doc;
+  const auto warning =
+      std::find_if(doc.warnings.begin(), doc.warnings.end(),
+                   [](const NetRepair& w) { return w.code == "unfolded_in_pieces"; });
+  ASSERT_NE(warning, doc.warnings.end());
+  EXPECT_EQ(warning->count, 1u);
+  EXPECT_EQ(doc.result, "complete");
+  EXPECT_EQ(doc.mesh.faces.size(), 1466u);
+  EXPECT_EQ(doc.input.components, 1u);
+  ASSERT_TRUE(doc.print);
+  EXPECT_GT(doc.pieces.size(), 1u);
+  expect_pieces_check(doc);
+  ASSERT_EQ(static_cast<std::size_t>(doc.print->pages), printed.pages.size());
+  std::vector<std::vector<std::vector<Vec2>>> drawn;
+  std::size_t drawn_faces = 0, missed = 0;
+  for (const std::string& svg : printed.pages) {
+    drawn.push_back(polygons(svg, "faces"));
+    drawn_faces += drawn.back().size();
+  }
+  for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
+    const int page = doc.print->placements.at(doc.piece[f]).page;
+    ASSERT_GE(page, 0);
+    ASSERT_LT(page, doc.print->pages);
+    missed += drawn_match(mapped(doc, f), drawn[page]) < 0;
+  }
+  EXPECT_EQ(missed, 0u) << "faces whose mapped points are on no drawn face of their page";
+  EXPECT_EQ(drawn_faces, doc.mesh.faces.size());
+}
+
 // Tiled, a piece spans pages: page -1, the transform maps into the tile grid's frame, and each
 // page shows its listed window of it at the page's margin.
 TEST(Placements, TiledPiecesMapIntoTheTileGridEachPageShowingItsWindow) {
