@@ -16,9 +16,34 @@
 namespace papernet::engine_detail {
 namespace {
 
-// Side of the small triangles a face is cut into, printed millimetres, and their most per side.
-constexpr double kBakeStepMm = 2.5;
+// The most small triangles a face is cut into a side (of kBakeStepMm or more).
 constexpr int kMaxBakeSteps = 24;
+
+// Steps a side of a face whose longest edge prints `longest` mm, for small triangles of side
+// `step` mm: n x n small triangles.
+int bake_steps(double longest, double step) {
+  const double n = std::ceil(longest / step);
+  return std::isfinite(n) ? static_cast<int>(std::clamp(n, 1.0, double(kMaxBakeSteps))) : 1;
+}
+
+// The side of the small triangles, at least kBakeStepMm, for which the faces whose longest edges
+// print `longest` mm are cut into at most `most` of them (each face at least one): the smallest
+// found by bisection to a hundredth of a millimetre.
+double bake_step(const std::vector<double>& longest, std::size_t most) {
+  const auto count = [&](double step) {
+    std::size_t n = 0;
+    for (const double l : longest) {
+      const auto k = static_cast<std::size_t>(bake_steps(l, step));
+      n += k * k;
+    }
+    return n;
+  };
+  if (count(kBakeStepMm) <= most) return kBakeStepMm;
+  double lo = kBakeStepMm, hi = kBakeStepMm;
+  for (const double l : longest) hi = std::max(hi, l);  // one triangle a face
+  while (hi - lo > 0.01) (count(0.5 * (lo + hi)) <= most ? hi : lo) = 0.5 * (lo + hi);
+  return hi;
+}
 
 // Barycentric coordinates of p's projection onto the plane of triangle abc (outside it too).
 std::array<double, 3> plane_barycentric(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
@@ -133,16 +158,31 @@ MeshColour corner_colours(const Mesh& mesh, const Mesh& part, const MeshColour& 
   return out;
 }
 
-std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& pieces,
-                                                     const Prepared& input, double scale) {
+BakedColour bake_colour(const std::vector<Piece>& pieces, const Prepared& input, double scale,
+                        std::size_t most_triangles) {
+  const auto baked = [&](std::size_t p) {
+    return p < input.part_colours.size() && !input.part_colours[p].empty() &&
+           !folds_into_part(pieces[p], input.parts[p]);
+  };
+  const auto longest_mm = [&](const Mesh& mesh, const std::array<int, 3>& t) {
+    const Vec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    return std::max({norm(b - a), norm(c - b), norm(a - c)}) * scale;
+  };
   std::size_t all = 0;
-  for (const Piece& p : pieces) all += p.mesh.faces.size();
-  std::vector<std::vector<ColourTriangle>> out(all);
+  std::vector<double> longest;
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    all += pieces[p].mesh.faces.size();
+    if (baked(p))
+      for (const auto& t : pieces[p].mesh.faces) longest.push_back(longest_mm(pieces[p].mesh, t));
+  }
+  BakedColour out_colour;
+  out_colour.step_mm = bake_step(longest, most_triangles);
+  out_colour.coarser = out_colour.step_mm > kBakeStepMm;
+  auto& out = out_colour.faces;
+  out.resize(all);
   std::size_t base = 0;
   for (std::size_t p = 0; p < pieces.size(); base += pieces[p].mesh.faces.size(), ++p) {
-    if (p >= input.part_colours.size() || input.part_colours[p].empty() ||
-        folds_into_part(pieces[p], input.parts[p]))
-      continue;
+    if (!baked(p)) continue;
     const Mesh& part = input.parts[p];
     const MeshColour& colour = input.part_colours[p];
     const Mesh& mesh = pieces[p].mesh;
@@ -151,9 +191,7 @@ std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& p
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
       const auto& t = mesh.faces[f];
       const Vec3 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
-      const double longest = std::max({norm(b - a), norm(c - b), norm(a - c)}) * scale;
-      const int n =
-          std::clamp(static_cast<int>(std::ceil(longest / kBakeStepMm)), 1, kMaxBakeSteps);
+      const int n = bake_steps(longest_mm(mesh, t), out_colour.step_mm);
       auto corner = [&](int i, int j) {  // grid point i, j: barycentric (n - i - j, i, j) / n
         return std::array<double, 3>{double(n - i - j) / n, double(i) / n, double(j) / n};
       };
@@ -186,7 +224,7 @@ std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& p
         }
     }
   }
-  return out;
+  return out_colour;
 }
 
 }  // namespace papernet::engine_detail

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "core/io/write_mesh.h"
 #include "core/mesh/mesh.h"
@@ -435,12 +436,69 @@ class FitSearch {
   std::string tiled_because_;
 };
 
+// Paces the drawing of coloured pages against the print's deadline (docs/colour.md, "Time
+// limit"): before each page is drawn, when the pages left would take longer than the time left
+// at the pace of the pages drawn since the last change, the resolution drops so that they fit,
+// by the square root of their share (a page's cost is about its pixels: rasterising and
+// compressing them), to at least kMinColourDpi. It never rises again: the pages of a kit differ
+// at most from sharp to less sharp, once or a few times.
+class ColourPace {
+ public:
+  ColourPace(std::chrono::steady_clock::time_point deadline, double dpi)
+      : deadline_(deadline), asked_(dpi), dpi_(dpi) {}
+
+  // The resolution to draw page `page` at, `left` pages after it, when page - 1 is done.
+  double next_dpi(int page, int left) {
+    const auto now = std::chrono::steady_clock::now();
+    ++drawn_;
+    if (dpi_ <= kMinColourDpi || left < 0) return dpi_;
+    const double per_page = std::chrono::duration<double>(now - since_).count() / drawn_;
+    const double time_left = std::chrono::duration<double>(deadline_ - now).count();
+    const double needed = per_page * (left + 1);
+    if (needed <= time_left) return dpi_;
+    const double share = std::max(time_left, 0.0) / needed;
+    const double dpi = std::max(kMinColourDpi, std::floor(dpi_ * std::sqrt(share)));
+    if (dpi >= dpi_) return dpi_;
+    if (first_lowered_ < 0) first_lowered_ = page;
+    dpi_ = dpi;
+    since_ = now;
+    drawn_ = 0;
+    return dpi_;
+  }
+
+  // The warning for pages drawn at a lower resolution than asked, of `pages`.
+  std::optional<NetRepair> warning(int pages) const {
+    if (first_lowered_ < 0) return std::nullopt;
+    const auto dpi = [](double d) { return std::to_string(static_cast<long>(d)) + " dpi"; };
+    const std::size_t lowered = static_cast<std::size_t>(pages - first_lowered_);
+    return NetRepair{"colour_resolution_lowered", lowered,
+                     "pages " + std::to_string(first_lowered_ + 1) + " to " +
+                         std::to_string(pages) + " print their colour at a lower resolution than " +
+                         dpi(asked_) + " (down to " + dpi(dpi_) +
+                         "), so that the job ends within its time limit; a longer time limit "
+                         "prints every page at " +
+                         dpi(asked_)};
+  }
+
+ private:
+  std::chrono::steady_clock::time_point deadline_;
+  double asked_, dpi_;
+  std::chrono::steady_clock::time_point since_ = std::chrono::steady_clock::now();
+  int drawn_ = 0;
+  int first_lowered_ = -1;
+};
+
 // The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
-// net document as printed (describe_print). A fit layout tries the ways of kFitWays in turn,
-// `search_threads` at a time, while `search_seconds` last (at least the first), and keeps the
-// cheapest (FitSearch).
+// net document as printed (describe_print), within `seconds` where it can. A fit layout tries
+// the ways of kFitWays in turn, `search_threads` at a time, while half of them last (at least
+// the first), and keeps the cheapest (FitSearch); the pages are drawn in the rest (ColourPace).
 void write_print(const JobOptions& options, const DocumentRequest& request, UnfoldOutcome& outcome,
-                 double search_seconds, Progress& progress, int search_threads) {
+                 double seconds, Progress& progress, int search_threads) {
+  const auto deadline =
+      std::chrono::steady_clock::now() +
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>(std::isfinite(seconds) ? std::max(seconds, 0.0) : 1e9));
+  const double search_seconds = 0.5 * seconds;
   const Mesh& mesh = outcome.net.mesh;
   Documents& docs = outcome.documents;
   const PrintOptions print = print_options(options);
@@ -516,14 +574,11 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     // Faces of approximate pieces: from the input surface nearest them (engine/colour.cpp).
     colour->faces.resize(mesh.faces.size());
     for (std::size_t f = 0; f < outcome.baked_colour.size() && f < mesh.faces.size(); ++f)
-      if (!outcome.baked_colour[f].empty()) colour->faces[f] = outcome.baked_colour[f];
+      if (!outcome.baked_colour[f].empty()) colour->faces[f] = std::move(outcome.baked_colour[f]);
+    outcome.baked_colour.clear();
     if (!colour->any()) colour.reset();
   }
   const PrintColour* paint = colour ? &*colour : nullptr;
-  // The whole net in one SVG beside paged prints is a preview (the pages are the print): its
-  // colour at screen resolution, not the print's.
-  std::optional<PrintColour> preview = colour;
-  if (preview) preview->dpi = std::min(preview->dpi, kPreviewDpi);
   PrintSummary& summary = outcome.print.emplace();
   summary.cut_edges = static_cast<std::size_t>(layout.cut_edges);
   summary.tabs = layout.tabs.size();
@@ -554,34 +609,39 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   const int n = static_cast<int>(pages.pages.size());
   // With colour, page i + 1 is drawn (its images rasterised) on a thread of its own while page i
   // is written (cairo compresses its images): the two take about as long, and at most two pages'
-  // images are held. Only that thread samples the textures.
+  // images are held. Only that thread samples the textures; the resolution changes only between
+  // two drawings.
   const auto policy = paint ? std::launch::async : std::launch::deferred;
   auto draw = [&](int i) { return draw_page(layout, pages, i, paint); };
+  ColourPace pace(deadline, colour ? colour->dpi : 0);
   std::future<PageDrawing> next;
   if ((pdf || svg_pages) && n > 0) next = std::async(policy, draw, 0);
   for (int i = 0; (pdf || svg_pages) && i < n; ++i) {
     if (progress.cancelled()) throw CancelledException();
     const PageDrawing drawing = next.get();
+    if (colour) colour->dpi = pace.next_dpi(i + 1, n - i - 1);
     if (i + 1 < n) next = std::async(policy, draw, i + 1);
     if (pdf) pdf->add_page(drawing);
     if (svg_pages) docs.svg_pages.push_back(write_page_svg(layout, drawing, i, n));
     report(progress, "write", 0.8 * (i + 1) / n);
   }
+  if (auto warning = pace.warning(n)) outcome.net.warnings.push_back(std::move(*warning));
   if (pdf) docs.pdf = pdf->finish();
+  // The whole net in one SVG beside paged prints is a preview (the pages are the print): its
+  // colour at screen resolution, not the print's.
+  if (colour) colour->dpi = std::min(options.dpi, kPreviewDpi);
   if (request.svg)
-    docs.svg = paged && n == 1
-                   ? docs.svg_pages.front()
-                   : write_net_svg(layout, page.margin_mm, preview ? &*preview : nullptr);
+    docs.svg =
+        paged && n == 1 ? docs.svg_pages.front() : write_net_svg(layout, page.margin_mm, paint);
   if (!request.svg_pages && paged) docs.svg_pages.clear();
 }
 
 }  // namespace
 
 void write_documents(const JobOptions& options, const DocumentRequest& request,
-                     UnfoldOutcome& outcome, double layout_seconds, Progress& progress,
+                     UnfoldOutcome& outcome, double seconds, Progress& progress,
                      int search_threads) {
-  if (request.print())
-    write_print(options, request, outcome, layout_seconds, progress, search_threads);
+  if (request.print()) write_print(options, request, outcome, seconds, progress, search_threads);
   report(progress, "write", 0.9);
   Documents& docs = outcome.documents;
   docs.net_json = write_net_json(outcome.net);

@@ -9,6 +9,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <utility>
 
 #include "core/errors.h"
@@ -49,6 +51,15 @@ constexpr double kDistanceSecondsPerFace = 12e-6;
 // this much of its time per edge still without room. Measured on the Twin plate of
 // ../shared/data/bench (5,756 faces of slivers; docs/architecture.md, "Time limit").
 constexpr double kPrintSecondsPerStrip = 3e-3;
+// The colour baked onto approximate faces (engine/colour.cpp) is cut into small triangles, each
+// held and filled on its own: their most (about 250 bytes each), their cost beyond the pixels they
+// fill (baked, copied and filled: 1.54 million of the Menger sponge of level 3 took 4 s more than
+// 49,000 did at 300 dpi, 2026-11-29), and the share of the time left after the tab-room pass that
+// it may take: the layout's search takes up to half of that time, and the pages' pixels much of the
+// rest.
+constexpr std::size_t kMostBakedTriangles = 250'000;
+constexpr double kColourSecondsPerTriangle = 3e-6;
+constexpr double kColourTimeShare = 0.2;
 
 // How much slower than the machine those times were measured on this one runs: a fixed piece of
 // the print's most common work (convex polygons tested for overlap through a PolygonGrid,
@@ -191,6 +202,20 @@ std::optional<NetRepair> grown_warning(const std::vector<Piece>& pieces) {
                        "another seed may find one piece"};
 }
 
+// The warning for colour baked onto approximate faces in triangles larger than usual
+// (bake_colour), to keep its drawing within the job's memory and time limit.
+NetRepair coarser_colour_warning(double step_mm, double time_limit) {
+  char step[32], usual[32], limit[32];
+  std::snprintf(step, sizeof step, "%.1f", step_mm);
+  std::snprintf(usual, sizeof usual, "%.1f", kBakeStepMm);
+  std::snprintf(limit, sizeof limit, "%g s", time_limit);
+  return NetRepair{"colour_sampled_coarser", 1,
+                   "the colour of the coarser mesh's faces is sampled from the model every " +
+                       std::string(step) + " mm instead of every " + usual +
+                       " mm, so that drawing it keeps within the job's memory and time limit (" +
+                       limit + ")"};
+}
+
 }  // namespace
 
 UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
@@ -288,9 +313,21 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   if (small_parts) out.net.warnings.push_back(std::move(*small_parts));
   if (auto warning = grown_warning(pieces)) out.net.warnings.push_back(std::move(*warning));
   out.net.metrics.seconds = seconds;
-  if (options.colour && documents.print()) out.baked_colour = bake_colour(pieces, prepared, scale);
-  // The layout's search for fewer sheets may take half of the time left; drawing the rest.
-  write_documents(options, documents, out, 0.5 * (time_limit - seconds_since(start)), tracked);
+  if (options.colour && documents.print()) {
+    // The baked colour keeps within its memory and its share of the time left (the side of its
+    // small triangles grows), where a net of many approximate faces would take minutes and a
+    // gigabyte (the Menger sponge of level 3: 1.54 million triangles).
+    const double left = std::max(time_limit - seconds_since(start), 0.0);
+    const double most = kColourTimeShare * left / (slowness * kColourSecondsPerTriangle);
+    BakedColour baked = bake_colour(
+        pieces, prepared, scale,
+        static_cast<std::size_t>(std::min(most, static_cast<double>(kMostBakedTriangles))));
+    if (baked.coarser)
+      out.net.warnings.push_back(coarser_colour_warning(baked.step_mm, time_limit));
+    out.baked_colour = std::move(baked.faces);
+  }
+  // The print gets what is left: half of it the layout's search for fewer sheets.
+  write_documents(options, documents, out, time_limit - seconds_since(start), tracked);
   tracked.finish(out.net.mesh.faces.size(), prepared.input.faces);
   return out;
 }

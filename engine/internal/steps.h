@@ -118,12 +118,25 @@ std::optional<NetRepair> detail_warning(const std::vector<Piece>& pieces,
                                         const std::vector<Mesh>& parts, const JobOptions& options,
                                         double scale);
 
+/// The side of the small triangles of bake_colour, printed millimetres, unless their number is
+/// bounded lower.
+inline constexpr double kBakeStepMm = 2.5;
+
+/// The colour of the approximate pieces' faces, cut into small triangles (bake_colour).
+struct BakedColour {
+  /// Per face of the pieces side by side (as `assemble` puts them); empty for faces of pieces
+  /// that fold into their part's own faces and for parts without colour.
+  std::vector<std::vector<ColourTriangle>> faces;
+  double step_mm = 0;    ///< the small triangles' side, printed millimetres
+  bool coarser = false;  ///< larger than the usual side, to keep within the most triangles
+};
+
 /// The colour of each face of the approximate pieces, from the input surface nearest to it
-/// (engine/colour.cpp): per face of the pieces side by side (as `assemble` puts them), empty for
-/// faces of pieces that fold into their part's own faces and for parts without colour.
-/// `scale` is the print's millimetres per model unit.
-std::vector<std::vector<ColourTriangle>> bake_colour(const std::vector<Piece>& pieces,
-                                                     const Prepared& input, double scale);
+/// (engine/colour.cpp). `scale` is the print's millimetres per model unit. The print draws each
+/// small triangle on its own, so `most_triangles` bounds their number: the side grows until they
+/// are that few (each face at least one).
+BakedColour bake_colour(const std::vector<Piece>& pieces, const Prepared& input, double scale,
+                        std::size_t most_triangles);
 
 /// The colour of an approximate piece's `mesh` in the net document (engine/colour.cpp): each
 /// corner's vertex colour is the input's colour at the point of `part` nearest to it (the
@@ -152,13 +165,15 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
 /// The documents of `outcome.net` that `request` asks for; fills `outcome.print` when it asks
 /// for a print. Printed on paper, `outcome.net` becomes the net as printed (its pieces cut to fit
 /// a sheet, its `print` placements) before the net JSON is written. Progress: phase "layout" (a
-/// print's pieces cut to fit, tabs, nesting), then "write", each with its phase_fraction. A fit
-/// layout tries several cuts while `layout_seconds` last, at least one, and keeps the one that
-/// needs the fewest sheets for its pieces (docs/print.md, "Fit layout"), laying out
-/// `search_threads` of them at a time (the choice is the same for any number).
+/// print's pieces cut to fit, tabs, nesting), then "write", each with its phase_fraction. The
+/// print may take `seconds` (what is left of the job's time limit): a fit layout tries several
+/// cuts while half of them last, at least one, and keeps the one that needs the fewest sheets for
+/// its pieces (docs/print.md, "Fit layout"), laying out `search_threads` of them at a time (the
+/// choice is the same for any number); the pages' colour is drawn at a lower resolution where
+/// the pages would not be written by then (docs/colour.md, "Time limit").
 /// \throw InvalidOptionException when the print refuses the options.
 void write_documents(const JobOptions& options, const DocumentRequest& request,
-                     UnfoldOutcome& outcome, double layout_seconds, Progress& progress,
+                     UnfoldOutcome& outcome, double seconds, Progress& progress,
                      int search_threads = kFitSearchThreads);
 
 }  // namespace papernet::engine_detail

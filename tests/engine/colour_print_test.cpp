@@ -260,16 +260,18 @@ void check_tabs(const NetDocument& doc, const Expected& model, const Raster& ras
   }
 }
 
-// Prints `input` to PDF at `size_mm` with colour at kDpi and compares every page with
-// `expected` (by default the net JSON's own colour data: model_colour).
+// Prints `input` to PDF at `size_mm` with colour at `dpi` (kDpi unless given; rendered at kDpi)
+// and compares every page with `expected` (by default the net JSON's own colour data:
+// model_colour).
 Check check_colour(const std::string& file, double size_mm, const JobInput& input,
                    Expected expected = nullptr,
-                   std::function<bool(const NetDocument&, std::size_t)> sampled = nullptr) {
+                   std::function<bool(const NetDocument&, std::size_t)> sampled = nullptr,
+                   double dpi = kDpi) {
   JobOptions options;
   options.strategy = Strategy::TU;
   options.detail = {DetailMode::Full, 0};
   options.size_mm = size_mm;
-  options.dpi = kDpi;
+  options.dpi = dpi;
   options.layout = PageLayoutMode::Fit;
   options.labels = false;  // line art over the colour: numbers cover small faces' centres
   options.tab_room_budget = 2000;
@@ -765,23 +767,35 @@ TEST(ColourPrintForms, FarOutUvsUnderClampSamplingPrintTheClampedTexture) {
   EXPECT_EQ(warning("texture_coordinates_missing"), 1u);
 }
 
-// Vertex colours are linear (glTF) and so is their interpolation across a face; cairo's
-// gradients interpolate in sRGB, which from black to white is 0.235 off at the middle. The box
-// with each face black at one corner and white at the others prints the linear blend (the test's
-// expected colour: srgb of the interpolated linear colour).
-TEST(ColourPrintForms, VertexColourGradientsBlendLinearly) {
-  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+// The box with each face black at one corner and white at the others, printed with colour at
+// `dpi`: every face prints the linear blend of its corners (the test's expected colour: srgb of
+// the interpolated linear colour).
+void expect_linear_blend(const std::string& file, double dpi) {
   const SourceModel box = box_textured();
   std::vector<std::array<std::array<float, 3>, 3>> colours(box.corners.size());
   for (auto& face : colours) face = {{{0, 0, 0}, {1, 1, 1}, {1, 1, 1}}};
-  const Check check =
-      check_colour("box_gradient.gltf", 80, as_gltf(box, box.uvs, nullptr, nullptr, colours));
+  const Check check = check_colour(file, 80, as_gltf(box, box.uvs, nullptr, nullptr, colours),
+                                   nullptr, nullptr, dpi);
   EXPECT_EQ(check.faces, 12u);
   EXPECT_GE(static_cast<double>(check.matched), 0.98 * check.faces)
       << check.matched << " of " << check.faces
       << " faces print the linear blend of their corners; worst mean difference " << check.worst;
-  std::printf("vertex colour gradients: %zu of %zu faces within %.2f (worst %.3f)\n", check.matched,
-              check.faces, kTolerance, check.worst);
+  std::printf("vertex colour gradients at %g dpi: %zu of %zu faces within %.2f (worst %.3f)\n", dpi,
+              check.matched, check.faces, kTolerance, check.worst);
+}
+
+// Vertex colours are linear (glTF) and so is their interpolation across a face; cairo's
+// gradients interpolate in sRGB, which from black to white is 0.235 off at the middle.
+TEST(ColourPrintForms, VertexColourGradientsBlendLinearly) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  expect_linear_blend("box_gradient.gltf", kDpi);
+}
+
+// The same at the print's default resolution, 300 dpi, where vertex colours are not drawn by
+// cairo's gradients but computed pixel by pixel (print/colour.cpp, write_gradient).
+TEST(ColourPrintForms, VertexColourGradientsBlendLinearlyAtTheDefaultResolution) {
+  if (!has_pdftoppm()) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  expect_linear_blend("box_gradient_300.gltf", kDefaultColourDpi);
 }
 
 // Alpha (glTF alphaMode; docs/colour.md, "Alpha"): the Khronos AlphaBlendModeTest, whose
@@ -946,6 +960,72 @@ TEST(ColourPrintSvg, PagesHoldOnePngPerPieceBetweenFillsAndLines) {
   EXPECT_EQ(images, static_cast<std::size_t>(out.print->pieces));
   EXPECT_GE(coloured_pages, 1u);
   EXPECT_LE(coloured_pages, static_cast<std::size_t>(out.print->pieces));
+}
+
+// The resolution of a page's colour images (SVG), dots per inch: the largest image's pixels over
+// its width; 0 without colour (the overview).
+double page_dpi(const std::string& svg) {
+  const auto colour = svg.find("<g id=\"colour\"");
+  if (colour == std::string::npos) return 0;
+  double dpi = 0, widest = 0;
+  const std::string prefix = "href=\"data:image/png;base64,";
+  for (auto at = svg.find("<image ", colour); at != std::string::npos;
+       at = svg.find("<image ", at + 1)) {
+    const auto w = svg.find("width=\"", at) + 7;
+    const double width_mm = std::stod(svg.substr(w, svg.find('"', w) - w));
+    const auto href = svg.find(prefix, at) + prefix.size();
+    const Image image =
+        decode_image(detail::decode_base64(svg.substr(href, svg.find('"', href) - href)));
+    if (width_mm > widest) widest = width_mm, dpi = 25.4 * image.width / width_mm;
+  }
+  return dpi;
+}
+
+// The job's time limit bounds the drawing of coloured pages (docs/colour.md, "Time limit"): the
+// Duck given 0.3 s has no time left for its pages when they are drawn, so from the first or
+// second sheet on (as the layout's search leaves it) they print their colour at a lower
+// resolution, the least (50 dpi), instead of overrunning, and the result says which; every page
+// still has its colour. Given time to spare, every page prints at the resolution asked.
+TEST(ColourPrintTime, PagesPastTheTimeLimitPrintTheirColourAtALowerResolution) {
+  PipelineProgress quiet;
+  JobOptions options;
+  options.dpi = 150;
+  options.time_limit = 0.3;
+  const UnfoldOutcome late =
+      run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true, .pdf = true}, quiet);
+  const auto& pages = late.documents.svg_pages;
+  ASSERT_GE(pages.size(), 4u) << "an overview and at least three sheets";
+  EXPECT_EQ(page_dpi(pages[0]), 0) << "the overview has no colour";
+  std::size_t first_lowered = pages.size();
+  for (std::size_t i = 1; i < pages.size(); ++i) {
+    const double dpi = page_dpi(pages[i]);
+    if (i == 1 && std::abs(dpi - 150) < 2) continue;  // drawn before the time ran out
+    first_lowered = std::min(first_lowered, i);
+    EXPECT_GE(dpi, 49) << "page " << i + 1 << " has its colour";
+    EXPECT_LE(dpi, 51) << "page " << i + 1 << " is drawn at the least resolution";
+  }
+  ASSERT_LE(first_lowered, 2u);
+  const auto warning =
+      std::find_if(late.net.warnings.begin(), late.net.warnings.end(),
+                   [](const NetRepair& w) { return w.code == "colour_resolution_lowered"; });
+  ASSERT_NE(warning, late.net.warnings.end());
+  EXPECT_EQ(warning->count, pages.size() - first_lowered);
+  EXPECT_NE(warning->message.find("pages " + std::to_string(first_lowered + 1) + " to " +
+                                  std::to_string(pages.size()) + " print"),
+            std::string::npos)
+      << warning->message;
+  EXPECT_NE(warning->message.find("than 150 dpi (down to 50 dpi)"), std::string::npos)
+      << warning->message;
+
+  options.time_limit = 1000;
+  options.dpi = kDpi;
+  const UnfoldOutcome spare =
+      run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true}, quiet);
+  ASSERT_GE(spare.documents.svg_pages.size(), 3u);
+  for (std::size_t i = 1; i < spare.documents.svg_pages.size(); ++i)
+    EXPECT_NEAR(page_dpi(spare.documents.svg_pages[i]), kDpi, 2) << "page " << i + 1;
+  for (const NetRepair& w : spare.net.warnings)
+    EXPECT_NE(w.code, "colour_resolution_lowered") << w.message;
 }
 
 // With colour none the same pages are line art: the faces print in the pale face fill, not the
