@@ -105,17 +105,24 @@ double factor_cover(const ColourTriangle& t, const PrintColour& colour) {
   return 1;
 }
 
-// The triangle's own colour factor (material × vertex colours), sRGB, at barycentric point w:
-// vertex colours are interpolated as glTF has them, linear, then turned into sRGB. Without a
-// texture, the paper shows through as the factor's alpha says.
-std::array<double, 3> factor_at(const ColourTriangle& t, const PrintColour& colour,
-                                const std::array<double, 3>& w) {
+// The triangle's own colour factor (material × vertex colours), linear, at barycentric point w:
+// vertex colours are interpolated as glTF has them.
+std::array<double, 3> linear_factor_at(const ColourTriangle& t, const PrintColour& colour,
+                                       const std::array<double, 3>& w) {
   RGBA c{1, 1, 1, 1};
   if (t.material >= 0 && t.material < static_cast<int>(colour.materials.size()))
     c = colour.materials[t.material].base_color;
   if (finite(t.rgba[0]) && finite(t.rgba[1]) && finite(t.rgba[2]))
     for (int i = 0; i < 3; ++i)
       c[i] *= w[0] * t.rgba[0][i] + w[1] * t.rgba[1][i] + w[2] * t.rgba[2][i];
+  return {c[0], c[1], c[2]};
+}
+
+// The same turned into sRGB. Without a texture, the paper shows through as the factor's alpha
+// says.
+std::array<double, 3> factor_at(const ColourTriangle& t, const PrintColour& colour,
+                                const std::array<double, 3>& w) {
+  const std::array<double, 3> c = linear_factor_at(t, colour, w);
   std::array<double, 3> out{srgb(c[0]), srgb(c[1]), srgb(c[2])};
   if (!texture_of(t, colour)) {
     const double cover = factor_cover(t, colour);
@@ -459,15 +466,14 @@ bool write_gradient(cairo_t* cr, const ColourTriangle& t, const std::array<Vec2,
   const double det = cross(d[1] - d[0], d[2] - d[0]);
   if (!(std::abs(det) > 1e-12)) return false;
   // Each channel's linear value is affine on the page: value(x, y) = at0 + dx x + dy y.
-  RGBA base{1, 1, 1, 1};
-  if (t.material >= 0 && t.material < static_cast<int>(colour.materials.size()))
-    base = colour.materials[t.material].base_color;
+  const std::array<double, 3> c0 = linear_factor_at(t, colour, {1, 0, 0}),
+                              c1 = linear_factor_at(t, colour, {0, 1, 0}),
+                              c2 = linear_factor_at(t, colour, {0, 0, 1});
   std::array<double, 3> at0{}, dx{}, dy{};
   for (int i = 0; i < 3; ++i) {
-    const double v0 = base[i] * t.rgba[0][i], v1 = base[i] * t.rgba[1][i],
-                 v2 = base[i] * t.rgba[2][i];
+    const double v0 = c0[i];
     // v(q) = v0 + u (v1 - v0) + w (v2 - v0), u and w q's weights of corners 1 and 2.
-    const double a = v1 - v0, b = v2 - v0;
+    const double a = c1[i] - v0, b = c2[i] - v0;
     dx[i] = (a * (d[2].y - d[0].y) - b * (d[1].y - d[0].y)) / det;
     dy[i] = (b * (d[1].x - d[0].x) - a * (d[2].x - d[0].x)) / det;
     at0[i] = v0 - dx[i] * d[0].x - dy[i] * d[0].y;
