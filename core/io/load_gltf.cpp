@@ -305,12 +305,14 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
   *err = "writing is disabled";
   return false;
 }
-// Keeps the bytes of an image that comes from a buffer view or a data URI; they are decoded
-// (and checked) by read_gltf_materials, which knows the limits.
-bool keep_image(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+// Keeps the bytes of an image tinygltf decoded from a data URI; they are decoded (and checked)
+// by read_gltf_materials, which knows the limits. An image in a buffer view is left to
+// read_gltf_materials too: tinygltf hands it over without checking that the view lies inside
+// its buffer.
+bool keep_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                 const unsigned char* bytes, int size, void* user) {
   auto& images = *static_cast<GltfImageBytes*>(user);
-  if (bytes && size > 0)
+  if (image->bufferView < 0 && bytes && size > 0)
     images[index].assign(reinterpret_cast<const char*>(bytes), std::size_t(size));
   return true;
 }

@@ -137,7 +137,24 @@ void read_gltf_materials(const tinygltf::Model& model, const GltfImageBytes& ima
     const tinygltf::Image& image = model.images[t.source];
     std::string bytes;
     const auto found = images.find(t.source);
-    if (found != images.end()) {
+    if (image.bufferView >= 0) {
+      const auto view = std::size_t(image.bufferView);
+      const tinygltf::BufferView* bv =
+          view < model.bufferViews.size() ? &model.bufferViews[view] : nullptr;
+      const std::vector<unsigned char>* buffer =
+          bv && bv->buffer >= 0 && std::size_t(bv->buffer) < model.buffers.size()
+              ? &model.buffers[std::size_t(bv->buffer)].data
+              : nullptr;
+      if (!buffer || bv->byteOffset > buffer->size() ||
+          bv->byteLength > buffer->size() - bv->byteOffset) {
+        notes.push_back(which + "'s image lies in buffer view " + std::to_string(image.bufferView) +
+                        ", which lies outside its buffer; its material is printed without it");
+        return -1;
+      }
+      if (bv->byteLength > 0)
+        bytes.assign(reinterpret_cast<const char*>(buffer->data()) + bv->byteOffset,
+                     bv->byteLength);
+    } else if (found != images.end()) {
       bytes = found->second;
     } else if (image.uri.starts_with("data:")) {
       // A data URI of a type tinygltf does not decode itself (image/ktx2, image/webp, ...).

@@ -22,12 +22,13 @@ namespace papernet::detail {
 /// (positions refuse it, colour data are dropped).
 double gltf_component(const unsigned char* p, int type, bool normalized);
 
-/// Image bytes tinygltf handed to its image loader (from a buffer view or a data URI), by image.
+/// Image bytes tinygltf decoded from a data URI and handed to its image loader, by image.
 using GltfImageBytes = std::map<int, std::string>;
 
-/// The model's materials and the textures they use; images come from `images`, else from
-/// `options.external_files` by URI. An image that is missing, not PNG/JPEG or does not decode
-/// leaves its material without a texture and adds a note.
+/// The model's materials and the textures they use; images come from their buffer view, else
+/// from `images`, else from `options.external_files` by URI. An image that is missing, outside
+/// its buffer, not PNG/JPEG or does not decode leaves its material without a texture and adds a
+/// note.
 /// \throw LimitExceededException when an image has more pixels than the limit.
 void read_gltf_materials(const tinygltf::Model& model, const GltfImageBytes& images,
                          const LoadOptions& options, MeshColour& colour,

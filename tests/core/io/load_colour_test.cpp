@@ -44,6 +44,21 @@ Glb split_glb(const std::string& bytes) {
   return {json::parse(bytes.substr(20, json_length)), bytes.substr(bin_at + 8, bin_length)};
 }
 
+/// A GLB of `doc` with `bin` as its BIN chunk (both padded to 4 bytes, as glTF 2.0 §4.4 asks).
+std::string join_glb(const json& doc, std::string bin) {
+  std::string text = doc.dump();
+  text.append((4 - text.size() % 4) % 4, ' ');
+  bin.append((4 - bin.size() % 4) % 4, '\0');
+  const auto u32 = [](std::size_t v) {
+    const auto w = std::uint32_t(v);
+    std::string out(4, '\0');
+    std::memcpy(out.data(), &w, 4);
+    return out;
+  };
+  return "glTF" + u32(2) + u32(28 + text.size() + bin.size()) + u32(text.size()) + "JSON" + text +
+         u32(bin.size()) + std::string("BIN\0", 4) + bin;
+}
+
 /// The bytes of buffer view `index`.
 std::string view_bytes(const Glb& glb, int index) {
   const json& v = glb.doc["bufferViews"][index];
@@ -236,6 +251,44 @@ TEST(LoadColour, AnImageThatCannotBeUsedLeavesTheMaterialUntexturedWithANote) {
     EXPECT_EQ(m.colour.materials[0].texture, -1);
     EXPECT_TRUE(m.colour.textures.empty());
     EXPECT_TRUE(has_note(m, c.note)) << (m.notes.empty() ? "" : m.notes[0]);
+  }
+}
+
+TEST(LoadColour, AnImageWhoseBufferViewLiesOutsideItsBufferIsLeftOutWithANote) {
+  const Glb glb = split_glb(read_file(kBoxTextured));
+  const int view = glb.doc["images"][0]["bufferView"].get<int>();
+  const std::size_t size = glb.bin.size();
+  // The view as the file has it loads the texture; one byte more, or a start past the buffer,
+  // and the image is left out (tinygltf hands such a view over without checking it).
+  const struct {
+    std::size_t offset, length;
+    bool inside;
+  } cases[] = {
+      {glb.doc["bufferViews"][view].value("byteOffset", std::size_t{0}),
+       glb.doc["bufferViews"][view]["byteLength"].get<std::size_t>(), true},
+      {glb.doc["bufferViews"][view].value("byteOffset", std::size_t{0}),
+       size - glb.doc["bufferViews"][view].value("byteOffset", std::size_t{0}) + 1, false},
+      {size + 4, 16, false},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::to_string(c.offset) + " + " + std::to_string(c.length) + " of " +
+                 std::to_string(size));
+    json doc = glb.doc;
+    doc["bufferViews"][view]["byteOffset"] = c.offset;
+    doc["bufferViews"][view]["byteLength"] = c.length;
+    const LoadedMesh m = load_mesh(join_glb(doc, glb.bin), MeshFormat::Glb);
+    EXPECT_EQ(m.mesh.faces.size(), 12u);
+    EXPECT_EQ(m.colour.uvs.size(), 12u);
+    ASSERT_EQ(m.colour.materials.size(), 1u);
+    if (c.inside) {
+      EXPECT_EQ(m.colour.materials[0].texture, 0);
+      ASSERT_EQ(m.colour.textures.size(), 1u);
+      EXPECT_EQ(m.colour.textures[0].bytes, box_png());
+    } else {
+      EXPECT_EQ(m.colour.materials[0].texture, -1);
+      EXPECT_TRUE(m.colour.textures.empty());
+      EXPECT_TRUE(has_note(m, "outside its buffer")) << (m.notes.empty() ? "" : m.notes[0]);
+    }
   }
 }
 
