@@ -241,7 +241,9 @@ constexpr Spec kOptions[] = {
        else
          bad_value(n, v, "auto or none");
      }},
-    {"dpi", "N", "resolution of the printed colour, dots per inch (50 to 1200)",
+    {"dpi", "N",
+     "resolution of the printed colour, dots per inch (50 to 1200); later pages print lower when "
+     "the time limit would pass (warning colour_resolution_lowered)",
      [](JobOptions& o, const std::string& n, const json& v) { o.dpi = number(n, v); }},
     {"overview", "",
      "with layout fit, a first page mapping the sheets, the pieces on each and the build order "

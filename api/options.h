@@ -83,7 +83,8 @@ struct JobOptions {
   /// Print the model's colour (textures, material and vertex colours) on SVG and PDF pages
   /// (docs/colour.md, "Printing"); false prints line art.
   bool colour = true;
-  /// Resolution of the printed colour, dots per inch.
+  /// Resolution of the printed colour, dots per inch; later pages print lower when the time limit
+  /// would pass (docs/colour.md, "Time limit").
   double dpi = kDefaultColourDpi;
   /// A first page with a map of the sheets, the pieces on each and the build order (layout fit
   /// only). Unset: with more than one piece.
