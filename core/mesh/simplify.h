@@ -23,7 +23,10 @@ struct SimplifyTarget {
   double max_distance = 0;
   /// When those steps find no collapse left, tunnels whose loop around (shortest_tunnel_loop,
   /// core/mesh/tunnels.h) is at most this long are plugged, and the steps go on, unless that
-  /// took the surface farther than `max_distance`. 0: none is plugged.
+  /// took the surface farther than `max_distance`. 0: none is plugged. When neither plugs nor
+  /// flips (`thin_face`) help, the short edges themselves are collapsed, shortest first, into
+  /// their middle or an end, where that keeps the surface within `max_distance` and leaves no
+  /// face lower than the lowest around the edge (nor than `thin_face`), and the steps go on.
   double max_tunnel_loop = 0;
   /// Faces lower than this over their longest edge have edges flipped (thicken_thin_faces,
   /// core/mesh/thin_faces.h), the flips of one round moving the surface at most a quarter of
