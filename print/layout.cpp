@@ -475,7 +475,8 @@ constexpr std::size_t kMostFarLabels = 200;
 /// over the piece and meets no other label (docs/print.md, "Labels"). Places are tried on rings
 /// around the edge's middle, 2 to 15 mm, nearest first, from the face's side round to the other,
 /// the text along the edge, level, or across the edge (along a narrow strip that ends at the
-/// edge); a label that finds none keeps its size. None moves when
+/// edge); where no place has a straight leader, the rings are tried again with a leader of two
+/// lines, bent in front of the edge; a label that finds none keeps its size. None moves when
 /// more than kMostFarLabels are under the legible size.
 std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& faces,
                                       const PaperGrid& grid, std::vector<Label>& labels) {
@@ -502,8 +503,22 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
     Label far = label;
     far.size = kLegibleLabelMm;
     const double half_w = 0.3 * far.size * label_chars(far.text), half_h = 0.5 * far.size;
-    Segment leader;
-    // True when the label fits at `at`, turned `angle`, with its leader (into `leader`).
+    Segment leader, bend;  // bend.face: -1 for a straight leader
+    bool bent = false;     // whether a leader may bend: only where no straight one fits
+    // True when a leader may run from `a` to `b` (`b` on the edge when `to_edge`): it starts on
+    // the piece and crosses no cut line (it stops 0.05 mm short of its own edge for the test),
+    // so it runs over the piece; its middle is on the piece, so it reaches its edge from the
+    // face's side.
+    const auto clear = [&](Vec2 a, Vec2 b, bool to_edge) {
+      const double reach = norm(b - a);
+      if (reach <= 0.1) return true;
+      const std::array<Vec2, 2> line{a,
+                                     to_edge ? a + std::max(0.0, 1 - 0.05 / reach) * (b - a) : b};
+      return grid.on_piece(a, face) && grid.on_piece(0.5 * (a + b), face) &&
+             !grid.meets_cut(line) && !boxes.meets(leader_box(a, b), i);
+    };
+    // True when the label fits at `at`, turned `angle`, with its leader (into `leader`, and
+    // `bend`).
     const auto fits = [&](Vec2 at, double angle) {
       far.at = at;
       far.angle = angle;
@@ -521,41 +536,54 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
       const Vec2 q = at + std::clamp(dot(rel, along), -half_w, half_w) * along +
                      std::clamp(dot(rel, across), -half_h, half_h) * across;
       const double nearest = std::clamp(dot(q - p0, d) / len, 0.2, 0.8);
+      bend.face = -1;
       for (const double part : {nearest, 0.5, 0.35, 0.65, 0.2, 0.8}) {
         const Vec2 m = p0 + (part * len) * d;
-        const double reach = norm(m - q);
-        // It starts on the piece and crosses no cut line (it stops 0.05 mm short of its own
-        // edge for the test), so it runs over the piece; its middle is on the piece, so it
-        // reaches its edge from the face's side.
-        const std::array<Vec2, 2> line{q, q + std::max(0.0, 1 - 0.05 / reach) * (m - q)};
-        if (reach > 0.1 && (!grid.on_piece(q, face) || !grid.on_piece(0.5 * (q + m), face) ||
-                            grid.meets_cut(line) || boxes.meets(leader_box(q, m), i)))
-          continue;
+        if (!clear(q, m, true)) continue;
         leader = {q, m, face};
         return true;
       }
+      // Else, on the second round, with a bend in front of the edge's middle (1 to 3 mm from
+      // it, straight or at 30 or 60 degrees), round a cut line that the straight one crosses.
+      if (!bent) return false;
+      for (const double r : {1.0, 2.0, 3.0})
+        for (const double turn : {0.0, 1.0, -1.0, 2.0, -2.0}) {
+          const double a = turn * std::numbers::pi / 6;
+          const Vec2 k = middle + r * (std::cos(a) * up + std::sin(a) * d);
+          if (!grid.on_piece(k, face) || !clear(k, middle, true) || !clear(q, k, false)) continue;
+          leader = {q, k, face};
+          bend = {k, middle, face};
+          return true;
+        }
       return false;
     };
     const double along_edge = std::atan2(d.y, d.x);
     bool placed = false;
-    for (const double r : {2.0, 3.0, 4.0, 5.5, 7.0, 9.0, 11.5, 15.0}) {
-      for (int j = 0; j <= 12 && !placed; ++j)
-        for (const int sign : {1, -1}) {
-          if ((j == 0 || j == 12) && sign < 0) continue;
-          const double turn = sign * j * std::numbers::pi / 12;
-          const Vec2 at = middle + r * (std::cos(turn) * up + std::sin(turn) * d);
-          if ((placed = fits(at, along_edge) || fits(at, 0) ||
-                        fits(at, along_edge + std::numbers::pi / 2)))
-            break;
-        }
+    for (const bool with_bend : {false, true}) {
+      bent = with_bend;
+      for (const double r : {2.0, 3.0, 4.0, 5.5, 7.0, 9.0, 11.5, 15.0}) {
+        for (int j = 0; j <= 12 && !placed; ++j)
+          for (const int sign : {1, -1}) {
+            if ((j == 0 || j == 12) && sign < 0) continue;
+            const double turn = sign * j * std::numbers::pi / 12;
+            const Vec2 at = middle + r * (std::cos(turn) * up + std::sin(turn) * d);
+            if ((placed = fits(at, along_edge) || fits(at, 0) ||
+                          fits(at, along_edge + std::numbers::pi / 2)))
+              break;
+          }
+        if (placed) break;
+      }
       if (placed) break;
     }
     if (!placed) continue;
     boxes.remove(i);
     labels[i] = far;
     boxes.add(i);
-    drawn.push_back(leader_box(leader.a, leader.b));
-    leaders.push_back(leader);
+    for (const Segment& s : {leader, bend})
+      if (s.face >= 0) {
+        drawn.push_back(leader_box(s.a, s.b));
+        leaders.push_back(s);
+      }
   }
   return leaders;
 }

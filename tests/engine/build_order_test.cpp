@@ -387,7 +387,7 @@ bool point_in_polygon(Vec2 p, const std::vector<Vec2>& poly) {
 // line: each line starts at a label of at least 1.5 mm and ends on a drawn cut line or tab hinge
 // (its edge).
 TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
-  std::size_t leaders = 0;
+  std::size_t leaders = 0, bends = 0;
   for (const Printed* printed : {&duck(), &cad_part()}) {
     ASSERT_TRUE(printed->doc.print);
     for (int k = 0; k < static_cast<int>(printed->pages.size()); ++k) {
@@ -419,30 +419,43 @@ TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
       // The edge: a cut line, or the hinge of its glue tab (drawn as a mountain fold).
       std::vector<std::array<Vec2, 2>> cuts = drawn_segments(page, "cut");
       for (const auto& hinge : drawn_segments(page, "mountain")) cuts.push_back(hinge);
-      for (const std::array<Vec2, 2>& leader : drawn_segments(page, "leaders")) {
+      const std::vector<std::array<Vec2, 2>> drawn_leaders = drawn_segments(page, "leaders");
+      // A leader with a bend is two lines, the second from where the first ends.
+      const auto joins = [&](Vec2 p, int end) {
+        return std::any_of(drawn_leaders.begin(), drawn_leaders.end(),
+                           [&](const std::array<Vec2, 2>& l) { return norm(l[end] - p) < 1e-3; });
+      };
+      for (const std::array<Vec2, 2>& leader : drawn_leaders) {
         const Vec2 from = leader[0], to = leader[1];  // a lambda below takes `from`
-        ++leaders;
-        // Starts at a label's box (the drawn glyph box is a little smaller than the label's).
-        const auto starts =
-            std::find_if(edge_labels.begin(), edge_labels.end(), [&](const DrawnText& t) {
-              const auto& c = t.corners;
-              double d = INFINITY;
-              for (int j = 0; j < 4; ++j)
-                d = std::min(d, segment_distance(from, c[j], c[(j + 1) % 4]));
-              return d < 0.3 * 1.5;
-            });
-        ASSERT_NE(starts, edge_labels.end()) << "a leader on page " << k + 1 << " starts at ("
-                                             << from.x << ", " << from.y << "), at no label";
-        const double height = norm(starts->corners[3] - starts->corners[0]) / 0.7;
-        EXPECT_GE(height, 1.5 - 1e-3) << "leader to \"" << starts->text << "\"";
+        const bool first = !joins(from, 1), last = !joins(to, 0);
+        EXPECT_TRUE(first || last) << "a leader of more than two lines on page " << k + 1;
+        leaders += first;
+        bends += !first;
+        if (first) {
+          // Starts at a label's box (the drawn glyph box is a little smaller than the label's).
+          const auto starts =
+              std::find_if(edge_labels.begin(), edge_labels.end(), [&](const DrawnText& t) {
+                const auto& c = t.corners;
+                double d = INFINITY;
+                for (int j = 0; j < 4; ++j)
+                  d = std::min(d, segment_distance(from, c[j], c[(j + 1) % 4]));
+                return d < 0.3 * 1.5;
+              });
+          ASSERT_NE(starts, edge_labels.end()) << "a leader on page " << k + 1 << " starts at ("
+                                               << from.x << ", " << from.y << "), at no label";
+          const double height = norm(starts->corners[3] - starts->corners[0]) / 0.7;
+          EXPECT_GE(height, 1.5 - 1e-3) << "leader to \"" << starts->text << "\"";
+        }
+        if (!last) continue;
         double to_cut = INFINITY;
         for (const auto& [a, b] : cuts) to_cut = std::min(to_cut, segment_distance(to, a, b));
-        EXPECT_LT(to_cut, 1e-2) << "the leader of \"" << starts->text << "\" on page " << k + 1
-                                << " ends at (" << to.x << ", " << to.y << "), on no edge";
+        EXPECT_LT(to_cut, 1e-2) << "a leader on page " << k + 1 << " ends at (" << to.x << ", "
+                                << to.y << "), on no edge";
       }
     }
   }
   EXPECT_GT(leaders, 0u) << "no label of the CAD part printed away from its edge";
+  EXPECT_GT(bends, 0u) << "no leader of the CAD part bends";
 }
 
 // The overview is page 1: every piece on it once, captioned with the page the placements put it
