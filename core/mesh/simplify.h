@@ -34,7 +34,9 @@ struct SimplifyTarget {
   double thin_face = 0;
   /// When true, a part that is a thin plate, within `max_distance` of one of its sides
   /// (plate_side, core/mesh/thin_plates.h), becomes that side (an open surface, one layer of
-  /// card): the part as given, before the collapse, and once more the collapsed mesh at the end.
+  /// card): the part as given, before the collapse, and once more the collapsed mesh at the end;
+  /// not a side that folds over itself at its border (the faces round a border vertex turning
+  /// through more than a full turn).
   bool thin_plates = false;
   /// Seconds the steps for short edges may take (each measures the distance to `mesh`, which
   /// on a dense mesh of slivers adds up to seconds); when they are spent, the mesh collapsed so
