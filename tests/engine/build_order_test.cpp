@@ -385,7 +385,7 @@ bool point_in_polygon(Vec2 p, const std::vector<Vec2>& poly) {
 // CAD part 127 of its 432 labels, moved beside short edges, hung past their piece's outline
 // before). A label that found no legible place at its edge prints farther away with a leader
 // line, straight or with one bend: each leader starts at a label of at least 1.5 mm and ends on
-// a drawn cut line or tab hinge (its edge), and the CAD part has leaders of both kinds.
+// a drawn cut line or tab hinge (its edge); the CAD part has leaders, and one that bends.
 TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
   std::size_t leaders = 0, bends = 0;
   for (const Printed* printed : {&duck(), &cad_part()}) {
