@@ -26,7 +26,8 @@ struct SimplifyTarget {
   /// took the surface farther than `max_distance`. 0: none is plugged. When neither plugs nor
   /// flips (`thin_face`) help, the short edges themselves are collapsed, shortest first, into
   /// their middle or an end, where that keeps the surface within `max_distance` and leaves no
-  /// face lower than the lowest around the edge (nor than `thin_face`), and the steps go on.
+  /// face lower than the lower of `thin_face` and the lowest face around the edge, and the
+  /// steps go on.
   double max_tunnel_loop = 0;
   /// Faces lower than this over their longest edge have edges flipped (thicken_thin_faces,
   /// core/mesh/thin_faces.h), the flips of one round moving the surface at most a quarter of
