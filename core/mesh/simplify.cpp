@@ -143,9 +143,9 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   // collapse may move the surface farther than a short edge's would: trimesh ADIS16480 stopped
   // at 282 faces with 39 edges of 1.7 to 3 mm, at slivers whose labels printed under 1.5 mm.
   // No collapse may leave a face lower than the lower of a thin face and the lowest face around
-  // its edge: it would make a sliver. The distance is measured once for a batch of collapses; a batch
-  // that moves the surface too far is undone and tried again half as large, and one collapse
-  // alone tries each of the three points.
+  // its edge: it would make a sliver. The distance is measured once for a batch of collapses;
+  // a batch that moves the surface too far is undone and tried again half as large, and one
+  // collapse alone tries each of the three points.
   const auto collapse_short_edges = [&] {
     ProgressiveMesh p(simple);  // simple's ids
     std::vector<std::pair<double, std::pair<int, int>>> edges;
