@@ -1,5 +1,6 @@
 #include "server/job_json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -102,9 +103,12 @@ json job_to_json(const JobView& view, double now) {
       {"queue_position", view.queue_position ? json(view.queue_position) : json(nullptr)}};
   if (view.progress) {
     progress["phase"] = view.progress->phase;
-    // Rounded down: 1 only when the run ended.
-    progress["fraction"] =
-        is_final(r.status) ? 1.0 : std::floor(view.progress->fraction * 1000) / 1000;
+    // Rounded down, and under 1 until the job has ended: the run reports 1 when its last
+    // document is written, before the job stores its results and ends (an event stream showed
+    // a running job at 1 in between, 2026-11-29).
+    progress["fraction"] = is_final(r.status)
+                               ? 1.0
+                               : std::min(0.999, std::floor(view.progress->fraction * 1000) / 1000);
     progress["faces"] = view.progress->faces;
     progress["input_faces"] = view.progress->input_faces;
     progress["overlaps"] = view.progress->overlaps;

@@ -49,6 +49,9 @@ TEST(JobJsonTest, RunningJobShowsProgressAndIntermediateLinks) {
   EXPECT_EQ(doc["progress"]["phase"], "uncollapse");
   EXPECT_EQ(doc["progress"]["fraction"], 0.123);  // rounded down: 1 only once the job ended
   EXPECT_EQ(doc["progress"]["faces"], 800);
+  // The run has written its last document, but the job has not stored its results yet.
+  v.progress->fraction = 1;
+  EXPECT_EQ(job_to_json(v, 1'700'000'003)["progress"]["fraction"], 0.999);
   EXPECT_EQ(doc["progress"]["input_faces"], 2000);
   EXPECT_EQ(doc["progress"]["elapsed_seconds"], 2.0);
   EXPECT_TRUE(doc["progress"]["queue_position"].is_null());
