@@ -504,7 +504,7 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
     far.size = kLegibleLabelMm;
     const double half_w = 0.3 * far.size * label_chars(far.text), half_h = 0.5 * far.size;
     Segment leader, bend;  // bend.face: -1 for a straight leader
-    bool bent = false;     // whether a leader may bend: only where no straight one fits
+    bool bent = false;     // the second round: leaders that bend (the first tried straight ones)
     // True when a leader may run from `a` to `b` (`b` on the edge when `to_edge`): it starts on
     // the piece and crosses no cut line (it stops 0.05 mm short of its own edge for the test),
     // so it runs over the piece; its middle is on the piece, so it reaches its edge from the
@@ -537,15 +537,19 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
                      std::clamp(dot(rel, across), -half_h, half_h) * across;
       const double nearest = std::clamp(dot(q - p0, d) / len, 0.2, 0.8);
       bend.face = -1;
-      for (const double part : {nearest, 0.5, 0.35, 0.65, 0.2, 0.8}) {
-        const Vec2 m = p0 + (part * len) * d;
-        if (!clear(q, m, true)) continue;
-        leader = {q, m, face};
-        return true;
+      if (!bent) {
+        for (const double part : {nearest, 0.5, 0.35, 0.65, 0.2, 0.8}) {
+          const Vec2 m = p0 + (part * len) * d;
+          if (!clear(q, m, true)) continue;
+          leader = {q, m, face};
+          return true;
+        }
+        return false;
       }
-      // Else, on the second round, with a bend in front of the edge's middle (1 to 3 mm from
-      // it, straight or at 30 or 60 degrees), round a cut line that the straight one crosses.
-      if (!bent) return false;
+      // On the second round, with a bend in front of the edge's middle (1 to 3 mm from it,
+      // straight or at 30 or 60 degrees), round a cut line that the straight one crosses: the
+      // straight leaders were tried at this place on the first round, nothing has changed
+      // since, and none was clear.
       for (const double r : {1.0, 2.0, 3.0})
         for (const double turn : {0.0, 1.0, -1.0, 2.0, -2.0}) {
           const double a = turn * std::numbers::pi / 6;
