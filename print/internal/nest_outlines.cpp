@@ -35,7 +35,6 @@ class Bits {
   std::uint64_t word(int row, int w) const {
     return bits_[static_cast<std::size_t>(row) * words_ + w];
   }
-  bool test(int x, int y) const { return word(y, x / 64) >> (x % 64) & 1; }
   /// The 64 cells of row `row` from cell `x` on (bit 0 is cell x; cells past the row are 0).
   std::uint64_t from(int row, int x) const {
     const int w = x / 64, by = x % 64;
@@ -43,8 +42,48 @@ class Bits {
     if (by != 0 && w + 1 < words_) v |= word(row, w + 1) << (64 - by);
     return v;
   }
-  void set(int x, int y) {
-    bits_[static_cast<std::size_t>(y) * words_ + x / 64] |= std::uint64_t{1} << (x % 64);
+  /// Sets cells x0 to x1 (inclusive) of row y.
+  void set_span(int x0, int x1, int y) {
+    for (int w = x0 / 64; w <= x1 / 64; ++w) {
+      const int lo = std::max(x0 - 64 * w, 0), hi = std::min(x1 - 64 * w, 63);
+      const std::uint64_t up_to_hi =
+          hi == 63 ? ~std::uint64_t{0} : (std::uint64_t{1} << (hi + 1)) - 1;
+      bits_[static_cast<std::size_t>(y) * words_ + w] |= up_to_hi & ~((std::uint64_t{1} << lo) - 1);
+    }
+  }
+  /// ORs `bits` into word `w` of row `row`.
+  void add(int row, int w, std::uint64_t bits) {
+    bits_[static_cast<std::size_t>(row) * words_ + w] |= bits;
+  }
+  /// Cells set in row `row`.
+  int count(int row) const {
+    int n = 0;
+    for (int w = 0; w < words_; ++w) n += std::popcount(word(row, w));
+    return n;
+  }
+  /// The cell of the `n`th set cell of row `row` (from 0; fewer than n + 1 set: width()).
+  int nth_set(int row, int n) const {
+    for (int w = 0; w < words_; ++w) {
+      std::uint64_t bits = word(row, w);
+      const int here = std::popcount(bits);
+      if (n >= here) {
+        n -= here;
+        continue;
+      }
+      for (; n > 0; --n) bits &= bits - 1;
+      return 64 * w + std::countr_zero(bits);
+    }
+    return width_;
+  }
+  /// The longest run of cells of row `row` that are set (`set`) or not.
+  int longest_run(int row, bool set) const {
+    int best = 0;
+    for (int x = next(row, 0, set); x < width_;) {
+      const int end = next(row, x, !set);
+      best = std::max(best, end - x);
+      x = next(row, end, set);
+    }
+    return best;
   }
   /// Word `w` of row `row` shifted `by` (0 to 63) cells to the right: its own bits moved up, and
   /// the top bits of the word before it.
@@ -55,6 +94,15 @@ class Bits {
   }
 
  private:
+  // The first cell from x on in row `row` that is set (`set`) or not; width_ when none is.
+  int next(int row, int x, bool set) const {
+    for (; x < width_; x += 64 - x % 64) {
+      const std::uint64_t w = set ? word(row, x / 64) >> (x % 64) : ~word(row, x / 64) >> (x % 64);
+      if (w != 0) return std::min(width_, x + std::countr_zero(w));
+    }
+    return width_;
+  }
+
   int width_ = 0, height_ = 0, words_ = 0;
   std::vector<std::uint64_t> bits_;
 };
@@ -69,10 +117,35 @@ struct Shape {
   /// Some of the mask's cells, spread over it: a place where one of them meets a marked cell
   /// of the sheet is ruled out before the whole mask is compared.
   std::vector<std::pair<int, int>> probes;
+  /// More of them, spread alike: a place that the first probes leave open is tested on these
+  /// before the whole mask is compared.
+  std::vector<std::pair<int, int>> more_probes;
+  std::size_t cells = 0;  ///< cells of the mask
+  /// The mask's widest rows (row, longest run of its cells in that row), widest first: a place
+  /// where the sheet's row under one of them has no free run as long is ruled out at once.
+  std::vector<std::pair<int, int>> widest;
 };
 
-// How many cells of a mask are probed first (Shape::probes).
+// How many of a mask's widest rows a place's rows are compared with first (Shape::widest).
+constexpr std::size_t kWidestRows = 3;
+
+/// A sheet's cells, with what rules out places quickly: the longest run of free cells of each
+/// row, the longest of all rows, and the free cells in all.
+struct Sheet {
+  Sheet(int cols, int rows)
+      : cells(cols, rows),
+        free_run(static_cast<std::size_t>(rows), cols),
+        widest_free(cols),
+        free(static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows)) {}
+  Bits cells;
+  std::vector<int> free_run;
+  int widest_free;
+  std::size_t free;
+};
+
+// How many cells of a mask are probed first (Shape::probes), and then (Shape::more_probes).
 constexpr std::size_t kProbes = 24;
+constexpr std::size_t kMoreProbes = 256;
 
 // How many times the parts of the last sheet are moved to the front of the order at most (each
 // time that saves a sheet).
@@ -144,16 +217,34 @@ Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, double angle
       for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
         const auto from = static_cast<int>(std::ceil(xs[k] / kCell - 0.5 - shape.ox));
         const auto to = static_cast<int>(std::floor(xs[k + 1] / kCell - 0.5 - shape.ox));
-        for (int i = std::max(0, from); i <= std::min(w - 1, to); ++i) shape.mask.set(i, j);
+        if (std::max(0, from) <= std::min(w - 1, to))
+          shape.mask.set_span(std::max(0, from), std::min(w - 1, to), j);
       }
     }
   }
-  std::vector<std::pair<int, int>> cells;
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i)
-      if (shape.mask.test(i, j)) cells.emplace_back(i, j);
-  const std::size_t step = std::max<std::size_t>(1, cells.size() / kProbes);
-  for (std::size_t k = step / 2; k < cells.size(); k += step) shape.probes.push_back(cells[k]);
+  std::vector<std::pair<int, int>> runs;                                // (row, longest run)
+  std::vector<std::size_t> before(static_cast<std::size_t>(h) + 1, 0);  // cells in rows before
+  for (int j = 0; j < h; ++j) {
+    before[static_cast<std::size_t>(j) + 1] =
+        before[static_cast<std::size_t>(j)] + static_cast<std::size_t>(shape.mask.count(j));
+    runs.emplace_back(j, shape.mask.longest_run(j, true));
+  }
+  shape.cells = before.back();
+  std::stable_sort(runs.begin(), runs.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  runs.resize(std::min(runs.size(), kWidestRows));
+  shape.widest = std::move(runs);
+  // Every step-th cell, in rows from the first, from the middle of the first step on.
+  const auto spread = [&](std::size_t count, std::vector<std::pair<int, int>>& out) {
+    const std::size_t step = std::max<std::size_t>(1, shape.cells / count);
+    for (std::size_t next = step / 2, j = 0; next < shape.cells; next += step) {
+      while (before[j + 1] <= next) ++j;
+      out.emplace_back(shape.mask.nth_set(static_cast<int>(j), static_cast<int>(next - before[j])),
+                       static_cast<int>(j));
+    }
+  };
+  spread(kProbes, shape.probes);
+  spread(kMoreProbes, shape.more_probes);
   return shape;
 }
 
@@ -169,20 +260,35 @@ bool collides(const Bits& sheet, const Bits& mask, int x, int y) {
   return false;
 }
 
-void stamp(Bits& sheet, const Bits& mask, int x, int y) {
-  for (int j = 0; j < mask.height(); ++j)
-    for (int i = 0; i < mask.width(); ++i)
-      if (mask.word(j, i / 64) >> (i % 64) & 1) sheet.set(x + i, y + j);
+void stamp(Sheet& sheet, const Shape& shape, int x, int y) {
+  const Bits& mask = shape.mask;
+  const int first = x / 64, last = (x + mask.width() - 1) / 64;
+  for (int j = 0; j < mask.height(); ++j) {
+    for (int w = first; w <= last; ++w)
+      sheet.cells.add(y + j, w, mask.shifted(j, w - first, x % 64));
+    sheet.free_run[static_cast<std::size_t>(y + j)] = sheet.cells.longest_run(y + j, false);
+  }
+  sheet.widest_free = *std::max_element(sheet.free_run.begin(), sheet.free_run.end());
+  sheet.free -= shape.cells;
 }
 
 /// The lowest, then leftmost, place of `shape` on `sheet` where it touches nothing, no higher
-/// than row `last_y`. Sixty-four places of a row at a time are first ruled out where one of the
-/// shape's probes meets a marked cell.
-std::optional<std::pair<int, int>> lowest_place(const Bits& sheet, const Shape& shape, int last_y) {
+/// than row `last_y`. A sheet with fewer free cells than the shape has, or no free run as long as
+/// its widest row, is passed over at once, and so is a row where one of its widest rows would lie
+/// on a row of the sheet without a free run as long. Sixty-four places of a row at a time are then
+/// ruled out where one of the shape's probes meets a marked cell, then one of its more probes.
+std::optional<std::pair<int, int>> lowest_place(const Sheet& on, const Shape& shape, int last_y) {
+  const Bits& sheet = on.cells;
   const Bits& mask = shape.mask;
+  if (shape.cells > on.free || shape.widest.empty() || shape.widest[0].second > on.widest_free)
+    return std::nullopt;
   const int places = sheet.width() - mask.width() + 1;  // x in [0, places)
   last_y = std::min(last_y, sheet.height() - mask.height());
-  for (int y = 0; y <= last_y && places > 0; ++y)
+  for (int y = 0; y <= last_y && places > 0; ++y) {
+    bool room = true;
+    for (const auto& [j, run] : shape.widest)
+      if (on.free_run[static_cast<std::size_t>(y + j)] < run) room = false;
+    if (!room) continue;
     for (int x0 = 0; x0 < places; x0 += 64) {
       std::uint64_t open =
           places - x0 >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << (places - x0)) - 1;
@@ -190,11 +296,16 @@ std::optional<std::pair<int, int>> lowest_place(const Bits& sheet, const Shape& 
         open &= ~sheet.from(y + j, x0 + i);
         if (open == 0) break;
       }
+      for (std::size_t k = 0; open != 0 && k < shape.more_probes.size(); ++k) {
+        const auto [i, j] = shape.more_probes[k];
+        open &= ~sheet.from(y + j, x0 + i);
+      }
       for (; open != 0; open &= open - 1) {
         const int x = x0 + std::countr_zero(open);
         if (!collides(sheet, mask, x, y)) return std::pair{x, y};
       }
     }
+  }
   return std::nullopt;
 }
 
@@ -210,7 +321,7 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
       shapes[i].push_back(rasterise(parts[i], q * 0.5 * std::numbers::pi, grow));
   // Parts placed in `order`, each on the first sheet where it fits; how many sheets it took.
   const auto fill = [&](const std::vector<std::size_t>& order, std::vector<NestedOutline>& out) {
-    std::vector<Bits> sheets;
+    std::vector<Sheet> sheets;
     for (std::size_t i : order) {
       bool placed = false;
       for (std::size_t k = 0; k <= sheets.size() && !placed; ++k) {
@@ -231,7 +342,7 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
           break;
         }
         if (!best) continue;
-        stamp(sheets[k], best->mask, at.first, at.second);
+        stamp(sheets[k], *best, at.first, at.second);
         out[i] = {static_cast<int>(k), best->angle, (at.first - best->ox) * kCell,
                   (at.second - best->oy) * kCell};
         placed = true;
@@ -247,9 +358,11 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
           lo_y = std::min(lo_y, p.y - grow), hi_y = std::max(hi_y, p.y + grow);
         }
       if (lo_x > hi_x || hi_x - lo_x > width || hi_y - lo_y > height) continue;
-      Bits& full = sheets.emplace_back(cols, rows);
-      for (int y = 0; y < rows; ++y)
-        for (int x = 0; x < cols; ++x) full.set(x, y);
+      Sheet& full = sheets.emplace_back(cols, rows);
+      for (int y = 0; y < rows; ++y) full.cells.set_span(0, cols - 1, y);
+      std::fill(full.free_run.begin(), full.free_run.end(), 0);
+      full.widest_free = 0;
+      full.free = 0;
       out[i] = {static_cast<int>(sheets.size()) - 1, 0, -lo_x, -lo_y};
     }
     return sheets.size();
