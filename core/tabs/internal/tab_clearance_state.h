@@ -77,9 +77,15 @@ class Clearance {
     return tab_fits(
         face, k, shapes_, height_, [&](const Triangle2& t0, const Triangle2& t1, const Box2& box) {
           bool hit = false;
+          const Box2 b0 = triangle_box(t0), b1 = triangle_box(t1);
           grid_.query(box, [&](int c) {
-            if (hit || skip(c)) return;
-            hit = triangles_overlap(t0, pos_[c], tol_) || triangles_overlap(t1, pos_[c], tol_);
+            // triangles_overlap's own first test on each triangle, with the faces' boxes kept
+            // (box_ is the box of pos_ for every face not skipped); a face whose box misses the
+            // tab's misses both its triangles.
+            if (hit || !boxes_overlap(box, box_[c], tol_) || skip(c)) return;
+            const Box2& bc = box_[c];
+            hit = (boxes_overlap(b0, bc, tol_) && triangles_overlap_in_boxes(t0, pos_[c], tol_)) ||
+                  (boxes_overlap(b1, bc, tol_) && triangles_overlap_in_boxes(t1, pos_[c], tol_));
           });
           return hit || more(t0, t1, box);
         });
