@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/mesh/angle_defects.h"
 #include "core/mesh/hausdorff.h"
 #include "core/mesh/thin_faces.h"
 #include "core/mesh/thin_plates.h"
@@ -42,13 +43,7 @@ bool folds_over_its_border(const Mesh& m) {
   std::vector<char> border(m.vertices.size(), 0);
   for (const auto& [a, b] : sides)
     if (!sides.count({b, a})) border[a] = border[b] = 1;
-  std::vector<double> turn(m.vertices.size(), 0);
-  for (const auto& t : m.faces)
-    for (int i = 0; i < 3; ++i) {
-      const Vec3 u = m.vertices[t[(i + 1) % 3]] - m.vertices[t[i]];
-      const Vec3 w = m.vertices[t[(i + 2) % 3]] - m.vertices[t[i]];
-      turn[t[i]] += std::atan2(norm(cross(u, w)), dot(u, w));
-    }
+  const std::vector<double> turn = angle_sums(m);
   for (std::size_t v = 0; v < turn.size(); ++v)
     if (border[v] && turn[v] > 2 * std::numbers::pi + 1e-6) return true;
   return false;
