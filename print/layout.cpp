@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <queue>
 #include <span>
 #include <unordered_map>
 
@@ -212,8 +213,16 @@ class PaperGrid {
       : faces_(faces), piece_(piece) {
     for (int f = 0; f < static_cast<int>(faces.size()); ++f)
       for_cells(faces[f], [&](std::uint64_t key) { cells_[key].faces.push_back(f); });
+    folds_.resize(faces.size());
     for (const NetEdge& e : edges) {
-      if (e.kind != EdgeKind::Cut) continue;
+      if (e.kind != EdgeKind::Cut) {
+        if (e.b.face < 0 || (!piece.empty() && piece[e.a.face] != piece[e.b.face])) continue;
+        const auto& t = faces[e.a.face];
+        const Fold fold{e.b.face, t[e.a.k], t[(e.a.k + 1) % 3]};
+        folds_[e.a.face].push_back(fold);
+        folds_[e.b.face].push_back({e.a.face, fold.b, fold.a});
+        continue;
+      }
       for (const EdgeSide side : {e.a, e.b}) {
         if (side.face < 0) continue;
         const auto& t = faces[side.face];
@@ -240,6 +249,13 @@ class PaperGrid {
     }
     return false;
   }
+  /// A fold of a face: the face across, and the side they share.
+  struct Fold {
+    int face;
+    Vec2 a, b;
+  };
+  /// The folds of face `face` to faces of its piece.
+  const std::vector<Fold>& folds(int face) const { return folds_[face]; }
   /// True when the convex polygon (or segment) `poly` meets a cut line, touching included.
   bool meets_cut(std::span<const Vec2> poly) const {
     bool hit = false;
@@ -272,6 +288,7 @@ class PaperGrid {
   }
   const std::vector<std::array<Vec2, 3>>& faces_;
   const std::vector<int>& piece_;
+  std::vector<std::vector<Fold>> folds_;
   std::vector<std::array<Vec2, 2>> cuts_;
   std::unordered_map<std::uint64_t, Cell> cells_;
 };
@@ -469,6 +486,14 @@ std::vector<char> faces_near_small_labels(const std::vector<std::array<Vec2, 3>>
 // dense (the rocker arm with every face kept: 4,600) has no room for them, and trying took 2 s.
 constexpr std::size_t kMostFarLabels = 200;
 
+// How far over its piece's folds a leader routed over the faces reaches from its edge, mm, and
+// of how many lines it is at most (place_far_labels).
+constexpr double kRouteMm = 15;
+constexpr std::size_t kMostRouteLines = 4;
+// What a leader's bend costs against its length, mm: a line of two parts wins over a straight
+// one only when it is that much shorter.
+constexpr double kRouteBendMm = 3;
+
 /// Labels left under kLegibleLabelMm by every place at their edge (a short cut edge at a small
 /// feature crowded with labels) print at that size farther away, on their piece's faces, clear
 /// of every label and of the leaders drawn before, with a leader line to their edge that runs
@@ -487,7 +512,20 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
       }));
   if (small == 0 || small > kMostFarLabels) return leaders;
   LabelBoxes boxes(labels);
-  std::vector<std::array<Vec2, 4>> drawn;  // the leaders' boxes
+  // The leaders' boxes, each with the box around it (which rules out most pairs sooner).
+  std::vector<std::pair<Box2, std::array<Vec2, 4>>> drawn;
+  const auto box_around = [](const std::array<Vec2, 4>& quad) {
+    Box2 b = Box2::empty();
+    for (const Vec2 p : quad) b.add(p);
+    return b;
+  };
+  const auto meets_drawn = [&](const std::array<Vec2, 4>& quad) {
+    const Box2 b = box_around(quad);
+    return std::any_of(drawn.begin(), drawn.end(), [&](const auto& l) {
+      return b.lo.x <= l.first.hi.x && l.first.lo.x <= b.hi.x && b.lo.y <= l.first.hi.y &&
+             l.first.lo.y <= b.hi.y && convex_overlap(quad, l.second, 0);
+    });
+  };
   for (const int i : smallest_first(labels)) {
     const Label& label = labels[i];
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
@@ -508,14 +546,15 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
     // True when a leader may run from `a` to `b` (`b` on the edge when `to_edge`): it starts on
     // the piece and crosses no cut line (it stops 0.05 mm short of its own edge for the test),
     // so it runs over the piece; its middle is on the piece, so it reaches its edge from the
-    // face's side.
+    // face's side; it meets no other label and no leader drawn before.
     const auto clear = [&](Vec2 a, Vec2 b, bool to_edge) {
       const double reach = norm(b - a);
       if (reach <= 0.1) return true;
       const std::array<Vec2, 2> line{a,
                                      to_edge ? a + std::max(0.0, 1 - 0.05 / reach) * (b - a) : b};
+      const std::array<Vec2, 4> box = leader_box(a, b);
       return grid.on_piece(a, face) && grid.on_piece(0.5 * (a + b), face) &&
-             !grid.meets_cut(line) && !boxes.meets(leader_box(a, b), i);
+             !grid.meets_cut(line) && !boxes.meets(box, i) && !meets_drawn(box);
     };
     // True when the label fits at `at`, turned `angle`, with its leader (into `leader`, and
     // `bend`).
@@ -526,8 +565,7 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
       if (!grid.on_piece(at, face)) return false;  // the cheapest test first
       const std::array<Vec2, 4> box = label_box(far);
       if (boxes.meets(box, i) || !box_on_piece(grid, box, face)) return false;
-      for (const auto& l : drawn)
-        if (convex_overlap(box, l, 0)) return false;
+      if (meets_drawn(box)) return false;
       // From the box's point nearest the edge's middle to the edge's point nearest that, else
       // to other points of the edge's middle three fifths (it points at one edge, not at a
       // corner of several).
@@ -562,6 +600,161 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
       return false;
     };
     const double along_edge = std::atan2(d.y, d.x);
+    // The third round, where neither found a place: a leader of up to kMostRouteLines lines
+    // over the faces of the piece, to a place on a face that the edge's face reaches across its
+    // folds within kRouteMm (a short cut edge deep in a notch, whose straight and bent leaders
+    // all cross a cut line). A path runs from a point of the edge's middle three fifths through
+    // points of the folds crossed (at 0.2 to 0.8 of each) and points inside the faces near their
+    // corners, each line of it inside one face (so on the piece) and clear (as above); from the
+    // label's box to where it enters the label's face, it is pulled straight where a line from a
+    // point to a later one is clear. Of the places on the faces reached, the one whose leader is
+    // shortest wins, each line after the first counted kRouteBendMm longer. Into `label` and
+    // `route`.
+    const auto route_over_piece = [&](int self, Label& label, std::vector<Segment>& route) {
+      // Where a leader crosses a side: at these fractions of it.
+      constexpr std::array<double, 5> kCrossings{0.5, 0.35, 0.65, 0.2, 0.8};
+      struct Reached {
+        int face, from;     // from: the index of the point before (-1: the path's first, on the
+                            // edge)
+        Vec2 at;            // where the path enters the face
+        double length;      // of the path from the edge
+        std::uint64_t key;  // the faces on either side of the side crossed there, and the point
+      };
+      std::vector<Reached> reached;
+      using Entry = std::pair<double, int>;  // path length, index into `reached`
+      std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
+      for (const double part : kCrossings) {
+        reached.push_back({face, -1, p0 + (part * len) * d, 0, ~std::uint64_t{0}});
+        open.push({0.0, static_cast<int>(reached.size()) - 1});
+      }
+      std::unordered_map<std::uint64_t, double> best;     // the shortest path to each point
+      std::unordered_map<int, std::vector<int>> entries;  // each face's points, nearest first
+      std::vector<int> order;                             // the faces, nearest first
+      while (!open.empty()) {
+        const auto [length, r] = open.top();
+        open.pop();
+        const Reached here = reached[r];
+        if (here.from >= 0 && length > best[here.key]) continue;  // reached shorter since
+        std::vector<int>& in = entries[here.face];
+        if (in.empty()) order.push_back(here.face);
+        in.push_back(r);
+        const auto step = [&](int into, Vec2 at, std::uint64_t key) {
+          const double to = length + norm(at - here.at);
+          if (to > kRouteMm) return;
+          if (const auto it = best.find(key); it != best.end() && it->second <= to) return;
+          if (!clear(at, here.at, here.from < 0)) return;
+          best[key] = to;
+          reached.push_back({into, r, at, to, key});
+          open.push({to, static_cast<int>(reached.size()) - 1});
+        };
+        for (const PaperGrid::Fold& fold : grid.folds(here.face))
+          for (std::uint64_t c = 0; c < kCrossings.size(); ++c)
+            step(fold.face, fold.a + kCrossings[c] * (fold.b - fold.a),
+                 (static_cast<std::uint64_t>(fold.face) << 35) |
+                     (static_cast<std::uint64_t>(here.face) << 4) | c);
+        const auto& t = faces[here.face];
+        for (std::uint64_t k = 0; k < 3; ++k)
+          step(here.face, (4.0 / 6) * t[k] + (1.0 / 6) * (t[(k + 1) % 3] + t[(k + 2) % 3]),
+               (static_cast<std::uint64_t>(here.face) << 35) |
+                   (static_cast<std::uint64_t>(here.face) << 4) | (8 + k));
+      }
+      // Each point's leader to the edge, pulled straight: a line to the farthest point of its
+      // path with a clear line (the point before it at least: the path's lines are clear), and
+      // on from there. Worked out when first wanted.
+      struct Pulled {
+        int lines = -1;  // -1: not worked out yet
+        double score = 0;
+        int to = -1;  // the point the first line runs to (-1: on the edge, no line)
+      };
+      std::vector<Pulled> pulled(reached.size());
+      const auto pull = [&](const auto& self_ref, int x) -> const Pulled& {
+        Pulled& out = pulled[x];
+        if (out.lines >= 0) return out;
+        out = {0, 0, -1};
+        if (reached[x].from < 0) return out;
+        std::vector<int> up;  // the points before it, back to the edge
+        for (int p = reached[x].from; p >= 0; p = reached[p].from) up.push_back(p);
+        for (std::size_t j = up.size(); j-- > 0;) {
+          const int n = up[j];
+          if (j > 0 && !clear(reached[x].at, reached[n].at, reached[n].from < 0)) continue;
+          const Pulled& rest = self_ref(self_ref, n);
+          pulled[x] = {rest.lines + 1,
+                       norm(reached[n].at - reached[x].at) + rest.score +
+                           (rest.lines > 0 ? kRouteBendMm : 0),
+                       n};
+          break;
+        }
+        return pulled[x];
+      };
+      double best_score = INFINITY;
+      Label best_label;
+      int best_first = -1;  // the point of the path the best leader's first line runs to
+      Vec2 best_start;      // where it leaves the label's box
+      for (const int g : order) {
+        if (g == face) continue;
+        // Nearest face first, until the path to a face is longer than the best leader found.
+        if (reached[entries[g].front()].length >= best_score) break;
+        const auto& t = faces[g];
+        const Vec2 c = (1.0 / 3) * (t[0] + t[1] + t[2]);
+        int longest = 0;
+        for (int k = 1; k < 3; ++k)
+          if (norm(t[(k + 1) % 3] - t[k]) > norm(t[(longest + 1) % 3] - t[longest])) longest = k;
+        const Vec2 side = t[(longest + 1) % 3] - t[longest];
+        // Places over the face: its centroid, and the points of a grid of sixths of it.
+        std::vector<Vec2> places{c};
+        for (int u = 1; u < 6; ++u)
+          for (int v = 1; u + v < 6; ++v)
+            if (u != 2 || v != 2)
+              places.push_back((u / 6.0) * t[0] + (v / 6.0) * t[1] + ((6 - u - v) / 6.0) * t[2]);
+        for (const Vec2 at : places)
+          for (const double angle :
+               {along_edge, 0.0, std::atan2(side.y, side.x), along_edge + std::numbers::pi / 2}) {
+            label.at = at;
+            label.angle = angle;
+            turn_upright(label);
+            if (!grid.on_piece(at, face)) continue;
+            const std::array<Vec2, 4> box = label_box(label);
+            if (boxes.meets(box, self) || !box_on_piece(grid, box, face)) continue;
+            if (meets_drawn(box)) continue;
+            // The box's point nearest `p`.
+            const Vec2 along{std::cos(label.angle), std::sin(label.angle)};
+            const Vec2 across{-along.y, along.x};
+            const auto nearest = [&](Vec2 p) {
+              return label.at + std::clamp(dot(p - label.at, along), -half_w, half_w) * along +
+                     std::clamp(dot(p - label.at, across), -half_h, half_h) * across;
+            };
+            for (const int r : entries[g]) {
+              if (reached[r].length >= best_score) break;
+              // The first line: from the box to the farthest point of the path (from where it
+              // enters this face back to the edge) with a clear line.
+              std::vector<int> path;
+              for (int p = r; p >= 0; p = reached[p].from) path.push_back(p);
+              for (std::size_t j = path.size(); j-- > 0;) {
+                const int n = path[j];
+                const Vec2 start = nearest(reached[n].at);
+                if (norm(reached[n].at - start) < 1e-9) continue;
+                if (!clear(start, reached[n].at, reached[n].from < 0)) continue;
+                const Pulled& rest = pull(pull, n);
+                const double score =
+                    norm(reached[n].at - start) + rest.score + (rest.lines > 0 ? kRouteBendMm : 0);
+                if (rest.lines + 1 <= static_cast<int>(kMostRouteLines) && score < best_score) {
+                  best_score = score;
+                  best_label = label;
+                  best_first = n;
+                  best_start = start;
+                }
+                break;
+              }
+            }
+          }
+      }
+      if (best_score > kRouteMm) return false;
+      label = best_label;
+      route = {{best_start, reached[best_first].at, face}};
+      for (int n = best_first; pulled[n].to >= 0; n = pulled[n].to)
+        route.push_back({reached[n].at, reached[pulled[n].to].at, face});
+      return true;
+    };
     bool placed = false;
     for (const bool with_bend : {false, true}) {
       bent = with_bend;
@@ -579,13 +772,16 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
       }
       if (placed) break;
     }
+    std::vector<Segment> route{leader, bend};
+    if (!placed) placed = route_over_piece(i, far, route);
     if (!placed) continue;
     boxes.remove(i);
     labels[i] = far;
     boxes.add(i);
-    for (const Segment& s : {leader, bend})
+    for (const Segment& s : route)
       if (s.face >= 0) {
-        drawn.push_back(leader_box(s.a, s.b));
+        const std::array<Vec2, 4> box = leader_box(s.a, s.b);
+        drawn.emplace_back(box_around(box), box);
         leaders.push_back(s);
       }
   }

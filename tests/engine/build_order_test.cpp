@@ -384,10 +384,11 @@ bool point_in_polygon(Vec2 p, const std::vector<Vec2>& poly) {
 // a face or tab drawn on its page (on the
 // CAD part 127 of its 432 labels, moved beside short edges, hung past their piece's outline
 // before). A label that found no legible place at its edge prints farther away with a leader
-// line, straight or with one bend: each leader starts at a label of at least 1.5 mm and ends on
-// a drawn cut line or tab hinge (its edge); the CAD part has leaders, and one that bends.
+// line, straight or of up to four lines end to end: each leader starts at a label of at least
+// 1.5 mm and ends on a drawn cut line or tab hinge (its edge); the CAD part has leaders, one that
+// bends, and one routed over its piece's faces (three lines or more).
 TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
-  std::size_t leaders = 0, bends = 0;
+  std::size_t leaders = 0, bends = 0, longest = 0;
   for (const Printed* printed : {&duck(), &cad_part()}) {
     ASSERT_TRUE(printed->doc.print);
     for (int k = 0; k < static_cast<int>(printed->pages.size()); ++k) {
@@ -428,9 +429,19 @@ TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
       for (const std::array<Vec2, 2>& leader : drawn_leaders) {
         const Vec2 from = leader[0], to = leader[1];  // a lambda below takes `from`
         const bool first = !joins(from, 1), last = !joins(to, 0);
-        EXPECT_TRUE(first || last) << "a leader of more than two lines on page " << k + 1;
         leaders += first;
         bends += !first;
+        if (first) {
+          // At most four lines, end to end.
+          std::size_t lines = 1;
+          for (Vec2 end = to; joins(end, 0) && lines <= 4; ++lines)
+            end =
+                std::find_if(drawn_leaders.begin(), drawn_leaders.end(),
+                             [&](const std::array<Vec2, 2>& l) { return norm(l[0] - end) < 1e-3; })
+                    ->at(1);
+          EXPECT_LE(lines, 4u) << "a leader of more than four lines on page " << k + 1;
+          longest = std::max(longest, lines);
+        }
         if (first) {
           // Starts at a label's box (the drawn glyph box is a little smaller than the label's).
           const auto starts =
@@ -456,6 +467,7 @@ TEST(AssemblyAids, EveryLabelPrintsOnItsPieceAndLeadersEndOnTheirEdge) {
   }
   EXPECT_GT(leaders, 0u) << "no label of the CAD part printed away from its edge";
   EXPECT_GT(bends, 0u) << "no leader of the CAD part bends";
+  EXPECT_GT(longest, 2u) << "no leader of the CAD part is routed over its piece's faces";
 }
 
 // The overview is page 1: every piece on it once, captioned with the page the placements put it
