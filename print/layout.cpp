@@ -412,9 +412,11 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
     if (dot(p2 - p0, up) < 0) up = Vec2{0, 0} - up;
     // Along the edge, the first place clear of the other labels (the middle first, then towards
     // its ends, then over them by the label's height: the labels of a short edge at a crowded
-    // vertex find room there), its centre 0.7 of its height from the edge, else 1.7 or 2.7 of it
-    // (at most 4 mm: still read as the edge's); where there is none (a sliver with two cut
-    // edges, a fan of slivers), the label keeps the size its face holds.
+    // vertex find room there; then every twentieth of the edge from a quarter to three quarters
+    // of it: a short edge whose face narrows to a corner off its middle has room only there), its
+    // centre 0.7 of its height from the edge, else 1.7 or 2.7 of it (at most 4 mm: still read as
+    // the edge's); where there is none (a sliver with two cut edges, a fan of slivers), the label
+    // keeps the size its face holds.
     Label beside = label;
     beside.size = kLegibleLabelMm;
     beside.angle = std::atan2(d.y, d.x);
@@ -430,7 +432,15 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
                                        {0.0, 0.0},
                                        {1.0, 0.0},
                                        {0.0, -kLegibleLabelMm},
-                                       {1.0, kLegibleLabelMm}}) {
+                                       {1.0, kLegibleLabelMm},
+                                       {0.4, 0.0},
+                                       {0.6, 0.0},
+                                       {0.35, 0.0},
+                                       {0.65, 0.0},
+                                       {0.25, 0.0},
+                                       {0.75, 0.0},
+                                       {0.45, 0.0},
+                                       {0.55, 0.0}}) {
         beside.at = p0 + (part * len + past) * d + (in * kLegibleLabelMm) * up;
         // Clear of the other labels (the cheaper test), and on the piece.
         if (boxes.collides(beside, i) || !box_on_piece(grid, label_box(beside), label.side.face))
