@@ -177,6 +177,20 @@ class LabelBoxes {
     });
     return hit;
   }
+  /// The labels other than label `self` whose boxes `box` meets.
+  std::vector<int> meeting(const std::array<Vec2, 4>& box, int self) const {
+    std::vector<int> out;
+    for_cells(box, [&](std::uint64_t key) {
+      const auto it = cells_.find(key);
+      if (it == cells_.end()) return;
+      for (const int j : it->second)
+        if (j != self && !labels_[j].text.empty() &&
+            std::find(out.begin(), out.end(), j) == out.end() &&
+            convex_overlap(box, label_box(labels_[j]), 0))
+          out.push_back(j);
+    });
+    return out;
+  }
   /// Label `i` is about to change: its box leaves the grid until added again.
   void remove(int i) {
     for_cells(label_box(labels_[i]), [&](std::uint64_t key) {
@@ -369,6 +383,69 @@ std::vector<Label> labels_on_tab(const Tab& tab, const Label& label, double max_
   return out;
 }
 
+/// The places for a label beside its edge at kLegibleLabelMm, on its face's side, best first:
+/// along the edge, the middle first, then towards its ends, then over them by the label's height
+/// (the labels of a short edge at a crowded vertex find room there), then every twentieth of the
+/// edge from a quarter to three quarters of it (a short edge whose face narrows to a corner off
+/// its middle has room only there); its centre 0.7 of its height from the edge, else 1.7 or 2.7
+/// of it (at most 4 mm: still read as the edge's). None for an edge of no length.
+std::vector<Label> beside_places(const std::vector<std::array<Vec2, 3>>& faces,
+                                 const Label& label) {
+  std::vector<Label> out;
+  const auto& tri = faces[label.side.face];
+  const Vec2 p0 = tri[label.side.k], p1 = tri[(label.side.k + 1) % 3];
+  const Vec2 p2 = tri[(label.side.k + 2) % 3];
+  const double len = norm(p1 - p0);
+  if (!(len > 0)) return out;
+  const Vec2 d = (1 / len) * (p1 - p0);
+  Vec2 up{-d.y, d.x};
+  if (dot(p2 - p0, up) < 0) up = Vec2{0, 0} - up;
+  Label beside = label;
+  beside.size = kLegibleLabelMm;
+  beside.angle = std::atan2(d.y, d.x);
+  turn_upright(beside);
+  for (const double in : {0.7, 1.7, 2.7})
+    // Each place: a fraction of the edge's length, and millimetres past that.
+    for (const auto& [part, past] : {std::pair{0.5, 0.0},
+                                     {0.3, 0.0},
+                                     {0.7, 0.0},
+                                     {0.15, 0.0},
+                                     {0.85, 0.0},
+                                     {0.0, 0.0},
+                                     {1.0, 0.0},
+                                     {0.0, -kLegibleLabelMm},
+                                     {1.0, kLegibleLabelMm},
+                                     {0.4, 0.0},
+                                     {0.6, 0.0},
+                                     {0.35, 0.0},
+                                     {0.65, 0.0},
+                                     {0.25, 0.0},
+                                     {0.75, 0.0},
+                                     {0.45, 0.0},
+                                     {0.55, 0.0}}) {
+      beside.at = p0 + (part * len + past) * d + (in * kLegibleLabelMm) * up;
+      out.push_back(beside);
+    }
+  return out;
+}
+
+/// True when no cut line lies between a label moved beside its edge and the edge: the line from
+/// its centre to the edge's nearest point (stopped 0.05 mm short of the edge) meets none. A label
+/// past a cut (the far side of a notch, reached past the edge's end) would be cut away from its
+/// edge.
+bool faces_its_edge(const std::vector<std::array<Vec2, 3>>& faces, const PaperGrid& grid,
+                    const Label& label) {
+  const auto& tri = faces[label.side.face];
+  const Vec2 p0 = tri[label.side.k], p1 = tri[(label.side.k + 1) % 3];
+  const Vec2 e = p1 - p0;
+  const double t = std::clamp(dot(label.at - p0, e) / dot(e, e), 0.0, 1.0);
+  const Vec2 on_edge = p0 + t * e;
+  const double reach = norm(label.at - on_edge);
+  if (reach <= 0.05) return true;
+  const std::array<Vec2, 2> line{label.at, on_edge + (0.05 / reach) * (label.at - on_edge)};
+  return !grid.meets_cut(line);
+}
+
 /// Labels that did not fit their face at kLegibleLabelMm move where they print that large: onto
 /// the glue tab of their side when it has room (the tab is glued away, its face's partner label
 /// stays in view), else beside their edge at that size, on the face's side of it, reaching over
@@ -402,55 +479,13 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
         }
       if (moved) continue;
     }
-    const auto& tri = faces[label.side.face];
-    const Vec2 p0 = tri[label.side.k], p1 = tri[(label.side.k + 1) % 3];
-    const Vec2 p2 = tri[(label.side.k + 2) % 3];
-    const double len = norm(p1 - p0);
-    if (!(len > 0)) continue;
-    const Vec2 d = (1 / len) * (p1 - p0);
-    Vec2 up{-d.y, d.x};
-    if (dot(p2 - p0, up) < 0) up = Vec2{0, 0} - up;
-    // Along the edge, the first place clear of the other labels (the middle first, then towards
-    // its ends, then over them by the label's height: the labels of a short edge at a crowded
-    // vertex find room there; then every twentieth of the edge from a quarter to three quarters
-    // of it: a short edge whose face narrows to a corner off its middle has room only there), its
-    // centre 0.7 of its height from the edge, else 1.7 or 2.7 of it (at most 4 mm: still read as
-    // the edge's); where there is none (a sliver with two cut edges, a fan of slivers), the label
-    // keeps the size its face holds.
-    Label beside = label;
-    beside.size = kLegibleLabelMm;
-    beside.angle = std::atan2(d.y, d.x);
-    turn_upright(beside);
-    bool moved = false;
-    for (const double in : {0.7, 1.7, 2.7}) {
-      // Each place: a fraction of the edge's length, and millimetres past that.
-      for (const auto& [part, past] : {std::pair{0.5, 0.0},
-                                       {0.3, 0.0},
-                                       {0.7, 0.0},
-                                       {0.15, 0.0},
-                                       {0.85, 0.0},
-                                       {0.0, 0.0},
-                                       {1.0, 0.0},
-                                       {0.0, -kLegibleLabelMm},
-                                       {1.0, kLegibleLabelMm},
-                                       {0.4, 0.0},
-                                       {0.6, 0.0},
-                                       {0.35, 0.0},
-                                       {0.65, 0.0},
-                                       {0.25, 0.0},
-                                       {0.75, 0.0},
-                                       {0.45, 0.0},
-                                       {0.55, 0.0}}) {
-        beside.at = p0 + (part * len + past) * d + (in * kLegibleLabelMm) * up;
-        // Clear of the other labels (the cheaper test), and on the piece.
-        if (boxes.collides(beside, i) || !box_on_piece(grid, label_box(beside), label.side.face))
-          continue;
+    for (const Label& beside : beside_places(faces, label))
+      // Clear of the other labels (the cheaper test), and on the piece.
+      if (!boxes.collides(beside, i) && box_on_piece(grid, label_box(beside), label.side.face) &&
+          faces_its_edge(faces, grid, beside)) {
         place(i, beside);
-        moved = true;
         break;
       }
-      if (moved) break;
-    }
   }
   // A label put back at its fitted size may meet one moved before it: that one goes back too,
   // until none meet (the fitted labels are apart, so this ends).
@@ -503,16 +538,23 @@ constexpr std::size_t kMostRouteLines = 4;
 // What a leader's bend costs against its length, mm: a line of two parts wins over a straight
 // one only when it is that much shorter.
 constexpr double kRouteBendMm = 3;
+// How many places beside its edge a small label tries whose one label in the way moves away
+// with a leader, and how many of all a layout's small labels try (place_far_labels, make_way):
+// each try is the rings' search for that label.
+constexpr std::size_t kMostWayLeaders = 8;
+constexpr std::size_t kMostWayLeadersInAll = 96;
 
 /// Labels left under kLegibleLabelMm by every place at their edge (a short cut edge at a small
-/// feature crowded with labels) print at that size farther away, on their piece's faces, clear
-/// of every label and of the leaders drawn before, with a leader line to their edge that runs
-/// over the piece and meets no other label (docs/print.md, "Labels"). Places are tried on rings
-/// around the edge's middle, 2 to 15 mm, nearest first, from the face's side round to the other,
-/// the text along the edge, level, or across the edge (along a narrow strip that ends at the
-/// edge); where no place has a straight leader, the rings are tried again with a leader of two
-/// lines, bent in front of the edge; a label that finds none keeps its size. None moves when
-/// more than kMostFarLabels are under the legible size.
+/// feature crowded with labels) print at that size, smallest first (docs/print.md, "Labels"):
+/// beside their edge where a single legible label is in the way and moves (make_way), else
+/// farther away, on their piece's faces, clear of every label and of the leaders drawn before,
+/// with a leader line to their edge that runs over the piece and meets no other label and no
+/// other leader. Places are tried on rings around the edge's middle, 2 to 15 mm, nearest first,
+/// from the face's side round to the other, the text along the edge, level, or across the edge
+/// (along a narrow strip that ends at the edge); where no place has a straight leader, the rings
+/// are tried again with a leader of two lines, bent in front of the edge; where none has that
+/// either, the leader is routed over the piece's faces (route_over_piece). A label that finds
+/// no place keeps its size. None moves when more than kMostFarLabels are under the legible size.
 std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& faces,
                                       const PaperGrid& grid, std::vector<Label>& labels) {
   std::vector<Segment> leaders;
@@ -536,15 +578,17 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
              l.first.lo.y <= b.hi.y && convex_overlap(quad, l.second, 0);
     });
   };
-  for (const int i : smallest_first(labels)) {
+  std::vector<char> led(labels.size(), 0);  // the labels placed here with a leader
+  // Label `i` printed at kLegibleLabelMm away from its edge with a leader line, in the rounds
+  // the function's comment gives; true when it found a place.
+  const auto lead_away = [&](int i, bool routed) {
     const Label& label = labels[i];
-    if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
     const int face = label.side.face;
     const auto& tri = faces[face];
     const Vec2 p0 = tri[label.side.k], p1 = tri[(label.side.k + 1) % 3];
     const Vec2 p2 = tri[(label.side.k + 2) % 3];
     const double len = norm(p1 - p0);
-    if (!(len > 0)) continue;
+    if (!(len > 0)) return false;
     const Vec2 d = (1 / len) * (p1 - p0), middle = 0.5 * (p0 + p1);
     Vec2 up{-d.y, d.x};
     if (dot(p2 - middle, up) < 0) up = Vec2{0, 0} - up;
@@ -783,8 +827,9 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
       if (placed) break;
     }
     std::vector<Segment> route{leader, bend};
-    if (!placed) placed = route_over_piece(i, far, route);
-    if (!placed) continue;
+    if (!placed && routed) placed = route_over_piece(i, far, route);
+    if (!placed) return false;
+    led[i] = 1;
     boxes.remove(i);
     labels[i] = far;
     boxes.add(i);
@@ -794,7 +839,61 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
         drawn.emplace_back(box_around(box), box);
         leaders.push_back(s);
       }
+    return true;
+  };
+
+  // Tried before lead_away: a place beside the edge (as make_labels_legible tries them) that
+  // one legible label without a leader takes, where that label has another place beside its own
+  // edge, clear of every other, or else (for the first kMostWayLeaders such places of a label,
+  // and kMostWayLeadersInAll of all) one away from its edge with a straight or bent leader
+  // (ADIS16480 at the defaults: the label 96 of a 3 mm edge of a triangle in a notch, whose room
+  // beside it the label `99.` across a fold reached over). Both move; true when they did.
+  std::size_t led_away_left = kMostWayLeadersInAll;
+  const auto make_way = [&](int i) {
+    const Label before = labels[i];
+    std::size_t away = kMostWayLeaders;  // the places left whose label in the way may move
+                                         // away with a leader
+    for (const Label& here : beside_places(faces, before)) {
+      const std::array<Vec2, 4> box = label_box(here);
+      if (!box_on_piece(grid, box, before.side.face) || !faces_its_edge(faces, grid, here) ||
+          meets_drawn(box))
+        continue;
+      const std::vector<int> in_way = boxes.meeting(box, i);
+      if (in_way.size() != 1) continue;
+      const int j = in_way.front();
+      if (labels[j].size < kLegibleLabelMm || led[j]) continue;
+      boxes.remove(i);
+      labels[i] = here;
+      boxes.add(i);
+      for (const Label& there : beside_places(faces, labels[j])) {
+        const std::array<Vec2, 4> other = label_box(there);
+        if (boxes.meets(other, j) || !box_on_piece(grid, other, there.side.face) ||
+            !faces_its_edge(faces, grid, there) || meets_drawn(other))
+          continue;
+        boxes.remove(j);
+        labels[j] = there;
+        boxes.add(j);
+        return true;
+      }
+      if (away > 0 && led_away_left > 0) {
+        --away;
+        --led_away_left;
+        if (lead_away(j, false)) return true;
+      }
+      boxes.remove(i);
+      labels[i] = before;
+      boxes.add(i);
+    }
+    return false;
+  };
+  for (const int i : smallest_first(labels)) {
+    const Label& label = labels[i];
+    if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
+    if (!make_way(i)) lead_away(i, true);
   }
+  // Once more for the labels still small: the labels moved away with a leader since left room.
+  for (const int i : smallest_first(labels))
+    if (!labels[i].text.empty() && labels[i].size < kLegibleLabelMm) make_way(i);
   return leaders;
 }
 

@@ -493,6 +493,13 @@ bool inside_face(const Label& l, const std::array<Vec2, 3>& tri) {
   return true;
 }
 
+// True when segments ab and cd cross at a point inside both.
+bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  return d1 * d2 < 0 && d3 * d4 < 0;
+}
+
 bool point_in_quad(Vec2 p, const std::array<Vec2, 4>& q) {
   return point_in_triangle(p, {q[0], q[1], q[2]}, 1e-9) ||
          point_in_triangle(p, {q[0], q[2], q[3]}, 1e-9);
@@ -574,6 +581,18 @@ TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
           EXPECT_LE(off, 2.7 * kLegibleLabelMm + 1e-6) << name << " label " << l->text;
           EXPECT_GE(along, -kLegibleLabelMm - 1e-6) << name << " label " << l->text;
           EXPECT_LE(along, len + kLegibleLabelMm + 1e-6) << name << " label " << l->text;
+          // No cut line (nor tab hinge) between it and its edge: past one, it would be cut away
+          // from the edge it names.
+          const Vec2 e = a + std::clamp(along / len, 0.0, 1.0) * (b - a);
+          const double reach = norm(l->at - e);
+          if (reach > 0.05) {
+            const Vec2 near = e + (0.05 / reach) * (l->at - e);
+            std::size_t past = 0;
+            for (const Segment& c : layout.cut) past += segments_cross(l->at, near, c.a, c.b);
+            for (const Tab& t : layout.tabs)
+              past += segments_cross(l->at, near, t.corners[0], t.corners[1]);
+            EXPECT_EQ(past, 0u) << name << " label " << l->text << " lies past a cut line";
+          }
         }
       }
     }
