@@ -157,7 +157,7 @@ void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Labe
 /// meets, on any face (a label moved beside its edge reaches over folds into other faces).
 class LabelBoxes {
  public:
-  explicit LabelBoxes(const std::vector<Label>& labels) : labels_(labels) {
+  explicit LabelBoxes(const std::vector<Label>& labels) : labels_(labels), kept_(labels.size()) {
     for (int i = 0; i < static_cast<int>(labels.size()); ++i) add(i);
   }
   /// True when `label`'s box meets the box of a label other than label `self`.
@@ -165,12 +165,12 @@ class LabelBoxes {
   /// True when `box` meets the box of a label other than label `self`.
   bool meets(const std::array<Vec2, 4>& box, int self) const {
     bool hit = false;
+    const Box2 around = box_around(box);
     for_cells(box, [&](std::uint64_t key) {
       const auto it = cells_.find(key);
       if (hit || it == cells_.end()) return;
       for (const int j : it->second)
-        if (j != self && !labels_[j].text.empty() &&
-            convex_overlap(box, label_box(labels_[j]), 0)) {
+        if (j != self && overlaps(box, around, j)) {
           hit = true;
           return;
         }
@@ -180,34 +180,55 @@ class LabelBoxes {
   /// The labels other than label `self` whose boxes `box` meets.
   std::vector<int> meeting(const std::array<Vec2, 4>& box, int self) const {
     std::vector<int> out;
+    const Box2 around = box_around(box);
     for_cells(box, [&](std::uint64_t key) {
       const auto it = cells_.find(key);
       if (it == cells_.end()) return;
       for (const int j : it->second)
-        if (j != self && !labels_[j].text.empty() &&
-            std::find(out.begin(), out.end(), j) == out.end() &&
-            convex_overlap(box, label_box(labels_[j]), 0))
+        if (j != self && std::find(out.begin(), out.end(), j) == out.end() &&
+            overlaps(box, around, j))
           out.push_back(j);
     });
     return out;
   }
   /// Label `i` is about to change: its box leaves the grid until added again.
   void remove(int i) {
-    for_cells(label_box(labels_[i]), [&](std::uint64_t key) {
+    Kept& kept = kept_[i];
+    if (!kept.in) return;
+    kept.in = false;
+    for_cells(kept.box, [&](std::uint64_t key) {
       std::vector<int>& in = cells_[key];
       in.erase(std::remove(in.begin(), in.end(), i), in.end());
     });
   }
   void add(int i) {
     if (labels_[i].text.empty()) return;
-    for_cells(label_box(labels_[i]), [&](std::uint64_t key) {
-      std::vector<int>& in = cells_[key];
-      if (std::find(in.begin(), in.end(), i) == in.end()) in.push_back(i);
-    });
+    remove(i);
+    Kept& kept = kept_[i];
+    kept = {label_box(labels_[i]), {}, true};
+    kept.around = box_around(kept.box);
+    for_cells(kept.box, [&](std::uint64_t key) { cells_[key].push_back(i); });
   }
 
  private:
   static constexpr double kCell = 4;  // mm: about a label's length
+  // A label's box as added, and the box around it (which rules out most pairs sooner).
+  struct Kept {
+    std::array<Vec2, 4> box;
+    Box2 around;
+    bool in = false;
+  };
+  static Box2 box_around(const std::array<Vec2, 4>& box) {
+    Box2 b = Box2::empty();
+    for (const Vec2 p : box) b.add(p);
+    return b;
+  }
+  bool overlaps(const std::array<Vec2, 4>& box, const Box2& around, int j) const {
+    if (labels_[j].text.empty()) return false;
+    const Box2& other = kept_[j].around;
+    return around.lo.x <= other.hi.x && other.lo.x <= around.hi.x && around.lo.y <= other.hi.y &&
+           other.lo.y <= around.hi.y && convex_overlap(box, kept_[j].box, 0);
+  }
   template <class F>
   static void for_cells(const std::array<Vec2, 4>& box, F&& f) {
     print_detail::cells_of(box, kCell).for_each([&](std::int64_t x, std::int64_t y) {
@@ -215,6 +236,7 @@ class LabelBoxes {
     });
   }
   const std::vector<Label>& labels_;
+  std::vector<Kept> kept_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
 
@@ -543,6 +565,7 @@ constexpr double kRouteBendMm = 3;
 // each try is the rings' search for that label.
 constexpr std::size_t kMostWayLeaders = 8;
 constexpr std::size_t kMostWayLeadersInAll = 96;
+constexpr std::size_t kMostSmallForWayLeaders = 40;
 
 /// Labels left under kLegibleLabelMm by every place at their edge (a short cut edge at a small
 /// feature crowded with labels) print at that size, smallest first (docs/print.md, "Labels"):
@@ -848,7 +871,9 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
   // and kMostWayLeadersInAll of all) one away from its edge with a straight or bent leader
   // (ADIS16480 at the defaults: the label 96 of a 3 mm edge of a triangle in a notch, whose room
   // beside it the label `99.` across a fold reached over). Both move; true when they did.
-  std::size_t led_away_left = kMostWayLeadersInAll;
+  // Where many labels are small (a dense mesh with every face kept) they do not: each try is the
+  // rings' search for the label in the way.
+  std::size_t led_away_left = small <= kMostSmallForWayLeaders ? kMostWayLeadersInAll : 0;
   const auto make_way = [&](int i) {
     const Label before = labels[i];
     std::size_t away = kMostWayLeaders;  // the places left whose label in the way may move
