@@ -153,6 +153,13 @@ void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Labe
   }
 }
 
+/// The axis-aligned box around a quadrilateral (a label's box, a leader's).
+Box2 box_around(const std::array<Vec2, 4>& quad) {
+  Box2 b = Box2::empty();
+  for (const Vec2 p : quad) b.add(p);
+  return b;
+}
+
 /// The boxes of a net's labels on a grid of cells, as the labels move: which other label a box
 /// meets, on any face (a label moved beside its edge reaches over folds into other faces).
 class LabelBoxes {
@@ -218,11 +225,6 @@ class LabelBoxes {
     Box2 around;
     bool in = false;
   };
-  static Box2 box_around(const std::array<Vec2, 4>& box) {
-    Box2 b = Box2::empty();
-    for (const Vec2 p : box) b.add(p);
-    return b;
-  }
   bool overlaps(const std::array<Vec2, 4>& box, const Box2& around, int j) const {
     if (labels_[j].text.empty()) return false;
     const Box2& other = kept_[j].around;
@@ -589,11 +591,6 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
   LabelBoxes boxes(labels);
   // The leaders' boxes, each with the box around it (which rules out most pairs sooner).
   std::vector<std::pair<Box2, std::array<Vec2, 4>>> drawn;
-  const auto box_around = [](const std::array<Vec2, 4>& quad) {
-    Box2 b = Box2::empty();
-    for (const Vec2 p : quad) b.add(p);
-    return b;
-  };
   const auto meets_drawn = [&](const std::array<Vec2, 4>& quad) {
     const Box2 b = box_around(quad);
     return std::any_of(drawn.begin(), drawn.end(), [&](const auto& l) {
@@ -708,7 +705,9 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
       std::unordered_map<int, std::vector<int>> entries;  // each face's points, nearest first
       std::vector<int> order;                             // the faces, nearest first
       while (!open.empty()) {
-        const auto [length, r] = open.top();
+        // Not a structured binding: step (a lambda) uses both, which clang 14 does not allow.
+        const double length = open.top().first;
+        const int r = open.top().second;
         open.pop();
         const Reached here = reached[r];
         if (here.from >= 0 && length > best[here.key]) continue;  // reached shorter since
