@@ -72,8 +72,13 @@ constexpr double kColourTimeShare = 0.2;
 // 3.18 s), 1.61 times the 175 us above; so 1.74 / 1.61 ms there.
 constexpr double kProbeSeconds = 1.08e-3;
 // Jobs of fewer faces do not time the machine: the time their nets need after the unfold is
-// within the print's share of any time limit.
+// within the print's share of any time limit. Nor do jobs whose steps after the unfold take at
+// most kUnprobedSeconds at the times above (a net written as JSON alone, with no tab-room pass,
+// keeps only the distance's 12 us per face: 8,333 faces): were the machine even five times
+// slower, the unfolder would misjudge their end by under half a second, and the probe costs
+// 12 ms, a tenth of an unfold of 2,000 faces.
 constexpr std::size_t kProbeFaces = 2'000;
+constexpr double kUnprobedSeconds = 0.1;
 double thread_seconds() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
@@ -240,12 +245,16 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   std::size_t all_faces = 0;
   for (const Mesh& part : prepared.parts) all_faces += part.faces.size();
   // The time per face of the steps after the unfold, on this machine.
-  const double slowness = all_faces >= kProbeFaces ? machine_slowness() : 1;
+  const double after_at_probe_speed = (plan.print ? kPrintSecondsPerFace : 0) +
+                                      (plan.tabs ? kTabRoomSecondsPerFace : 0) +
+                                      kDistanceSecondsPerFace;
+  const bool probe = all_faces >= kProbeFaces &&
+                     after_at_probe_speed * static_cast<double>(all_faces) > kUnprobedSeconds;
+  const double slowness = probe ? machine_slowness() : 1;
   const double print_per_face = plan.print ? slowness * kPrintSecondsPerFace : 0;
   const double print_per_strip = plan.print ? slowness * kPrintSecondsPerStrip : 0;
   const double tab_room_per_face = slowness * kTabRoomSecondsPerFace;
-  const double after_per_face =
-      print_per_face + (plan.tabs ? tab_room_per_face : 0) + slowness * kDistanceSecondsPerFace;
+  const double after_per_face = slowness * after_at_probe_speed;
 
   // Each part unfolded in turn (collapsed first as `detail` says), with a share of the
   // unfolder's time left as large as its share of the faces left.
