@@ -164,7 +164,7 @@ Box2 box_around(const std::array<Vec2, 4>& quad) {
 /// meets, on any face (a label moved beside its edge reaches over folds into other faces).
 class LabelBoxes {
  public:
-  explicit LabelBoxes(const std::vector<Label>& labels) : labels_(labels), kept_(labels.size()) {
+  explicit LabelBoxes(std::vector<Label>& labels) : labels_(labels), kept_(labels.size()) {
     for (int i = 0; i < static_cast<int>(labels.size()); ++i) add(i);
   }
   /// True when `label`'s box meets the box of a label other than label `self`.
@@ -198,7 +198,21 @@ class LabelBoxes {
     });
     return out;
   }
-  /// Label `i` is about to change: its box leaves the grid until added again.
+  /// Label `i` moves to `to` (a place, size or angle of its own), its box with it.
+  void move(int i, const Label& to) {
+    remove(i);
+    labels_[i] = to;
+    add(i);
+  }
+
+ private:
+  static constexpr double kCell = 4;  // mm: about a label's length
+  // A label's box as added, and the box around it (which rules out most pairs sooner).
+  struct Kept {
+    std::array<Vec2, 4> box;
+    Box2 around;
+    bool in = false;
+  };
   void remove(int i) {
     Kept& kept = kept_[i];
     if (!kept.in) return;
@@ -216,15 +230,6 @@ class LabelBoxes {
     kept.around = box_around(kept.box);
     for_cells(kept.box, [&](std::uint64_t key) { cells_[key].push_back(i); });
   }
-
- private:
-  static constexpr double kCell = 4;  // mm: about a label's length
-  // A label's box as added, and the box around it (which rules out most pairs sooner).
-  struct Kept {
-    std::array<Vec2, 4> box;
-    Box2 around;
-    bool in = false;
-  };
   bool overlaps(const std::array<Vec2, 4>& box, const Box2& around, int j) const {
     if (labels_[j].text.empty()) return false;
     const Box2& other = kept_[j].around;
@@ -237,7 +242,7 @@ class LabelBoxes {
       f(print_detail::cell_key(x, y));
     });
   }
-  const std::vector<Label>& labels_;
+  std::vector<Label>& labels_;
   std::vector<Kept> kept_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
@@ -470,6 +475,13 @@ bool faces_its_edge(const std::vector<std::array<Vec2, 3>>& faces, const PaperGr
   return !grid.meets_cut(line);
 }
 
+/// True when a label placed beside its edge (beside_places), whose box is `box`, lies on its
+/// piece with no cut line between it and its edge.
+bool beside_on_piece(const std::vector<std::array<Vec2, 3>>& faces, const PaperGrid& grid,
+                     const Label& beside, const std::array<Vec2, 4>& box) {
+  return box_on_piece(grid, box, beside.side.face) && faces_its_edge(faces, grid, beside);
+}
+
 /// Labels that did not fit their face at kLegibleLabelMm move where they print that large: onto
 /// the glue tab of their side when it has room (the tab is glued away, its face's partner label
 /// stays in view), else beside their edge at that size, on the face's side of it, reaching over
@@ -483,11 +495,6 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
                          std::vector<Label>& labels, const std::vector<Label>& fitted,
                          double max_size, const std::vector<char>* only = nullptr) {
   LabelBoxes boxes(labels);
-  const auto place = [&](int i, const Label& to) {
-    boxes.remove(i);
-    labels[i] = to;
-    boxes.add(i);
-  };
   for (const int i : smallest_first(labels)) {
     const Label& label = labels[i];
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
@@ -497,7 +504,7 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
       bool moved = false;
       for (const Label& on_tab : labels_on_tab(tabs[t], label, max_size))
         if (!boxes.collides(on_tab, i)) {
-          place(i, on_tab);
+          boxes.move(i, on_tab);
           moved = true;
           break;
         }
@@ -505,9 +512,8 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
     }
     for (const Label& beside : beside_places(faces, label))
       // Clear of the other labels (the cheaper test), and on the piece.
-      if (!boxes.collides(beside, i) && box_on_piece(grid, label_box(beside), label.side.face) &&
-          faces_its_edge(faces, grid, beside)) {
-        place(i, beside);
+      if (!boxes.collides(beside, i) && beside_on_piece(faces, grid, beside, label_box(beside))) {
+        boxes.move(i, beside);
         break;
       }
   }
@@ -517,7 +523,7 @@ void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const Pa
     changed = false;
     for (int i = 0; i < static_cast<int>(labels.size()); ++i)
       if (labels[i].size != fitted[i].size && boxes.collides(labels[i], i)) {
-        place(i, fitted[i]);
+        boxes.move(i, fitted[i]);
         changed = true;
       }
   }
@@ -852,9 +858,7 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
     if (!placed && routed) placed = route_over_piece(i, far, route);
     if (!placed) return false;
     led[i] = 1;
-    boxes.remove(i);
-    labels[i] = far;
-    boxes.add(i);
+    boxes.move(i, far);
     for (const Segment& s : route)
       if (s.face >= 0) {
         const std::array<Vec2, 4> box = leader_box(s.a, s.b);
@@ -879,24 +883,18 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
                                          // away with a leader
     for (const Label& here : beside_places(faces, before)) {
       const std::array<Vec2, 4> box = label_box(here);
-      if (!box_on_piece(grid, box, before.side.face) || !faces_its_edge(faces, grid, here) ||
-          meets_drawn(box))
-        continue;
+      if (!beside_on_piece(faces, grid, here, box) || meets_drawn(box)) continue;
       const std::vector<int> in_way = boxes.meeting(box, i);
       if (in_way.size() != 1) continue;
       const int j = in_way.front();
       if (labels[j].size < kLegibleLabelMm || led[j]) continue;
-      boxes.remove(i);
-      labels[i] = here;
-      boxes.add(i);
+      boxes.move(i, here);
       for (const Label& there : beside_places(faces, labels[j])) {
         const std::array<Vec2, 4> other = label_box(there);
-        if (boxes.meets(other, j) || !box_on_piece(grid, other, there.side.face) ||
-            !faces_its_edge(faces, grid, there) || meets_drawn(other))
+        if (boxes.meets(other, j) || !beside_on_piece(faces, grid, there, other) ||
+            meets_drawn(other))
           continue;
-        boxes.remove(j);
-        labels[j] = there;
-        boxes.add(j);
+        boxes.move(j, there);
         return true;
       }
       if (away > 0 && led_away_left > 0) {
@@ -904,9 +902,7 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
         --led_away_left;
         if (lead_away(j, false)) return true;
       }
-      boxes.remove(i);
-      labels[i] = before;
-      boxes.add(i);
+      boxes.move(i, before);
     }
     return false;
   };
