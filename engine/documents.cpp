@@ -325,7 +325,7 @@ class FitSearch {
         {
           std::lock_guard lock(mutex_);
           if (progress) {
-            report(*progress, "layout", 0.6 * static_cast<double>(passed_) / std::size(kFitWays));
+            report(*progress, "layout", static_cast<double>(passed_) / std::size(kFitWays));
             if (progress->cancelled()) cancelled_ = true;
           }
           if (!next_pieces(i, cut)) return;
@@ -558,12 +558,12 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     pages = std::move(chosen->pages);
   } else {
     layout = layout_net(mesh, arrange_pieces(pieces.net, pieces.piece, gap), print, pieces.piece);
-    report(progress, "layout", 0.3);
+    report(progress, "layout", 0.5);
     // Without paper, the SVG is the net as laid out; paginating may turn it and move strips.
     if (request.svg_pages && !has_paper(options)) unpaged = layout;
     pages = paginate(layout, page);
   }
-  report(progress, "layout", 0.6);
+  report(progress, "layout", 1);
   // Colour (docs/colour.md, "Printing"): rasterised page by page as the pages are drawn.
   std::optional<PrintColour> colour;
   if (options.colour && !outcome.net.colour.empty()) {

@@ -242,6 +242,10 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   // The model's size on paper is the whole model's, small parts included.
   const double scale = parts_print_scale(prepared.parts, options);
   std::optional<NetRepair> small_parts = leave_out_small_parts(prepared, options, scale);
+  // Pages in colour take most of the print's time: its drawing's part of the bar grows.
+  tracked.set_colour(plan.print && options.colour &&
+                     std::any_of(prepared.part_colours.begin(), prepared.part_colours.end(),
+                                 [](const MeshColour& c) { return !c.empty(); }));
   std::size_t all_faces = 0;
   for (const Mesh& part : prepared.parts) all_faces += part.faces.size();
   // The time per face of the steps after the unfold, on this machine.

@@ -19,6 +19,7 @@ struct RunPlan {
   bool simplify = false;    ///< a collapse before the unfolder (simplify)
   bool tabs = false;        ///< the tab-room pass runs
   bool print = false;       ///< a print document is written (layout, then drawing)
+  bool colour = false;      ///< its pages are drawn in colour (known once the model is loaded)
 };
 
 /// Forwards the steps' reports to the caller's hook with `ProgressInfo::fraction` set: each stage
@@ -36,6 +37,8 @@ class RunProgress : public PipelineProgress {
   void start(Stage stage, double seconds = 0, std::size_t faces_before = 0, std::size_t faces = 0,
              std::size_t all_faces = 0);
   void report(const ProgressInfo& info) override;
+  /// Whether the print's pages are drawn in colour, known once the model is loaded (RunPlan).
+  void set_colour(bool colour) { plan_.colour = colour; }
   /// The last report: phase "write", fraction 1.
   void finish(std::size_t faces, std::size_t input_faces);
 
