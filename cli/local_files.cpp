@@ -1,5 +1,6 @@
 #include "cli/local_files.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -78,13 +79,37 @@ void add_siblings(const std::string& path, std::size_t max_bytes, JobInput& inpu
   }
 }
 
+/// The one model file in folder `dir` (a glTF folder as downloaded: the .gltf beside its
+/// buffers and images; an OBJ beside its MTL and textures).
+std::string model_in_folder(const std::string& dir) {
+  std::vector<std::string> models;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.is_regular_file(ec) &&
+        format_from_extension(entry.path().string()) != MeshFormat::Unknown)
+      models.push_back(entry.path().filename().string());
+  if (ec) throw IOException("cannot read the folder " + dir + ": " + ec.message());
+  if (models.size() == 1) return (std::filesystem::path(dir) / models.front()).string();
+  if (models.empty())
+    throw IOException(
+        "the folder holds no model file (expected glb, gltf, drc, obj, off, ply or stl)");
+  std::sort(models.begin(), models.end());
+  std::string list;
+  for (std::size_t i = 0; i < models.size() && i < 5; ++i) list += (i > 0 ? ", " : "") + models[i];
+  if (models.size() > 5) list += ", ...";
+  throw IOException("the folder holds " + std::to_string(models.size()) + " model files (" + list +
+                    "): name the one to unfold");
+}
+
 }  // namespace
 
 JobInput read_local_input(const std::string& path, std::size_t max_bytes) {
+  std::error_code ec;
+  const std::string file = std::filesystem::is_directory(path, ec) ? model_in_folder(path) : path;
   JobInput input;
-  input.mesh = read_mesh_file(path, max_bytes);
-  input.format = format_from_extension(path);
-  add_siblings(path, max_bytes, input);
+  input.mesh = read_mesh_file(file, max_bytes);
+  input.format = format_from_extension(file);
+  add_siblings(file, max_bytes, input);
   return input;
 }
 

@@ -21,6 +21,8 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: papernet unfold FILE -o OUT [-o OUT]... [options]\n"
+    "FILE: glb, gltf, drc, obj, off, ply or stl (the files it names beside it are read too), or\n"
+    "a folder that holds one such file.\n"
     "OUT is chosen by extension: .json (papernet.net/2), .svg (one page, or OUT-1.svg ... per\n"
     "page), .pdf (one page per sheet), .glb / .obj (the mesh the net folds into). Beside a\n"
     ".json: the model's textures, OUT.texture-K.png (or .jpg), K as in its \"textures\".\n"

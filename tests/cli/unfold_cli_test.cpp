@@ -421,6 +421,38 @@ TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
       << said;
 }
 
+// A folder given for the model: its one model file, with the files that file names (the glTF
+// folder as downloaded); none or several, exit 2 with what the folder holds.
+TEST(UnfoldCli, ReadsTheOneModelOfAFolder) {
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string out = scratch / "folder.json";
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
+                         "/CesiumMilkTruck --strategy TU --detail full -o " + out,
+                     &said),
+            0)
+      << said;
+  std::stringstream text;
+  text << std::ifstream(out).rdbuf();
+  const auto j = nlohmann::json::parse(text.str());
+  EXPECT_EQ(j["mesh"]["faces"].size(), 3624u);
+  EXPECT_FALSE(j["textures"].empty()) << "the texture beside the .gltf was read";
+
+  const std::filesystem::path empty = scratch.path() / "empty";
+  std::filesystem::create_directories(empty);
+  std::ofstream(empty / "notes.txt") << "no model here\n";
+  EXPECT_EQ(papernet("unfold " + empty.string() + " -o " + out, &said), 2);
+  EXPECT_NE(said.find("holds no model file"), std::string::npos) << said;
+
+  const std::filesystem::path two = scratch.path() / "two";
+  std::filesystem::create_directories(two);
+  for (const char* name : {"sample.obj", "reference.obj"})
+    std::filesystem::copy_file(papernet::test::test_data_dir() + "/" + name, two / name,
+                               std::filesystem::copy_options::overwrite_existing);
+  EXPECT_EQ(papernet("unfold " + two.string() + " -o " + out, &said), 2);
+  EXPECT_NE(said.find("2 model files (reference.obj, sample.obj)"), std::string::npos) << said;
+}
+
 // The textures of a local model: a .gltf's image and an OBJ's map_Kd are read from beside the
 // model and written beside the net JSON (OUT.texture-K.png).
 TEST(UnfoldCli, WritesTheTexturesBesideTheJson) {
