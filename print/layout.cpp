@@ -130,7 +130,8 @@ Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text
   return label;
 }
 
-/// Places and sizes every label; labels that share a face shrink together until they are apart.
+/// Places and sizes every label; labels that share a face shrink together until they are apart
+/// by kLabelGap.
 void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Label>& labels,
                  double max_size) {
   std::vector<std::vector<int>> by_face(faces.size());
@@ -146,8 +147,12 @@ void size_labels(const std::vector<std::array<Vec2, 3>>& faces, std::vector<Labe
       }
       bool apart = true;
       for (std::size_t a = 0; a < group.size() && apart; ++a)
-        for (std::size_t b = a + 1; b < group.size() && apart; ++b)
-          apart = !convex_overlap(label_box(labels[group[a]]), label_box(labels[group[b]]), 0);
+        for (std::size_t b = a + 1; b < group.size() && apart; ++b) {
+          const Label& la = labels[group[a]];
+          const Label& lb = labels[group[b]];
+          apart = !convex_overlap(label_box(la), label_box(lb),
+                                  -kLabelGap * std::min(la.size, lb.size));
+        }
       if (apart) break;
     }
   }

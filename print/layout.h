@@ -103,6 +103,11 @@ struct PrintLayout {
 /// height; docs/print.md, "Detail").
 constexpr double kLegibleLabelMm = 1.5;
 
+/// The least gap between the labels of one face, and between a piece's number and the labels
+/// around it, in text heights (the smaller label's; the piece number's own): text that touches
+/// reads as one ("4→P260→P2"; docs/print.md, "Labels").
+constexpr double kLabelGap = 0.15;
+
 /// How large a layout's labels print: on faces and on glue strips.
 struct LabelSizes {
   std::size_t count = 0;

@@ -105,9 +105,9 @@ std::vector<Label> place_piece_labels(const std::vector<std::array<Vec2, 3>>& fa
         double clear = std::numeric_limits<double>::infinity();
         for (const auto& box : boxes[p]) clear = std::min(clear, distance_to_box(at, box));
         // As large as the face holds (its disc within 0.9 of the room to the face's sides),
-        // at most kLargestMm, with its disc clear of the edge labels.
-        const double size =
-            std::min(kLargestMm, std::min(0.9 * distance_to_sides(at, t), clear) / diagonal);
+        // at most kLargestMm, with its disc clear of the edge labels by kLabelGap of its size.
+        const double size = std::min({kLargestMm, 0.9 * distance_to_sides(at, t) / diagonal,
+                                      clear / (diagonal + kLabelGap)});
         if (size > best_size) best_size = size, best_at = at, best_face = f;
         if (clear > best_clear) best_clear = clear, clearest_at = at, clearest_face = f;
       }

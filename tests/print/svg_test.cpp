@@ -639,6 +639,40 @@ TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
   }
 }
 
+// The labels of one face, as their face holds them, stand apart by 0.15 of the smaller one's
+// height: touching at the face's corner, two labels read as one ("4→P260→P2": the Duck at the
+// defaults had 32 such pairs). (A label moved to the legible size only keeps clear of the others'
+// boxes, docs/print.md, "Labels".)
+TEST(Labels, TheLabelsOfOneFaceStandApart) {
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& layout = all_layouts()[n];
+    std::map<int, std::vector<const Label*>> by_face;
+    for (const Label& l : layout.labels)
+      if (!l.text.empty() && l.size != kLegibleLabelMm && inside_face(l, layout.faces[l.side.face]))
+        by_face[l.side.face].push_back(&l);
+    int close = 0;
+    for (const auto& [face, labels] : by_face)
+      for (std::size_t i = 0; i < labels.size(); ++i)
+        for (std::size_t j = i + 1; j < labels.size(); ++j) {
+          const auto a = label_box(*labels[i]), b = label_box(*labels[j]);
+          double apart = INFINITY;
+          if (intersection_area({a.begin(), a.end()}, {b.begin(), b.end()}) > 0) apart = 0;
+          for (int k = 0; k < 4; ++k)
+            for (int q = 0; q < 4; ++q) {
+              apart = std::min(apart, segment_distance(a[k], b[q], b[(q + 1) % 4]));
+              apart = std::min(apart, segment_distance(b[k], a[q], a[(q + 1) % 4]));
+            }
+          const double least = 0.15 * std::min(labels[i]->size, labels[j]->size);
+          if (apart < least - 1e-9 && ++close <= 3)
+            ADD_FAILURE() << name << ": labels " << labels[i]->text << " and " << labels[j]->text
+                          << " of face " << face << " are " << apart << " mm apart, under "
+                          << least;
+        }
+    EXPECT_EQ(close, 0) << name;
+  }
+}
+
 // A label its face holds only under 1.5 mm prints on its glue tab wherever the tab has room for
 // it at 1.5 mm: low on a tall tab over a short edge, where the tab is widest, although its narrow
 // top would not hold the text (the milk truck's wheel arches had 0.5 mm labels so). Room, from
