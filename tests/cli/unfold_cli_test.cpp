@@ -12,12 +12,12 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/vec.h"
+#include "tests/support/files.h"
 #include "tests/support/paths.h"
 #include "tests/support/run_program.h"
 #include "tests/support/scratch_dir.h"
@@ -34,9 +34,7 @@ TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
                &said),
       0)
       << said;
-  std::stringstream text;
-  text << std::ifstream(out).rdbuf();
-  const auto j = nlohmann::json::parse(text.str());
+  const auto j = nlohmann::json::parse(read_file(out));
   EXPECT_EQ(j["strategy"], "AUTO");
   EXPECT_EQ(j["result"], "complete");
   EXPECT_EQ(j["mesh"]["faces"].size(), 1000u);
@@ -47,9 +45,7 @@ TEST(UnfoldCli, AutoIsTheDefaultAndWritesACompleteNet) {
                      &said),
             0)
       << said;
-  text.str("");
-  text << std::ifstream(out).rdbuf();
-  EXPECT_EQ(nlohmann::json::parse(text.str())["strategy"], "SEMP");
+  EXPECT_EQ(nlohmann::json::parse(read_file(out))["strategy"], "SEMP");
 }
 
 // When edges stay without room for a tab, the command says how many of them end at a leaf of
@@ -99,18 +95,14 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
             0)
       << said;
   EXPECT_NE(said.find("simplified from 4212 to"), std::string::npos) << said;
-  std::stringstream text;
-  text << std::ifstream(base + ".json").rdbuf();
-  const auto j = nlohmann::json::parse(text.str());
+  const auto j = nlohmann::json::parse(read_file(base + ".json"));
   EXPECT_EQ(j["result"], "approximate");
   EXPECT_EQ(j["input"]["faces"], 4212);
   EXPECT_LE(j["mesh"]["faces"].size(), 400u);
   EXPECT_GE(j["mesh"]["faces"].size(), 350u);
   EXPECT_GT(j["metrics"]["hausdorff"].get<double>(), 0);
   EXPECT_LT(j["metrics"]["hausdorff"].get<double>(), 0.05);
-  std::stringstream svg_text;
-  svg_text << std::ifstream(base + ".svg").rdbuf();
-  const std::string svg = svg_text.str();
+  const std::string svg = read_file(base + ".svg");
   std::smatch m;
   ASSERT_TRUE(std::regex_search(svg, m, std::regex(R"re(data-strips="(\d+)")re"))) << said;
   ASSERT_TRUE(
@@ -123,9 +115,7 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
                      &said),
             0)
       << said;
-  text.str("");
-  text << std::ifstream(base + ".json").rdbuf();
-  EXPECT_EQ(nlohmann::json::parse(text.str())["result"], "complete");
+  EXPECT_EQ(nlohmann::json::parse(read_file(base + ".json"))["result"], "complete");
   EXPECT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/Box_Draco.glb --simplify 3 -o " + base + ".json",
                      &said),
@@ -149,9 +139,7 @@ TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
                      &said),
             0)
       << said;
-  std::stringstream text;
-  text << std::ifstream(base + ".json").rdbuf();
-  auto j = nlohmann::json::parse(text.str());
+  auto j = nlohmann::json::parse(read_file(base + ".json"));
   EXPECT_EQ(j["detail"]["mode"], "auto");
   EXPECT_EQ(j["detail"]["faces"], j["mesh"]["faces"].size());
   EXPECT_LT(j["mesh"]["faces"].size(), 1500u);
@@ -171,9 +159,7 @@ TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
                      &said),
             0)
       << said;
-  text.str("");
-  text << std::ifstream(base + ".json").rdbuf();
-  j = nlohmann::json::parse(text.str());
+  j = nlohmann::json::parse(read_file(base + ".json"));
   EXPECT_EQ(j["detail"]["mode"], "full");
   EXPECT_EQ(j["mesh"]["faces"].size(), 4212u);
   ASSERT_EQ(j["warnings"].size(), 1u) << j["warnings"];
@@ -196,9 +182,7 @@ TEST(UnfoldCli, DetailAutoCollapsesShortEdgesOfACadPart) {
                      &said),
             0)
       << said;
-  std::stringstream text;
-  text << std::ifstream(base + ".json").rdbuf();
-  const auto j = nlohmann::json::parse(text.str());
+  const auto j = nlohmann::json::parse(read_file(base + ".json"));
   EXPECT_EQ(j["detail"]["mode"], "auto");
   EXPECT_LT(j["mesh"]["faces"].size(), 500u);
   const double mm_per_unit = j["print"]["mm_per_unit"].get<double>();
@@ -246,9 +230,7 @@ DetailRun run_detail(const std::string& file, const std::string& options,
   }
   run.strips = std::stoi(m[1].str());
   run.small_labels = std::stoi(m[2].str());
-  std::stringstream text;
-  text << std::ifstream(base + ".json").rdbuf();
-  run.net = nlohmann::json::parse(text.str());
+  run.net = nlohmann::json::parse(read_file(base + ".json"));
   return run;
 }
 
@@ -350,9 +332,7 @@ TEST(UnfoldCli, RepairsWhatItCanAndStrictRefusesIt) {
         << said;
     EXPECT_NE(said.find("repaired: removed 1 degenerate face"), std::string::npos) << said;
     EXPECT_NE(said.find("pieces=1 repairs=1"), std::string::npos) << said;
-    std::stringstream text;
-    text << std::ifstream(out).rdbuf();
-    const auto j = nlohmann::json::parse(text.str());
+    const auto j = nlohmann::json::parse(read_file(out));
     EXPECT_EQ(j["repairs"][0]["code"], "removed_degenerate_faces");
     EXPECT_EQ(j["mesh"]["faces"].size(), 4u);
   }
@@ -375,9 +355,7 @@ TEST(UnfoldCli, WithNoNetInOnePieceWritesGrownPiecesAndSaysSo) {
             std::string::npos)
       << said;
   EXPECT_NE(said.find(" grown=1 check=ok"), std::string::npos) << said;
-  std::stringstream text;
-  text << std::ifstream(out).rdbuf();
-  const auto j = nlohmann::json::parse(text.str());
+  const auto j = nlohmann::json::parse(read_file(out));
   EXPECT_EQ(j["result"], "complete");
   EXPECT_GT(j["pieces"].size(), 1u);
   std::size_t grown = 0;
@@ -398,9 +376,7 @@ TEST(UnfoldCli, ReadsTheFilesBesideALocalModel) {
                &said),
       0)
       << said;
-  std::stringstream text;
-  text << std::ifstream(out).rdbuf();
-  const auto j = nlohmann::json::parse(text.str());
+  const auto j = nlohmann::json::parse(read_file(out));
   EXPECT_EQ(j["mesh"]["faces"].size(), 3624u);  // 2,856 and the wheels twice more (node instances)
   EXPECT_GT(j["pieces"].size(), 10u) << "one piece per part of the truck";
   EXPECT_EQ(j["input"]["components"], j["pieces"].size());
@@ -432,9 +408,7 @@ TEST(UnfoldCli, ReadsTheOneModelOfAFolder) {
                      &said),
             0)
       << said;
-  std::stringstream text;
-  text << std::ifstream(out).rdbuf();
-  const auto j = nlohmann::json::parse(text.str());
+  const auto j = nlohmann::json::parse(read_file(out));
   EXPECT_EQ(j["mesh"]["faces"].size(), 3624u);
   EXPECT_FALSE(j["textures"].empty()) << "the texture beside the .gltf was read";
 
@@ -459,11 +433,6 @@ TEST(UnfoldCli, WritesTheTexturesBesideTheJson) {
   const ScratchDir scratch("papernet_unfold_cli");
   const std::filesystem::path& dir = scratch.path();
   const std::string data = papernet::test::test_data_dir();
-  const auto read = [](const std::filesystem::path& p) {
-    std::stringstream s;
-    s << std::ifstream(p, std::ios::binary).rdbuf();
-    return s.str();
-  };
   std::string said;
   const std::filesystem::path out = dir / "truck.json";
   ASSERT_EQ(papernet("unfold " + data + "/CesiumMilkTruck/CesiumMilkTruck.gltf --strategy TU " +
@@ -471,17 +440,18 @@ TEST(UnfoldCli, WritesTheTexturesBesideTheJson) {
                      &said),
             0)
       << said;
-  const auto j = nlohmann::json::parse(read(out));
+  const auto j = nlohmann::json::parse(read_file(out));
   // Its two glTF textures repeat one image with one sampler: one texture.
   ASSERT_EQ(j["textures"].size(), 1u);
   EXPECT_EQ(j["mesh"]["uvs"].size(), j["mesh"]["faces"].size());
-  EXPECT_EQ(read(dir / "truck.texture-0.png"), read(data + "/CesiumMilkTruck/CesiumMilkTruck.png"));
+  EXPECT_EQ(read_file(dir / "truck.texture-0.png"),
+            read_file(data + "/CesiumMilkTruck/CesiumMilkTruck.png"));
 
   // An OBJ (the fuze, which has texture coordinates) with an MTL whose map_Kd is that PNG.
   std::filesystem::copy_file(data + "/sample.obj", dir / "fuze.obj");
   std::filesystem::copy_file(data + "/CesiumMilkTruck/CesiumMilkTruck.png", dir / "paint.png");
   std::ofstream(dir / "fuze.mtl") << "newmtl paint\nKd 0.8 0.2 0.1\nmap_Kd paint.png\n";
-  std::string fuze = read(dir / "fuze.obj");
+  std::string fuze = read_file(dir / "fuze.obj");
   fuze.replace(fuze.find("mtllib ./fuze.obj.mtl"), 21, "mtllib fuze.mtl");
   fuze.replace(fuze.find("usemtl a-super-duper-material"), 29, "usemtl paint");
   std::ofstream(dir / "fuze.obj", std::ios::binary) << fuze;
@@ -490,10 +460,10 @@ TEST(UnfoldCli, WritesTheTexturesBesideTheJson) {
                      &said),
             0)
       << said;
-  const auto k = nlohmann::json::parse(read(dir / "fuze.json"));
+  const auto k = nlohmann::json::parse(read_file(dir / "fuze.json"));
   ASSERT_EQ(k["materials"].size(), 1u);
   EXPECT_EQ(k["materials"][0]["texture"], 0);
-  EXPECT_EQ(read(dir / "fuze.texture-0.png"), read(dir / "paint.png"));
+  EXPECT_EQ(read_file(dir / "fuze.texture-0.png"), read_file(dir / "paint.png"));
 }
 
 }  // namespace

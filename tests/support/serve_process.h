@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/files.h"
 #include "tests/support/paths.h"
 #include "tests/support/postgres.h"
 #include "tests/support/sanitized.h"
@@ -28,13 +29,6 @@ namespace papernet::test {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
-
-inline std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 inline std::string test_mesh(const std::string& name) {
   return read_file(fs::path(papernet::test::test_data_dir()) / name);

@@ -17,6 +17,7 @@
 #include "core/io/load.h"
 #include "core/mesh/colour.h"
 #include "core/mesh/repair.h"
+#include "tests/support/files.h"
 #include "tests/support/meshes.h"
 #include "tests/support/paths.h"
 
@@ -25,10 +26,7 @@ namespace {
 
 using nlohmann::json;
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test::read_file;
 
 /// A GLB's JSON and BIN chunks, read here without the loader.
 struct Glb {

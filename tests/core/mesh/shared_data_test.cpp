@@ -20,6 +20,7 @@
 #include "core/errors.h"
 #include "core/io/load.h"
 #include "core/mesh/validate.h"
+#include "tests/support/files.h"
 #include "tests/support/paths.h"
 
 namespace papernet {
@@ -64,10 +65,7 @@ std::vector<fs::path> mesh_files(const fs::path& dir) {
   return files;
 }
 
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test::read_file;
 
 /// The files next to a .gltf that its buffers name, as an upload would bring them.
 LoadOptions with_siblings(const fs::path& file) {
