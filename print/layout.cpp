@@ -165,6 +165,15 @@ Box2 box_around(const std::array<Vec2, 4>& quad) {
   return b;
 }
 
+/// True when two quadrilaterals overlap, each given with the box around it (which rules out most
+/// pairs sooner).
+bool quads_meet(const std::array<Vec2, 4>& a, const Box2& a_around, const std::array<Vec2, 4>& b,
+                const Box2& b_around) {
+  return a_around.lo.x <= b_around.hi.x && b_around.lo.x <= a_around.hi.x &&
+         a_around.lo.y <= b_around.hi.y && b_around.lo.y <= a_around.hi.y &&
+         convex_overlap(a, b, 0);
+}
+
 /// The boxes of a net's labels on a grid of cells, as the labels move: which other label a box
 /// meets, on any face (a label moved beside its edge reaches over folds into other faces).
 class LabelBoxes {
@@ -237,9 +246,7 @@ class LabelBoxes {
   }
   bool overlaps(const std::array<Vec2, 4>& box, const Box2& around, int j) const {
     if (labels_[j].text.empty()) return false;
-    const Box2& other = kept_[j].around;
-    return around.lo.x <= other.hi.x && other.lo.x <= around.hi.x && around.lo.y <= other.hi.y &&
-           other.lo.y <= around.hi.y && convex_overlap(box, kept_[j].box, 0);
+    return quads_meet(box, around, kept_[j].box, kept_[j].around);
   }
   template <class F>
   static void for_cells(const std::array<Vec2, 4>& box, F&& f) {
@@ -604,10 +611,8 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
   std::vector<std::pair<Box2, std::array<Vec2, 4>>> drawn;
   const auto meets_drawn = [&](const std::array<Vec2, 4>& quad) {
     const Box2 b = box_around(quad);
-    return std::any_of(drawn.begin(), drawn.end(), [&](const auto& l) {
-      return b.lo.x <= l.first.hi.x && l.first.lo.x <= b.hi.x && b.lo.y <= l.first.hi.y &&
-             l.first.lo.y <= b.hi.y && convex_overlap(quad, l.second, 0);
-    });
+    return std::any_of(drawn.begin(), drawn.end(),
+                       [&](const auto& l) { return quads_meet(quad, b, l.second, l.first); });
   };
   std::vector<char> led(labels.size(), 0);  // the labels placed here with a leader
   // Label `i` printed at kLegibleLabelMm away from its edge with a leader line, in the rounds
