@@ -246,8 +246,9 @@ constexpr Spec kOptions[] = {
      "the time limit would pass (warning colour_resolution_lowered)",
      [](JobOptions& o, const std::string& n, const json& v) { o.dpi = number(n, v); }},
     {"overview", "",
-     "with layout fit, a first page mapping the sheets, the pieces on each and the build order "
-     "(unset: when there is more than one piece)",
+     "with layout fit, a first page mapping the sheets, the pieces on each, the model as built "
+     "(two views, each piece numbered) and the build order (unset: when there is more than one "
+     "piece)",
      [](JobOptions& o, const std::string& n, const json& v) { o.overview = boolean(n, v); }},
     {"components", "all|largest",
      "all: every connected part of the mesh its own piece; largest: only the largest part",

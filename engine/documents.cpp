@@ -589,7 +589,8 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.smallest_label_mm = labels.smallest_mm;
   summary.small_labels = labels.illegible;
   if (fit && options.overview.value_or(pieces.pieces > 1)) {
-    add_overview(pages, layout, pieces.piece, std::move(graph));
+    add_overview(pages, layout, pieces.piece, std::move(graph), mesh, view_axes(outcome.format),
+                 options.colour);
     summary.overview = true;
   }
   if (unpaged) docs.svg_pages = {write_net_svg(*unpaged, page.margin_mm, paint)};

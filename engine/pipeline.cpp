@@ -263,6 +263,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   // Each part unfolded in turn (collapsed first as `detail` says), with a share of the
   // unfolder's time left as large as its share of the faces left.
   UnfoldOutcome out;
+  out.format = prepared.format;
   std::vector<Piece> pieces;
   Relay relay(tracked, prepared, options, documents, pieces);
   std::size_t faces_before = 0;

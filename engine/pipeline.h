@@ -81,7 +81,8 @@ struct TabRoomSummary {
 
 /// Everything a run produced.
 struct UnfoldOutcome {
-  NetDocument net;             ///< the net and the mesh it folds into, as the net JSON has them
+  NetDocument net;  ///< the net and the mesh it folds into, as the net JSON has them
+  MeshFormat format = MeshFormat::Unknown;  ///< of the input file (the print's views: up)
   bool simplified = false;     ///< the mesh was collapsed to `simplify` faces before unfolding
   std::size_t iterations = 0;  ///< of the Tabu Unfolder
   std::optional<TabRoomSummary> tab_room;  ///< when the pass ran

@@ -67,6 +67,7 @@ LoadedMesh load_input(const JobInput& job, const PipelineLimits& limits, Progres
 
 Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progress) {
   Prepared out;
+  out.format = loaded.format;
   for (const std::string& note : loaded.notes) out.repairs.push_back(skipped(note));
   const bool largest = options.components == Components::Largest;
   Mesh mesh;

@@ -25,6 +25,7 @@ constexpr double kTitleMm = 5;
 constexpr double kPieceMm = 4;      // a piece's number on its sheet's thumbnail
 constexpr double kGapMm = 6;        // between thumbnails
 constexpr double kLinePitch = 1.5;  // line spacing, in text heights
+constexpr double kViewDpi = 150;    // the views of the model (the overview is on plain paper)
 
 bool holds(const Page& page, Vec2 p) {
   return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
@@ -227,8 +228,32 @@ struct Writer {
   }
 };
 
+/// The views of the model in the box [lo, hi] (page mm, y down): from the front, from above
+/// and to the right, then from the opposite side (the back, from below), one above the other in
+/// a tall box, else side by side, each piece's number on it (draw_model_view).
+void draw_views(const Overview& overview, Vec2 lo, Vec2 hi, Writer& out) {
+  const Vec3 up = overview.axes.up, front = overview.axes.front;
+  const Vec3 toward = front + 0.8 * cross(up, front) + 0.6 * up;
+  const Vec2 size = hi - lo;
+  const bool stacked = size.y >= size.x;
+  const Vec2 step = stacked ? Vec2{0, 0.5 * (size.y + kGapMm)} : Vec2{0.5 * (size.x + kGapMm), 0};
+  const Vec2 each =
+      stacked ? Vec2{size.x, 0.5 * (size.y - kGapMm)} : Vec2{0.5 * (size.x - kGapMm), size.y};
+  for (int v = 0; v < 2; ++v) {
+    const Vec2 at = lo + static_cast<double>(v) * step;
+    const ModelView view =
+        draw_model_view(overview.model, overview.piece, v == 0 ? toward : -1.0 * toward, up, at,
+                        at + each, kViewDpi, overview.colour);
+    if (!view.image.surface) continue;
+    out.d.images.push_back(view.image);
+    for (const ModelView::Number& n : view.numbers)
+      out.text(Layer::Labels, n.at, piece_name(n.piece), n.size);
+  }
+}
+
 /// Draws the sheets of `sheets` (indices into pages.pages) as thumbnails in a grid from `top`
-/// down to at most `limit`, as large as fits; returns the grid's foot.
+/// down to at most `limit`, as large as fits, and after them the views of the model in a cell
+/// of their own (when the overview has them); returns the grid's foot.
 double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Overview& overview,
                    const std::vector<int>& sheets, double top, double limit, Writer& out) {
   const double m = pages.margin, width = pages.width - 2 * m;
@@ -236,13 +261,21 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
   const Page& any = pages.pages[sheets.front()];
   const double sw = any.hi.x - any.lo.x, sh = any.hi.y - any.lo.y;
   const double room = limit - top;
-  const auto n = static_cast<int>(sheets.size());
+  const bool views =
+      !overview.model.faces.empty() && overview.model.faces.size() == overview.piece.size();
+  const auto n = static_cast<int>(sheets.size()) + (views ? 1 : 0);
   // Each sheet's pieces, and its caption's lines at a thumbnail width.
   std::vector<std::vector<int>> on_sheet(sheets.size());
   for (int p = 0; p < count; ++p)
     for (std::size_t i = 0; i < sheets.size(); ++i)
       if (overview.page[p] == sheets[i]) on_sheet[i].push_back(p);
   auto captions = [&](std::size_t i, double cell_w) {
+    if (i == sheets.size()) {  // the views' cell
+      const std::string one = "the model, front and back";
+      return text_width(one, kTextMm) <= cell_w
+                 ? std::vector<std::string>{one}
+                 : std::vector<std::string>{"the model,", "front and back"};
+    }
     const std::string head = std::string("page ") + std::to_string(sheets[i] + 1) + ":";
     return on_sheet[i].empty() ? std::vector<std::string>{head + " glue strips"}
                                : wrap(head, on_sheet[i], cell_w, kTextMm);
@@ -250,7 +283,7 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
   // The room under a thumbnail: its caption's most lines and one more.
   auto caption_height = [&](double cell_w) {
     std::size_t lines = 1;
-    for (std::size_t i = 0; i < sheets.size(); ++i)
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i)
       lines = std::max(lines, captions(i, cell_w).size());
     return static_cast<double>(lines + 1) * kLinePitch * kTextMm;
   };
@@ -271,9 +304,20 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
   const double left = m + 0.5 * (width - cols * cell_w - (cols - 1) * kGapMm);
   const double first_y = top;
   for (int i = 0; i < n; ++i) {
-    const Page& page = pages.pages[sheets[i]];
     const double x0 = left + (i % cols) * (cell_w + kGapMm) + 0.5 * (cell_w - sw * scale);
     const double y0 = first_y + (i / cols) * (cell_h + kGapMm);
+    // The caption: "page 3: P1, P4", broken into lines that fit the thumbnail's width.
+    const std::vector<std::string> lines = captions(static_cast<std::size_t>(i), cell_w);
+    for (std::size_t l = 0; l < lines.size(); ++l)
+      out.text(Layer::Labels,
+               {x0 + 0.5 * sw * scale,
+                y0 + sh * scale + (static_cast<double>(l) + 1) * kLinePitch * kTextMm},
+               lines[l], kTextMm);
+    if (i == static_cast<int>(sheets.size())) {
+      draw_views(overview, {x0, y0}, {x0 + sw * scale, y0 + sh * scale}, out);
+      continue;
+    }
+    const Page& page = pages.pages[sheets[i]];
     auto map = [&](Vec2 p) {
       return Vec2{x0 + (p.x - page.lo.x) * scale, y0 + (page.hi.y - p.y) * scale};
     };
@@ -330,13 +374,6 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
                       std::clamp(at.y, place.y - half.y, place.y + half.y)};
       if (norm(edge - at) > 0.5) out.line(Layer::Marks, {at, edge});
     }
-    // The caption: "page 3: P1, P4", broken into lines that fit the thumbnail's width.
-    const std::vector<std::string> lines = captions(static_cast<std::size_t>(i), cell_w);
-    for (std::size_t l = 0; l < lines.size(); ++l)
-      out.text(Layer::Labels,
-               {x0 + 0.5 * sw * scale,
-                y0 + sh * scale + (static_cast<double>(l) + 1) * kLinePitch * kTextMm},
-               lines[l], kTextMm);
   }
   return first_y + grid_rows * cell_h + (grid_rows - 1) * kGapMm + kGapMm;
 }
@@ -344,7 +381,7 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
 }  // namespace
 
 void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vector<int>& piece,
-                  PieceGraph graph) {
+                  PieceGraph graph, Mesh model, ViewAxes axes, bool colour) {
   auto overview = std::make_shared<Overview>();
   int count = 0;
   for (const int p : piece) count = std::max(count, p + 1);
@@ -359,6 +396,9 @@ void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
   }
   overview->piece = piece;
   overview->graph = std::move(graph);
+  if (model.faces.size() == layout.faces.size()) overview->model = std::move(model);
+  overview->axes = axes;
+  overview->colour = colour;
   Page first;
   first.overview = true;
   first.lo = {0, 0};

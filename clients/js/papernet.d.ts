@@ -37,8 +37,9 @@ export interface Options {
   flat_fold_degrees?: number;
   /** Matching numbers on both sides of each cut edge (default true). */
   labels?: boolean;
-  /** Layout fit: a first page mapping the sheets, the pieces on each and the build order
-   *  (default: when the print has more than one piece). */
+  /** Layout fit: a first page mapping the sheets, the pieces on each, the model as built (two
+   *  views, each piece numbered where it shows) and the build order (default: when the print has
+   *  more than one piece). */
   overview?: boolean;
   /** "all" (default): every connected part its own piece; "largest": only the largest part. */
   components?: "all" | "largest";

@@ -29,6 +29,7 @@ struct Prepared {
   /// are those of `colour`, shared by every part.
   std::vector<MeshColour> part_colours;
   MeshColour colour;  ///< the materials and textures (its per-face vectors left empty)
+  MeshFormat format = MeshFormat::Unknown;  ///< of the file read
 };
 
 /// Loads `job` within `limits` (engine/prepare.cpp).

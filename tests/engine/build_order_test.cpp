@@ -124,6 +124,17 @@ std::vector<std::string> texts(const std::string& svg, const std::string& group)
   return out;
 }
 
+/// The texts of an overview page outside its views of the model (its <image>s), in order.
+std::vector<std::string> overview_texts(const std::string& page) {
+  const std::vector<SvgBox> views = svg_images(page);
+  std::vector<std::string> out;
+  for (const SvgText& t : svg_texts(svg_group(page, "labels")))
+    if (std::none_of(views.begin(), views.end(),
+                     [&](const SvgBox& v) { return v.holds(t.x, t.y - 0.35 * t.size); }))
+      out.push_back(t.text);
+  return out;
+}
+
 TEST(AssemblyAids, TheNetAsPrintedPassesTheNetChecker) {
   const NetDocument& doc = duck().doc;
   ASSERT_TRUE(doc.print);
@@ -495,7 +506,7 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
   EXPECT_EQ(pdf_pages, static_cast<std::size_t>(n));
 
   // The sheet list: captions "page k: P1, P4", broken after a comma onto more lines when long.
-  const std::vector<std::string> overview = texts(printed.pages[0], "labels");
+  const std::vector<std::string> overview = overview_texts(printed.pages[0]);
   std::map<int, std::vector<int>> listed;  // piece -> pages it is listed on
   std::map<int, std::vector<int>> mapped;  // piece -> thumbnails its number is on (by count)
   static const std::regex caption("^page (\\d+):(.*)$"), names("P(\\d+)"),
@@ -544,6 +555,82 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
   for (const auto& [p, on] : mapped) EXPECT_EQ(on.size(), 1u) << "P" << p + 1;
 }
 
+// The overview shows the model as built from two sides (the Duck is glTF: Y up, facing +Z; seen
+// from the front, the right and above, then from the opposite side), each view an image beside
+// the thumbnails with its pieces' numbers on it. Each number names the piece the model shows
+// under it: a ray cast here from the number's centre into the mesh of the net JSON, fitted to
+// the image as large as fits and centred, hits that piece first.
+TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWhereItShows) {
+  const Printed& printed = duck();
+  const NetDocument& doc = printed.doc;
+  const std::string& page = printed.pages[0];
+  const std::vector<SvgBox> views = svg_images(page);
+  ASSERT_EQ(views.size(), 2u) << "the overview shows the model from two sides";
+  EXPECT_FALSE(views[0].overlaps(views[1]));
+  const std::vector<SvgText> all = svg_texts(svg_group(page, "labels"));
+  std::size_t numbered = 0;
+  std::set<int> shown;
+  for (int v = 0; v < 2; ++v) {
+    const SvgBox& box = views[v];
+    EXPECT_GE(box.x0, 10 - 1e-6);  // A4 with 10 mm margins
+    EXPECT_GE(box.y0, 10 - 1e-6);
+    EXPECT_LE(box.x1, 200 + 1e-6);
+    EXPECT_LE(box.y1, 287 + 1e-6);
+    const Vec3 up{0, 1, 0}, front{0, 0, 1};
+    const Vec3 toward = (v == 0 ? 1.0 : -1.0) * (front + 0.8 * cross(up, front) + 0.6 * up);
+    const Vec3 w = (1 / norm(toward)) * toward;
+    Vec3 x = cross(up, w);
+    x = (1 / norm(x)) * x;
+    const Vec3 y = cross(w, x);
+    double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300;
+    for (const Vec3& p : doc.mesh.vertices) {
+      lo_x = std::min(lo_x, dot(p, x)), hi_x = std::max(hi_x, dot(p, x));
+      lo_y = std::min(lo_y, dot(p, y)), hi_y = std::max(hi_y, dot(p, y));
+    }
+    const double s = std::min((box.x1 - box.x0) / (hi_x - lo_x), (box.y1 - box.y0) / (hi_y - lo_y));
+    const Vec2 offset{0.5 * (box.x1 - box.x0 - s * (hi_x - lo_x)),
+                      0.5 * (box.y1 - box.y0 - s * (hi_y - lo_y))};
+    const auto on_page = [&](const Vec3& p) {
+      return Vec2{box.x0 + offset.x + s * (dot(p, x) - lo_x),
+                  box.y1 - offset.y - s * (dot(p, y) - lo_y)};
+    };
+    std::set<int> here;
+    for (const SvgText& t : all) {
+      const Vec2 c{t.x, t.y - 0.35 * t.size};
+      if (!box.holds(c.x, c.y)) continue;
+      std::smatch m;
+      ASSERT_TRUE(std::regex_match(t.text, m, std::regex("P([0-9]+)"))) << t.text;
+      const int piece = std::stoi(m[1]) - 1;
+      ASSERT_LT(piece, static_cast<int>(doc.pieces.size())) << t.text;
+      EXPECT_TRUE(here.insert(piece).second) << t.text << " twice on view " << v;
+      EXPECT_GE(t.size, 2 - 1e-6) << t.text;
+      // The face nearest the viewer under the number's centre.
+      int hit = -1;
+      double nearest = -1e300;
+      for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
+        const auto& tri = doc.mesh.faces[f];
+        const Vec2 a = on_page(doc.mesh.vertices[tri[0]]), b = on_page(doc.mesh.vertices[tri[1]]),
+                   d = on_page(doc.mesh.vertices[tri[2]]);
+        const double area = cross(b - a, d - a);
+        if (std::abs(area) < 1e-12) continue;
+        const double l1 = cross(c - a, d - a) / area, l2 = cross(b - a, c - a) / area;
+        if (l1 < 0 || l2 < 0 || l1 + l2 > 1) continue;
+        const double depth = (1 - l1 - l2) * dot(doc.mesh.vertices[tri[0]], w) +
+                             l1 * dot(doc.mesh.vertices[tri[1]], w) +
+                             l2 * dot(doc.mesh.vertices[tri[2]], w);
+        if (depth > nearest) nearest = depth, hit = static_cast<int>(f);
+      }
+      ASSERT_GE(hit, 0) << t.text << " lies off the model";
+      EXPECT_EQ(doc.piece[hit], piece)
+          << t.text << " on view " << v << " lies on P" << doc.piece[hit] + 1;
+      ++numbered;
+    }
+    shown.insert(here.begin(), here.end());
+  }
+  EXPECT_GE(numbered, 10u);
+  EXPECT_GE(2 * shown.size(), doc.pieces.size()) << "half the pieces or more numbered on a view";
+}
+
 // No text on the overview covers another: the pieces' numbers on the thumbnails, where small
 // pieces lie close, included (on this part's 47 pieces four numbers covered others when each sat
 // at its piece's label), and no piece's number crosses a cut line. Boxes of half an em per
@@ -579,7 +666,11 @@ TEST(AssemblyAids, NoTextOnTheOverviewCoversAnother) {
     const double half_w = 0.25 * size * static_cast<double>(t.size());
     boxes.push_back({x - half_w, y - 0.35 * size, x + half_w, y + 0.35 * size, t});
   }
-  EXPECT_GE(numbers, printed.doc.pieces.size()) << "each piece's number on its thumbnail";
+  std::size_t on_thumbnails = 0;
+  for (const std::string& t : overview_texts(printed.pages[0]))
+    on_thumbnails += std::regex_match(t, std::regex("P[0-9]+"));
+  EXPECT_GE(on_thumbnails, printed.doc.pieces.size()) << "each piece's number on its thumbnail";
+  EXPECT_GT(numbers, on_thumbnails) << "and numbers on the views of the model";
   EXPECT_GT(printed.doc.pieces.size(), 20u) << "the part no longer has many small pieces";
   for (std::size_t a = 0; a < boxes.size(); ++a)
     for (std::size_t b = a + 1; b < boxes.size(); ++b) {

@@ -940,9 +940,16 @@ TEST(ColourPrintSvg, PagesHoldOnePngPerPieceBetweenFillsAndLines) {
   ASSERT_FALSE(out.documents.svg_pages.empty());
   std::size_t images = 0;
   std::size_t coloured_pages = 0;
-  for (const std::string& svg : out.documents.svg_pages) {
+  ASSERT_TRUE(out.net.print);
+  for (int k = 0; k < static_cast<int>(out.documents.svg_pages.size()); ++k) {
+    const std::string& svg = out.documents.svg_pages[k];
+    // The overview's images are its two views of the model (build_order_test).
+    if (k == out.net.print->overview_page) {
+      EXPECT_EQ(svg_images(svg).size(), 2u);
+      continue;
+    }
     const auto colour = svg.find("<g id=\"colour\"");
-    if (colour == std::string::npos) continue;  // the overview page (page 1)
+    if (colour == std::string::npos) continue;
     ++coloured_pages;
     EXPECT_LT(svg.find("<g id=\"tabs\""), colour);
     EXPECT_GT(svg.find("<g id=\"cut\""), colour);
@@ -996,7 +1003,9 @@ TEST(ColourPrintTime, PagesPastTheTimeLimitPrintTheirColourAtALowerResolution) {
       run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true, .pdf = true}, quiet);
   const auto& pages = late.documents.svg_pages;
   ASSERT_GE(pages.size(), 4u) << "an overview and at least three sheets";
-  EXPECT_EQ(page_dpi(pages[0]), 0) << "the overview has no colour";
+  // Page 1 is the overview, whose two views of the model (build_order_test) are no sheet's colour.
+  ASSERT_TRUE(late.net.print);
+  ASSERT_EQ(late.net.print->overview_page, 0);
   std::size_t first_lowered = pages.size();
   double before = 150, lowest = 150;
   for (std::size_t i = 1; i < pages.size(); ++i) {

@@ -34,4 +34,41 @@ inline std::vector<std::vector<Vec2>> svg_polygons(const std::string& svg_text) 
   return out;
 }
 
+/// A <text> of SVG text: its x and y as written (the middle of its baseline), size and text.
+struct SvgText {
+  double x = 0, y = 0, size = 0;
+  std::string text;
+};
+
+/// The <text> elements of SVG text, in order.
+inline std::vector<SvgText> svg_texts(const std::string& svg_text) {
+  static const std::regex text(
+      "<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" font-size=\"([0-9.]+)\"[^>]*>([^<]*)</text>");
+  std::vector<SvgText> out;
+  for (auto it = std::sregex_iterator(svg_text.begin(), svg_text.end(), text);
+       it != std::sregex_iterator(); ++it)
+    out.push_back({std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]), (*it)[4].str()});
+  return out;
+}
+
+/// An axis-aligned box on the page, mm.
+struct SvgBox {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool holds(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
+  bool overlaps(const SvgBox& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+/// The boxes of the <image> elements of SVG text, in order.
+inline std::vector<SvgBox> svg_images(const std::string& svg_text) {
+  static const std::regex image(
+      "<image x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" width=\"([0-9.]+)\" height=\"([0-9.]+)\"");
+  std::vector<SvgBox> out;
+  for (auto it = std::sregex_iterator(svg_text.begin(), svg_text.end(), image);
+       it != std::sregex_iterator(); ++it) {
+    const double x = std::stod((*it)[1]), y = std::stod((*it)[2]);
+    out.push_back({x, y, x + std::stod((*it)[3]), y + std::stod((*it)[4])});
+  }
+  return out;
+}
+
 }  // namespace papernet::test

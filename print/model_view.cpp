@@ -1,0 +1,382 @@
+// The model as built, for the overview page (docs/print.md, "The overview page"). cairo paints
+// the faces far to near (the painter's algorithm), the backs of faces before the fronts and large
+// faces in fragments of at most kFragmentMm, each at its own depth; once shaded for the page and
+// once without smoothing, each fragment its piece's index, to read which piece shows at each
+// point: the numbers go where their piece shows most.
+#include "print/model_view.h"
+
+#include <cairo.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "print/layout.h"
+
+namespace papernet {
+namespace {
+
+using SurfacePtr = std::shared_ptr<cairo_surface_t>;
+
+Vec3 unit(Vec3 v) {
+  const double n = norm(v);
+  return n > 0 ? (1 / n) * v : v;
+}
+
+// The item image's pixels per millimetre: a 2 mm number spans 8 of them.
+constexpr double kItemsPerMm = 4;
+// The shaded image is painted this many times finer, then scaled down (shade).
+constexpr int kSupersample = 3;
+// The share of a number's box that must show its piece.
+constexpr double kOnPiece = 0.9;
+
+/// A light colour of its own for piece `p`: hues a golden angle apart, so that pieces numbered
+/// one after the other (neighbours, in build order) differ most.
+std::array<double, 3> piece_rgb(int p) {
+  const double h = std::fmod(0.58 + 0.618033988749895 * p, 1.0) * 6;
+  const double s = 0.38, v = 0.97;
+  const double f = h - std::floor(h);
+  const double a = v * (1 - s), b = v * (1 - s * f), c = v * (1 - s * (1 - f));
+  switch (static_cast<int>(h) % 6) {
+    case 0:
+      return {v, c, a};
+    case 1:
+      return {b, v, a};
+    case 2:
+      return {a, v, c};
+    case 3:
+      return {a, b, v};
+    case 4:
+      return {c, a, v};
+    default:
+      return {v, a, b};
+  }
+}
+
+/// The mesh seen along -toward: each vertex on the page (mm, y down) and its depth (larger:
+/// nearer).
+struct Projection {
+  std::vector<Vec2> at;
+  std::vector<double> depth;
+};
+
+Projection project(const Mesh& mesh, Vec3 toward, Vec3 up, Vec2 lo, Vec2 hi) {
+  const Vec3 w = unit(toward);
+  const Vec3 x = unit(cross(up, w));
+  const Vec3 y = cross(w, x);
+  Projection p;
+  Box2 box = Box2::empty();
+  for (const Vec3& v : mesh.vertices) {
+    p.at.push_back({dot(v, x), dot(v, y)});
+    p.depth.push_back(dot(v, w));
+    box.add(p.at.back());
+  }
+  const Vec2 size = box.size(), room = hi - lo;
+  const double s = std::min(size.x > 0 ? room.x / size.x : 1, size.y > 0 ? room.y / size.y : 1);
+  const Vec2 offset = 0.5 * (room - s * size);
+  for (Vec2& a : p.at)
+    a = {lo.x + offset.x + s * (a.x - box.lo.x), hi.y - offset.y - s * (a.y - box.lo.y)};
+  return p;
+}
+
+/// For each face, which of its sides part it from another piece (or border a hole): bit k for
+/// the side from corner k to corner k + 1.
+std::vector<std::uint8_t> piece_borders(const Mesh& mesh, std::span<const int> piece) {
+  std::unordered_map<std::uint64_t, std::vector<int>> faces_of;  // by the side's two vertices
+  const auto key = [](int a, int b) {
+    return static_cast<std::uint64_t>(std::min(a, b)) << 32 |
+           static_cast<std::uint32_t>(std::max(a, b));
+  };
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      faces_of[key(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3])].push_back(static_cast<int>(f));
+  std::vector<std::uint8_t> out(mesh.faces.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto& across = faces_of[key(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3])];
+      const bool border =
+          across.size() != 2 ||
+          std::any_of(across.begin(), across.end(), [&](int g) { return piece[g] != piece[f]; });
+      if (border) out[f] |= static_cast<std::uint8_t>(1u << k);
+    }
+  return out;
+}
+
+// The longest side of a piece of a face as painted, mm: a large face is painted in smaller
+// pieces, each at its own depth, so that its far end goes under what is in front of it.
+constexpr double kFragmentMm = 2;
+
+/// A piece of a face as painted: its corners on the page, its depth, which of its sides lie on
+/// a border of the face's piece (bit k: from corner k to k + 1).
+struct Fragment {
+  std::array<Vec2, 3> at;
+  std::array<double, 3> depth;
+  int face = 0;
+  std::uint8_t borders = 0;
+  bool front = true;
+};
+
+/// The faces in fragments, in the order they are painted: the backs of faces (seen inside an
+/// open model) first, then the fronts, each far to near by the depths of their centres.
+std::vector<Fragment> paint_order(const Mesh& mesh, std::span<const int> piece, const Projection& p,
+                                  Vec3 toward) {
+  const std::vector<std::uint8_t> borders = piece_borders(mesh, piece);
+  const Vec3 w = unit(toward);
+  std::vector<Fragment> out, todo;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    todo.push_back({{p.at[t[0]], p.at[t[1]], p.at[t[2]]},
+                    {p.depth[t[0]], p.depth[t[1]], p.depth[t[2]]},
+                    static_cast<int>(f),
+                    borders[f],
+                    dot(face_normal(mesh, static_cast<int>(f)), w) >= 0});
+    while (!todo.empty()) {
+      Fragment g = todo.back();
+      todo.pop_back();
+      int k = 0;  // the longest side, from corner k
+      double longest = 0;
+      for (int i = 0; i < 3; ++i) {
+        const double l = norm(g.at[(i + 1) % 3] - g.at[i]);
+        if (l > longest) longest = l, k = i;
+      }
+      if (longest <= kFragmentMm) {
+        out.push_back(g);
+        continue;
+      }
+      // Halved across side k: both halves keep that side's border, and the new side has none.
+      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      const Vec2 m = 0.5 * (g.at[k] + g.at[k1]);
+      const double md = 0.5 * (g.depth[k] + g.depth[k1]);
+      const bool side = g.borders >> k & 1;
+      Fragment a = g, b = g;
+      a.at = {g.at[k], m, g.at[k2]};
+      a.depth = {g.depth[k], md, g.depth[k2]};
+      a.borders = static_cast<std::uint8_t>((side ? 1 : 0) | ((g.borders >> k2 & 1) << 2));
+      b.at = {m, g.at[k1], g.at[k2]};
+      b.depth = {md, g.depth[k1], g.depth[k2]};
+      b.borders = static_cast<std::uint8_t>((side ? 1 : 0) | ((g.borders >> k1 & 1) << 1));
+      todo.push_back(a);
+      todo.push_back(b);
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Fragment& a, const Fragment& b) {
+    if (a.front != b.front) return !a.front;
+    return a.depth[0] + a.depth[1] + a.depth[2] < b.depth[0] + b.depth[1] + b.depth[2];
+  });
+  return out;
+}
+
+void trace(cairo_t* cr, const Fragment& g) {
+  cairo_move_to(cr, g.at[0].x, g.at[0].y);
+  cairo_line_to(cr, g.at[1].x, g.at[1].y);
+  cairo_line_to(cr, g.at[2].x, g.at[2].y);
+  cairo_close_path(cr);
+}
+
+/// The shaded image at `dpi` of the box [lo, hi]: each face its piece's colour (or grey), lit from
+/// the viewer's upper left, darker where its back shows (inside an open model); the borders of
+/// pieces dark.
+SurfacePtr shade(const Mesh& mesh, std::span<const int> piece, const std::vector<Fragment>& order,
+                 Vec3 toward, Vec3 up, Vec2 lo, Vec2 hi, double dpi, bool colour) {
+  // Painted kSupersample times finer without smoothing, then scaled down: fragments that meet
+  // leave no seam (smoothed, each would let the paper show through half a pixel along its sides).
+  const double px = dpi / 25.4;
+  const int w = std::max(1, static_cast<int>(std::ceil((hi.x - lo.x) * px)));
+  const int h = std::max(1, static_cast<int>(std::ceil((hi.y - lo.y) * px)));
+  SurfacePtr fine(
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, kSupersample * w, kSupersample * h),
+      cairo_surface_destroy);
+  cairo_t* cr = cairo_create(fine.get());
+  cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
+  cairo_scale(cr, kSupersample * px, kSupersample * px);
+  cairo_translate(cr, -lo.x, -lo.y);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  const Vec3 view = unit(toward);
+  const Vec3 light = unit(view + 0.6 * unit(up) - 0.4 * unit(cross(up, view)));
+  std::vector<double> lit(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Vec3 n = unit(face_normal(mesh, static_cast<int>(f)));
+    lit[f] = dot(n, view) >= 0 ? 0.62 + 0.38 * std::max(0.0, dot(n, light)) : 0.45;
+  }
+  for (const Fragment& g : order) {
+    const double l = lit[g.face];
+    const auto rgb = colour ? piece_rgb(piece[g.face]) : std::array<double, 3>{0.93, 0.93, 0.93};
+    cairo_set_source_rgb(cr, l * rgb[0], l * rgb[1], l * rgb[2]);
+    trace(cr, g);
+    cairo_fill(cr);
+    if (g.borders == 0) continue;
+    cairo_set_source_rgb(cr, 0.12, 0.12, 0.12);
+    cairo_set_line_width(cr, 0.3);
+    for (int k = 0; k < 3; ++k)
+      if (g.borders >> k & 1) {
+        cairo_move_to(cr, g.at[k].x, g.at[k].y);
+        cairo_line_to(cr, g.at[(k + 1) % 3].x, g.at[(k + 1) % 3].y);
+      }
+    cairo_stroke(cr);
+  }
+  cairo_destroy(cr);
+  cairo_surface_flush(fine.get());
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h), cairo_surface_destroy);
+  cr = cairo_create(surface.get());
+  cairo_scale(cr, 1.0 / kSupersample, 1.0 / kSupersample);
+  cairo_set_source_surface(cr, fine.get(), 0, 0);
+  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
+  cairo_paint(cr);
+  cairo_destroy(cr);
+  cairo_surface_flush(surface.get());
+  return surface;
+}
+
+/// Which piece shows at each pixel (kItemsPerMm to the millimetre; -1: none), painted as
+/// shade() paints, without smoothing.
+struct Items {
+  int width = 0, height = 0;
+  std::vector<int> piece;
+  int at(int x, int y) const { return piece[static_cast<std::size_t>(y) * width + x]; }
+};
+
+Items items(std::span<const int> piece, const std::vector<Fragment>& order, Vec2 lo, Vec2 hi) {
+  Items out;
+  out.width = std::max(1, static_cast<int>(std::ceil((hi.x - lo.x) * kItemsPerMm)));
+  out.height = std::max(1, static_cast<int>(std::ceil((hi.y - lo.y) * kItemsPerMm)));
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, out.width, out.height),
+                     cairo_surface_destroy);
+  cairo_t* cr = cairo_create(surface.get());
+  cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_paint(cr);
+  cairo_scale(cr, kItemsPerMm, kItemsPerMm);
+  cairo_translate(cr, -lo.x, -lo.y);
+  for (const Fragment& g : order) {
+    // Piece p as the colour p + 1 (0: no piece), 24 bits.
+    const int id = piece[g.face] + 1;
+    cairo_set_source_rgb(cr, (id >> 16 & 255) / 255.0, (id >> 8 & 255) / 255.0, (id & 255) / 255.0);
+    trace(cr, g);
+    cairo_fill(cr);
+  }
+  cairo_destroy(cr);
+  cairo_surface_flush(surface.get());
+  const unsigned char* data = cairo_image_surface_get_data(surface.get());
+  const int stride = cairo_image_surface_get_stride(surface.get());
+  out.piece.resize(static_cast<std::size_t>(out.width) * out.height);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      std::uint32_t v = 0;
+      std::memcpy(&v, data + static_cast<std::ptrdiff_t>(y) * stride + 4 * x, 4);
+      out.piece[static_cast<std::size_t>(y) * out.width + x] = static_cast<int>(v & 0xffffff) - 1;
+    }
+  return out;
+}
+
+/// Each pixel's distance (in pixels, 3-4 chamfer / 3) to the nearest pixel of another piece or
+/// of none, or to the image's side.
+std::vector<double> inner_distance(const Items& it) {
+  const int w = it.width, h = it.height;
+  constexpr int kFar = 1 << 28;
+  std::vector<int> d(static_cast<std::size_t>(w) * h, kFar);
+  const auto idx = [w](int x, int y) { return static_cast<std::size_t>(y) * w + x; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int p = it.at(x, y);
+      if (p < 0 || x == 0 || y == 0 || x == w - 1 || y == h - 1 || it.at(x - 1, y) != p ||
+          it.at(x + 1, y) != p || it.at(x, y - 1) != p || it.at(x, y + 1) != p)
+        d[idx(x, y)] = p < 0 ? 0 : 3;
+    }
+  const auto relax = [&](int x, int y, int nx, int ny, int cost) {
+    if (nx < 0 || ny < 0 || nx >= w || ny >= h) return;
+    d[idx(x, y)] = std::min(d[idx(x, y)], d[idx(nx, ny)] + cost);
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      relax(x, y, x - 1, y, 3), relax(x, y, x, y - 1, 3);
+      relax(x, y, x - 1, y - 1, 4), relax(x, y, x + 1, y - 1, 4);
+    }
+  for (int y = h - 1; y >= 0; --y)
+    for (int x = w - 1; x >= 0; --x) {
+      relax(x, y, x + 1, y, 3), relax(x, y, x, y + 1, 3);
+      relax(x, y, x + 1, y + 1, 4), relax(x, y, x - 1, y + 1, 4);
+    }
+  std::vector<double> out(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) out[i] = d[i] / 3.0;
+  return out;
+}
+
+}  // namespace
+
+ViewAxes view_axes(MeshFormat format) {
+  if (format == MeshFormat::Stl) return {{0, 0, 1}, {0, -1, 0}};
+  return {};
+}
+
+ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 toward, Vec3 up,
+                          Vec2 lo, Vec2 hi, double dpi, bool colour) {
+  ModelView view;
+  if (mesh.faces.empty() || piece.size() != mesh.faces.size() || !(hi.x > lo.x && hi.y > lo.y))
+    return view;
+  const Projection p = project(mesh, toward, up, lo, hi);
+  const std::vector<Fragment> order = paint_order(mesh, piece, p, toward);
+  view.image = {lo, hi.x - lo.x, hi.y - lo.y,
+                shade(mesh, piece, order, toward, up, lo, hi, dpi, colour)};
+
+  // Each piece's number on the pixels where it shows, at its pixels farthest inside first, at
+  // the largest size whose box shows its piece on kOnPiece of its pixels and meets no number.
+  const Items it = items(piece, order, lo, hi);
+  const std::vector<double> inside = inner_distance(it);
+  int pieces = 0;
+  for (const int q : piece) pieces = std::max(pieces, q + 1);
+  std::vector<std::vector<std::size_t>> pixels(static_cast<std::size_t>(pieces));
+  for (std::size_t i = 0; i < it.piece.size(); ++i)
+    if (it.piece[i] >= 0 && it.piece[i] < pieces && inside[i] >= 2)
+      pixels[it.piece[i]].push_back(i);
+  struct Taken {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Taken> taken;
+  constexpr std::size_t kTries = 40;  // pixels tried per piece and size, farthest inside first
+  for (int q = 0; q < pieces; ++q) {
+    std::vector<std::size_t>& own = pixels[q];
+    if (own.empty()) continue;
+    const std::size_t tries = std::min(kTries, own.size());
+    std::partial_sort(own.begin(), own.begin() + static_cast<std::ptrdiff_t>(tries), own.end(),
+                      [&](std::size_t a, std::size_t b) { return inside[a] > inside[b]; });
+    const std::string name = piece_name(q);
+    bool placed = false;
+    for (const double size : kViewNumberMm) {
+      const double hw = 0.5 * 0.6 * size * label_chars(name) + 0.2, hh = 0.5 * size + 0.2;
+      for (std::size_t t = 0; t < tries && !placed; ++t) {
+        const int px = static_cast<int>(own[t] % it.width),
+                  py = static_cast<int>(own[t] / it.width);
+        const Vec2 c{lo.x + (px + 0.5) / kItemsPerMm, lo.y + (py + 0.5) / kItemsPerMm};
+        const Taken box{c.x - hw, c.y - hh, c.x + hw, c.y + hh};
+        if (box.x0 < lo.x || box.y0 < lo.y || box.x1 > hi.x || box.y1 > hi.y) continue;
+        if (std::any_of(taken.begin(), taken.end(), [&](const Taken& o) {
+              return box.x0 < o.x1 && o.x0 < box.x1 && box.y0 < o.y1 && o.y0 < box.y1;
+            }))
+          continue;
+        const int x0 = static_cast<int>((box.x0 - lo.x) * kItemsPerMm);
+        const int x1 = static_cast<int>((box.x1 - lo.x) * kItemsPerMm);
+        const int y0 = static_cast<int>((box.y0 - lo.y) * kItemsPerMm);
+        const int y1 = static_cast<int>((box.y1 - lo.y) * kItemsPerMm);
+        int on = 0, all = 0;
+        for (int y = std::max(y0, 0); y < std::min(y1, it.height); ++y)
+          for (int x = std::max(x0, 0); x < std::min(x1, it.width); ++x, ++all)
+            on += it.at(x, y) == q;
+        if (all == 0 || on < kOnPiece * all) continue;
+        taken.push_back(box);
+        view.numbers.push_back({q, c, size});
+        placed = true;
+      }
+      if (placed) break;
+    }
+  }
+  return view;
+}
+
+}  // namespace papernet
