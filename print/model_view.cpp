@@ -12,12 +12,14 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <unordered_map>
 #include <utility>
 
 #include "print/layout.h"
+#include "print/tabs.h"
 
 namespace papernet {
 namespace {
@@ -35,6 +37,13 @@ constexpr double kItemsPerMm = 4;
 constexpr int kSupersample = 3;
 // The share of a number's box that must show its piece.
 constexpr double kOnPiece = 0.9;
+// A piece showing at least this many pixels (a square millimetre) but too little for its number
+// on it gets the number beside the model with a line to it, on rings of text boxes around it out
+// to this many (about 30 mm at 2.5 mm).
+constexpr std::size_t kLeaderPixels = 16;
+constexpr int kLeaderRings = 12;
+// How far such a line may run over other pieces, mm: a longer one reads as pointing at them.
+constexpr double kLeaderAcrossMm = 3;
 
 /// A light colour of its own for piece `p`: hues a golden angle apart, so that pieces numbered
 /// one after the other (neighbours, in build order) differ most.
@@ -234,12 +243,53 @@ SurfacePtr shade(const Mesh& mesh, std::span<const int> piece, const std::vector
   return surface;
 }
 
+/// A box on the page, mm.
+struct PixelBox {
+  double x0, y0, x1, y1;
+  bool overlaps(const PixelBox& o) const {
+    return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1;
+  }
+  /// True when the segment from a to b meets the box (touching counts).
+  bool crosses(Vec2 a, Vec2 b) const {
+    const std::array<Vec2, 2> segment{a, b};
+    const std::array<Vec2, 4> corners{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
+    return convex_overlap(segment, corners, -1e-9);
+  }
+};
+
 /// Which piece shows at each pixel (kItemsPerMm to the millimetre; -1: none), painted as
 /// shade() paints, without smoothing.
 struct Items {
   int width = 0, height = 0;
   std::vector<int> piece;
   int at(int x, int y) const { return piece[static_cast<std::size_t>(y) * width + x]; }
+  /// The share of the pixels of `box` (page mm; the image's corner at `lo`) that show `p`
+  /// (-1: the paper, off the model); 0 for a box outside the image.
+  double share_of(const PixelBox& box, Vec2 lo, int p) const {
+    const int x0 = std::max(0, static_cast<int>((box.x0 - lo.x) * kItemsPerMm));
+    const int x1 = std::min(width, static_cast<int>(std::ceil((box.x1 - lo.x) * kItemsPerMm)));
+    const int y0 = std::max(0, static_cast<int>((box.y0 - lo.y) * kItemsPerMm));
+    const int y1 = std::min(height, static_cast<int>(std::ceil((box.y1 - lo.y) * kItemsPerMm)));
+    std::size_t on = 0, all = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x, ++all) on += at(x, y) == p;
+    return all == 0 ? 0 : static_cast<double>(on) / static_cast<double>(all);
+  }
+  /// How far the segment from a to b (page mm) runs over pieces other than `p`, mm.
+  double across(Vec2 a, Vec2 b, Vec2 lo, int p) const {
+    const double length = norm(b - a);
+    const int steps = std::max(1, static_cast<int>(std::ceil(length * kItemsPerMm)));
+    int over = 0;
+    for (int k = 0; k <= steps; ++k) {
+      const Vec2 s = a + (static_cast<double>(k) / steps) * (b - a);
+      const int x = static_cast<int>((s.x - lo.x) * kItemsPerMm);
+      const int y = static_cast<int>((s.y - lo.y) * kItemsPerMm);
+      if (x < 0 || y < 0 || x >= width || y >= height) continue;
+      const int q = at(x, y);
+      over += q >= 0 && q != p;
+    }
+    return length * over / (steps + 1);
+  }
 };
 
 Items items(std::span<const int> piece, const std::vector<Fragment>& order, Vec2 lo, Vec2 hi) {
@@ -332,14 +382,46 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
   int pieces = 0;
   for (const int q : piece) pieces = std::max(pieces, q + 1);
   std::vector<std::vector<std::size_t>> pixels(static_cast<std::size_t>(pieces));
-  for (std::size_t i = 0; i < it.piece.size(); ++i)
-    if (it.piece[i] >= 0 && it.piece[i] < pieces && inside[i] >= 2)
-      pixels[it.piece[i]].push_back(i);
-  struct Taken {
-    double x0, y0, x1, y1;
+  // Each piece's pixels, and the middle of them: where a line to a piece that shows too little
+  // for its number ends is the pixel farthest inside it, the nearest the middle of those.
+  std::vector<std::size_t> shown(static_cast<std::size_t>(pieces), 0);
+  std::vector<Vec2> middle(static_cast<std::size_t>(pieces));
+  for (std::size_t i = 0; i < it.piece.size(); ++i) {
+    const int q = it.piece[i];
+    if (q < 0 || q >= pieces) continue;
+    ++shown[q];
+    middle[q] =
+        middle[q] + Vec2{static_cast<double>(i % it.width), static_cast<double>(i / it.width)};
+    if (inside[i] >= 2) pixels[q].push_back(i);
+  }
+  std::vector<std::size_t> deepest(static_cast<std::size_t>(pieces), 0);
+  std::vector<double> off(static_cast<std::size_t>(pieces), 0);
+  for (std::size_t i = 0; i < it.piece.size(); ++i) {
+    const int q = it.piece[i];
+    if (q < 0 || q >= pieces) continue;
+    const double d =
+        norm(Vec2{static_cast<double>(i % it.width), static_cast<double>(i / it.width)} -
+             (1.0 / static_cast<double>(shown[q])) * middle[q]);
+    const double best = inside[deepest[q]];
+    if (it.piece[deepest[q]] != q || inside[i] > best || (inside[i] == best && d < off[q]))
+      deepest[q] = i, off[q] = d;
+  }
+  std::vector<PixelBox> taken;
+  const auto centre_of = [&](std::size_t i) {
+    return Vec2{lo.x + (static_cast<double>(i % it.width) + 0.5) / kItemsPerMm,
+                lo.y + (static_cast<double>(i / it.width) + 0.5) / kItemsPerMm};
   };
-  std::vector<Taken> taken;
+  const auto box_of = [](Vec2 c, const std::string& name, double size) {
+    const double hw = 0.5 * 0.6 * size * label_chars(name) + 0.2, hh = 0.5 * size + 0.2;
+    return PixelBox{c.x - hw, c.y - hh, c.x + hw, c.y + hh};
+  };
+  const auto free = [&](const PixelBox& box) {
+    return box.x0 >= lo.x && box.y0 >= lo.y && box.x1 <= hi.x && box.y1 <= hi.y &&
+           std::none_of(taken.begin(), taken.end(),
+                        [&](const PixelBox& o) { return box.overlaps(o); });
+  };
   constexpr std::size_t kTries = 40;  // pixels tried per piece and size, farthest inside first
+  std::vector<char> numbered(static_cast<std::size_t>(pieces), 0);
   for (int q = 0; q < pieces; ++q) {
     std::vector<std::size_t>& own = pixels[q];
     if (own.empty()) continue;
@@ -347,34 +429,42 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
     std::partial_sort(own.begin(), own.begin() + static_cast<std::ptrdiff_t>(tries), own.end(),
                       [&](std::size_t a, std::size_t b) { return inside[a] > inside[b]; });
     const std::string name = piece_name(q);
-    bool placed = false;
     for (const double size : kViewNumberMm) {
-      const double hw = 0.5 * 0.6 * size * label_chars(name) + 0.2, hh = 0.5 * size + 0.2;
-      for (std::size_t t = 0; t < tries && !placed; ++t) {
-        const int px = static_cast<int>(own[t] % it.width),
-                  py = static_cast<int>(own[t] / it.width);
-        const Vec2 c{lo.x + (px + 0.5) / kItemsPerMm, lo.y + (py + 0.5) / kItemsPerMm};
-        const Taken box{c.x - hw, c.y - hh, c.x + hw, c.y + hh};
-        if (box.x0 < lo.x || box.y0 < lo.y || box.x1 > hi.x || box.y1 > hi.y) continue;
-        if (std::any_of(taken.begin(), taken.end(), [&](const Taken& o) {
-              return box.x0 < o.x1 && o.x0 < box.x1 && box.y0 < o.y1 && o.y0 < box.y1;
-            }))
-          continue;
-        const int x0 = static_cast<int>((box.x0 - lo.x) * kItemsPerMm);
-        const int x1 = static_cast<int>((box.x1 - lo.x) * kItemsPerMm);
-        const int y0 = static_cast<int>((box.y0 - lo.y) * kItemsPerMm);
-        const int y1 = static_cast<int>((box.y1 - lo.y) * kItemsPerMm);
-        int on = 0, all = 0;
-        for (int y = std::max(y0, 0); y < std::min(y1, it.height); ++y)
-          for (int x = std::max(x0, 0); x < std::min(x1, it.width); ++x, ++all)
-            on += it.at(x, y) == q;
-        if (all == 0 || on < kOnPiece * all) continue;
+      for (std::size_t t = 0; t < tries && !numbered[q]; ++t) {
+        const Vec2 c = centre_of(own[t]);
+        const PixelBox box = box_of(c, name, size);
+        if (!free(box) || it.share_of(box, lo, q) < kOnPiece) continue;
         taken.push_back(box);
-        view.numbers.push_back({q, c, size});
-        placed = true;
+        view.numbers.push_back({q, c, size, c, c});
+        numbered[q] = 1;
       }
-      if (placed) break;
+      if (numbered[q]) break;
     }
+  }
+  // A piece that shows too little for its number on it gets it beside the model, on paper off
+  // the model nearest where the piece shows most, with a line to there, clear of the numbers.
+  const double size = kViewNumberMm[1];
+  for (int q = 0; q < pieces; ++q) {
+    if (numbered[q] || shown[q] < kLeaderPixels) continue;
+    const Vec2 to = centre_of(deepest[q]);
+    const std::string name = piece_name(q);
+    const PixelBox first = box_of(to, name, size);
+    const Vec2 half{0.5 * (first.x1 - first.x0), 0.5 * (first.y1 - first.y0)};
+    for (int r = 1; r <= kLeaderRings && !numbered[q]; ++r)
+      for (int k = 0; k < 8 * r && !numbered[q]; ++k) {
+        const double a = k * 2 * std::numbers::pi / (8 * r);
+        const Vec2 c{to.x + r * 2 * half.x * std::cos(a), to.y + r * 2 * half.y * std::sin(a)};
+        const PixelBox box = box_of(c, name, size);
+        if (!free(box) || it.share_of(box, lo, -1) < 1) continue;
+        const Vec2 from{std::clamp(to.x, box.x0, box.x1), std::clamp(to.y, box.y0, box.y1)};
+        if (std::any_of(taken.begin(), taken.end(),
+                        [&](const PixelBox& o) { return o.crosses(from, to); }) ||
+            it.across(from, to, lo, q) > kLeaderAcrossMm)
+          continue;
+        taken.push_back(box);
+        view.numbers.push_back({q, c, size, from, to});
+        numbered[q] = 1;
+      }
   }
   return view;
 }

@@ -28,6 +28,9 @@ struct ModelView {
     int piece = -1;
     Vec2 at;          ///< centre of the text, page mm (y down)
     double size = 0;  ///< text height, mm
+    /// A line from `from` (on the text's box) to `to` (where the piece shows most) for a number
+    /// beside the model; the two equal `at` for a number on its piece.
+    Vec2 from, to;
   };
   std::vector<Number> numbers;
 };
@@ -38,8 +41,9 @@ inline constexpr double kViewNumberMm[] = {3, 2.5, 2};
 /// `mesh` with each face's piece `piece` (numbered in build order, from 0), seen from the
 /// direction `toward` points to (orthographic, `up` up on the page), as large as fits the page box
 /// [lo, hi] (mm, y down), its image at `dpi`; without `colour`, every piece light grey. A number's
-/// box lies on its piece's visible paper, apart from the others; a piece too hidden for one at
-/// 2 mm gets none.
+/// box lies on its piece where it shows, apart from the other numbers; a piece showing too
+/// little for one at 2 mm gets one beside the model, off it, with a line to the piece; a piece
+/// that shows less than a square millimetre gets none.
 ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 toward, Vec3 up,
                           Vec2 lo, Vec2 hi, double dpi, bool colour = true);
 

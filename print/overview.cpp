@@ -246,8 +246,10 @@ void draw_views(const Overview& overview, Vec2 lo, Vec2 hi, Writer& out) {
                         at + each, kViewDpi, overview.colour);
     if (!view.image.surface) continue;
     out.d.images.push_back(view.image);
-    for (const ModelView::Number& n : view.numbers)
+    for (const ModelView::Number& n : view.numbers) {
       out.text(Layer::Labels, n.at, piece_name(n.piece), n.size);
+      if (!(n.from == n.to)) out.line(Layer::Marks, {n.from, n.to});
+    }
   }
 }
 

@@ -559,7 +559,9 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
 // from the front, the right and above, then from the opposite side), each view an image beside
 // the thumbnails with its pieces' numbers on it. Each number names the piece the model shows
 // under it: a ray cast here from the number's centre into the mesh of the net JSON, fitted to
-// the image as large as fits and centred, hits that piece first.
+// the image as large as fits and centred, hits that piece first; or, for a number beside the
+// model, at the far end of the line from it (within a quarter millimetre: the line ends on the
+// middle of a pixel where the piece shows).
 TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWhereItShows) {
   const Printed& printed = duck();
   const NetDocument& doc = printed.doc;
@@ -568,7 +570,17 @@ TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWher
   ASSERT_EQ(views.size(), 2u) << "the overview shows the model from two sides";
   EXPECT_FALSE(views[0].overlaps(views[1]));
   const std::vector<SvgText> all = svg_texts(svg_group(page, "labels"));
-  std::size_t numbered = 0;
+  // The lines of the marks layer ("Mx yLx y").
+  std::vector<std::array<Vec2, 2>> lines;
+  {
+    const std::string marks = svg_group(page, "marks");
+    static const std::regex line("M([-0-9.]+) ([-0-9.]+)L([-0-9.]+) ([-0-9.]+)");
+    for (auto it = std::sregex_iterator(marks.begin(), marks.end(), line);
+         it != std::sregex_iterator(); ++it)
+      lines.push_back({Vec2{std::stod((*it)[1]), std::stod((*it)[2])},
+                       Vec2{std::stod((*it)[3]), std::stod((*it)[4])}});
+  }
+  std::size_t numbered = 0, beside = 0;
   std::set<int> shown;
   for (int v = 0; v < 2; ++v) {
     const SvgBox& box = views[v];
@@ -604,31 +616,54 @@ TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWher
       ASSERT_LT(piece, static_cast<int>(doc.pieces.size())) << t.text;
       EXPECT_TRUE(here.insert(piece).second) << t.text << " twice on view " << v;
       EXPECT_GE(t.size, 2 - 1e-6) << t.text;
-      // The face nearest the viewer under the number's centre.
-      int hit = -1;
-      double nearest = -1e300;
-      for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
-        const auto& tri = doc.mesh.faces[f];
-        const Vec2 a = on_page(doc.mesh.vertices[tri[0]]), b = on_page(doc.mesh.vertices[tri[1]]),
-                   d = on_page(doc.mesh.vertices[tri[2]]);
-        const double area = cross(b - a, d - a);
-        if (std::abs(area) < 1e-12) continue;
-        const double l1 = cross(c - a, d - a) / area, l2 = cross(b - a, c - a) / area;
-        if (l1 < 0 || l2 < 0 || l1 + l2 > 1) continue;
-        const double depth = (1 - l1 - l2) * dot(doc.mesh.vertices[tri[0]], w) +
-                             l1 * dot(doc.mesh.vertices[tri[1]], w) +
-                             l2 * dot(doc.mesh.vertices[tri[2]], w);
-        if (depth > nearest) nearest = depth, hit = static_cast<int>(f);
-      }
-      ASSERT_GE(hit, 0) << t.text << " lies off the model";
-      EXPECT_EQ(doc.piece[hit], piece)
-          << t.text << " on view " << v << " lies on P" << doc.piece[hit] + 1;
+      // The face nearest the viewer under a point of the page (-1: none).
+      const auto hit = [&](Vec2 at) {
+        int out = -1;
+        double nearest = -1e300;
+        for (std::size_t f = 0; f < doc.mesh.faces.size(); ++f) {
+          const auto& tri = doc.mesh.faces[f];
+          const Vec2 a = on_page(doc.mesh.vertices[tri[0]]), b = on_page(doc.mesh.vertices[tri[1]]),
+                     d = on_page(doc.mesh.vertices[tri[2]]);
+          const double area = cross(b - a, d - a);
+          if (std::abs(area) < 1e-12) continue;
+          const double l1 = cross(at - a, d - a) / area, l2 = cross(b - a, at - a) / area;
+          if (l1 < 0 || l2 < 0 || l1 + l2 > 1) continue;
+          const double depth = (1 - l1 - l2) * dot(doc.mesh.vertices[tri[0]], w) +
+                               l1 * dot(doc.mesh.vertices[tri[1]], w) +
+                               l2 * dot(doc.mesh.vertices[tri[2]], w);
+          if (depth > nearest) nearest = depth, out = static_cast<int>(f);
+        }
+        return out;
+      };
+      const int under = hit(c);
       ++numbered;
+      if (under >= 0) {
+        EXPECT_EQ(doc.piece[under], piece)
+            << t.text << " on view " << v << " lies on P" << doc.piece[under] + 1;
+        continue;
+      }
+      // Beside the model: the line that starts on its box, and where it ends.
+      const double reach = 0.5 * 0.6 * t.size * static_cast<double>(t.text.size()) + 0.5;
+      const std::array<Vec2, 2>* line = nullptr;
+      for (const auto& l : lines)
+        if (std::abs(l[0].x - c.x) <= reach && std::abs(l[0].y - c.y) <= 0.5 * t.size + 0.5)
+          line = &l;
+      ASSERT_NE(line, nullptr) << t.text << " on view " << v << " lies off the model, no line";
+      const Vec2 end = (*line)[1];
+      bool found = false;
+      for (const Vec2 d :
+           {Vec2{0, 0}, Vec2{0.25, 0}, Vec2{-0.25, 0}, Vec2{0, 0.25}, Vec2{0, -0.25}}) {
+        const int f = hit(end + d);
+        found |= f >= 0 && doc.piece[f] == piece;
+      }
+      EXPECT_TRUE(found) << t.text << " on view " << v << ": its line ends off its piece";
+      ++beside;
     }
     shown.insert(here.begin(), here.end());
   }
   EXPECT_GE(numbered, 10u);
-  EXPECT_GE(2 * shown.size(), doc.pieces.size()) << "half the pieces or more numbered on a view";
+  EXPECT_GE(beside, 1u) << "a piece that shows too little for its number on it";
+  EXPECT_GE(4 * shown.size(), 3 * doc.pieces.size()) << "most pieces numbered on a view";
 }
 
 // No text on the overview covers another: the pieces' numbers on the thumbnails, where small

@@ -82,15 +82,25 @@ TEST(ModelView, TheCubeSeenFromACornerShowsItsThreeNearSidesNumbered) {
   EXPECT_EQ(image.height, 315);
 }
 
-// Seen straight along an axis, a side too thin on the page for a 2 mm number gets none; a piece
-// hidden behind the others gets none.
-TEST(ModelView, HiddenAndEdgeOnSidesGetNoNumber) {
+// Seen nearly along the x axis (and level: the top and bottom edge-on), in a box twice as wide
+// as the cube, the +x side holds its number; the +y side shows as a sliver too thin for one
+// (about 1.7 mm), so its number stands beside the cube with a line to the sliver; the hidden and
+// edge-on sides get none.
+TEST(ModelView, ASideThatShowsTooLittleIsNumberedBesideTheModel) {
   const Cube c = cube();
   const ModelView view =
-      draw_model_view(c.mesh, c.piece, {1, 0.01, 0.01}, {0, 0, 1}, {0, 0}, {60, 60}, 100);
-  const std::map<int, Vec2> n = numbers(view);
-  EXPECT_EQ(n.size(), 1u);
-  EXPECT_TRUE(n.contains(0)) << "the +x side faces the viewer";
+      draw_model_view(c.mesh, c.piece, {1, 0.03, 0}, {0, 0, 1}, {0, 0}, {120, 60}, 100);
+  std::map<int, ModelView::Number> n;
+  for (const ModelView::Number& k : view.numbers) n[k.piece] = k;
+  ASSERT_EQ(n.size(), 2u);
+  ASSERT_TRUE(n.contains(0) && n.contains(2));
+  // The cube fills the box's height and the middle half of its width: x from about 31 to 89.
+  EXPECT_NEAR(n[0].at.x, 60, 10);
+  EXPECT_TRUE(n[0].from == n[0].at && n[0].to == n[0].at) << "on its side, no line";
+  EXPECT_GT(n[2].at.x, 89) << "P3 beside the cube, at its right";
+  EXPECT_FALSE(n[2].from == n[2].to) << "P3 has a line to its side";
+  EXPECT_GT(n[2].to.x, 86) << "the +y side's sliver is at the cube's right";
+  EXPECT_LT(n[2].to.x, 90);
 }
 
 // Without pieces for its faces, or without room, there is nothing to draw.
