@@ -60,7 +60,8 @@ async function jobEnded(page, timeout) {
 // drawn in before the demo showed colour (0xf2e6c9 however lit; not counted at the rim of the
 // model, where the anti-aliased edge of a yellow face on the near-white background is pale
 // yellow too: thin pieces, folding, are mostly rim), `saturated` is colour far from any grey or
-// beige, and `yellow` (the Duck), `blue` and `green` (BoxTextured's logo) name hues.
+// beige, `tinted` any colour not grey (the overview's pastel pieces), and `yellow` (the Duck),
+// `blue` and `green` (BoxTextured's logo) name hues.
 async function colours(page, selector) {
   const png = (await page.locator(selector).screenshot()).toString("base64");
   return page.evaluate(async (b64) => {
@@ -72,7 +73,7 @@ async function colours(page, selector) {
     const context = canvas.getContext("2d");
     context.drawImage(bitmap, 0, 0);
     const d = context.getImageData(0, 0, bitmap.width, bitmap.height).data;
-    const n = { pixels: 0, background: 0, beige: 0, saturated: 0, yellow: 0, blue: 0, green: 0 };
+    const n = { pixels: 0, background: 0, beige: 0, saturated: 0, tinted: 0, yellow: 0, blue: 0, green: 0 };
     const w = bitmap.width;
     const background = (i) => {
       const [r, g, b] = [d[i], d[i + 1], d[i + 2]];
@@ -92,6 +93,7 @@ async function colours(page, selector) {
         (p >= w && background(i - 4 * w)) || (i + 4 * w < d.length && background(i + 4 * w));
       if (!rim && r >= g && g >= b && r - b >= 10 && (r - b) / Math.max(r, 1) < 0.3) n.beige++;
       if (max > 60 && (max - min) / max > 0.45) n.saturated++;
+      if (max - min >= 25) n.tinted++;
       if (r > 170 && g > 110 && b < 100 && r - b > 110) n.yellow++;
       if (b > r + 40 && b >= g) n.blue++;
       if (g > r + 20 && g > b + 10) n.green++;
@@ -297,6 +299,14 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.screenshot({ path: screenshot, fullPage: true });
   assert.ok(statSync(screenshot).size > 10000);
   console.log(`screenshot: ${screenshot}`);
+  // The overview (page 1) shows the model as built from two sides, each piece in a colour of its
+  // own: two images on the page, and colour where the line art alone has none.
+  await page.selectOption("#sheet", "1");
+  await page.waitForFunction((n) => document.querySelector("#net svg")?.textContent.includes(`page 1 of ${n}`), sheets - 1);
+  assert.equal(await page.locator("#net svg image").count(), 2, "the overview's two views of the model");
+  const overview = await colours(page, "#net");
+  assert.ok(overview.tinted > 0.002 * overview.pixels, `the views are in colour: ${JSON.stringify(overview)}`);
+  await page.screenshot({ path: screenshot.replace(/\.png$/, "-overview.png"), fullPage: true });
   await page.selectOption("#sheet", "0");
   assert.deepEqual(problems, []);
   assert.deepEqual(foreign, []);
