@@ -168,7 +168,10 @@ nlohmann::json print_to_json(const NetPrint& print) {
       tiles.push_back({{"page", t.page}, {"window_mm", t.window_mm}});
     out["tiles"] = std::move(tiles);
   }
-  if (print.overview_page >= 0) out["overview_page"] = print.overview_page;
+  if (print.overview_page >= 0) {
+    out["overview_page"] = print.overview_page;
+    out["overview_pages"] = print.overview_pages;
+  }
   return out;
 }
 
@@ -205,6 +208,13 @@ NetPrint print_from_json(const nlohmann::json& j, std::size_t pieces) {
   if (print.overview_page < -1 || print.overview_page >= print.pages)
     throw IOException("net JSON: the overview is page " + std::to_string(print.overview_page) +
                       " of " + std::to_string(print.pages));
+  print.overview_pages = j.value("overview_pages", print.overview_page >= 0 ? 1 : 0);
+  if (print.overview_pages < (print.overview_page >= 0 ? 1 : 0) ||
+      (print.overview_page < 0 && print.overview_pages != 0) ||
+      print.overview_page + print.overview_pages > print.pages)
+    throw IOException("net JSON: " + std::to_string(print.overview_pages) +
+                      " overview pages from page " + std::to_string(print.overview_page) + " of " +
+                      std::to_string(print.pages));
   return print;
 }
 

@@ -63,6 +63,9 @@ struct NetPrint {
   /// The overview page (0-based; docs/print.md "The overview page"), -1 without one; written
   /// only when there is one.
   int overview_page = -1;
+  /// The overview's pages, from overview_page on: 1, or more for a print of many sheets and
+  /// pieces; 0 without an overview (written with overview_page).
+  int overview_pages = 0;
 };
 
 /// A `papernet.net/2` document (README.md "The net"): the pieces and the mesh they fold into.

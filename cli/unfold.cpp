@@ -269,8 +269,13 @@ int unfold(int argc, char** argv) {
     const std::string ext = extension(output);
     if (out.print && (ext == "svg" || ext == "pdf")) {
       std::cerr << "papernet unfold: " << output << ": " << out.print->pages << " page(s) ("
-                << out.print->layout << (out.print->overview ? ", page 1 an overview" : "") << "), "
-                << out.print->pieces << " piece(s), " << out.print->tabs << " glue tabs, "
+                << out.print->layout
+                << (!out.print->overview ? ""
+                    : out.print->overview_pages <= 1
+                        ? ", page 1 an overview"
+                        : ", pages 1 to " + std::to_string(out.print->overview_pages) +
+                              " an overview")
+                << "), " << out.print->pieces << " piece(s), " << out.print->tabs << " glue tabs, "
                 << out.print->strips << " glue strips, " << out.print->tabs_omitted
                 << " cut edges without glue, smallest label " << out.print->smallest_label_mm
                 << " mm (" << out.print->small_labels << " under " << kLegibleLabelMm << " mm)\n";

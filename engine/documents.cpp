@@ -97,8 +97,11 @@ void describe_print(NetDocument& doc, const FitPieces& pieces, const PrintLayout
   PiecePlacements placed = place_pieces(doc.net, doc.piece, layout, pages);
   print.placements = std::move(placed.pieces);
   print.tiles = std::move(placed.tiles);
-  for (int k = 0; k < print.pages && print.overview_page < 0; ++k)
-    if (pages.pages[k].overview) print.overview_page = k;
+  for (int k = 0; k < print.pages; ++k)
+    if (pages.pages[k].overview) {
+      if (print.overview_page < 0) print.overview_page = k;
+      ++print.overview_pages;
+    }
 }
 
 }  // namespace
@@ -592,6 +595,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     add_overview(pages, layout, pieces.piece, std::move(graph), mesh, view_axes(outcome.format),
                  options.colour);
     summary.overview = true;
+    for (const Page& p : pages.pages) summary.overview_pages += p.overview ? 1 : 0;
   }
   if (unpaged) docs.svg_pages = {write_net_svg(*unpaged, page.margin_mm, paint)};
   report(progress, "write", 0);

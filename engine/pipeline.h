@@ -52,11 +52,12 @@ struct Documents {
 
 /// The print's figures, from its layout.
 struct PrintSummary {
-  int pages = 0;          ///< pages printed, the overview's included
-  bool overview = false;  ///< page 1 is an overview of the others (layout fit)
-  std::string layout;     ///< "fit" or "tile" (page_layout_name)
-  int pieces = 0;         ///< pieces printed: with layout fit, after cutting them to fit a sheet
-  int cut_links = 0;      ///< folds cut so that every piece fits a sheet (layout fit)
+  int pages = 0;           ///< pages printed, the overview's included
+  bool overview = false;   ///< page 1 is an overview of the others (layout fit)
+  int overview_pages = 0;  ///< pages 1 to this are the overview (more than one: many sheets)
+  std::string layout;      ///< "fit" or "tile" (page_layout_name)
+  int pieces = 0;          ///< pieces printed: with layout fit, after cutting them to fit a sheet
+  int cut_links = 0;       ///< folds cut so that every piece fits a sheet (layout fit)
   /// Why the layout is not the one asked for (a face larger than a sheet: tiled), or empty.
   std::string layout_note;
   std::size_t cut_edges = 0;     ///< interior cut edges (each gets one tab or one strip)

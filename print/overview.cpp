@@ -253,73 +253,112 @@ void draw_views(const Overview& overview, Vec2 lo, Vec2 hi, Writer& out) {
   }
 }
 
-/// Draws the sheets of `sheets` (indices into pages.pages) as thumbnails in a grid from `top`
-/// down to at most `limit`, as large as fits, and after them the views of the model in a cell
-/// of their own (when the overview has them); returns the grid's foot.
-double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Overview& overview,
-                   const std::vector<int>& sheets, double top, double limit, Writer& out) {
-  const double m = pages.margin, width = pages.width - 2 * m;
-  const int count = static_cast<int>(overview.page.size());
-  const Page& any = pages.pages[sheets.front()];
-  const double sw = any.hi.x - any.lo.x, sh = any.hi.y - any.lo.y;
-  const double room = limit - top;
-  const bool views =
-      !overview.model.faces.empty() && overview.model.faces.size() == overview.piece.size();
-  const auto n = static_cast<int>(sheets.size()) + (views ? 1 : 0);
-  // Each sheet's pieces, and its caption's lines at a thumbnail width.
-  std::vector<std::vector<int>> on_sheet(sheets.size());
-  for (int p = 0; p < count; ++p)
-    for (std::size_t i = 0; i < sheets.size(); ++i)
-      if (overview.page[p] == sheets[i]) on_sheet[i].push_back(p);
-  auto captions = [&](std::size_t i, double cell_w) {
-    if (i == sheets.size()) {  // the views' cell
+/// The cells of the overview's grid: each sheet (a page of pieces or strips) drawn small, and
+/// last the views of the model (when the overview has them).
+struct Cells {
+  std::vector<int> sheets;                 ///< indices into pages.pages
+  std::vector<std::vector<int>> on_sheet;  ///< the pieces on each
+  bool views = false;
+  double sw = 0, sh = 0;  ///< a sheet's printable area, mm
+  double text = kTextMm;  ///< the captions' text height
+
+  int count() const { return static_cast<int>(sheets.size()) + (views ? 1 : 0); }
+
+  /// Cell i's caption ("page 3: P1, P4" or the views'), in lines that fit `cell_w` at `text`.
+  std::vector<std::string> caption(std::size_t i, double cell_w) const {
+    if (i == sheets.size()) {
       const std::string one = "the model, front and back";
-      return text_width(one, kTextMm) <= cell_w
+      return text_width(one, text) <= cell_w
                  ? std::vector<std::string>{one}
                  : std::vector<std::string>{"the model,", "front and back"};
     }
     const std::string head = std::string("page ") + std::to_string(sheets[i] + 1) + ":";
     return on_sheet[i].empty() ? std::vector<std::string>{head + " glue strips"}
-                               : wrap(head, on_sheet[i], cell_w, kTextMm);
-  };
-  // The room under a thumbnail: its caption's most lines and one more.
-  auto caption_height = [&](double cell_w) {
+                               : wrap(head, on_sheet[i], cell_w, text);
+  }
+
+  /// The room under a thumbnail: the most lines of a caption and one more.
+  double caption_height(double cell_w) const {
     std::size_t lines = 1;
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i)
-      lines = std::max(lines, captions(i, cell_w).size());
-    return static_cast<double>(lines + 1) * kLinePitch * kTextMm;
-  };
-  double scale = 0, caption = 0;
+    for (int i = 0; i < count(); ++i)
+      lines = std::max(lines, caption(static_cast<std::size_t>(i), cell_w).size());
+    return static_cast<double>(lines + 1) * kLinePitch * text;
+  }
+};
+
+Cells cells_of(const PageLayout& pages, const Overview& overview, double text) {
+  Cells c;
+  c.text = text;
+  for (int k = 0; k < static_cast<int>(pages.pages.size()); ++k)
+    if (!pages.pages[k].overview) c.sheets.push_back(k);
+  c.on_sheet.resize(c.sheets.size());
+  for (int p = 0; p < static_cast<int>(overview.page.size()); ++p)
+    for (std::size_t i = 0; i < c.sheets.size(); ++i)
+      if (overview.page[p] == c.sheets[i]) c.on_sheet[i].push_back(p);
+  c.views = !overview.model.faces.empty() && overview.model.faces.size() == overview.piece.size();
+  if (!c.sheets.empty()) {
+    const Page& any = pages.pages[c.sheets.front()];
+    c.sw = any.hi.x - any.lo.x;
+    c.sh = any.hi.y - any.lo.y;
+  }
+  return c;
+}
+
+/// The grid's shape: columns, the thumbnails' scale, and a cell's size with its caption.
+struct Grid {
   int cols = 1;
+  double scale = 0, caption = 0, cell_w = 0, cell_h = 0;
+};
+
+Grid grid_of(const Cells& cells, double width, int cols, double scale) {
+  Grid g;
+  g.cols = cols;
+  g.cell_w = (width - (cols - 1) * kGapMm) / cols;
+  g.caption = cells.caption_height(g.cell_w);
+  g.scale = scale;
+  g.cell_h = cells.sh * scale + g.caption;
+  return g;
+}
+
+/// The grid that shows every cell in `room` (mm high) with the largest thumbnails.
+Grid fit_grid(const Cells& cells, double width, double room) {
+  Grid best;
+  const int n = cells.count();
   for (int c = 1; c <= n; ++c) {
     const int r = (n + c - 1) / c;
     const double cell_w = (width - (c - 1) * kGapMm) / c;
-    const double below = caption_height(cell_w);
-    const double cell_h = (room - (r - 1) * kGapMm) / r - below;
-    const double s = std::min(cell_w / sw, cell_h / sh);
-    if (s > scale) scale = s, cols = c, caption = below;
+    const double cell_h = (room - (r - 1) * kGapMm) / r - cells.caption_height(cell_w);
+    const double s = std::min(cell_w / cells.sw, cell_h / cells.sh);
+    if (s > best.scale) best = grid_of(cells, width, c, s);
   }
-  if (!(scale > 0)) return top;
-  const int grid_rows = (n + cols - 1) / cols;
-  const double cell_w = (width - (cols - 1) * kGapMm) / cols;
-  const double cell_h = sh * scale + caption;
+  return best;
+}
+
+/// Draws the cells [first, last) of the grid, row by row from `top`: each sheet as a thumbnail
+/// (its printable area dashed, its cut lines and strips, each piece's number), the views of the
+/// model, each captioned.
+void draw_cells(const PrintLayout& layout, const PageLayout& pages, const Overview& overview,
+                const Cells& cells, const Grid& grid, int first, int last, double top,
+                Writer& out) {
+  const double m = pages.margin, width = pages.width - 2 * m;
+  const double sw = cells.sw, sh = cells.sh, scale = grid.scale, cell_w = grid.cell_w;
+  const int cols = grid.cols;
   const double left = m + 0.5 * (width - cols * cell_w - (cols - 1) * kGapMm);
-  const double first_y = top;
-  for (int i = 0; i < n; ++i) {
-    const double x0 = left + (i % cols) * (cell_w + kGapMm) + 0.5 * (cell_w - sw * scale);
-    const double y0 = first_y + (i / cols) * (cell_h + kGapMm);
+  for (int i = first; i < last; ++i) {
+    const double x0 = left + ((i - first) % cols) * (cell_w + kGapMm) + 0.5 * (cell_w - sw * scale);
+    const double y0 = top + ((i - first) / cols) * (grid.cell_h + kGapMm);
     // The caption: "page 3: P1, P4", broken into lines that fit the thumbnail's width.
-    const std::vector<std::string> lines = captions(static_cast<std::size_t>(i), cell_w);
+    const std::vector<std::string> lines = cells.caption(static_cast<std::size_t>(i), cell_w);
     for (std::size_t l = 0; l < lines.size(); ++l)
       out.text(Layer::Labels,
                {x0 + 0.5 * sw * scale,
-                y0 + sh * scale + (static_cast<double>(l) + 1) * kLinePitch * kTextMm},
-               lines[l], kTextMm);
-    if (i == static_cast<int>(sheets.size())) {
+                y0 + sh * scale + (static_cast<double>(l) + 1) * kLinePitch * cells.text},
+               lines[l], cells.text);
+    if (i == static_cast<int>(cells.sheets.size())) {
       draw_views(overview, {x0, y0}, {x0 + sw * scale, y0 + sh * scale}, out);
       continue;
     }
-    const Page& page = pages.pages[sheets[i]];
+    const Page& page = pages.pages[cells.sheets[i]];
     auto map = [&](Vec2 p) {
       return Vec2{x0 + (p.x - page.lo.x) * scale, y0 + (page.hi.y - p.y) * scale};
     };
@@ -364,7 +403,7 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
       paper.add({map(c[0]), map(c[2]), map(c[3])}, piece_of(t.side.face));
     }
     std::vector<Box> taken;
-    for (const int p : on_sheet[i]) {
+    for (const int p : cells.on_sheet[i]) {
       if (p >= static_cast<int>(layout.piece_labels.size())) continue;
       const Vec2 at = map(layout.piece_labels[p].at);
       const std::string name = piece_name(p);
@@ -377,7 +416,141 @@ double draw_sheets(const PrintLayout& layout, const PageLayout& pages, const Ove
       if (norm(edge - at) > 0.5) out.line(Layer::Marks, {at, edge});
     }
   }
-  return first_y + grid_rows * cell_h + (grid_rows - 1) * kGapMm + kGapMm;
+}
+
+/// The build order's lines: "P3 glues to P1, P2" (the pieces before it that it shares an edge
+/// with), "P1: start here", "P7: start a new part".
+std::vector<std::string> build_steps(const Overview& overview) {
+  std::vector<std::string> steps;
+  const int count = static_cast<int>(overview.page.size());
+  for (int p = 0; p < count; ++p) {
+    std::vector<int> earlier;
+    for (const int q : overview.graph.joins[p])
+      if (q < p) earlier.push_back(q);
+    steps.push_back(p == 0            ? piece_name(p) + ": start here"
+                    : earlier.empty() ? piece_name(p) + ": start a new part"
+                                      : piece_name(p) + " glues to " + names(earlier));
+  }
+  return steps;
+}
+
+/// The columns of the build order at text height `size` on a page `width` wide.
+int step_columns(const std::vector<std::string>& steps, double size, double width) {
+  double widest = 0;
+  for (const std::string& s : steps) widest = std::max(widest, text_width(s, size));
+  return std::clamp(static_cast<int>(width / (widest + 4 * size)), 1,
+                    std::max(1, static_cast<int>(steps.size())));
+}
+
+// The header of the first overview page (title, two lines on the labels), and of the pages that
+// continue it (a title).
+double first_top(double m) { return m + 1.5 * kTitleMm + 2 * kLinePitch * kTextMm + kTextMm + 2; }
+double next_top(double m) { return m + 1.5 * kTitleMm + 2; }
+
+// The least width of a thumbnail on a one-page overview, mm: below it the overview continues on
+// more pages with thumbnails kFlowCellMm wide.
+constexpr double kLeastThumbMm = 25;
+constexpr double kFlowCellMm = 32;
+constexpr double kFlowTextMm = 2.5;
+
+}  // namespace
+
+/// What each overview page shows: cells of the grid and lines of the build order.
+struct OverviewPlan {
+  struct Part {
+    int first_cell = 0, last_cell = 0;
+    double grid_top = 0;
+    int first_step = 0, last_step = 0;
+    int rows = 0;  ///< of the build order on this page (its lines column by column)
+    double steps_top = 0;
+  };
+  Grid grid;
+  double text = kTextMm;  ///< the captions'
+  double step_size = kTextMm;
+  int columns = 1;
+  std::vector<Part> parts;  ///< one per overview page
+};
+
+namespace {
+
+/// The overview's pages for `pages` (its overview pages first): everything on one page where
+/// the thumbnails print at least kLeastThumbMm wide and the build order takes at most 40 % of it
+/// at 2 mm or more; else the grid at kFlowCellMm a thumbnail and then the build order, their
+/// text kFlowTextMm high,
+/// each continued on as many pages as it needs.
+OverviewPlan plan_overview(const PageLayout& pages, const Overview& overview) {
+  const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
+  const Cells cells = cells_of(pages, overview, kTextMm);
+  const std::vector<std::string> steps = build_steps(overview);
+  const int count = static_cast<int>(steps.size()), n = cells.count();
+  OverviewPlan plan;
+  // One page: the build order as small as it must be to take at most 40 % of the page, the
+  // sheets as large as the room above it holds them.
+  double size = kTextMm, block = 0;
+  int columns = 1, rows = 0;
+  for (;; size = std::max(kSmallestMm, size - 0.25)) {
+    columns = step_columns(steps, size, width);
+    rows = (count + columns - 1) / columns;
+    block = (rows + 2) * kLinePitch * size;
+    if (block <= 0.4 * (pages.height - 2 * m) || size <= kSmallestMm) break;
+  }
+  const double top = first_top(m);
+  const Grid fitted = n > 0 ? fit_grid(cells, width, bottom - block - kGapMm - top) : Grid{};
+  if (block <= 0.4 * (pages.height - 2 * m) &&
+      (n == 0 || fitted.scale * cells.sw >= kLeastThumbMm)) {
+    plan.grid = fitted;
+    plan.step_size = size;
+    plan.columns = columns;
+    const int grid_rows = n > 0 ? (n + fitted.cols - 1) / fitted.cols : 0;
+    const double foot =
+        n > 0 ? top + grid_rows * fitted.cell_h + (grid_rows - 1) * kGapMm + kGapMm : top;
+    plan.parts.push_back({0, n, top, 0, count, rows, foot});
+    return plan;
+  }
+  // Several pages: rows of thumbnails while they fit, then the build order's lines, in text of
+  // kFlowTextMm.
+  plan.text = kFlowTextMm;
+  const Cells small = cells_of(pages, overview, kFlowTextMm);
+  OverviewPlan::Part part;
+  part.grid_top = top;
+  double y = top;
+  if (n > 0) {
+    const int cols = std::clamp(static_cast<int>((width + kGapMm) / (kFlowCellMm + kGapMm)), 1, n);
+    Grid g = grid_of(small, width, cols, 0);
+    g.scale = std::min(g.cell_w / small.sw, (bottom - next_top(m) - g.caption) / small.sh);
+    g.cell_h = small.sh * g.scale + g.caption;
+    plan.grid = g;
+    for (int first = 0; first < n; first += cols) {
+      if (y + g.cell_h > bottom && part.last_cell > part.first_cell) {
+        plan.parts.push_back(part);
+        part = {first, first, next_top(m), 0, 0, 0, 0};
+        y = next_top(m);
+      }
+      part.last_cell = std::min(n, first + cols);
+      y += g.cell_h + kGapMm;
+    }
+  }
+  plan.step_size = kFlowTextMm;
+  plan.columns = step_columns(steps, kFlowTextMm, width);
+  const double pitch = kLinePitch * kFlowTextMm;
+  for (int next = 0; next < count;) {
+    int room = static_cast<int>((bottom - y) / pitch) - 2;  // the title, a line of space
+    if (room < 3) {
+      plan.parts.push_back(part);
+      part = {n, n, next_top(m), next, next, 0, 0};
+      y = next_top(m);
+      room = static_cast<int>((bottom - y) / pitch) - 2;
+    }
+    const int take = std::min(count - next, plan.columns * room);
+    part.first_step = next;
+    part.last_step = next + take;
+    part.rows = (take + plan.columns - 1) / plan.columns;
+    part.steps_top = y;
+    next += take;
+    y = bottom;  // the page is full, or the build order ends here
+  }
+  plan.parts.push_back(part);
+  return plan;
 }
 
 }  // namespace
@@ -387,14 +560,15 @@ void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
   auto overview = std::make_shared<Overview>();
   int count = 0;
   for (const int p : piece) count = std::max(count, p + 1);
-  overview->page.assign(static_cast<std::size_t>(count), -1);
+  // Each piece's sheet before the overview's pages go first.
+  std::vector<int> sheet(static_cast<std::size_t>(count), -1);
   for (std::size_t f = 0; f < piece.size() && f < layout.faces.size(); ++f) {
-    int& page = overview->page[piece[f]];
+    int& page = sheet[piece[f]];
     if (page >= 0) continue;
     const auto& t = layout.faces[f];
     const Vec2 centre = (1.0 / 3) * (t[0] + t[1] + t[2]);
     for (int k = 0; k < static_cast<int>(pages.pages.size()) && page < 0; ++k)
-      if (holds(pages.pages[k], centre)) page = k + 1;  // + 1: the overview goes first
+      if (holds(pages.pages[k], centre)) page = k;
   }
   overview->piece = piece;
   overview->graph = std::move(graph);
@@ -405,7 +579,24 @@ void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
   first.overview = true;
   first.lo = {0, 0};
   first.hi = {-1, -1};
-  pages.pages.insert(pages.pages.begin(), first);
+  // As many overview pages as its plan needs, which depends on the sheets' page numbers in the
+  // captions: tried from one page until they agree.
+  std::size_t added = 0;
+  for (int round = 0; round < 8; ++round) {
+    while (added < std::max<std::size_t>(1, overview->plan ? overview->plan->parts.size() : 1)) {
+      pages.pages.insert(pages.pages.begin(), first);
+      ++added;
+    }
+    while (overview->plan && added > overview->plan->parts.size()) {
+      pages.pages.erase(pages.pages.begin());
+      --added;
+    }
+    overview->page.assign(static_cast<std::size_t>(count), -1);
+    for (int p = 0; p < count; ++p)
+      if (sheet[p] >= 0) overview->page[p] = sheet[p] + static_cast<int>(added);
+    overview->plan = std::make_shared<const OverviewPlan>(plan_overview(pages, *overview));
+    if (overview->plan->parts.size() == added) break;
+  }
   pages.overview = std::move(overview);
 }
 
@@ -414,64 +605,54 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
   PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}, {}};
   Writer out{d};
   const Overview& overview = *pages.overview;
+  const OverviewPlan& plan = *overview.plan;
   const int count = static_cast<int>(overview.page.size());
-  std::vector<int> sheets;  // the pages of pieces and strips
-  for (int k = 0; k < static_cast<int>(pages.pages.size()); ++k)
-    if (k != index && !pages.pages[k].overview) sheets.push_back(k);
+  const Cells cells = cells_of(pages, overview, plan.text);
+  int which = 0;  // this page's part of the overview
+  for (int k = 0; k < index; ++k) which += pages.pages[k].overview ? 1 : 0;
+  if (which >= static_cast<int>(plan.parts.size())) return d;
+  const OverviewPlan::Part& part = plan.parts[which];
 
-  // The title and how to read the labels.
+  // The title and how to read the labels; on the pages after the first, a title.
   double y = m + 0.5 * kTitleMm;
-  out.text(Layer::Labels, {0.5 * pages.width, y},
-           std::string("Overview: ") + std::to_string(count) +
-               (count == 1 ? " piece on " : " pieces on ") + std::to_string(sheets.size()) +
-               (sheets.size() == 1 ? " sheet" : " sheets"),
-           kTitleMm);
-  y += kTitleMm;
-  for (const char* line :
-       {"Cut out each piece along its solid lines; build in order P1, P2, P3, ...",
-        "An edge labelled 12\u2192P3 glues to edge 12 of piece P3."}) {
-    y += kLinePitch * kTextMm;
-    out.text(Layer::Labels, {0.5 * pages.width, y}, line, kTextMm);
-  }
-  const double top = y + kTextMm + 2;
-
-  // The build order, in columns under the sheets, as small as it must be to take at most 40 %
-  // of the page.
-  std::vector<std::string> steps;
-  for (int p = 0; p < count; ++p) {
-    std::vector<int> earlier;
-    for (const int q : overview.graph.joins[p])
-      if (q < p) earlier.push_back(q);
-    steps.push_back(p == 0            ? piece_name(p) + ": start here"
-                    : earlier.empty() ? piece_name(p) + ": start a new part"
-                                      : piece_name(p) + " glues to " + names(earlier));
-  }
-  double size = kTextMm, block = 0;
-  int columns = 1, rows = 0;
-  for (;; size = std::max(kSmallestMm, size - 0.25)) {
-    double widest = 0;
-    for (const std::string& s : steps) widest = std::max(widest, text_width(s, size));
-    columns = std::clamp(static_cast<int>(width / (widest + 4 * size)), 1, std::max(1, count));
-    rows = (count + columns - 1) / columns;
-    block = (rows + 2) * kLinePitch * size;
-    if (block <= 0.4 * (pages.height - 2 * m) || size <= kSmallestMm) break;
-  }
-  // The sheets as thumbnails, as large as the room above the build order holds them, each
-  // captioned with its pieces (the sheet list).
-  double bottom = top;  // where the build order starts
-  if (!sheets.empty())
-    bottom =
-        draw_sheets(layout, pages, overview, sheets, top, pages.height - m - block - kGapMm, out);
-
-  out.text(Layer::Labels, {0.5 * pages.width, bottom + 0.5 * kLinePitch * size + 1}, "Build order",
-           1.3 * size);
-  const double column_width = width / columns;
-  for (int i = 0; i < count; ++i) {
-    const int c = i / rows, r = i % rows;
-    out.text(Layer::Labels, {m + (c + 0.5) * column_width, bottom + (r + 2) * kLinePitch * size},
-             steps[i], size);
+  const std::string title = std::string("Overview: ") + std::to_string(count) +
+                            (count == 1 ? " piece on " : " pieces on ") +
+                            std::to_string(cells.sheets.size()) +
+                            (cells.sheets.size() == 1 ? " sheet" : " sheets");
+  if (which > 0) {
+    out.text(Layer::Labels, {0.5 * pages.width, y},
+             "Overview, continued (" + std::to_string(which + 1) + " of " +
+                 std::to_string(plan.parts.size()) + ")",
+             kTitleMm);
+  } else {
+    out.text(Layer::Labels, {0.5 * pages.width, y}, title, kTitleMm);
+    y += kTitleMm;
+    for (const char* line :
+         {"Cut out each piece along its solid lines; build in order P1, P2, P3, ...",
+          "An edge labelled 12→P3 glues to edge 12 of piece P3."}) {
+      y += kLinePitch * kTextMm;
+      out.text(Layer::Labels, {0.5 * pages.width, y}, line, kTextMm);
+    }
   }
 
+  // The sheets as thumbnails, each captioned with its pieces (the sheet list), and the views.
+  if (part.last_cell > part.first_cell)
+    draw_cells(layout, pages, overview, cells, plan.grid, part.first_cell, part.last_cell,
+               part.grid_top, out);
+
+  // The build order, in columns, line by line down each column.
+  if (part.last_step > part.first_step) {
+    const std::vector<std::string> steps = build_steps(overview);
+    const double size = plan.step_size, bottom = part.steps_top;
+    out.text(Layer::Labels, {0.5 * pages.width, bottom + 0.5 * kLinePitch * size + 1},
+             part.first_step > 0 ? "Build order, continued" : "Build order", 1.3 * size);
+    const double column_width = width / plan.columns;
+    for (int i = part.first_step; i < part.last_step; ++i) {
+      const int c = (i - part.first_step) / part.rows, r = (i - part.first_step) % part.rows;
+      out.text(Layer::Labels, {m + (c + 0.5) * column_width, bottom + (r + 2) * kLinePitch * size},
+               steps[i], size);
+    }
+  }
   return d;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "core/mesh/mesh.h"
@@ -14,6 +15,8 @@ namespace papernet {
 /// sheet drawn small with its pieces and their numbers, the model as built with its pieces
 /// numbered (from the front and from the back), the sheet list (which pieces each page holds)
 /// and the build order (which earlier pieces each piece glues to).
+struct OverviewPlan;  // what each overview page shows (print/overview.cpp)
+
 struct Overview {
   std::vector<int> page;   ///< each piece's page (index into PageLayout::pages), -1: none
   std::vector<int> piece;  ///< each face's piece
@@ -21,12 +24,14 @@ struct Overview {
   Mesh model;              ///< the mesh the net folds into (no faces: no views of it)
   ViewAxes axes;
   bool colour = true;  ///< the views' pieces in colours of their own, else grey
+  std::shared_ptr<const OverviewPlan> plan;
 };
 
-/// Puts an overview page first in `pages` (a fit layout: nest_pages), so every other page moves
-/// one on; `piece` gives each face of `layout` its piece (numbered in build order), `graph` the
-/// pieces' neighbours (piece_graph), `model` the mesh the net folds into (its faces those of
-/// `layout`; none: the overview shows no views of the model), `axes` its up and front and
+/// Puts the overview first in `pages` (a fit layout: nest_pages), so every other page moves on:
+/// one page, or more when its sheets and build order do not fit one legibly (docs/print.md, "The
+/// overview page"); `piece` gives each face of `layout` its piece (numbered in build order),
+/// `graph` the pieces' neighbours (piece_graph), `model` the mesh the net folds into (its faces
+/// those of `layout`; none: the overview shows no views of the model), `axes` its up and front and
 /// `colour` whether the views show each piece in a colour of its own. Each piece's page is the
 /// page that holds its first face.
 void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vector<int>& piece,

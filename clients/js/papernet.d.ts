@@ -202,6 +202,9 @@ export interface NetPrint {
   tiles?: Array<{ page: number; window_mm: [number, number, number, number] }>;
   /** The overview page (0-based; absent without one): the pieces then lie on pages 1 and on. */
   overview_page?: number;
+  /** The overview's pages from overview_page on (written with it): 1, or more for a print of
+   *  many sheets and pieces. */
+  overview_pages?: number;
 }
 
 export interface SseEvent {

@@ -218,6 +218,34 @@ TEST(NetJson, PrintIsWrittenPerDesignAndRoundTrips) {
   fit.print->placements[0].page = 1;
   fit.print->tiles.clear();
   EXPECT_FALSE(net_to_json(fit)["print"].contains("tiles"));
+  EXPECT_FALSE(net_to_json(fit)["print"].contains("overview_page"));
+}
+
+// An overview of one page or more: overview_page and overview_pages, written together; an old
+// document with overview_page alone has one overview page; pages the print does not have are
+// refused.
+TEST(NetJson, TheOverviewsPagesRoundTrip) {
+  NetDocument doc = printed_cube();
+  doc.print->pages = 3;
+  doc.print->overview_page = 0;
+  doc.print->overview_pages = 2;
+  const nlohmann::json j = net_to_json(doc);
+  EXPECT_EQ(j["print"]["overview_page"], 0);
+  EXPECT_EQ(j["print"]["overview_pages"], 2);
+  const NetDocument back = read_net_json(j.dump());
+  EXPECT_EQ(back.print->overview_page, 0);
+  EXPECT_EQ(back.print->overview_pages, 2);
+  nlohmann::json old = j;
+  old["print"].erase("overview_pages");
+  EXPECT_EQ(read_net_json(old.dump()).print->overview_pages, 1);
+  for (const int bad : {0, 4, -1}) {
+    nlohmann::json k = j;
+    k["print"]["overview_pages"] = bad;
+    EXPECT_THROW(read_net_json(k.dump()), IOException) << bad;
+  }
+  nlohmann::json none = j;
+  none["print"].erase("overview_page");
+  EXPECT_THROW(read_net_json(none.dump()), IOException) << "overview pages without an overview";
 }
 
 TEST(NetJson, RefusesPlacementsOfPiecesOrPagesItDoesNotHave) {
