@@ -517,7 +517,8 @@ OverviewPlan plan_overview(const PageLayout& pages, const Overview& overview) {
   if (n > 0) {
     const int cols = std::clamp(static_cast<int>((width + kGapMm) / (kFlowCellMm + kGapMm)), 1, n);
     Grid g = grid_of(small, width, cols, 0);
-    g.scale = std::min(g.cell_w / small.sw, (bottom - next_top(m) - g.caption) / small.sh);
+    // A row fits any page, the first (below its longer header) included.
+    g.scale = std::min(g.cell_w / small.sw, (bottom - top - g.caption) / small.sh);
     g.cell_h = small.sh * g.scale + g.caption;
     plan.grid = g;
     for (int first = 0; first < n; first += cols) {
@@ -597,6 +598,13 @@ void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
     overview->plan = std::make_shared<const OverviewPlan>(plan_overview(pages, *overview));
     if (overview->plan->parts.size() == added) break;
   }
+  // Never seen: the rounds did not agree. The pages follow the last plan (whose captions were
+  // laid out with page numbers a digit shorter or longer than those they print).
+  for (; added < overview->plan->parts.size(); ++added)
+    pages.pages.insert(pages.pages.begin(), first);
+  for (; added > overview->plan->parts.size(); --added) pages.pages.erase(pages.pages.begin());
+  for (int p = 0; p < count; ++p)
+    if (sheet[p] >= 0) overview->page[p] = sheet[p] + static_cast<int>(added);
   pages.overview = std::move(overview);
 }
 
