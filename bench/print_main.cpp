@@ -65,7 +65,7 @@ Ours run_one(const fs::path& path, double size_mm, double margin_mm, const Detai
     r.faces = out.net.mesh.faces.size();
     if (out.print) {
       r.overview = out.print->overview;
-      r.sheets = out.print->pages - (out.print->overview ? 1 : 0);
+      r.sheets = out.print->pages - out.print->overview_pages;
       r.pieces = out.print->pieces;
       r.tiled = out.print->layout != "fit";
       r.tabs = out.print->tabs;

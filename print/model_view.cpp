@@ -407,6 +407,7 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
       deepest[q] = i, off[q] = d;
   }
   std::vector<PixelBox> taken;
+  std::vector<std::array<Vec2, 2>> lines;  // from the numbers beside the model
   const auto centre_of = [&](std::size_t i) {
     return Vec2{lo.x + (static_cast<double>(i % it.width) + 0.5) / kItemsPerMm,
                 lo.y + (static_cast<double>(i / it.width) + 0.5) / kItemsPerMm};
@@ -418,7 +419,9 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
   const auto free = [&](const PixelBox& box) {
     return box.x0 >= lo.x && box.y0 >= lo.y && box.x1 <= hi.x && box.y1 <= hi.y &&
            std::none_of(taken.begin(), taken.end(),
-                        [&](const PixelBox& o) { return box.overlaps(o); });
+                        [&](const PixelBox& o) { return box.overlaps(o); }) &&
+           std::none_of(lines.begin(), lines.end(),
+                        [&](const std::array<Vec2, 2>& l) { return box.crosses(l[0], l[1]); });
   };
   constexpr std::size_t kTries = 40;  // pixels tried per piece and size, farthest inside first
   std::vector<char> numbered(static_cast<std::size_t>(pieces), 0);
@@ -442,7 +445,8 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
     }
   }
   // A piece that shows too little for its number on it gets it beside the model, on paper off
-  // the model nearest where the piece shows most, with a line to there, clear of the numbers.
+  // the model nearest where the piece shows most, with a line to there, clear of the numbers (and
+  // no number on the lines before it).
   const double size = kViewNumberMm[1];
   for (int q = 0; q < pieces; ++q) {
     if (numbered[q] || shown[q] < kLeaderPixels) continue;
@@ -462,6 +466,7 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
             it.across(from, to, lo, q) > kLeaderAcrossMm)
           continue;
         taken.push_back(box);
+        lines.push_back({from, to});
         view.numbers.push_back({q, c, size, from, to});
         numbered[q] = 1;
       }
