@@ -148,6 +148,7 @@ class Relay : public Progress {
     std::vector<Piece> pieces = done_;
     pieces.push_back({mesh, net, false, false, 0, 0, {}});
     UnfoldOutcome outcome;
+    outcome.format = input_.format;  // the overview's views: which way is up
     outcome.net = assemble(pieces, input_, options_);
     outcome.net.result = "approximate";
     outcome.net.intermediate = true;

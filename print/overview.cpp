@@ -637,7 +637,7 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
     y += kTitleMm;
     for (const char* line :
          {"Cut out each piece along its solid lines; build in order P1, P2, P3, ...",
-          "An edge labelled 12→P3 glues to edge 12 of piece P3."}) {
+          "An edge labelled 12\u2192P3 glues to edge 12 of piece P3."}) {
       y += kLinePitch * kTextMm;
       out.text(Layer::Labels, {0.5 * pages.width, y}, line, kTextMm);
     }

@@ -562,8 +562,10 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
 // the image as large as fits and centred, hits that piece first; or, for a number beside the
 // model, at the far end of the line from it (within a quarter millimetre: the line ends on the
 // middle of a pixel where the piece shows).
-TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWhereItShows) {
-  const Printed& printed = duck();
+// Checks the views of `printed`'s overview, the model `up` and facing `front`; counts the numbers
+// beside the model and the pieces numbered on a view.
+void check_views(const Printed& printed, Vec3 up, Vec3 front, std::size_t& beside,
+                 std::size_t& pieces_numbered) {
   const NetDocument& doc = printed.doc;
   const std::string& page = printed.pages[0];
   const std::vector<SvgBox> views = svg_images(page);
@@ -580,7 +582,8 @@ TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWher
       lines.push_back({Vec2{std::stod((*it)[1]), std::stod((*it)[2])},
                        Vec2{std::stod((*it)[3]), std::stod((*it)[4])}});
   }
-  std::size_t numbered = 0, beside = 0;
+  std::size_t numbered = 0;
+  beside = 0;
   std::set<int> shown;
   for (int v = 0; v < 2; ++v) {
     const SvgBox& box = views[v];
@@ -588,7 +591,6 @@ TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWher
     EXPECT_GE(box.y0, 10 - 1e-6);
     EXPECT_LE(box.x1, 200 + 1e-6);
     EXPECT_LE(box.y1, 287 + 1e-6);
-    const Vec3 up{0, 1, 0}, front{0, 0, 1};
     const Vec3 toward = (v == 0 ? 1.0 : -1.0) * (front + 0.8 * cross(up, front) + 0.6 * up);
     const Vec3 w = (1 / norm(toward)) * toward;
     Vec3 x = cross(up, w);
@@ -662,8 +664,33 @@ TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWher
     shown.insert(here.begin(), here.end());
   }
   EXPECT_GE(numbered, 10u);
+  pieces_numbered = shown.size();
+}
+
+TEST(AssemblyAids, TheOverviewShowsTheModelFromTwoSidesWithEachPieceNumberedWhereItShows) {
+  std::size_t beside = 0, numbered = 0;
+  check_views(duck(), {0, 1, 0}, {0, 0, 1}, beside, numbered);  // glTF: Y up, facing +Z
+  if (HasFatalFailure()) return;
   EXPECT_GE(beside, 1u) << "a piece that shows too little for its number on it";
-  EXPECT_GE(4 * shown.size(), 3 * doc.pieces.size()) << "most pieces numbered on a view";
+  EXPECT_GE(4 * numbered, 3 * duck().doc.pieces.size()) << "most pieces numbered on a view";
+}
+
+// An STL model stands on the printer's bed: Z up, facing -Y.
+TEST(AssemblyAids, TheViewsOfAnStlModelStandZUp) {
+  JobOptions options;
+  options.layout = PageLayoutMode::Fit;
+  options.colour = false;
+  options.tab_room_budget = light_tab_room(options.tab_room_budget);
+  PipelineProgress quiet;
+  const UnfoldOutcome out =
+      run_pipeline(data_file("thingi10k_65004.stl"), options, {}, {.svg_pages = true}, quiet);
+  const Printed printed{read_net_json(out.documents.net_json), out.documents.svg_pages, {}};
+  ASSERT_TRUE(printed.doc.print);
+  ASSERT_EQ(printed.doc.print->overview_page, 0);
+  std::size_t beside = 0, numbered = 0;
+  check_views(printed, {0, 0, 1}, {0, -1, 0}, beside, numbered);
+  if (HasFatalFailure()) return;
+  EXPECT_GE(2 * numbered, printed.doc.pieces.size()) << "half the pieces numbered on a view";
 }
 
 // No text on the overview covers another: the pieces' numbers on the thumbnails, where small
