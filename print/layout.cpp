@@ -60,6 +60,8 @@ double label_chars(const std::string& text) {
   return width;
 }
 
+double text_width(const std::string& text, double size) { return 0.6 * size * label_chars(text); }
+
 std::string piece_name(int piece) {
   std::string name = "P";
   name += std::to_string(piece + 1);

@@ -66,6 +66,10 @@ struct Label {
 /// other (UTF-8) character, such as the arrow of "12→P3".
 double label_chars(const std::string& text);
 
+/// The estimated printed width of `text` at height `size` (mm): 0.6 of the size a digit, as
+/// label_box.
+double text_width(const std::string& text, double size);
+
 /// Corners (counter-clockwise) of the box a label's text occupies, for an average digit width
 /// of 0.6 of the font size.
 std::array<Vec2, 4> label_box(const Label& label);

@@ -12,14 +12,15 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
-#include <numbers>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
 
+#include "core/mesh/dual_graph.h"
+#include "print/internal/page_boxes.h"
 #include "print/layout.h"
-#include "print/tabs.h"
 
 namespace papernet {
 namespace {
@@ -98,17 +99,15 @@ Projection project(const Mesh& mesh, Vec3 toward, Vec3 up, Vec2 lo, Vec2 hi) {
 /// the side from corner k to corner k + 1.
 std::vector<std::uint8_t> piece_borders(const Mesh& mesh, std::span<const int> piece) {
   std::unordered_map<std::uint64_t, std::vector<int>> faces_of;  // by the side's two vertices
-  const auto key = [](int a, int b) {
-    return static_cast<std::uint64_t>(std::min(a, b)) << 32 |
-           static_cast<std::uint32_t>(std::max(a, b));
+  const auto key = [&](std::size_t f, int k) {
+    return edge_key(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3]);
   };
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k)
-      faces_of[key(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3])].push_back(static_cast<int>(f));
+    for (int k = 0; k < 3; ++k) faces_of[key(f, k)].push_back(static_cast<int>(f));
   std::vector<std::uint8_t> out(mesh.faces.size(), 0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (int k = 0; k < 3; ++k) {
-      const auto& across = faces_of[key(mesh.faces[f][k], mesh.faces[f][(k + 1) % 3])];
+      const auto& across = faces_of[key(f, k)];
       const bool border =
           across.size() != 2 ||
           std::any_of(across.begin(), across.end(), [&](int g) { return piece[g] != piece[f]; });
@@ -243,19 +242,7 @@ SurfacePtr shade(const Mesh& mesh, std::span<const int> piece, const std::vector
   return surface;
 }
 
-/// A box on the page, mm.
-struct PixelBox {
-  double x0, y0, x1, y1;
-  bool overlaps(const PixelBox& o) const {
-    return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1;
-  }
-  /// True when the segment from a to b meets the box (touching counts).
-  bool crosses(Vec2 a, Vec2 b) const {
-    const std::array<Vec2, 2> segment{a, b};
-    const std::array<Vec2, 4> corners{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
-    return convex_overlap(segment, corners, -1e-9);
-  }
-};
+using print_detail::PageBox;
 
 /// Which piece shows at each pixel (kItemsPerMm to the millimetre; -1: none), painted as
 /// shade() paints, without smoothing.
@@ -265,7 +252,7 @@ struct Items {
   int at(int x, int y) const { return piece[static_cast<std::size_t>(y) * width + x]; }
   /// The share of the pixels of `box` (page mm; the image's corner at `lo`) that show `p`
   /// (-1: the paper, off the model); 0 for a box outside the image.
-  double share_of(const PixelBox& box, Vec2 lo, int p) const {
+  double share_of(const PageBox& box, Vec2 lo, int p) const {
     const int x0 = std::max(0, static_cast<int>((box.x0 - lo.x) * kItemsPerMm));
     const int x1 = std::min(width, static_cast<int>(std::ceil((box.x1 - lo.x) * kItemsPerMm)));
     const int y0 = std::max(0, static_cast<int>((box.y0 - lo.y) * kItemsPerMm));
@@ -406,20 +393,24 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
     if (it.piece[deepest[q]] != q || inside[i] > best || (inside[i] == best && d < off[q]))
       deepest[q] = i, off[q] = d;
   }
-  std::vector<PixelBox> taken;
+  std::vector<PageBox> taken;
   std::vector<std::array<Vec2, 2>> lines;  // from the numbers beside the model
   const auto centre_of = [&](std::size_t i) {
     return Vec2{lo.x + (static_cast<double>(i % it.width) + 0.5) / kItemsPerMm,
                 lo.y + (static_cast<double>(i / it.width) + 0.5) / kItemsPerMm};
   };
-  const auto box_of = [](Vec2 c, const std::string& name, double size) {
-    const double hw = 0.5 * 0.6 * size * label_chars(name) + 0.2, hh = 0.5 * size + 0.2;
-    return PixelBox{c.x - hw, c.y - hh, c.x + hw, c.y + hh};
+  const auto half_of = [](const std::string& name, double size) {
+    return Vec2{0.5 * text_width(name, size) + 0.2, 0.5 * size + 0.2};
   };
-  const auto free = [&](const PixelBox& box) {
-    return box.x0 >= lo.x && box.y0 >= lo.y && box.x1 <= hi.x && box.y1 <= hi.y &&
+  const auto box_of = [&](Vec2 c, const std::string& name, double size) {
+    const Vec2 half = half_of(name, size);
+    return PageBox{c.x - half.x, c.y - half.y, c.x + half.x, c.y + half.y};
+  };
+  const PageBox image{lo.x, lo.y, hi.x, hi.y};
+  const auto free = [&](const PageBox& box) {
+    return image.holds(box) &&
            std::none_of(taken.begin(), taken.end(),
-                        [&](const PixelBox& o) { return box.overlaps(o); }) &&
+                        [&](const PageBox& o) { return box.overlaps(o); }) &&
            std::none_of(lines.begin(), lines.end(),
                         [&](const std::array<Vec2, 2>& l) { return box.crosses(l[0], l[1]); });
   };
@@ -435,7 +426,7 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
     for (const double size : kViewNumberMm) {
       for (std::size_t t = 0; t < tries && !numbered[q]; ++t) {
         const Vec2 c = centre_of(own[t]);
-        const PixelBox box = box_of(c, name, size);
+        const PageBox box = box_of(c, name, size);
         if (!free(box) || it.share_of(box, lo, q) < kOnPiece) continue;
         taken.push_back(box);
         view.numbers.push_back({q, c, size, c, c});
@@ -451,25 +442,25 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
   for (int q = 0; q < pieces; ++q) {
     if (numbered[q] || shown[q] < kLeaderPixels) continue;
     const Vec2 to = centre_of(deepest[q]);
+    // The place: off the model (the box all paper), its line clear of the numbers and over
+    // other pieces for at most kLeaderAcrossMm.
+    const auto beside = [&](const PageBox& box) {
+      if (!free(box) || it.share_of(box, lo, -1) < 1) return false;
+      const Vec2 from{std::clamp(to.x, box.x0, box.x1), std::clamp(to.y, box.y0, box.y1)};
+      return std::none_of(taken.begin(), taken.end(),
+                          [&](const PageBox& o) { return o.crosses(from, to); }) &&
+             it.across(from, to, lo, q) <= kLeaderAcrossMm;
+    };
     const std::string name = piece_name(q);
-    const PixelBox first = box_of(to, name, size);
-    const Vec2 half{0.5 * (first.x1 - first.x0), 0.5 * (first.y1 - first.y0)};
-    for (int r = 1; r <= kLeaderRings && !numbered[q]; ++r)
-      for (int k = 0; k < 8 * r && !numbered[q]; ++k) {
-        const double a = k * 2 * std::numbers::pi / (8 * r);
-        const Vec2 c{to.x + r * 2 * half.x * std::cos(a), to.y + r * 2 * half.y * std::sin(a)};
-        const PixelBox box = box_of(c, name, size);
-        if (!free(box) || it.share_of(box, lo, -1) < 1) continue;
-        const Vec2 from{std::clamp(to.x, box.x0, box.x1), std::clamp(to.y, box.y0, box.y1)};
-        if (std::any_of(taken.begin(), taken.end(),
-                        [&](const PixelBox& o) { return o.crosses(from, to); }) ||
-            it.across(from, to, lo, q) > kLeaderAcrossMm)
-          continue;
-        taken.push_back(box);
-        lines.push_back({from, to});
-        view.numbers.push_back({q, c, size, from, to});
-        numbered[q] = 1;
-      }
+    const std::optional<Vec2> c =
+        print_detail::ring_place(to, half_of(name, size), image, kLeaderRings, beside);
+    if (!c) continue;
+    const PageBox box = box_of(*c, name, size);
+    const Vec2 from{std::clamp(to.x, box.x0, box.x1), std::clamp(to.y, box.y0, box.y1)};
+    taken.push_back(box);
+    lines.push_back({from, to});
+    view.numbers.push_back({q, *c, size, from, to});
+    numbered[q] = 1;
   }
   return view;
 }

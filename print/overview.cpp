@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "print/internal/grid_cells.h"
+#include "print/internal/page_boxes.h"
 #include "print/tabs.h"
 
 namespace papernet {
@@ -30,9 +31,6 @@ constexpr double kViewDpi = 150;    // the views of the model (the overview is o
 bool holds(const Page& page, Vec2 p) {
   return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
 }
-
-/// The estimated printed width of `text` at `size` mm (as label_box: 0.6 of the size a digit).
-double text_width(const std::string& text, double size) { return 0.6 * size * label_chars(text); }
 
 /// "P1, P4, P5".
 std::string names(const std::vector<int>& pieces) {
@@ -60,12 +58,8 @@ std::vector<std::string> wrap(const std::string& head, const std::vector<int>& p
   return lines;
 }
 
-/// A box on the page: x0, y0, x1, y1 (mm).
-struct Box {
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
-  bool holds(const Box& o) const { return o.x0 >= x0 && o.x1 <= x1 && o.y0 >= y0 && o.y1 <= y1; }
-};
+using Box = print_detail::PageBox;
+using print_detail::ring_place;
 
 // Cells of a thumbnail, for finding the lines and faces near a place.
 constexpr double kCellMm = 4;
@@ -88,15 +82,12 @@ class Lines {
   }
   /// True when a line meets `box`.
   bool cross(const Box& box) const {
-    const std::array<Vec2, 4> corners{
-        {{box.x0, box.y0}, {box.x1, box.y0}, {box.x1, box.y1}, {box.x0, box.y1}}};
     bool hit = false;
-    for_cells(corners, [&](std::uint64_t key) {
+    for_cells(box.corners(), [&](std::uint64_t key) {
       const auto it = cells_.find(key);
       if (hit || it == cells_.end()) return;
-      // A line has no inside: it meets the box where it touches it (tolerance below 0).
       for (const int i : it->second)
-        if (convex_overlap(lines_[i], corners, -1e-9)) {
+        if (box.crosses(lines_[i][0], lines_[i][1])) {
           hit = true;
           return;
         }
@@ -140,23 +131,6 @@ class Paper {
   std::vector<std::pair<std::array<Vec2, 3>, int>> triangles_;
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
-
-/// The centre nearest `at` of a text box of half-size `half` inside `inside` for which
-/// `free(box)` holds: `at` itself, else the first such place on rings around it (each ring a text
-/// box farther out, with eight places on the first and more on each ring after), out to `rings`.
-template <class Free>
-std::optional<Vec2> ring_place(Vec2 at, Vec2 half, const Box& inside, int rings, Free free) {
-  for (int r = 0; r <= rings; ++r) {
-    const int places = r == 0 ? 1 : 8 * r;
-    for (int k = 0; k < places; ++k) {
-      const double a = k * 2 * std::numbers::pi / places;
-      const Vec2 c{at.x + r * 2 * half.x * std::cos(a), at.y + r * 2 * half.y * std::sin(a)};
-      const Box box{c.x - half.x, c.y - half.y, c.x + half.x, c.y + half.y};
-      if (inside.holds(box) && free(box)) return c;
-    }
-  }
-  return std::nullopt;
-}
 
 // Rings out to which a piece's number looks for a place on its piece or beside it (about 12 mm
 // from its label at 4 mm), where a line back to it still reads as its.

@@ -322,7 +322,7 @@ void light_labels_over_dark(PageDrawing& d) {
     if (s.layer != Layer::Labels || s.text.empty() || s.points.empty()) continue;
     const double turn = s.angle_deg * std::numbers::pi / 180;
     const Vec2 along{std::cos(turn), std::sin(turn)}, across{-along.y, along.x};
-    const double half_width = 0.5 * 0.6 * s.size * label_chars(s.text), half_height = 0.3 * s.size;
+    const double half_width = 0.5 * text_width(s.text, s.size), half_height = 0.3 * s.size;
     double sum = 0;
     int n = 0;
     for (const double u : {-0.8, -0.4, 0.0, 0.4, 0.8})
