@@ -128,6 +128,19 @@ std::size_t at_most(std::size_t limit, std::size_t n) {
   return limit == 0 ? n : std::min(limit, n);
 }
 
+// The Luby sequence 1 1 2 1 1 2 4 1 1 2 1 1 2 4 8 ... (i from 1): the caps of restarted runs.
+// Restarting after work of this sequence's units is within a logarithmic factor of the best
+// fixed cutoff for any distribution of a run's length (Luby, Sinclair and Zuckerman, "Optimal
+// speedup of Las Vegas algorithms", 1993).
+std::size_t luby(std::size_t i) {
+  for (;;) {
+    std::size_t k = 1;
+    while ((std::size_t{1} << k) - 1 < i) ++k;
+    if ((std::size_t{1} << k) - 1 == i) return std::size_t{1} << (k - 1);
+    i -= (std::size_t{1} << (k - 1)) - 1;
+  }
+}
+
 std::uint64_t split_seed(std::uint64_t seed, std::size_t index) {
   return seed ^ (0x9e3779b97f4a7c15ULL * (index + 1));
 }
@@ -461,15 +474,15 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
       // A run still searching after its share of tests starts again from the same state with
       // another seed (ProgressiveOptions::restart_faces): only the last run counts for the replay.
       const bool restart = options.restart_faces > 0 && pm.face_count() >= options.restart_faces;
-      std::size_t cap = options.restart_tests_per_face * pm.face_count();
-      for (std::size_t r = 0;; ++r, cap *= 2) {
+      const std::size_t unit = options.restart_tests_per_face * pm.face_count();
+      for (std::size_t r = 0;; ++r) {
+        const std::size_t cap = unit * luby(r + 1);
         TabuOptions run = t;
         run.seed = step.tabu_seed;
         if (limit > 0)
           run.time_limit_seconds =
               std::max(1e-3, std::min(run.time_limit_seconds, left_for(pm.face_count())));
-        const bool capped =
-            restart && r < options.restarts && cap > 0 && (t.max_tests == 0 || cap < t.max_tests);
+        const bool capped = restart && cap > 0 && (t.max_tests == 0 || cap < t.max_tests);
         std::optional<State> before;
         if (capped) {
           run.max_tests = cap;

@@ -34,14 +34,15 @@ struct ProgressiveOptions {
   /// instead of taking up to the whole time limit. Deterministic.
   std::size_t split_tests_per_face = 1250;
   /// Restarts of a long Tabu run after a split, on meshes of at least `restart_faces` faces (0:
-  /// never): a run that has not removed the split's overlaps within `restart_tests_per_face`
-  /// moved-face tests per face of the current mesh goes back to where it started and searches
-  /// again with another seed, up to `restarts` times, the cap doubling each time; then a run
-  /// with the limits above. These runs are heavy-tailed on large meshes (docs/performance.md,
-  /// "Session 37"). Deterministic.
+  /// never): a run that has not removed the split's overlaps within its cap of moved-face tests
+  /// goes back to where it started and searches again with another seed. The caps follow the
+  /// Luby sequence (1 1 2 1 1 2 4 1 ...) in units of `restart_tests_per_face` per face of the
+  /// current mesh, until a run succeeds, a run ends by another limit (its iterations, time, the
+  /// split budget; then the result is approximate) or a cap would exceed what is left of the
+  /// split budget (then a last run gets all of it). These runs are heavy-tailed on large meshes
+  /// (docs/performance.md, "Session 37" and "Session 60"). Deterministic.
   std::size_t restart_faces = 4000;
-  std::size_t restart_tests_per_face = 50;
-  std::size_t restarts = 3;
+  std::size_t restart_tests_per_face = 8;
   /// Vertex splits applied together before one re-layout (Unfolding::update) and repair; 0 means
   /// automatic: four, and one per 4,000 faces of the current mesh beyond 16,000. Together, the
   /// tree parts that several splits move are re-laid out and tested once (docs/performance.md).
