@@ -442,11 +442,15 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
   for (int q = 0; q < pieces; ++q) {
     if (numbered[q] || shown[q] < kLeaderPixels) continue;
     const Vec2 to = centre_of(deepest[q]);
+    // The line starts at the point of the number's box nearest the piece.
+    const auto from_of = [&](const PageBox& box) {
+      return Vec2{std::clamp(to.x, box.x0, box.x1), std::clamp(to.y, box.y0, box.y1)};
+    };
     // The place: off the model (the box all paper), its line clear of the numbers and over
     // other pieces for at most kLeaderAcrossMm.
     const auto beside = [&](const PageBox& box) {
       if (!free(box) || it.share_of(box, lo, -1) < 1) return false;
-      const Vec2 from{std::clamp(to.x, box.x0, box.x1), std::clamp(to.y, box.y0, box.y1)};
+      const Vec2 from = from_of(box);
       return std::none_of(taken.begin(), taken.end(),
                           [&](const PageBox& o) { return o.crosses(from, to); }) &&
              it.across(from, to, lo, q) <= kLeaderAcrossMm;
@@ -456,7 +460,7 @@ ModelView draw_model_view(const Mesh& mesh, std::span<const int> piece, Vec3 tow
         print_detail::ring_place(to, half_of(name, size), image, kLeaderRings, beside);
     if (!c) continue;
     const PageBox box = box_of(*c, name, size);
-    const Vec2 from{std::clamp(to.x, box.x0, box.x1), std::clamp(to.y, box.y0, box.y1)};
+    const Vec2 from = from_of(box);
     taken.push_back(box);
     lines.push_back({from, to});
     view.numbers.push_back({q, *c, size, from, to});
