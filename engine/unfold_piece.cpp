@@ -29,6 +29,12 @@ constexpr double kSimplifyShare = 0.5;
 constexpr double kCollapsedFinishSeconds = 2;
 constexpr double kCollapsedFinishSecondsPerFace = 0.005;
 
+// AUTO's growths of a step of splits whose Tabu run is stuck (ProgressiveOptions::
+// stuck_step_growths): up to 4 x 2^8 = 1,024 splits applied again at once. c3d__beetle-alt
+// (38,656 faces) needed 512 at 1,210 faces, where the uncollapse had stopped at 757 for every
+// seed (docs/performance.md, "Session 62").
+constexpr std::size_t kStuckStepGrowths = 8;
+
 // The tab room report's threshold for a flat vertex (angle defect); only its flat-leaf counts
 // depend on it, and those are not reported.
 constexpr double kFlatDefect = 10 * std::numbers::pi / 180;
@@ -90,6 +96,7 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
   p.target_faces = options.target_faces.value_or(0);
   p.tabu = tabu;
   p.complete_first = options.strategy == Strategy::AUTO;
+  if (options.strategy == Strategy::AUTO) p.stuck_step_growths = kStuckStepGrowths;
   if (collapsed)
     p.complete_first_seconds = kCollapsedFinishSeconds + kCollapsedFinishSecondsPerFace *
                                                              static_cast<double>(mesh.faces.size());

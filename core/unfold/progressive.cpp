@@ -428,9 +428,82 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     t.partner_walks = kSplitPartnerWalks;
     return t;
   };
+  // Back to the checkpoint, and the first `upto` steps of the log after it replayed with their
+  // seeds and iteration counts (deterministic, no time limit). Returns the steps replayed: fewer
+  // when a replay diverged (its run ended with pairs left), the state then after the last.
+  const auto replay = [&](std::size_t upto) {
+    ++result.replays;
+    relay.quiet = true;
+    st = *checkpoint;
+    std::size_t i = 0;
+    for (; i < upto; ++i) {
+      if (place_splits(st, log[i].splits, log[i].seed) == 0) continue;
+      TabuOptions t = split_tabu(log[i].tabu_seed);
+      t.max_iterations = log[i].iterations;
+      t.time_limit_seconds = 0;
+      if (!st.unfolding.resolve_overlaps(t, relay)) break;
+    }
+    relay.quiet = false;
+    return i;
+  };
+  std::size_t split_tests = 0;  // Tabu work after splits, against its budget
+  // The Tabu runs after a step whose splits left pairs: Separated, Stuck (a run ended by its
+  // iteration cap) or Out (of the split budget or of time).
+  enum class Ended { Separated, Stuck, Out };
+  const auto resolve_step = [&](Applied& step, std::size_t growth) {
+    TabuOptions t = split_tabu(step.seed);
+    t.time_limit_seconds = options.split_time_limit_seconds;
+    const std::size_t least = kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count();
+    t.max_iterations = options.split_iterations > 0 ? options.split_iterations
+                       : growth > 0
+                           ? at_most(t.max_iterations, least << growth)
+                           : at_most(t.max_iterations, std::max(least, result.stats.iterations));
+    if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, left_for(pm.face_count()));
+    if (options.split_tests_per_face > 0) {
+      const std::size_t budget = options.split_tests_per_face *
+                                 std::max(input_faces, kSplitTestsMinFaces) *
+                                 std::max<std::size_t>(1, input_faces / kSplitTestsMinFaces);
+      if (split_tests >= budget) return Ended::Out;
+      t.max_tests = budget - split_tests;
+    }
+    if (limit > 0 && t.time_limit_seconds <= 0) return Ended::Out;
+    // A run still searching after its share of tests starts again from the same state with
+    // another seed (ProgressiveOptions::restart_faces): only the last run counts for the replay.
+    const bool restart = options.restart_faces > 0 && pm.face_count() >= options.restart_faces;
+    const std::size_t unit = options.restart_tests_per_face * pm.face_count();
+    for (std::size_t r = 0;; ++r) {
+      const std::size_t cap = unit * luby(r + 1);
+      TabuOptions run = t;
+      run.seed = step.tabu_seed;
+      if (limit > 0)
+        run.time_limit_seconds =
+            std::max(1e-3, std::min(run.time_limit_seconds, left_for(pm.face_count())));
+      const bool capped = restart && cap > 0 && (t.max_tests == 0 || cap < t.max_tests);
+      std::optional<State> before;
+      if (capped) {
+        run.max_tests = cap;
+        before = st;
+      }
+      TabuStats ran;
+      const bool ok = st.unfolding.resolve_overlaps(run, relay, &ran);
+      result.stats.add(ran);
+      split_tests += ran.tests;
+      step.iterations = ran.iterations;
+      if (ok) return Ended::Separated;
+      const bool out = (t.max_tests > 0 && ran.tests >= t.max_tests) ||
+                       (limit > 0 && left_for(pm.face_count()) <= 0);
+      // Ended by another limit than its cap: its iterations (stuck), the split budget or time.
+      if (out || !capped || ran.tests < cap)
+        return !out && run.max_iterations > 0 && ran.iterations >= run.max_iterations ? Ended::Stuck
+                                                                                      : Ended::Out;
+      if (t.max_tests > 0) t.max_tests -= ran.tests;
+      st = std::move(*before);
+      ++result.restarts;
+      step.tabu_seed = split_seed(step.tabu_seed, r);
+    }
+  };
   Clock::time_point last_output = Clock::now();
   std::size_t index = 0;
-  std::size_t split_tests = 0;  // Tabu work after splits, against its budget
   while (!failed && pm.splits_left() > 0) {
     if (progress.cancelled()) throw CancelledException();
     // The time limit ends the uncollapse also between splits that need no search: the state is
@@ -445,68 +518,31 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
                                   : std::max(kSplitsPerUpdate, pm.face_count() / kBatchFaces);
     for (std::size_t i = 0; i < batch && pm.splits_left() > 0; ++i)
       step.splits.push_back(pm.split());
-    relay.context.faces = pm.face_count();
-    if (place_splits(st, step.splits, step.seed) > 0) {
-      TabuOptions t = split_tabu(step.seed);
-      t.time_limit_seconds = options.split_time_limit_seconds;
-      t.max_iterations =
-          options.split_iterations > 0
-              ? options.split_iterations
-              : at_most(t.max_iterations,
-                        std::max(kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count(),
-                                 result.stats.iterations));
-      if (limit > 0)
-        t.time_limit_seconds = std::min(t.time_limit_seconds, left_for(pm.face_count()));
-      if (options.split_tests_per_face > 0) {
-        const std::size_t budget = options.split_tests_per_face *
-                                   std::max(input_faces, kSplitTestsMinFaces) *
-                                   std::max<std::size_t>(1, input_faces / kSplitTestsMinFaces);
-        if (split_tests >= budget) {
-          failed = true;
-          break;
-        }
-        t.max_tests = budget - split_tests;
-      }
-      if (limit > 0 && t.time_limit_seconds <= 0) {
+    for (std::size_t growth = 0;; ++growth) {
+      relay.context.faces = pm.face_count();
+      const Ended ended = place_splits(st, step.splits, step.seed) == 0
+                              ? Ended::Separated
+                              : resolve_step(step, growth);
+      if (ended == Ended::Separated) break;
+      if (ended == Ended::Out || growth >= options.stuck_step_growths || pm.splits_left() == 0 ||
+          !checkpoint || (limit > 0 && left_for(pm.face_count()) <= 0)) {
         failed = true;
         break;
       }
-      // A run still searching after its share of tests starts again from the same state with
-      // another seed (ProgressiveOptions::restart_faces): only the last run counts for the replay.
-      const bool restart = options.restart_faces > 0 && pm.face_count() >= options.restart_faces;
-      const std::size_t unit = options.restart_tests_per_face * pm.face_count();
-      for (std::size_t r = 0;; ++r) {
-        const std::size_t cap = unit * luby(r + 1);
-        TabuOptions run = t;
-        run.seed = step.tabu_seed;
-        if (limit > 0)
-          run.time_limit_seconds =
-              std::max(1e-3, std::min(run.time_limit_seconds, left_for(pm.face_count())));
-        const bool capped = restart && cap > 0 && (t.max_tests == 0 || cap < t.max_tests);
-        std::optional<State> before;
-        if (capped) {
-          run.max_tests = cap;
-          before = st;
-        }
-        stats = {};
-        const bool ok = st.unfolding.resolve_overlaps(run, relay, &stats);
-        result.stats.add(stats);
-        split_tests += stats.tests;
-        step.iterations = stats.iterations;
-        if (ok) break;
-        // Ended by another limit (iterations, the split budget, time): the uncollapse stops.
-        if (!capped || stats.tests < cap || (t.max_tests > 0 && stats.tests >= t.max_tests) ||
-            (limit > 0 && left_for(pm.face_count()) <= 0)) {
-          failed = true;
-          break;
-        }
-        if (t.max_tests > 0) t.max_tests -= stats.tests;
-        st = std::move(*before);
-        ++result.restarts;
-        step.tabu_seed = split_seed(step.tabu_seed, r);
+      // Stuck (ProgressiveOptions::stuck_step_growths): back to the state before the step, which
+      // is applied again with as many splits more. The stuck state stays if the replay diverged.
+      State stuck_here = std::move(st);
+      if (replay(log.size()) < log.size()) {
+        st = std::move(stuck_here);
+        failed = true;
+        break;
       }
-      if (failed) break;
+      ++result.growths;
+      step.tabu_seed = step.seed;
+      for (std::size_t i = step.splits.size(); i > 0 && pm.splits_left() > 0; --i)
+        step.splits.push_back(pm.split());
     }
+    if (failed) break;
     logged_splits += step.splits.size();
     log.push_back(std::move(step));
     if (logged_splits >= checkpoint_every || Clock::now() - last_checkpoint > checkpoint_period) {
@@ -527,23 +563,11 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     if (options.complete_first) stuck = st;
     // Back to the last overlap-free state: the checkpoint plus the splits that followed it,
     // replayed with their seeds and iteration counts (deterministic, no time limit).
-    relay.quiet = true;
-    std::size_t upto = log.size();
-    for (;;) {
-      ++result.replays;
-      st = *checkpoint;
-      std::size_t i = 0;
-      for (; i < upto; ++i) {
-        if (place_splits(st, log[i].splits, log[i].seed) == 0) continue;
-        TabuOptions t = split_tabu(log[i].tabu_seed);
-        t.max_iterations = log[i].iterations;
-        t.time_limit_seconds = 0;
-        if (!st.unfolding.resolve_overlaps(t, relay)) break;
-      }
-      if (i == upto) break;
-      upto = i;
+    for (std::size_t upto = log.size();;) {
+      const std::size_t done = replay(upto);
+      if (done == upto) break;
+      upto = done;
     }
-    relay.quiet = false;
   }
 
   if (stuck && (limit <= 0 || left_for(input_faces) > 0)) {

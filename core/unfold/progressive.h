@@ -43,6 +43,15 @@ struct ProgressiveOptions {
   /// (docs/performance.md, "Session 37" and "Session 60"). Deterministic.
   std::size_t restart_faces = 4000;
   std::size_t restart_tests_per_face = 8;
+  /// Growths of a stuck step (0: none; the default strategy uses them, docs/performance.md): when
+  /// the Tabu run after a step of splits ends by its iteration cap, the mesh at that level may
+  /// have no net near them (c3d__beetle-alt at 763 faces: a saddle vertex whose six faces join
+  /// two parts of the mesh, so that every tree cuts exactly one of its edges, and its fan
+  /// overlaps itself). The state goes back to before the step, which is applied again with twice
+  /// as many splits (the next in the order) until a run separates them or this many growths
+  /// failed. A growth's run gets (2,000 + 5 per face) times 2^growth iterations, unless
+  /// split_iterations fixes them. Deterministic.
+  std::size_t stuck_step_growths = 0;
   /// Vertex splits applied together before one re-layout (Unfolding::update) and repair; 0 means
   /// automatic: four, and one per 4,000 faces of the current mesh beyond 16,000. Together, the
   /// tree parts that several splits move are re-laid out and tested once (docs/performance.md).
@@ -93,6 +102,7 @@ struct ProgressiveResult {
   /// more and lose splits).
   std::size_t replays = 0;
   std::size_t restarts = 0;  ///< Tabu runs after splits that started again (see the options)
+  std::size_t growths = 0;   ///< stuck steps applied again with more splits (see the options)
   /// complete_first gave the net: the uncollapse stopped, the Tabu Unfolder finished the input.
   bool continued = false;
   TabuStats stats;  ///< Tabu Unfolder work summed over all runs
@@ -107,8 +117,8 @@ struct ProgressiveResult {
 /// local moves (Unfolding::repair_locally) and running the Tabu Unfolder only when those leave
 /// some. When that fails within the budget (the time limit, `split_tests_per_face`, or a split
 /// whose overlaps need more Tabu iterations than everything before it and than 2,000 + 5 per
-/// face), the last overlap-free state is returned (`complete` false), unless `complete_first`
-/// finishes the input from there.
+/// face, after `stuck_step_growths` growths of the step), the last overlap-free state is
+/// returned (`complete` false), unless `complete_first` finishes the input from there.
 ///
 /// When the coarse mesh itself cannot be unfolded within a budget that grows with its size (or,
 /// when it may still be collapsed, starts with more than 10 overlapping pairs per face):

@@ -15,6 +15,7 @@
 #include "core/io/load.h"
 #include "core/mesh/decimate.h"
 #include "core/mesh/progressive_mesh.h"
+#include "core/mesh/repair.h"
 #include "core/unfold/net_check.h"
 #include "core/unfold/unfolding.h"
 #include "tests/support/meshes.h"
@@ -57,6 +58,13 @@ void expect_net_of_the_input(const ProgressiveResult& r, const Mesh& input) {
   EXPECT_EQ(r.mesh.faces, input.faces);
   EXPECT_EQ(r.splits, r.splits_total);
   EXPECT_EQ(r.hausdorff, 0);
+  const NetCheckReport check = check_net(r.mesh, r.net);
+  EXPECT_TRUE(check.ok()) << check.summary();
+}
+
+// An overlap-free net that passes the checker: of the input, or of the coarser mesh it stopped at.
+void expect_checked_net(const ProgressiveResult& r) {
+  ASSERT_TRUE(r.overlap_free);
   const NetCheckReport check = check_net(r.mesh, r.net);
   EXPECT_TRUE(check.ok()) << check.summary();
 }
@@ -227,9 +235,7 @@ TEST(Progressive, RestartedSplitRunsAreDeterministicAndReplayExactly) {
     options.restart_tests_per_face = 4;
     options.split_tests_per_face = 25;
     const ProgressiveResult r = unfold_generously(input, options);
-    ASSERT_TRUE(r.overlap_free);
-    const NetCheckReport check = check_net(r.mesh, r.net);
-    EXPECT_TRUE(check.ok()) << check.summary();
+    expect_checked_net(r);
     if (r.restarts > 0) ++restarted;
     if (!r.complete) {
       ++stopped;
@@ -320,6 +326,45 @@ TEST(Progressive, CompleteFirstFinishesARealMeshQQOnlyApproximates) {
   expect_net_of_the_input(r, input);
 }
 
+// A step of splits whose Tabu run ends by its iteration cap (this CAD part, repaired, at 460
+// faces with seed 38: QQ stops at 452) is applied again with more splits (stuck_step_growths), and
+// the uncollapse goes on to the part itself, the same way each time. With a small split budget as
+// well, the uncollapse that stops later replays the grown steps since its checkpoint: checked nets.
+TEST(Progressive, StuckStepAppliedAgainWithMoreSplitsGoesOn) {
+  const LoadedMesh loaded =
+      load_mesh_file(papernet::test::test_data_dir() + "/trimesh_ADIS16480_600.obj");
+  const Mesh input = repair_mesh(loaded.mesh, loaded.raw_faces).mesh;  // as the pipeline does
+  ProgressiveOptions options;
+  options.tabu.seed = 38;
+  options.tabu.input_faces = input.faces.size();
+  const ProgressiveResult plain = unfold_generously(input, options);
+  ASSERT_TRUE(plain.overlap_free);
+  EXPECT_FALSE(plain.complete);
+  EXPECT_EQ(plain.growths, 0u);
+  options.stuck_step_growths = 8;
+  const ProgressiveResult r = unfold_generously(input, options);
+  EXPECT_GE(r.growths, 1u);
+  EXPECT_GT(r.splits, plain.splits);
+  expect_net_of_the_input(r, input);
+  const ProgressiveResult again = unfold_generously(input, options);
+  EXPECT_EQ(again.growths, r.growths);
+  EXPECT_EQ(again.net.parent, r.net.parent);
+
+  int grown = 0, stopped = 0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE(seed);
+    options.tabu.seed = seed;
+    options.split_tests_per_face = 25;
+    options.split_iterations = 300;
+    const ProgressiveResult b = unfold_generously(input, options);
+    expect_checked_net(b);
+    if (b.growths > 0) ++grown;
+    if (!b.complete) ++stopped;
+  }
+  EXPECT_GE(grown, 2);
+  EXPECT_GE(stopped, 1);
+}
+
 // A flat CAD-like platform whose two giant faces' boxes cover far more than 4,096 cells of its
 // mean edge: its nets (the default strategy's, and TU's) pass the checker, which used to refuse
 // any net of it ("face N is far larger than an average face in the net").
@@ -351,9 +396,7 @@ TEST(Progressive, CoarseFailureRetriesOnACoarserMesh) {
     if (r.coarse_retries == 0) continue;
     ++retried;
     EXPECT_LT(r.coarse_faces, target);
-    ASSERT_TRUE(r.overlap_free);
-    const NetCheckReport check = check_net(r.mesh, r.net);
-    EXPECT_TRUE(check.ok()) << check.summary();
+    expect_checked_net(r);
     if (r.complete) {
       EXPECT_EQ(r.mesh.faces, input.faces);
       EXPECT_EQ(r.splits, r.splits_total);
