@@ -123,6 +123,12 @@ constexpr std::size_t kSplitTestsMinFaces = 2000;
 // 24.7 -> 13.9 s; c3d__rocker-arm's Tabu runs 24.7 -> 17.4 s (docs/performance.md).
 constexpr double kSplitPartnerWalks = 1.0;
 
+// The Tabu run of a stuck step's growth g gets (kSplitIterationsBase + kSplitIterationsPerFace *
+// faces) << (g / 2) iterations, at most << kMaxGrowthShift. c3d__beetle-alt with the default
+// seed, 60 s: << g reached 22,429 faces, its failed tries at 986 and 1,210 faces taking 6 s;
+// << (g / 2) 24,228; the base cap alone did not separate its step of 512 splits (757 faces).
+constexpr std::size_t kMaxGrowthShift = 16;
+
 // The smaller of an iteration or test limit (0: none) and n.
 std::size_t at_most(std::size_t limit, std::size_t n) {
   return limit == 0 ? n : std::min(limit, n);
@@ -454,10 +460,11 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     TabuOptions t = split_tabu(step.seed);
     t.time_limit_seconds = options.split_time_limit_seconds;
     const std::size_t least = kSplitIterationsBase + kSplitIterationsPerFace * pm.face_count();
-    t.max_iterations = options.split_iterations > 0 ? options.split_iterations
-                       : growth > 0
-                           ? at_most(t.max_iterations, least << growth)
-                           : at_most(t.max_iterations, std::max(least, result.stats.iterations));
+    t.max_iterations =
+        options.split_iterations > 0 ? options.split_iterations
+        : growth > 0
+            ? at_most(t.max_iterations, least << std::min<std::size_t>(growth / 2, kMaxGrowthShift))
+            : at_most(t.max_iterations, std::max(least, result.stats.iterations));
     if (limit > 0) t.time_limit_seconds = std::min(t.time_limit_seconds, left_for(pm.face_count()));
     if (options.split_tests_per_face > 0) {
       const std::size_t budget = options.split_tests_per_face *

@@ -45,12 +45,13 @@ struct ProgressiveOptions {
   std::size_t restart_tests_per_face = 8;
   /// Growths of a stuck step (0: none; the default strategy uses them, docs/performance.md): when
   /// the Tabu run after a step of splits ends by its iteration cap, the mesh at that level may
-  /// have no net near them (c3d__beetle-alt at 763 faces: a saddle vertex whose six faces join
-  /// two parts of the mesh, so that every tree cuts exactly one of its edges, and its fan
-  /// overlaps itself). The state goes back to before the step, which is applied again with twice
-  /// as many splits (the next in the order) until a run separates them or this many growths
-  /// failed. A growth's run gets (2,000 + 5 per face) times 2^growth iterations, unless
-  /// split_iterations fixes them. Deterministic.
+  /// have no net near them (c3d__beetle-alt at 763 faces, every seed: a vertex whose angles sum
+  /// past 360 degrees, whose six faces reach the rest of the mesh across two edges only, and the
+  /// tree cut one edge of its fan, which then overlapped itself). The state goes back to before
+  /// the step, which is applied again with twice as many splits (the next in the order) until a
+  /// run separates them or this many growths failed. A growth's run gets (2,000 + 5 per face)
+  /// times 2^(growth / 2) iterations (rounded down), unless split_iterations fixes them.
+  /// Deterministic.
   std::size_t stuck_step_growths = 0;
   /// Vertex splits applied together before one re-layout (Unfolding::update) and repair; 0 means
   /// automatic: four, and one per 4,000 faces of the current mesh beyond 16,000. Together, the
@@ -97,9 +98,9 @@ struct ProgressiveResult {
   std::size_t coarse_retries = 0;  ///< further collapses after a coarse mesh failed
   std::size_t splits = 0;          ///< vertex splits the net includes
   std::size_t splits_total = 0;    ///< collapses made
-  /// Passes of going back to the last checkpoint and replaying the splits after it, when a
-  /// split's overlaps stayed (0 or 1; a replay that diverged from the run it repeats would need
-  /// more and lose splits).
+  /// Passes of going back to the last checkpoint and replaying the splits after it: one for each
+  /// growth of a stuck step, and one when the uncollapse stops with a split's overlaps left (a
+  /// replay that diverged from the run it repeats would need more and lose splits).
   std::size_t replays = 0;
   std::size_t restarts = 0;  ///< Tabu runs after splits that started again (see the options)
   std::size_t growths = 0;   ///< stuck steps applied again with more splits (see the options)
