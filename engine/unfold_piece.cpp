@@ -34,6 +34,9 @@ constexpr double kCollapsedFinishSecondsPerFace = 0.005;
 // (38,656 faces), whose uncollapse had stopped at 757 faces for every seed, needed 512 there
 // and 1,024 at 2,223 faces (docs/performance.md, "Session 62").
 constexpr std::size_t kStuckStepGrowths = 8;
+// ProgressiveOptions::walk_after_restarts of the default strategy (docs/performance.md,
+// "Session 63").
+constexpr std::size_t kWalkAfterRestarts = 8;
 
 // The tab room report's threshold for a flat vertex (angle defect); only its flat-leaf counts
 // depend on it, and those are not reported.
@@ -100,6 +103,7 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
   // run finishes the collapsed mesh (the chair of tests/engine/fit_search_test.cpp, 429 faces of
   // 6,374: grown, its net printed on 22 pieces with 11 labels under 1.5 mm instead of 19 and 8).
   if (options.strategy == Strategy::AUTO && !collapsed) p.stuck_step_growths = kStuckStepGrowths;
+  if (options.strategy == Strategy::AUTO) p.walk_after_restarts = kWalkAfterRestarts;
   if (collapsed)
     p.complete_first_seconds = kCollapsedFinishSeconds + kCollapsedFinishSecondsPerFace *
                                                              static_cast<double>(mesh.faces.size());

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace papernet {
 
@@ -18,6 +19,12 @@ struct LocalRepairOptions {
   /// again, only its tests are counted; false evaluates it again. The result and the stats are
   /// the same either way (a test compares them).
   bool reuse_cuts = true;
+  /// 0: each sideways move is the best one (the lowest count, then the smallest side). Else the
+  /// seed of a walk: each sideways move is drawn among all the moves that raise the count by at
+  /// most `max_rise` (every gluing is then evaluated to its end, and cuts are not reused).
+  /// Deterministic for a given seed. The uncollapse tries such walks where the Tabu Unfolder's
+  /// runs keep failing on a pair or two (docs/performance.md, "Session 63").
+  std::uint64_t seed = 0;
 };
 
 /// What Unfolding::repair_locally did.

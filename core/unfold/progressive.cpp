@@ -58,7 +58,21 @@ struct Applied {
   std::uint64_t seed = 0;           // of the new faces' places in the tree
   std::uint64_t tabu_seed = 0;      // of the Tabu run that removed their overlaps (after restarts)
   std::size_t iterations = 0;       // of that run; 0: no overlaps appeared
+  // A walk after restarts that separated the pairs instead (ProgressiveOptions::
+  // walk_after_restarts): its seed (0: none) and cap of tests.
+  std::uint64_t walk_seed = 0;
+  std::size_t walk_tests = 0;
 };
+
+// The walk of local moves that ProgressiveOptions::walk_after_restarts tries, also in replays.
+LocalRepairOptions walk_options(const Unfolding& u, std::uint64_t seed, std::size_t tests) {
+  LocalRepairOptions walk;
+  walk.max_side = u.face_count();
+  walk.max_tests = tests;
+  walk.max_sideways = tests;  // bounded by the tests
+  walk.seed = seed;
+  return walk;
+}
 
 // Budget of the local repair after a split, before the Tabu Unfolder runs: moved-face tests. Its
 // sides grow fourfold from 16 faces while no move helps, up to the whole mesh: on large meshes
@@ -444,6 +458,12 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
     std::size_t i = 0;
     for (; i < upto; ++i) {
       if (place_splits(st, log[i].splits, log[i].seed) == 0) continue;
+      if (log[i].walk_seed != 0) {
+        const LocalRepairOptions walk =
+            walk_options(st.unfolding, log[i].walk_seed, log[i].walk_tests);
+        if (st.unfolding.repair_locally(walk) > 0) break;
+        continue;
+      }
       TabuOptions t = split_tabu(log[i].tabu_seed);
       t.max_iterations = log[i].iterations;
       t.time_limit_seconds = 0;
@@ -504,6 +524,29 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         return !out && run.max_iterations > 0 && ran.iterations >= run.max_iterations ? Ended::Stuck
                                                                                       : Ended::Out;
       if (t.max_tests > 0) t.max_tests -= ran.tests;
+      if (options.walk_after_restarts > 0 && r + 1 >= options.walk_after_restarts) {
+        // A walk of local moves from the same state, within the same cap.
+        st = *before;
+        const std::uint64_t seed = split_seed(step.tabu_seed, ~r) | 1;
+        const std::size_t tests = t.max_tests > 0 ? std::min(cap, t.max_tests) : cap;
+        LocalRepairStats walked;
+        const bool separated =
+            st.unfolding.repair_locally(walk_options(st.unfolding, seed, tests), &walked) == 0;
+        split_tests += walked.tests;
+        if (separated) {
+          step.walk_seed = seed;
+          step.walk_tests = tests;
+          ++result.walks;
+          return Ended::Separated;
+        }
+        if (t.max_tests > 0) {
+          if (walked.tests >= t.max_tests) {
+            st = std::move(*before);
+            return Ended::Out;
+          }
+          t.max_tests -= walked.tests;
+        }
+      }
       st = std::move(*before);
       ++result.restarts;
       step.tabu_seed = split_seed(step.tabu_seed, r);

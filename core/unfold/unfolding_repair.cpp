@@ -7,6 +7,7 @@
 #include <climits>
 #include <cmath>
 
+#include "core/random.h"
 #include "core/unfold/unfolding.h"
 
 namespace papernet {
@@ -174,6 +175,10 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
     return std::find(tabu.begin(), tabu.end(), ordered(a, b)) != tabu.end();
   };
   const long long rise = static_cast<long long>(options.max_rise);
+  // A seed: sideways moves are drawn among `level` (the moves that do not lower the count).
+  const bool drawn = options.seed != 0;
+  Random random(options.seed);
+  std::vector<Move> level;
   // The cuts evaluated in the current round and, for each way of gluing their side back, the count
   // change after each face tested. The pairs' tree paths share links, so a round meets many cuts
   // again; the state has not changed, so such a cut cannot give a better move (that needs a lower
@@ -192,6 +197,7 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
     cuts.clear();
     gluings.clear();
     counts.clear();
+    level.clear();
     // Evaluates every way of gluing the side x..(not y) (grow_side, marked with `epoch`) back on.
     const auto evaluate_side = [&](int x, int y, std::uint32_t epoch) {
       // The overlapping pairs across the cut: from the side's faces, or from the overlapping
@@ -256,12 +262,16 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
                 ++delta;
             });
             counts.push_back(delta);
-            // Only a move that lowers the count is applied: stop once this one cannot win.
-            if (delta > rise || delta > best.delta ||
-                (delta == best.delta && side_faces_.size() >= best.side))
+            // Only a move that lowers the count is applied: stop once this one cannot win (or,
+            // drawn, once it raises the count too much to be drawn).
+            if (delta > rise ||
+                (!drawn &&
+                 (delta > best.delta || (delta == best.delta && side_faces_.size() >= best.side))))
               break;
           }
           gluings.push_back({first, counts.size()});
+          if (drawn && delta >= 0 && delta <= rise)
+            level.push_back({delta, side_faces_.size(), x, y, s, k});
           if (delta < best.delta || (delta == best.delta && side_faces_.size() < best.side))
             best = {delta, side_faces_.size(), x, y, s, k};
         }
@@ -271,6 +281,7 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
     const auto visit_cut = [&](int x, int y) {
       for (const Cut& c : cuts) {
         if (c.x != x || c.y != y) continue;
+        if (drawn) return;  // its moves are in `level` already
         for (std::size_t i = c.begin; i < c.end; ++i) {
           ++st.evaluations;
           for (std::size_t j = gluings[i].first; j < gluings[i].second; ++j) {
@@ -288,7 +299,7 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
       c.side = side_faces_.size();
       evaluate_side(x, y, side_epoch_);
       c.end = gluings.size();
-      if (options.reuse_cuts) cuts.push_back(c);
+      if (options.reuse_cuts || drawn) cuts.push_back(c);
     };
 
     pairs.clear();
@@ -316,12 +327,14 @@ std::size_t Unfolding::repair_locally(const LocalRepairOptions& options, LocalRe
       }
     }
     if (best.delta >= 0 || best.delta == LLONG_MAX) {
-      if (limit < max_side) {
+      // A walk draws among the sides of this size before it tries larger ones.
+      if (limit < max_side && (!drawn || level.empty())) {
         limit = std::min(max_side, 4 * limit);
         continue;
       }
       // No move of a small side lowers the count: a few sideways (or slightly rising) moves,
       // never undone at once, may lead to one that does.
+      if (drawn && !level.empty()) best = level[random.below(level.size())];
       if (st.sideways >= options.max_sideways || best.delta == LLONG_MAX || best.delta > rise)
         break;
       ++st.sideways;

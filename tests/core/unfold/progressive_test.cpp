@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 #include <thread>
 #include <utility>
@@ -221,33 +222,59 @@ TEST(Progressive, ReplayAfterAStuckSplitKeepsEverySplitBeforeIt) {
   EXPECT_GE(stopped, 3);  // the budget stops most seeds short of the input
 }
 
-// Restarts of long Tabu runs after splits (on by default from 4,000 faces; here on every mesh,
-// after a few tests per face): deterministic, valid nets, and a replay after a stuck split
-// repeats each restarted run with the seed it ended with.
-TEST(Progressive, RestartedSplitRunsAreDeterministicAndReplayExactly) {
-  const Mesh input = load_test_mesh("trimesh_ADIS16480_600.obj");
+// Runs of trimesh_ADIS16480_600.obj with restarts after a few tests per face and a small split
+// budget, one per seed: each net is checked, each run is repeated exactly, and a run the budget
+// stops needs one replay pass. Counts of the runs that restarted, walked and stopped.
+struct RestartingRuns {
   int restarted = 0, stopped = 0;
-  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+  std::size_t walks = 0;
+};
+RestartingRuns run_restarting(std::initializer_list<std::uint64_t> seeds,
+                              std::size_t walk_after_restarts) {
+  const Mesh input = load_test_mesh("trimesh_ADIS16480_600.obj");
+  RestartingRuns runs;
+  for (std::uint64_t seed : seeds) {
     SCOPED_TRACE(seed);
     ProgressiveOptions options;
     options.tabu.seed = seed;
     options.restart_faces = 1;
     options.restart_tests_per_face = 4;
     options.split_tests_per_face = 25;
+    options.walk_after_restarts = walk_after_restarts;
     const ProgressiveResult r = unfold_generously(input, options);
     expect_checked_net(r);
-    if (r.restarts > 0) ++restarted;
+    if (r.restarts > 0) ++runs.restarted;
+    runs.walks += r.walks;
     if (!r.complete) {
-      ++stopped;
+      ++runs.stopped;
       EXPECT_EQ(r.replays, 1u);
     }
     const ProgressiveResult again = unfold_generously(input, options);
     EXPECT_EQ(again.restarts, r.restarts);
+    EXPECT_EQ(again.walks, r.walks);
     EXPECT_EQ(again.splits, r.splits);
     EXPECT_EQ(again.net.parent, r.net.parent);
   }
-  EXPECT_GE(restarted, 2);
-  EXPECT_GE(stopped, 1);
+  return runs;
+}
+
+// Restarts of long Tabu runs after splits (on by default from 4,000 faces; here on every mesh,
+// after a few tests per face): deterministic, valid nets, and a replay after a stuck split
+// repeats each restarted run with the seed it ended with.
+TEST(Progressive, RestartedSplitRunsAreDeterministicAndReplayExactly) {
+  const RestartingRuns runs = run_restarting({1, 2, 3, 4}, 0);
+  EXPECT_GE(runs.restarted, 2);
+  EXPECT_GE(runs.stopped, 1);
+}
+
+// Walks after restarts (ProgressiveOptions::walk_after_restarts): a walk of drawn local moves
+// that separates a step's pairs ends its restarts; the result is deterministic, and where the
+// split budget then stops the uncollapse, the replay repeats the walks exactly (one pass). Seeds
+// 12, 13 and 15 walk 5 times and stop twice (seeds 1-11 walk in none).
+TEST(Progressive, WalksAfterRestartsAreDeterministicAndReplayExactly) {
+  const RestartingRuns runs = run_restarting({12, 13, 15}, 1);
+  EXPECT_GE(runs.walks, 2u);
+  EXPECT_GE(runs.stopped, 1);
 }
 
 // complete_first (the default strategy): where the uncollapse stops (here: Tabu runs of a single

@@ -1,6 +1,7 @@
 // Unfolding::repair_locally: local moves of small sides of the unfold tree after overlaps appear.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -77,6 +78,32 @@ TEST(LocalRepair, SameStateGivesTheSameNet) {
   ASSERT_EQ(na.points.size(), nb.points.size());
   for (std::size_t f = 0; f < na.points.size(); ++f)
     for (int k = 0; k < 3; ++k) EXPECT_TRUE(na.points[f][k] == nb.points[f][k]) << f;
+}
+
+// A walk (LocalRepairOptions::seed) draws its sideways moves: the same seed gives the same net,
+// other seeds other walks, and each keeps the state consistent and within its rises.
+TEST(LocalRepair, WalksDrawTheirSidewaysMovesFromTheSeed) {
+  const Unfolding start = Unfolding::steepest_edge(load_test_mesh("thingi10k_65004.stl"), 1);
+  ASSERT_GT(start.overlap_count(), 0u);
+  std::vector<std::vector<int>> nets;
+  std::size_t sideways = 0;
+  for (std::uint64_t seed : {7, 8, 9, 10}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    LocalRepairOptions options;
+    options.seed = seed;
+    options.max_sideways = 1000;
+    Unfolding a = start, b = start;
+    LocalRepairStats stats;
+    const std::size_t after = a.repair_locally(options, &stats);
+    b.repair_locally(options);
+    EXPECT_EQ(a.net().parent, b.net().parent);
+    EXPECT_LE(after, start.overlap_count() + stats.sideways * options.max_rise);
+    expect_consistent(a);
+    sideways += stats.sideways;
+    nets.push_back(a.net().parent);
+  }
+  EXPECT_GT(sideways, 0u);
+  EXPECT_NE(std::count(nets.begin(), nets.end(), nets.front()), 4) << "every seed walked alike";
 }
 
 TEST(LocalRepair, TinyBudgetStopsEarly) {
