@@ -35,7 +35,9 @@ constexpr double kCollapsedFinishSecondsPerFace = 0.005;
 // and 1,024 at 2,223 faces (docs/performance.md, "Session 62").
 constexpr std::size_t kStuckStepGrowths = 8;
 // ProgressiveOptions::walk_after_restarts of the default strategy (docs/performance.md,
-// "Session 63").
+// "Session 63"); also where detail collapsed the part, unlike growths: walks come only after
+// restarts, which need 4,000 faces (ProgressiveOptions::restart_faces), and the parts it collapses
+// at the usual sizes have fewer (the chair above: 429).
 constexpr std::size_t kWalkAfterRestarts = 8;
 
 // The tab room report's threshold for a flat vertex (angle defect); only its flat-leaf counts

@@ -21,7 +21,8 @@ struct LocalRepairOptions {
   bool reuse_cuts = true;
   /// 0: each sideways move is the best one (the lowest count, then the smallest side). Else the
   /// seed of a walk: each sideways move is drawn among all the moves that raise the count by at
-  /// most `max_rise` (every gluing is then evaluated to its end, and cuts are not reused).
+  /// most `max_rise` (each gluing is then tested until it raises the count by more than that, and
+  /// a cut met again in a round is skipped).
   /// Deterministic for a given seed. The uncollapse tries such walks where the Tabu Unfolder's
   /// runs keep failing on a pair or two (docs/performance.md, "Session 63").
   std::uint64_t seed = 0;
