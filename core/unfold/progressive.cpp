@@ -525,10 +525,13 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
                                                                                       : Ended::Out;
       if (t.max_tests > 0) t.max_tests -= ran.tests;
       if (options.walk_after_restarts > 0 && r + 1 >= options.walk_after_restarts) {
-        // A walk of local moves from the same state, within the same cap.
+        // A walk of local moves from the same state, within the same cap, and within the local
+        // repair's budget after a split: like that repair, a walk checks neither the time limit
+        // nor cancellation, and the Luby caps grow without bound.
         st = *before;
         const std::uint64_t seed = split_seed(step.tabu_seed, ~r) | 1;
-        const std::size_t tests = t.max_tests > 0 ? std::min(cap, t.max_tests) : cap;
+        std::size_t tests = std::min(cap, kRepairTestsBase + kRepairTestsPerFace * pm.face_count());
+        if (t.max_tests > 0) tests = std::min(tests, t.max_tests);
         LocalRepairStats walked;
         const bool separated =
             st.unfolding.repair_locally(walk_options(st.unfolding, seed, tests), &walked) == 0;
