@@ -84,6 +84,9 @@ LocalRepairOptions walk_options(const Unfolding& u, std::uint64_t seed, std::siz
 // Neutral on bench/1000-2000.
 constexpr std::size_t kRepairTestsBase = 256'000;
 constexpr std::size_t kRepairTestsPerFace = 256;
+std::size_t repair_tests(const Unfolding& u) {
+  return kRepairTestsBase + kRepairTestsPerFace * u.face_count();
+}
 // Splits per update(): kSplitsPerUpdate, or one per kBatchFaces faces of the current mesh when
 // that is more. Consecutive splits often move the same parts of the tree (the branches that meet
 // their rings); together these are re-laid out and tested once. With eight per update the Tabu
@@ -215,7 +218,7 @@ std::size_t place_splits(State& st, const std::vector<VertexSplit>& splits, std:
   if (u.update() == 0) return 0;
   LocalRepairOptions repair;
   repair.max_side = u.face_count();
-  repair.max_tests = kRepairTestsBase + kRepairTestsPerFace * u.face_count();
+  repair.max_tests = repair_tests(u);
   return u.repair_locally(repair);
 }
 
@@ -530,7 +533,7 @@ ProgressiveResult unfold_progressive(const Mesh& mesh, const ProgressiveOptions&
         // nor cancellation, and the Luby caps grow without bound.
         st = *before;
         const std::uint64_t seed = split_seed(step.tabu_seed, ~r) | 1;
-        std::size_t tests = std::min(cap, kRepairTestsBase + kRepairTestsPerFace * pm.face_count());
+        std::size_t tests = std::min(cap, repair_tests(st.unfolding));
         if (t.max_tests > 0) tests = std::min(tests, t.max_tests);
         LocalRepairStats walked;
         const bool separated =

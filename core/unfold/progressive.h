@@ -56,7 +56,8 @@ struct ProgressiveOptions {
   /// Walks after restarts (0: none; the default strategy uses them, docs/performance.md): from
   /// this many failed capped Tabu runs of a step on, each failed run is followed by a walk of
   /// local moves from the same state (Unfolding::repair_locally with a seed: sideways moves
-  /// drawn, not the best ones), within the same cap of moved-face tests. The few updates that
+  /// drawn, not the best ones), within the same cap of moved-face tests and at most the local
+  /// repair's budget after a split (it checks neither time nor cancellation). The few updates that
   /// take most of a large mesh's minute have one or two pairs left that a Tabu run separates in
   /// about one try of a hundred; most walks end within a few thousand tests, and in one minute
   /// of c3d__nefertiti 13 of 295 separated such pairs. Deterministic.
