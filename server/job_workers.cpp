@@ -130,9 +130,9 @@ void JobService::run_one(ClaimedJob claimed) {
     ++version_;
   }
   change_cv_.notify_all();
-  if (draining) {  // claimed while the shutdown began
+  if (draining) {  // claimed while the shutdown began: back in the queue, said as for a run
     try {
-      store_.release(id, claim);
+      if (store_.release(id, claim)) log_("job " + id + " running -> queued (server stopping)");
     } catch (const StoreError& e) {
       log_("job " + id + " could not be put back in the queue: " + e.what());
     }

@@ -552,7 +552,8 @@ TEST_P(ServeTest, GracefulStopKeepsTheRunningJobForTheNextStart) {
   Server restarted({}, data);
   const json job = wait_final(restarted, id);
   EXPECT_TRUE(job["status"] == "succeeded" || job["status"] == "approximated") << job.dump();
-  EXPECT_NE(restarted.log().find("running -> queued (server stopping)"), std::string::npos);
+  EXPECT_NE(restarted.log().find("running -> queued (server stopping)"), std::string::npos)
+      << restarted.log();
 }
 
 // kill -9 with jobs queued and running; a restart finishes every one and loses no result.
