@@ -13,6 +13,24 @@ Vec3 face_normal(const Mesh& mesh, int f) {
 
 double face_area(const Mesh& mesh, int f) { return 0.5 * norm(face_normal(mesh, f)); }
 
+Mesh mesh_of_faces(const Mesh& mesh, const std::vector<int>& faces) {
+  Mesh out;
+  std::vector<int> index(mesh.vertices.size(), -1);
+  for (int f : faces) {
+    std::array<int, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      int& i = index[mesh.faces[f][k]];
+      if (i < 0) {
+        i = static_cast<int>(out.vertices.size());
+        out.vertices.push_back(mesh.vertices[mesh.faces[f][k]]);
+      }
+      t[k] = i;
+    }
+    out.faces.push_back(t);
+  }
+  return out;
+}
+
 Box3 bounding_box(const Mesh& mesh) {
   Box3 box = Box3::empty();
   for (const Vec3& v : mesh.vertices) box.add(v);

@@ -27,6 +27,11 @@ Box3 bounding_box(const Mesh& mesh);
 /// Length of the diagonal of the mesh's axis-aligned bounding box (0 for an empty mesh).
 double bounding_box_diagonal(const Mesh& mesh);
 
+/// The faces `faces` of `mesh`, in that order, as a mesh of their own: each face's corners in the
+/// same order, the vertices they use renumbered in order of first use (a net of it is a net of
+/// those faces).
+Mesh mesh_of_faces(const Mesh& mesh, const std::vector<int>& faces);
+
 /// Median length of the faces' edges, each edge counted once per face (0 for a mesh without
 /// faces).
 double median_edge_length(const Mesh& mesh);

@@ -105,22 +105,10 @@ std::optional<Mesh> plate_side(const Mesh& mesh) {
   std::vector<char> keep(mesh.faces.size(), 0);
   for (int f = 0; f < nf; ++f) keep[f] = sheet.find(f) == side;
   if (!one_fan_at_each_vertex(mesh, graph, keep)) return std::nullopt;
-  Mesh out;
-  std::vector<int> index(mesh.vertices.size(), -1);
-  for (int f = 0; f < nf; ++f) {
-    if (!keep[f]) continue;
-    std::array<int, 3> t{};
-    for (int k = 0; k < 3; ++k) {
-      int& i = index[mesh.faces[f][k]];
-      if (i < 0) {
-        i = static_cast<int>(out.vertices.size());
-        out.vertices.push_back(mesh.vertices[mesh.faces[f][k]]);
-      }
-      t[k] = i;
-    }
-    out.faces.push_back(t);
-  }
-  return out;
+  std::vector<int> kept;
+  for (int f = 0; f < nf; ++f)
+    if (keep[f]) kept.push_back(f);
+  return mesh_of_faces(mesh, kept);
 }
 
 }  // namespace papernet

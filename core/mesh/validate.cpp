@@ -241,22 +241,10 @@ Mesh largest_component(const Mesh& m) {
     const int root = uf.find(int(f));
     if (size[root] > best_size) best = root, best_size = size[root];
   }
-  Mesh out;
-  std::vector<int> remap(m.vertices.size(), -1);
-  for (std::size_t f = 0; f < m.faces.size(); ++f) {
-    if (uf.find(int(f)) != best) continue;
-    std::array<int, 3> t{};
-    for (int k = 0; k < 3; ++k) {
-      int& r = remap[m.faces[f][k]];
-      if (r < 0) {
-        r = int(out.vertices.size());
-        out.vertices.push_back(m.vertices[m.faces[f][k]]);
-      }
-      t[k] = r;
-    }
-    out.faces.push_back(t);
-  }
-  return out;
+  std::vector<int> faces;
+  for (std::size_t f = 0; f < m.faces.size(); ++f)
+    if (uf.find(int(f)) == best) faces.push_back(int(f));
+  return mesh_of_faces(m, faces);
 }
 
 }  // namespace
