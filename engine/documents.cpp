@@ -307,12 +307,50 @@ class FitSearch {
       if (tried_[*best].pages <= 1) break;
     }
     if (!best) throw std::logic_error("the fit search laid out no way");
-    return std::move(kept_.at(*best));
+    FitPrint chosen = std::move(kept_.at(*best));
+    merge(chosen, progress);
+    return chosen;
   }
 
   const std::string& tiled_because() const { return tiled_because_; }
 
  private:
+  struct OutOfTime {};
+
+  // The chosen way's pieces merged two at a time (print/fit.h, merge_pieces) where the print
+  // costs less: as many sheets or fewer, fewer pieces to cut out and glue. While the search's
+  // time lasts, at the pace of its layouts.
+  void merge(FitPrint& chosen, Progress& progress) {
+    if (chosen.pieces.pieces <= 1 || laid_out_ == 0) return;
+    const double pace = laid_out_seconds_ / static_cast<double>(laid_out_);
+    TabClearanceOptions tabs = tabs_;
+    if (print_.tabs != TabMode::Auto) tabs.min_height = 0;
+    double cost = chosen.cost(label_price_);
+    MergeBudget budget;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    const double left = seconds_ - elapsed - pace;
+    if (left <= 0) return;
+    budget.seconds = std::isfinite(left) ? left : 0;
+    const auto keep = [&](const FitPieces& merged) {
+      if (progress.cancelled()) throw CancelledException();
+      const double now =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+      if (now + pace > seconds_) throw OutOfTime{};
+      if (!check_pieces(mesh_, merged.net, merged.piece).ok()) return false;
+      FitPrint print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone);
+      const double c = print.cost(label_price_);
+      if (!(c < cost)) return false;
+      cost = c;
+      chosen = std::move(print);
+      return true;
+    };
+    try {
+      merge_pieces(mesh_, net_.piece, chosen.pieces, scale_, room_, tabs, budget, keep);
+    } catch (const OutOfTime&) {
+    }
+  }
+
   struct Tried {
     std::optional<double> cost;  // none: not laid out (yet)
     std::size_t pages = 0;

@@ -2,6 +2,7 @@
 // onto sheets. Checked from the drawn pages, not from the layout's own data.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -338,6 +339,55 @@ TEST(Grow, SmallPiecesGrownAgainFaceByFaceLeaveFewerPieces) {
   }
   EXPECT_EQ(meshes, 3) << "tests/data lacks a mesh of this test";
   EXPECT_GE(fewer, 2);
+}
+
+// Pieces merged two at a time, their faces unfolded anew together (print/fit.h, merge_pieces):
+// fewer pieces than grown, each still a net of its faces (the independent checker) that fits the
+// room, with room for a tab on every cut inside; the same pieces every time. Offered to a `keep`
+// that refuses, no merge is made, and no more are offered than the budget allows; one that
+// takes only the first leaves one piece fewer.
+TEST(Merge, PiecesMergedTwoAtATimeAreFewerNetsThatFitWithRoomForTabs) {
+  const std::string name = "thingi10k_65004.stl";
+  Mesh mesh;
+  for (auto& [file, loaded] : test::test_data_meshes())
+    if (file == name) mesh = loaded;
+  ASSERT_FALSE(mesh.faces.empty()) << "tests/data has no " << name;
+  const double scale = print_scale(mesh, {});  // 200 mm
+  const TabClearanceOptions tabs = tab_clearance_options(mesh, {});
+  const std::vector<int> one(mesh.faces.size(), 0);
+  const FitPieces grown =
+      grow_to_fit(mesh, one, scale, {kRoom, {}}, tabs.min_height, tabs.angle_deg, 6);
+  // Less work than the print's merge (print/fit.h): the sanitized builds run this too.
+  MergeBudget budget;
+  budget.tests = 50'000;
+  const auto started = std::chrono::steady_clock::now();
+  const FitPieces merged = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget);
+  expect_nets_that_fit(mesh, merged, scale, name);
+  EXPECT_EQ(slits_without_tab_room(mesh, merged, tabs), 0u);
+  EXPECT_LT(merged.pieces, grown.pieces);
+  EXPECT_EQ(merged.cut_links, merged.pieces - 1);
+  const FitPieces again = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget);
+  EXPECT_EQ(again.net.parent, merged.net.parent);
+  EXPECT_EQ(again.piece, merged.piece);
+
+  budget.keeps = 3;
+  std::size_t offered = 0;
+  const FitPieces refused = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget,
+                                         [&](const FitPieces& candidate) {
+                                           ++offered;
+                                           EXPECT_EQ(candidate.pieces, grown.pieces - 1);
+                                           return false;
+                                         });
+  EXPECT_EQ(offered, 3u);
+  EXPECT_EQ(refused.piece, grown.piece);
+  EXPECT_EQ(refused.net.points, grown.net.points);
+  const FitPieces first = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget,
+                                       [&](const FitPieces&) { return offered++ == 3; });
+  EXPECT_EQ(first.pieces, grown.pieces - 1);
+  expect_nets_that_fit(mesh, first, scale, name);
+  std::printf("%s: %d pieces grown, %d merged (%.1f s for all four merges)\n", name.c_str(),
+              grown.pieces, merged.pieces,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
 }
 
 // A piece never takes faces of two parts: an octahedron whose upper and lower halves are given
