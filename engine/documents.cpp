@@ -317,6 +317,11 @@ class FitSearch {
  private:
   struct OutOfTime {};
 
+  // Seconds since the search started.
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  }
+
   // The chosen way's pieces merged two at a time (print/fit.h, merge_pieces) where the print
   // costs less: as many sheets or fewer, fewer pieces to cut out and glue. While the search's
   // time lasts, at the pace of its layouts.
@@ -327,16 +332,12 @@ class FitSearch {
     if (print_.tabs != TabMode::Auto) tabs.min_height = 0;
     double cost = chosen.cost(label_price_);
     MergeBudget budget;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    const double left = seconds_ - elapsed - pace;
+    const double left = seconds_ - elapsed() - pace;
     if (left <= 0) return;
     budget.seconds = std::isfinite(left) ? left : 0;
     const auto keep = [&](const FitPieces& merged) {
       if (progress.cancelled()) throw CancelledException();
-      const double now =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-      if (now + pace > seconds_) throw OutOfTime{};
+      if (elapsed() + pace > seconds_) throw OutOfTime{};
       if (!check_pieces(mesh_, merged.net, merged.piece).ok()) return false;
       FitPrint print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone);
       const double c = print.cost(label_price_);
@@ -397,9 +398,7 @@ class FitSearch {
       if (next_ > 0) {
         // Another way only while one more as long as the average ends in the time left, and
         // while the best so far leaves sheets to save.
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-        if (laid_out_ > 0 && elapsed + laid_out_seconds_ / laid_out_ > seconds_) return false;
+        if (laid_out_ > 0 && elapsed() + laid_out_seconds_ / laid_out_ > seconds_) return false;
         if (!kept_.empty() && kept_.rbegin()->second.pages.pages.size() <= 1) return false;
       }
       i = next_++;

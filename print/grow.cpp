@@ -13,6 +13,7 @@
 #include "core/unfold/overlap_grid.h"
 #include "core/unfold/unfold_tree.h"
 #include "print/fit.h"
+#include "print/internal/number_pieces.h"
 
 namespace papernet {
 namespace {
@@ -314,20 +315,23 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
     if (count_pieces(again) < count_pieces(growth)) growth = std::move(again);
   }
 
-  FitPieces& out = growth.out;
-  const std::vector<int>& of = growth.of;
-  // Pieces numbered by their first face.
-  std::vector<int> number(n, -1);
-  out.piece.assign(n, 0);
+  print_detail::number_pieces(std::move(growth.of), piece, growth.out);
+  return std::move(growth.out);
+}
+
+void print_detail::number_pieces(std::vector<int> of, const std::vector<int>& part,
+                                 FitPieces& out) {
+  std::vector<int> number(of.size(), -1);
+  out.piece.assign(of.size(), 0);
+  out.pieces = 0;
   int inputs = 0;
-  for (int p : piece) inputs = std::max(inputs, p + 1);
-  for (int f = 0; f < n; ++f) {
+  for (int p : part) inputs = std::max(inputs, p + 1);
+  for (std::size_t f = 0; f < of.size(); ++f) {
     int& id = number[of[f]];
     if (id < 0) id = out.pieces++;
     out.piece[f] = id;
   }
   out.cut_links = std::max(0, out.pieces - inputs);
-  return std::move(growth.out);
 }
 
 }  // namespace papernet

@@ -11,26 +11,9 @@
 #include "core/unfold/net_metrics.h"
 #include "core/unfold/tabu.h"
 #include "print/fit.h"
+#include "print/internal/number_pieces.h"
 
 namespace papernet {
-namespace {
-
-// `pieces` with each face's piece renumbered by its first face, and the count of cut links.
-void renumber(FitPieces& pieces, const std::vector<int>& part) {
-  std::vector<int> number(pieces.piece.size(), -1);
-  int inputs = 0;
-  for (int v : part) inputs = std::max(inputs, v + 1);
-  pieces.pieces = 0;
-  for (int& of : pieces.piece) {
-    int& id = number[of];
-    if (id < 0) id = pieces.pieces++;
-    of = id;
-  }
-  pieces.cut_links = std::max(0, pieces.pieces - inputs);
-}
-
-}  // namespace
-
 FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces pieces,
                        double scale, FitRoom room, const TabClearanceOptions& tabs,
                        const MergeBudget& budget,
@@ -122,7 +105,7 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
           candidate.net.points[f] = result.net.points[i];
           candidate.piece[f] = p;
         }
-        renumber(candidate, part);
+        print_detail::number_pieces(candidate.piece, part, candidate);
         if (keep) {
           --asks_left;
           if (!keep(candidate)) break;  // the pair's first merge tells; the next pair
