@@ -346,8 +346,21 @@ class FitSearch {
       chosen = std::move(print);
       return true;
     };
+    // Phase "layout" from where the search left it to the end, as the merge spends its budget.
+    class Reports : public Progress {
+     public:
+      Reports(Progress& job, double from) : job_(job), from_(from) {}
+      void report(const ProgressInfo& info) override {
+        engine_detail::report(job_, "layout", from_ + (1 - from_) * info.phase_fraction);
+      }
+      bool cancelled() override { return job_.cancelled(); }
+
+     private:
+      Progress& job_;
+      double from_;
+    } reports{progress, static_cast<double>(passed_) / std::size(kFitWays)};
     try {
-      merge_pieces(mesh_, net_.piece, chosen.pieces, scale_, room_, tabs, budget, keep);
+      merge_pieces(mesh_, net_.piece, chosen.pieces, scale_, room_, tabs, budget, keep, &reports);
     } catch (const OutOfTime&) {
     }
   }

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
 #include "core/tabs/tab_clearance.h"
 #include "core/unfold/net.h"
 #include "core/vec.h"
@@ -78,9 +79,13 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
 /// evaluations and the merges offered (work, not time: the same pieces on every run), and, where
 /// a job's time limit bounds the print, seconds.
 struct MergeBudget {
-  int tries = 4;                     ///< unfoldings of a pair, seeds 1, 2, ...
-  std::size_t tests_per_face = 200;  ///< of one try, per face of the pair
-  std::size_t tests = 120'000;       ///< of all tries
+  /// Unfoldings of a pair from its two pieces' trees glued across one of the edges they share
+  /// (edges spread over those they share), before the `tries`.
+  int glued = 2;
+  int tries = 2;  ///< unfoldings of a pair from the Tabu Unfolder's starts, seeds 1, 2, ...
+  std::size_t tests_per_face = 200;      ///< of one unfolding, per face of the pair
+  std::size_t iterations_per_face = 20;  ///< rounds of one unfolding, per face of the pair
+  std::size_t tests = 120'000;           ///< of all unfoldings
   /// Candidate moves of the pass that makes room for tabs on a merged piece, per face of it.
   std::size_t tab_evaluations_per_face = 20;
   std::size_t tab_evaluations = 20'000;  ///< of all those passes
@@ -93,19 +98,23 @@ struct MergeBudget {
 
 /// `pieces` (of `mesh`, each face's piece in `pieces.piece`, each a tree of `pieces.net`) merged
 /// two at a time (docs/print.md, "Fit layout"): two pieces of one part (values of `part`) that
-/// share an edge become one when their faces, unfolded anew together by the Tabu Unfolder (seeds
-/// 1 to `budget.tries`), lie flat without overlap, fit `room` at `scale` millimetres per unit as
-/// cut_to_fit's pieces do, and, with `tabs.min_height` > 0, leave room for a tab on every cut
-/// inside the piece (core/tabs' edges_without_tab_room). The pairs of the fewest faces are tried
-/// first, again after each merge. A piece of a face larger than the room (`pieces.large`) stays
-/// as it is. With `keep`, each merge is offered to it (at most `budget.keeps`) and made only when
-/// it says yes (the fit search keeps a merge that prints on as many sheets or fewer at a lower
+/// share an edge become one when their faces, unfolded anew together by the Tabu Unfolder (from
+/// the two pieces' trees glued across a shared edge, `budget.glued` edges, then from its own starts
+/// of seeds 1 to `budget.tries`), lie flat without overlap, fit `room` at `scale` millimetres per
+/// unit as cut_to_fit's pieces do, and, with `tabs.min_height` > 0, leave room for a tab on every
+/// cut inside the piece (core/tabs' edges_without_tab_room). The pairs of the fewest faces are
+/// tried first, again after each merge. A piece of a face larger than the room (`pieces.large`)
+/// stays as it is. With `keep`, each merge is offered to it (at most `budget.keeps`) and made only
+/// when it says yes (the fit search keeps a merge that prints on as many sheets or fewer at a lower
 /// cost); a pair refused is not tried again while neither piece changes. Deterministic, unless
-/// `budget.seconds` stops it.
+/// `budget.seconds` stops it. With `progress`, reports phase "merge" after each unfolding and
+/// each merge offered, its `phase_fraction` the share used of the budget nearest its end (never
+/// decreasing), and throws CancelledException when it is cancelled.
 FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces pieces,
                        double scale, FitRoom room, const TabClearanceOptions& tabs,
                        const MergeBudget& budget = {},
-                       const std::function<bool(const FitPieces&)>& keep = {});
+                       const std::function<bool(const FitPieces&)>& keep = {},
+                       Progress* progress = nullptr);
 
 /// True when the convex polygon `hull` (counter-clockwise) fits a `room` box turned along one of
 /// its edges, either way round.

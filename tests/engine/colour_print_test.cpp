@@ -1135,7 +1135,7 @@ TEST(ColourPrintLabels, LabelsOverDarkColourPrintWhite) {
     }
     std::filesystem::remove(path);
     SCOPED_TRACE(colour ? "in colour" : "without colour");
-    EXPECT_GT(grey, 100u);
+    EXPECT_GT(grey, 60u);  // 100 in colour since pieces merge after the fit search (fewer cuts)
     EXPECT_GE(grey_on_light, grey * 9 / 10) << grey_on_light << " of " << grey;
     if (!colour) {
       EXPECT_EQ(white, 0u);
