@@ -94,7 +94,6 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
     ProgressInfo info;
     info.phase = "merge";
     info.faces = info.input_faces = mesh.faces.size();
-    info.pieces = static_cast<std::size_t>(pieces.pieces);
     info.phase_fraction =
         std::max({used(tests_left, budget.tests), used(evaluations_left, budget.tab_evaluations),
                   keep ? used(asks_left, budget.keeps) : 0.0});
