@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/io/json_text.h"
 
 namespace papernet {
 
@@ -277,7 +278,7 @@ nlohmann::json net_to_json(const NetDocument& doc) {
 }
 
 std::string write_net_json(const NetDocument& doc, int indent) {
-  return net_to_json(doc).dump(indent);
+  return json_text(net_to_json(doc), indent);
 }
 
 NetDocument read_net_json(std::string_view text) {

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "core/io/json_text.h"
+
 namespace papernet {
 namespace {
 
@@ -53,7 +55,7 @@ std::string lower(std::string s) {
 }
 
 [[noreturn]] void bad_value(const std::string& name, const json& value, const std::string& want) {
-  std::string shown = value.is_string() ? value.get<std::string>() : value.dump();
+  std::string shown = value.is_string() ? value.get<std::string>() : json_text(value);
   if (shown.size() > kMaxShownValue) shown = shown.substr(0, kMaxShownValue) + "...";
   throw InvalidOptionException("invalid_option_value", name,
                                "option '" + name + "': '" + shown + "' is not " + want);
@@ -389,7 +391,7 @@ std::string options_help() {
       help += "; default " + (d.is_boolean()        ? std::string(d.get<bool>() ? "yes" : "no")
                               : d.is_string()       ? d.get<std::string>()
                               : d.is_number_float() ? std::string(number)
-                                                    : d.dump());
+                                                    : json_text(d));
     }
     std::string line = left;
     for (std::string_view rest = help; !rest.empty();) {
@@ -516,8 +518,8 @@ CallbackUrl parse_callback_url(std::string_view url) {
   constexpr std::string_view kScheme = "http://";
   if (url.size() > 2048) return refuse("longer than 2048 bytes");
   for (const char c : url)
-    if (static_cast<unsigned char>(c) <= 0x20 || c == 0x7f)
-      return refuse("has a space or a control character");
+    if (static_cast<unsigned char>(c) <= 0x20 || static_cast<unsigned char>(c) >= 0x7f)
+      return refuse("has a space, a control character or a byte outside ASCII (percent-encode it)");
   if (lower(std::string(url.substr(0, 8))) == "https://")
     return refuse(
         "https is not supported (the service has no TLS client); use http:// to a "

@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/local_files.h"
 #include "core/errors.h"
+#include "core/io/json_text.h"
 #include "engine/pipeline.h"
 
 namespace papernet::cli {
@@ -58,7 +59,8 @@ int info(int argc, char** argv) {
     const PipelineLimits limits{std::size_t{256} << 20, 2'000'000, 60};
     r = inspect_input(read_local_input(path, limits.max_bytes), options, limits);
   } catch (const std::exception& e) {  // IOException; anything else is a bug, still reported
-    if (json) std::cout << nlohmann::json{{"file", path}, {"error", e.what()}}.dump(2) << "\n";
+    if (json)
+      std::cout << json_text(nlohmann::json{{"file", path}, {"error", e.what()}}, 2) << "\n";
     std::cerr << "papernet: " << path << ": " << e.what() << "\n";
     return 1;
   }
@@ -84,7 +86,7 @@ int info(int argc, char** argv) {
                           {"pieces", r.pieces},
                           {"unfoldable", !r.refusal}};
     if (r.refusal) out["reason"] = *r.refusal;
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out, 2) << "\n";
   } else {
     std::cout << "format:     " << format_name(r.format) << "\n"
               << "vertices:   " << v.vertices << " (" << r.raw_vertices << " before welding)\n"

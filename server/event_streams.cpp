@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "core/io/json_text.h"
 #include "server/job_json.h"
 #include "server/job_store.h"
 
@@ -40,7 +41,7 @@ EventStreams::State EventStreams::read(const std::string& id) {
   State state;
   const std::optional<JobView> view = service_.view(id);
   state.final = !view || is_final(view->record.status);
-  state.doc = view ? job_to_json(*view, now_seconds()).dump() : "null";
+  state.doc = view ? json_text(job_to_json(*view, now_seconds())) : "null";
   return state;
 }
 

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "api/openapi.h"
+#include "core/io/json_text.h"
 #include "server/api_keys.h"
 #include "server/event_streams.h"
 #include "server/http_server.h"
@@ -44,13 +45,13 @@ void send_problem(httplib::Response& res, const Problem& p, const std::string& i
   res.status = p.status;
   request_problem = p.code;
   // The path is the client's: echo no more of it than a job's result path needs.
-  res.set_content(problem_json(p, instance.substr(0, 128)).dump(), "application/problem+json");
+  res.set_content(json_text(problem_json(p, instance.substr(0, 128))), "application/problem+json");
   if (p.retry_after) res.set_header("Retry-After", std::to_string(*p.retry_after));
 }
 
 void send_json(httplib::Response& res, int status, const json& doc) {
   res.status = status;
-  res.set_content(doc.dump(), "application/json");
+  res.set_content(json_text(doc), "application/json");
 }
 
 // Ends a chunked response. cpp-httplib writes the last chunk from a function-local static that
@@ -304,7 +305,7 @@ bool valid_idempotency_key(const std::string& key) {
 // boundary or the order of query parameters does not count).
 std::string request_hash(const ParsedUpload& upload) {
   const std::string format = format_name(upload.input.format);
-  const std::string options = options_to_json(upload.options).dump();
+  const std::string options = json_text(options_to_json(upload.options));
   std::vector<std::string_view> parts = {format, options, upload.input.mesh};
   for (const auto& [name, data] : upload.input.external_files) {
     parts.push_back(name);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/io/json_text.h"
 #include "server/internal/live_job.h"
 #include "server/problem.h"
 
@@ -55,7 +56,7 @@ std::string job_input_key(const JobInput& input, const JobOptions& options) {
   // their callback_url share results.
   nlohmann::json canonical = options_to_json(options);
   canonical.erase("callback_url");
-  feed(canonical.dump());
+  feed(json_text(canonical));
   char text[33];
   std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(a),
                 static_cast<unsigned long long>(b));

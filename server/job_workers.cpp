@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/io/json_text.h"
 #include "server/internal/live_job.h"
 #include "server/job_service.h"
 #include "server/problem.h"
@@ -158,7 +159,7 @@ void JobService::run_one(ClaimedJob claimed) {
   JobOptions options;
   JobInput input;
   try {
-    options = parse_options_json(record.options.dump(), settings_.options_limits);
+    options = parse_options_json(json_text(record.options), settings_.options_limits);
     input = store_.input(id);
   } catch (const StoreUnavailable& e) {
     log_("job " + id + " cannot be read now (" + e.what() + "); its lease will expire");

@@ -1,5 +1,7 @@
 #include "server/pg_store.h"
 
+#include "core/io/json_text.h"
+
 namespace papernet::server {
 namespace {
 
@@ -202,7 +204,7 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
               .number(job.created)
               .number(job.started)
               .number(job.finished)
-              .text(job.options.dump())
+              .text(json_text(job.options))
               .text(job.format)
               .number(i64(job.input_bytes))
               .text(job.input_key)
@@ -210,8 +212,8 @@ bool PgJobStore::insert(JobRecord& job, const JobInput* input, std::size_t queue
               .number(i64(job.faces))
               .number(i64(job.overlaps))
               .text(job.result_kind)
-              .text(job.metrics.dump())
-              .text(job.error.dump())
+              .text(json_text(job.metrics))
+              .text(json_text(job.error))
               .text(job.result_job)
               .number(std::int64_t{job.attempts})
               .text(job.tenant));
@@ -502,7 +504,7 @@ bool PgJobStore::put_intermediate(const std::string& id, const Claim& claim,
   pool_.run([&](Connection& c) {
     held_it = c.transaction([&] {
       Params p = held(id, claim);
-      p.text(intermediate_level_json(output).dump());
+      p.text(json_text(intermediate_level_json(output)));
       if (c.exec(std::string("UPDATE jobs SET intermediate = $4 WHERE ") + kHeld + " RETURNING id",
                  p)
               .rows() == 0)
@@ -542,8 +544,8 @@ bool PgJobStore::finish(const JobRecord& job, const Claim& claim, const JobOutpu
           .number(i64(job.faces))
           .number(i64(job.overlaps))
           .text(job.result_kind)
-          .text(job.metrics.dump())
-          .text(job.error.dump())
+          .text(json_text(job.metrics))
+          .text(json_text(job.error))
           .text(job.result_job);
       if (c.exec(std::string(
                      "UPDATE jobs SET status = $4, finished = $5::float8, "
@@ -591,7 +593,7 @@ CancelOutcome PgJobStore::cancel(const std::string& id, const nlohmann::json& er
       outcome = CancelOutcome::NotActive;
       if (c.exec("UPDATE jobs SET status = 'cancelled', finished = $2::float8, error = $3 "
                  "WHERE id = $1 AND status = 'queued' RETURNING id",
-                 Params().text(id).number(finished).text(error.dump()))
+                 Params().text(id).number(finished).text(json_text(error)))
               .rows() > 0) {
         outcome = CancelOutcome::Cancelled;
         notify(c, "changed " + id);

@@ -1,5 +1,6 @@
 // The PostgreSQL store's callback deliveries (JobStore::webhook, claim_webhook,
 // update_webhook): several nodes claim due deliveries as they claim jobs, one node each.
+#include "core/io/json_text.h"
 #include "server/pg_store.h"
 
 namespace papernet::server {
@@ -64,7 +65,7 @@ bool PgJobStore::update_webhook(const WebhookDelivery& d, const std::string& nod
                 "RETURNING job_id",
                 Params()
                     .text(d.state)
-                    .text(d.attempts.dump())
+                    .text(json_text(d.attempts))
                     .number(d.next_at)
                     .text(d.job_id)
                     .text(node))

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <thread>
 
+#include "core/io/json_text.h"
 #include "server/api_keys.h"
 #include "server/http_api.h"
 #include "server/http_server.h"
@@ -79,7 +80,7 @@ int run_service(const ServerConfig& config) {
         if (!view) return std::string();
         nlohmann::json doc = job_to_json(*view, now_seconds());
         doc.erase("callback");  // the delivery's own state changes with every attempt
-        return doc.dump();
+        return json_text(doc);
       },
       [](const std::string& line) { log_line(line); });
 

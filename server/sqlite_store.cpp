@@ -2,6 +2,7 @@
 
 #include <sqlite3.h>
 
+#include "core/io/json_text.h"
 #include "server/internal/sqlite_statement.h"
 
 namespace papernet::server {
@@ -183,7 +184,7 @@ bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t q
       .bind(3, job.created)
       .bind(4, job.started)
       .bind(5, job.finished)
-      .bind(6, job.options.dump())
+      .bind(6, json_text(job.options))
       .bind(7, job.format)
       .bind(8, i64(job.input_bytes))
       .bind(9, job.input_key)
@@ -191,8 +192,8 @@ bool SqliteJobStore::insert(JobRecord& job, const JobInput* input, std::size_t q
       .bind(11, i64(job.faces))
       .bind(12, i64(job.overlaps))
       .bind(13, job.result_kind)
-      .bind(14, job.metrics.dump())
-      .bind(15, job.error.dump())
+      .bind(14, json_text(job.metrics))
+      .bind(15, json_text(job.error))
       .bind(16, job.result_job)
       .bind(17, std::int64_t{job.attempts})
       .bind(18, job.tenant)
@@ -449,7 +450,7 @@ bool SqliteJobStore::put_intermediate(const std::string& id, const Claim& claim,
   std::lock_guard lock(mutex_);
   Transaction tx(db_);
   if (Statement(db_, std::string("UPDATE jobs SET intermediate=? WHERE ") + kHeld)
-          .bind(1, intermediate_level_json(output).dump())
+          .bind(1, json_text(intermediate_level_json(output)))
           .held(2, id, claim)
           .run() == 0)
     return false;
@@ -491,8 +492,8 @@ bool SqliteJobStore::finish(const JobRecord& job, const Claim& claim, const JobO
           .bind(4, i64(job.faces))
           .bind(5, i64(job.overlaps))
           .bind(6, job.result_kind)
-          .bind(7, job.metrics.dump())
-          .bind(8, job.error.dump())
+          .bind(7, json_text(job.metrics))
+          .bind(8, json_text(job.error))
           .bind(9, job.result_job)
           .held(10, job.id, claim)
           .run() == 0)
@@ -535,7 +536,7 @@ CancelOutcome SqliteJobStore::cancel(const std::string& id, const nlohmann::json
                 "UPDATE jobs SET status='cancelled', finished=?, error=? "
                 "WHERE id=? AND status='queued'")
           .bind(1, finished)
-          .bind(2, error.dump())
+          .bind(2, json_text(error))
           .bind(3, id)
           .run() > 0)
     outcome = CancelOutcome::Cancelled;

@@ -1,4 +1,5 @@
 // The SQLite store's callback deliveries (JobStore::webhook, claim_webhook, update_webhook).
+#include "core/io/json_text.h"
 #include "server/internal/sqlite_statement.h"
 #include "server/sqlite_store.h"
 
@@ -59,7 +60,7 @@ bool SqliteJobStore::update_webhook(const WebhookDelivery& d, const std::string&
                    "UPDATE webhooks SET state=?, attempts=?, next_at=?, claimed_by='', "
                    "lease_until=0 WHERE job_id=? AND claimed_by=?")
              .bind(1, d.state)
-             .bind(2, d.attempts.dump())
+             .bind(2, json_text(d.attempts))
              .bind(3, d.next_at)
              .bind(4, d.job_id)
              .bind(5, node)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/io/json_text.h"
 
 namespace papernet {
 
@@ -33,7 +34,7 @@ void put(std::string& out, T value) {
 
 // The GLB file of glTF JSON `gltf` and binary chunk `bin` (padded to 4 bytes already).
 std::string glb_container(const nlohmann::json& gltf, const std::string& bin) {
-  std::string text = gltf.dump();
+  std::string text = json_text(gltf);
   while (text.size() % 4) text.push_back(' ');
   std::string out;
   const bool has_bin = !bin.empty();

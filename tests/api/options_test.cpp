@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 
 #include "api/openapi.h"
+#include "tests/support/paths.h"
 
 using namespace papernet;
 
@@ -174,6 +177,32 @@ TEST(OptionsTest, BadValuesHaveStableCodes) {
               parse_options_query({{"seed", "1"}, {"seed", "2"}});
             }),
             "invalid_option_value");
+}
+
+// fuzz_options' finding (tests/data/fuzz): a callback URL with bytes that are not UTF-8 was
+// accepted from a query string, and the job's options could then not be written as JSON (the
+// service answered 500). A URL is ASCII; anything else is refused, naming the option.
+TEST(OptionsTest, CallbackUrlOutsideAsciiIsRefused) {
+  std::ifstream in(papernet::test::test_data_dir() + "/fuzz/options_callback_url_not_ascii.txt",
+                   std::ios::binary);
+  const std::string query{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string key = "callback_url=";
+  ASSERT_EQ(query.rfind(key, 0), 0u) << "the finding's file is missing or changed";
+  std::string option;
+  EXPECT_EQ(error_code(
+                [&] {
+                  parse_options_query({{"callback_url", query.substr(key.size())}});
+                },
+                &option),
+            "invalid_option_value");
+  EXPECT_EQ(option, "callback_url");
+  EXPECT_EQ(error_code([] {
+              parse_options_query({{"callback_url", "http://127.0.0.1/caf\xC3\xA9"}});
+            }),
+            "invalid_option_value");
+  // Percent-encoded, the same URL is taken as written.
+  EXPECT_EQ(parse_options_query({{"callback_url", "http://127.0.0.1/caf%C3%A9"}}).callback_url,
+            "http://127.0.0.1/caf%C3%A9");
 }
 
 TEST(OptionsTest, RangesAndLimitsAreChecked) {

@@ -52,6 +52,13 @@ TEST(InfoCli, UnreadableFileExitsOneAndUnfoldableNotExitsTwo) {
   const fs::path& dir = scratch.path();
   std::ofstream(dir / "two.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\n"
                                     "f 1 2 3\nf 4 5 6\n";
+  // The error quotes the file's bad token; a byte that is not UTF-8 is quoted as U+FFFD (the
+  // JSON could not be written before: the program aborted).
+  std::ofstream(dir / "bad.obj", std::ios::binary) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \xC5x\n";
+  CliRun bad = info((dir / "bad.obj").string() + " --json");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_EQ(nlohmann::json::parse(bad.out)["error"], "obj line 4: bad face index '\xEF\xBF\xBDx'")
+      << bad.out;
   // Two parts: two pieces, unless --strict refuses a mesh in parts (or judges the largest).
   CliRun r = info((dir / "two.obj").string() + " --json");
   ASSERT_EQ(r.code, 0) << r.out;

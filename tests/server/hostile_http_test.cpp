@@ -443,6 +443,38 @@ TEST_P(HostileHttp, NonFiniteCoordinatesAreInvalidMeshes) {
   expect_normal_job_completes(s);
 }
 
+// JSON carries UTF-8 only, and what the service quotes from a request is bytes: an option's
+// value or name, a bad token of a mesh, an OBJ's material names. Each invalid byte is quoted as
+// U+FFFD, in answers and stored jobs alike; before, nlohmann's dump threw and the answer was a
+// 500 (a fuzz_options finding, docs/reliability.md).
+TEST_P(HostileHttp, BytesThatAreNotUtf8AreQuotedAsReplacementCharacters) {
+  Server s({"--workers", "1", "--reuse-results", "false"});
+  const std::string replacement = "\xEF\xBF\xBD";
+  auto c = s.client();
+  expect_problem_naming(c.Post("/v1/jobs?paper=A%C5", kTetraObj, "model/obj"), 400,
+                        "invalid_option_value", "A" + replacement);
+  expect_problem_naming(c.Post("/v1/jobs?se%C5ed=1", kTetraObj, "model/obj"), 400, "unknown_option",
+                        "se" + replacement + "ed");
+  // A URL is ASCII: the byte is refused, not quoted on.
+  expect_problem_naming(
+      c.Post("/v1/jobs?callback_url=http://127.0.0.1/a%C5", kTetraObj, "model/obj"), 400,
+      "invalid_option_value", "outside ASCII");
+  std::string tetra = kTetraObj;
+  const json failed = expect_job_fails(s, submit(s, tetra + "f 1 2 \xC5x\n", "model/obj"), 422,
+                                       "unreadable_mesh", "'" + replacement + "x'");
+  EXPECT_EQ(failed["error"]["detail"], "obj line 9: bad face index '" + replacement + "x'");
+  // Material names from the file: the job succeeds, its net names them.
+  const json job = wait_final(s, submit(s, "mtllib \xC5.mtl\nusemtl m\xC5\n" + tetra, "model/obj"));
+  ASSERT_EQ(job["status"], "succeeded") << job.dump();
+  auto net = c.Get("/v1/jobs/" + job["id"].get<std::string>() + "/net.json");
+  ASSERT_TRUE(net);
+  ASSERT_EQ(net->status, 200);
+  const json doc = json::parse(net->body);
+  EXPECT_EQ(doc["materials"][0]["name"], "m" + replacement) << net->body.substr(0, 2000);
+  EXPECT_EQ(job_count(s), 2u);
+  expect_normal_job_completes(s);
+}
+
 // Job ids are opaque: traversal, encoded dots, NUL and very long ids name no job and no file.
 TEST_P(HostileHttp, PathLikeJobIdsNameNothing) {
   Server s({"--workers", "1"});
