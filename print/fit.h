@@ -85,12 +85,12 @@ struct MergeBudget {
   int tries = 2;  ///< unfoldings of a pair from the Tabu Unfolder's starts, seeds 1, 2, ...
   std::size_t tests_per_face = 200;      ///< of one unfolding, per face of the pair
   std::size_t iterations_per_face = 20;  ///< rounds of one unfolding, per face of the pair
-  std::size_t tests = 120'000;           ///< of all unfoldings
+  std::size_t tests = 480'000;           ///< of all unfoldings
   /// Candidate moves of the pass that makes room for tabs on a merged piece, per face of it.
   std::size_t tab_evaluations_per_face = 20;
-  std::size_t tab_evaluations = 20'000;  ///< of all those passes
+  std::size_t tab_evaluations = 80'000;  ///< of all those passes
   /// Merges offered to merge_pieces' `keep`, kept or not.
-  std::size_t keeps = 16;
+  std::size_t keeps = 64;
   /// Seconds for the whole merge (0: no bound; the work bounds alone give the same pieces on
   /// every run).
   double seconds = 0;
