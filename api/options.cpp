@@ -225,6 +225,10 @@ constexpr Spec kOptions[] = {
      "candidate moves of the pass that changes the cuts so more edges have room for a tab, in "
      "each of its two rounds (0: no pass)",
      [](JobOptions& o, const std::string& n, const json& v) { o.tab_room_budget = whole(n, v); }},
+    {"merge_budget", "N",
+     "moved-face tests the merge of pieces after the fit search may spend (layout fit; 0: no "
+     "merge): more merges more pieces on some meshes, at seconds more",
+     [](JobOptions& o, const std::string& n, const json& v) { o.merge_budget = whole(n, v); }},
     {"flat_fold_degrees", "DEG", "folds flatter than this are not drawn",
      [](JobOptions& o, const std::string& n, const json& v) {
        o.flat_fold_degrees = number(n, v);
@@ -436,6 +440,8 @@ void validate_options(const JobOptions& o, const OptionsLimits& limits) {
         "must be between 0 and 50 millimetres");
   range(o.tab_room_budget <= kMaxTabRoomBudget, "tab_room_budget",
         "must be at most " + std::to_string(kMaxTabRoomBudget) + " moves");
+  range(o.merge_budget <= kMaxMergeBudget, "merge_budget",
+        "must be at most " + std::to_string(kMaxMergeBudget) + " tests");
   range(within(o.dpi, kMinColourDpi, kMaxColourDpi), "dpi",
         "must be between 50 and 1200 dots per inch");
   range(std::isfinite(o.flat_fold_degrees) && o.flat_fold_degrees >= 0 && o.flat_fold_degrees < 90,
@@ -500,6 +506,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"tab_height_mm", o.tab_height_mm},
               {"min_tab_height_mm", o.min_tab_height_mm},
               {"tab_room_budget", o.tab_room_budget},
+              {"merge_budget", o.merge_budget},
               {"flat_fold_degrees", o.flat_fold_degrees},
               {"labels", o.labels},
               {"colour", o.colour ? "auto" : "none"},
@@ -578,6 +585,7 @@ PrintOptions print_options(const JobOptions& o) {
   print.tab_height_mm = o.tab_height_mm;
   print.min_tab_height_mm = o.min_tab_height_mm;
   print.tab_room_budget = o.tab_room_budget;
+  print.merge_budget = o.merge_budget;
   print.labels = o.labels;
   return print;
 }

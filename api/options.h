@@ -77,6 +77,9 @@ struct JobOptions {
   /// Candidate moves the pass that makes room for tabs evaluates at most in each of its two
   /// rounds; 0 skips it. The job's time limit (at least a second for the pass) also ends it.
   std::size_t tab_room_budget = kDefaultTabRoomBudget;
+  /// Moved-face tests the merge of pieces after the fit search spends at most (layout fit); 0
+  /// skips it. The job's time limit also ends it.
+  std::size_t merge_budget = PrintOptions{}.merge_budget;
   /// Folds flatter than this many degrees are not drawn.
   double flat_fold_degrees = PrintOptions{}.flat_fold_degrees;
   bool labels = PrintOptions{}.labels;  ///< matching numbers on both sides of each cut edge

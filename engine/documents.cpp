@@ -324,14 +324,14 @@ class FitSearch {
 
   // The chosen way's pieces merged two at a time (print/fit.h, merge_pieces) where the print
   // costs less: as many sheets or fewer, fewer pieces to cut out and glue. While the search's
-  // time lasts, at the pace of its layouts.
+  // time lasts, at the pace of its layouts, within the job's merge budget.
   void merge(FitPrint& chosen, Progress& progress) {
-    if (chosen.pieces.pieces <= 1 || laid_out_ == 0) return;
+    if (chosen.pieces.pieces <= 1 || laid_out_ == 0 || print_.merge_budget == 0) return;
     const double pace = laid_out_seconds_ / static_cast<double>(laid_out_);
     TabClearanceOptions tabs = tabs_;
     if (print_.tabs != TabMode::Auto) tabs.min_height = 0;
     double cost = chosen.cost(label_price_);
-    MergeBudget budget;
+    MergeBudget budget = MergeBudget::of_tests(print_.merge_budget);
     const double left = seconds_ - elapsed() - pace;
     if (left <= 0) return;
     budget.seconds = std::isfinite(left) ? left : 0;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -75,20 +76,35 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
                       double tab_height = 0, double tab_angle_deg = 45,
                       std::size_t regrow_faces = 0);
 
+/// Moved-face tests the merge after the fit search spends at most unless a caller says otherwise
+/// (PrintOptions::merge_budget, JobOptions::merge_budget; MergeBudget::tests).
+inline constexpr std::size_t kDefaultMergeBudget = 480'000;
+/// Most tests a caller may give that merge: about an hour of merging on a large mesh.
+inline constexpr std::size_t kMaxMergeBudget = 100'000'000;
+
 /// How much work merge_pieces may do: the Tabu Unfolder's moved-face tests, the tab room pass's
 /// evaluations and the merges offered (work, not time: the same pieces on every run), and, where
 /// a job's time limit bounds the print, seconds.
 struct MergeBudget {
+  /// The budget of `tests` tests in all, with a sixth as many tab evaluations (the defaults'
+  /// share) and the other bounds at their defaults.
+  static MergeBudget of_tests(std::size_t tests) {
+    MergeBudget budget;
+    budget.tests = tests;
+    budget.tab_evaluations = tests / 6;
+    return budget;
+  }
+
   /// Unfoldings of a pair from its two pieces' trees glued across one of the edges they share
   /// (edges spread over those they share), before the `tries`.
   int glued = 2;
   int tries = 2;  ///< unfoldings of a pair from the Tabu Unfolder's starts, seeds 1, 2, ...
-  std::size_t tests_per_face = 200;      ///< of one unfolding, per face of the pair
-  std::size_t iterations_per_face = 20;  ///< rounds of one unfolding, per face of the pair
-  std::size_t tests = 480'000;           ///< of all unfoldings
+  std::size_t tests_per_face = 200;         ///< of one unfolding, per face of the pair
+  std::size_t iterations_per_face = 20;     ///< rounds of one unfolding, per face of the pair
+  std::size_t tests = kDefaultMergeBudget;  ///< of all unfoldings
   /// Candidate moves of the pass that makes room for tabs on a merged piece, per face of it.
   std::size_t tab_evaluations_per_face = 20;
-  std::size_t tab_evaluations = 80'000;  ///< of all those passes
+  std::size_t tab_evaluations = kDefaultMergeBudget / 6;  ///< of all those passes
   /// Merges offered to merge_pieces' `keep`, kept or not.
   std::size_t keeps = 64;
   /// Seconds for the whole merge (0: no bound; the work bounds alone give the same pieces on

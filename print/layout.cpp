@@ -46,6 +46,9 @@ void PrintOptions::validate() const {
   if (tab_room_budget > kMaxTabRoomBudget)
     fail("tab_room_budget",
          "tab room budget must be at most " + std::to_string(kMaxTabRoomBudget) + " moves");
+  if (merge_budget > kMaxMergeBudget)
+    fail("merge_budget",
+         "merge budget must be at most " + std::to_string(kMaxMergeBudget) + " tests");
 }
 
 double label_chars(const std::string& text) {

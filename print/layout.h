@@ -12,6 +12,7 @@
 #include "core/unfold/folds.h"
 #include "core/unfold/net.h"
 #include "core/unfold/net_metrics.h"
+#include "print/fit.h"
 #include "print/strips.h"
 #include "print/tab_mode.h"
 #include "print/tabs.h"
@@ -38,6 +39,11 @@ struct PrintOptions {
   /// Clock limit of that pass in seconds (TabClearanceOptions::time_limit_seconds); <= 0: only
   /// its deterministic budget. The service sets it from the job's time limit.
   double tab_room_seconds = 0;
+  /// Moved-face tests the merge of pieces after the fit search (layout fit) spends at most, with
+  /// a sixth as many tab room evaluations (MergeBudget::of_tests; 0: no merge). More merges
+  /// more pieces on some meshes, at seconds more (docs/print.md, "Pieces merged after the
+  /// search").
+  std::size_t merge_budget = kDefaultMergeBudget;
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
 

@@ -40,6 +40,7 @@ TEST(OptionsTest, DefaultsWhenNothingIsGiven) {
   EXPECT_EQ(o.paper, "A4");
   EXPECT_EQ(o.tabs, TabMode::Auto);
   EXPECT_EQ(o.tab_room_budget, 100'000u);
+  EXPECT_EQ(o.merge_budget, 480'000u);
   EXPECT_EQ(o.components, Components::All);
   EXPECT_FALSE(o.strict);
 }
@@ -73,6 +74,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
                                             {"margin_mm", "5"},
                                             {"tabs", "false"},
                                             {"tab_room_budget", "0"},
+                                            {"merge_budget", "0"},
                                             {"components", "largest"},
                                             {"strict", "yes"}});
   EXPECT_EQ(o.strategy, Strategy::SEMP);
@@ -86,6 +88,7 @@ TEST(OptionsTest, QueryParametersAreParsed) {
   EXPECT_DOUBLE_EQ(o.margin_mm, 5);
   EXPECT_EQ(o.tabs, TabMode::None);
   EXPECT_EQ(o.tab_room_budget, 0u);
+  EXPECT_EQ(o.merge_budget, 0u);
   EXPECT_EQ(o.components, Components::Largest);
   EXPECT_TRUE(o.strict);
 }
@@ -247,6 +250,16 @@ TEST(OptionsTest, RangesAndLimitsAreChecked) {
             "option_out_of_range");
   EXPECT_EQ(option, "tab_room_budget");
   EXPECT_EQ(parse_options_json(R"({"tab_room_budget":100000000})").tab_room_budget, 100'000'000u);
+  EXPECT_EQ(error_code(
+                [] {
+                  parse_options_query({{"merge_budget", "100000001"}});
+                },
+                &option),
+            "option_out_of_range");
+  EXPECT_EQ(option, "merge_budget");
+  EXPECT_EQ(parse_options_json(R"({"merge_budget":100000000})").merge_budget, 100'000'000u);
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"merge_budget":-1})"); }),
+            "invalid_option_value");
   EXPECT_EQ(error_code([&] { parse_options_query({{"time_limit", "30"}}, limits); }), "");
 }
 
@@ -293,12 +306,14 @@ TEST(OptionsTest, CanonicalJsonRoundTrips) {
                                             {"seed", "9"},
                                             {"scale", "3"},
                                             {"tab_room_budget", "5000"},
+                                            {"merge_budget", "60000"},
                                             {"simplify", "600"}});
   const nlohmann::json doc = options_to_json(o);
   EXPECT_EQ(doc["strategy"], "SEQ");
   EXPECT_EQ(doc["detail"], 600);  // the older name is written as the newer
   EXPECT_FALSE(doc.contains("simplify"));
   EXPECT_EQ(doc["tab_room_budget"], 5000);
+  EXPECT_EQ(doc["merge_budget"], 60000);
   EXPECT_TRUE(doc["size_mm"].is_null());
   const JobOptions back = parse_options_json(doc.dump());
   EXPECT_EQ(options_to_json(back), doc);
@@ -351,6 +366,8 @@ TEST(OptionsTest, CommandLineFlagsFillTheSameOptions) {
   EXPECT_EQ(o.strategy, Strategy::SEMP);
   EXPECT_TRUE(apply_option_flag(o, "--tab-room-budget", "250000"));
   EXPECT_EQ(o.tab_room_budget, 250'000u);
+  EXPECT_TRUE(apply_option_flag(o, "--merge-budget", "0"));
+  EXPECT_EQ(o.merge_budget, 0u);
   EXPECT_FALSE(apply_option_flag(o, "--color", "red"));
   EXPECT_FALSE(apply_option_flag(o, "--size-mm", "100"));  // one name per option
   std::string option;

@@ -20,6 +20,7 @@
 #include "tests/support/files.h"
 #include "tests/support/paths.h"
 #include "tests/support/run_program.h"
+#include "tests/support/sanitized.h"
 #include "tests/support/scratch_dir.h"
 
 namespace papernet::test {
@@ -134,10 +135,11 @@ TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
   // A limit the job never meets (3 s here): sanitized, with another test beside it, the Duck's
   // colour pages can come near the default 60 s, and would then be drawn at a lower resolution
   // with a warning (docs/colour.md, "Time limit").
-  ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
-                         "/Duck.glb --time-limit 600 -o " + base + ".json -o " + base + ".pdf",
-                     &said),
-            0)
+  ASSERT_EQ(
+      papernet("unfold " + papernet::test::test_data_dir() + "/Duck.glb --time-limit 600" +
+                   papernet::test::kLightMergeFlag + " -o " + base + ".json -o " + base + ".pdf",
+               &said),
+      0)
       << said;
   auto j = nlohmann::json::parse(read_file(base + ".json"));
   EXPECT_EQ(j["detail"]["mode"], "auto");

@@ -42,6 +42,7 @@ const Printed& duck() {
     options.layout = PageLayoutMode::Fit;
     options.colour = false;  // the assembly aids are line art; colour is colour_print_test's
     options.tab_room_budget = light_tab_room(options.tab_room_budget);
+    options.merge_budget = light_merge(options.merge_budget);
     PipelineProgress quiet;
     UnfoldOutcome out =
         run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true, .pdf = true}, quiet);
@@ -58,6 +59,7 @@ const Printed& cad_part() {
     options.layout = PageLayoutMode::Fit;
     options.colour = false;
     options.tab_room_budget = light_tab_room(options.tab_room_budget);
+    options.merge_budget = light_merge(options.merge_budget);
     PipelineProgress quiet;
     UnfoldOutcome out = run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {},
                                      {.svg_pages = true}, quiet);
@@ -681,6 +683,7 @@ TEST(AssemblyAids, TheViewsOfAnStlModelStandZUp) {
   options.layout = PageLayoutMode::Fit;
   options.colour = false;
   options.tab_room_budget = light_tab_room(options.tab_room_budget);
+  options.merge_budget = light_merge(options.merge_budget);
   PipelineProgress quiet;
   const UnfoldOutcome out =
       run_pipeline(data_file("thingi10k_65004.stl"), options, {}, {.svg_pages = true}, quiet);
@@ -704,6 +707,7 @@ TEST(AssemblyAids, NoTextOnTheOverviewCoversAnother) {
   // Time for every way of the fit search: under ASan the default minute's half ran out after
   // fewer ways, and another layout, of 20 pieces, was printed.
   options.time_limit = 600;
+  options.merge_budget = light_merge(options.merge_budget);  // more pieces, if anything
   PipelineProgress quiet;
   const UnfoldOutcome out =
       run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {}, {.svg_pages = true}, quiet);
@@ -788,6 +792,8 @@ TEST(AssemblyAids, WithoutTheOverviewTheSheetsStartAtPageOne) {
   options.layout = PageLayoutMode::Fit;
   options.overview = false;
   options.colour = false;
+  options.tab_room_budget = light_tab_room(options.tab_room_budget);  // as duck()'s
+  options.merge_budget = light_merge(options.merge_budget);
   PipelineProgress quiet;
   const UnfoldOutcome out =
       run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true}, quiet);

@@ -1085,6 +1085,7 @@ TEST(ColourPrintLabels, LabelsOverDarkColourPrintWhite) {
     options.colour = colour;
     options.dpi = kDpi;
     options.tab_room_budget = light_tab_room(options.tab_room_budget);
+    options.merge_budget = light_merge(options.merge_budget);
     PipelineProgress quiet;
     const UnfoldOutcome out = run_pipeline(data_file("CesiumMilkTruck/CesiumMilkTruck.gltf"),
                                            options, {}, {.svg_pages = true, .pdf = true}, quiet);

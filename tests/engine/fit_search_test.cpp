@@ -19,6 +19,7 @@
 #include "tests/support/meshes.h"
 #include "tests/support/paths.h"
 #include "tests/support/polygons.h"
+#include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
 
 namespace papernet::test {
@@ -73,9 +74,11 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
 // the same pieces, sheets and drawing with 1, 2 and 3 threads (with more than one, the ways
 // finish in an order that varies from run to run). On ADIS16480 the cheapest way is the eighth
 // of 16 (a growth, checked before it is laid out), neither the first nor the last. One mesh: the
-// test takes 90 s under ASan with two.
+// test takes 90 s under ASan with two. The merge after the search, which runs on one thread,
+// has a lighter budget sanitized (tests/support/sanitized.h).
 TEST(FitSearch, TheChoiceIsTheSameWithAnyNumberOfThreads) {
   JobOptions options;
+  options.merge_budget = light_merge(options.merge_budget);
   PipelineProgress quiet;
   const UnfoldOutcome unfolded =
       run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {}, {}, quiet);
@@ -94,6 +97,31 @@ TEST(FitSearch, TheChoiceIsTheSameWithAnyNumberOfThreads) {
   EXPECT_TRUE(check.ok()) << check.summary();
   std::printf("trimesh_ADIS16480_600.obj: %zu pages, %d pieces with any number of threads\n",
               one.pages, one.pieces);
+}
+
+// The job's merge budget (merge_budget) bounds the merge of pieces after the search: with none,
+// sample.obj at the defaults prints the search's own pieces (13); with a budget, fewer on as
+// many sheets or fewer (11, with the default budget and with the light one sanitized). Both pass
+// the net checker.
+TEST(FitSearch, TheMergeBudgetBoundsTheMergeAfterTheSearch) {
+  JobOptions options;
+  options.colour = false;
+  options.overview = false;  // every page a sheet
+  PipelineProgress quiet;
+  const UnfoldOutcome unfolded = run_pipeline(data_file("sample.obj"), options, {}, {}, quiet);
+  options.merge_budget = 0;
+  const Printed unmerged = print(unfolded, options, 60);
+  options.merge_budget = light_merge(JobOptions{}.merge_budget);
+  const Printed merged = print(unfolded, options, 60);
+  EXPECT_LT(merged.pieces, unmerged.pieces);
+  EXPECT_LE(merged.pages, unmerged.pages);
+  for (const Printed* p : {&unmerged, &merged}) {
+    const NetCheckReport check = check_pieces(p->doc.mesh, p->doc.net, p->doc.piece);
+    EXPECT_TRUE(check.ok()) << check.summary();
+    EXPECT_EQ(p->doc.pieces.size(), static_cast<std::size_t>(p->pieces));
+  }
+  std::printf("sample.obj: %d pieces on %zu sheets without the merge, %d on %zu with %zu tests\n",
+              unmerged.pieces, unmerged.pages, merged.pieces, merged.pages, options.merge_budget);
 }
 
 // With detail=auto the search prices a label under 1.5 mm as three pieces: on a 76,840-face

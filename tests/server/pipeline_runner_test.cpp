@@ -47,6 +47,7 @@ JobOptions sample_options() {
   options.time_limit = 60;
   options.detail = {DetailMode::Full, 0};                                   // all 1,000 faces
   options.tab_room_budget = test::light_tab_room(options.tab_room_budget);  // still runs
+  options.merge_budget = test::light_merge(options.merge_budget);
   return options;
 }
 

@@ -130,7 +130,7 @@ TEST_P(ServeLoad, KillNineDuringABurstLosesNoAcceptedJob) {
   // of its minutes under the sanitizers, twice (the job runs again after the restart).
   const std::string running =
       submit(*server, test_mesh("Duck.glb"), "model/gltf-binary",
-             "?detail=full&strategy=TU&colour=none&layout=tile" + kTabRoomQuery);
+             "?detail=full&strategy=TU&colour=none&layout=tile" + kLightQuery);
   wait_running(*server, running);
 
   constexpr int kClients = 8, kEach = 15;

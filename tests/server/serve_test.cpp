@@ -45,7 +45,7 @@ TEST_P(ServeTest, HealthReadinessMetricsAndOpenApi) {
 TEST_P(ServeTest, SubmitPollAndFetchObj) {
   Server s({"--workers", "1"});
   const std::string id = submit(s, test_mesh("sample.obj"), "model/obj",
-                                "?detail=full&strategy=TU&seed=3" + kTabRoomQuery);
+                                "?detail=full&strategy=TU&seed=3" + kLightQuery);
   const json job = wait_final(s, id);
   EXPECT_EQ(job["options"]["strategy"], "TU");
   EXPECT_EQ(job["input"]["format"], "obj");
@@ -65,7 +65,7 @@ TEST_P(ServeTest, SubmitPollAndFetchObj) {
   EXPECT_EQ(net->get_header_value("X-Papernet-Level"), "complete; faces=1000; input-faces=1000");
 
   // The same mesh with the same options is answered from the stored result at once.
-  auto again = c.Post("/v1/jobs?detail=full&strategy=TU&seed=3" + kTabRoomQuery,
+  auto again = c.Post("/v1/jobs?detail=full&strategy=TU&seed=3" + kLightQuery,
                       test_mesh("sample.obj"), "model/obj");
   ASSERT_EQ(again->status, 202);
   EXPECT_EQ(body(again)["status"], "succeeded");
@@ -101,12 +101,12 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   Server s({"--workers", "1"});
   auto c = s.client();
   const std::string strips = submit(s, test_mesh("sample.obj"), "model/obj",
-                                    "?detail=full&strategy=TU&seed=3&tabs=strips" + kTabRoomQuery);
+                                    "?detail=full&strategy=TU&seed=3&tabs=strips" + kLightQuery);
   // Tiled, the print is the unfolder's net whole (a fit layout may print pieces grown anew,
   // whose own cuts leave room for tabs: docs/print.md, "Fit layout").
   const std::string yes =
       submit(s, test_mesh("sample.obj"), "model/obj",
-             "?detail=full&strategy=TU&seed=3&layout=tile&tabs=true" + kTabRoomQuery);
+             "?detail=full&strategy=TU&seed=3&layout=tile&tabs=true" + kLightQuery);
   const json a = wait_final(s, strips), b = wait_final(s, yes);
   ASSERT_EQ(a["status"], "succeeded") << a.dump();
   ASSERT_EQ(b["status"], "succeeded") << b.dump();
@@ -134,6 +134,7 @@ TEST_P(ServeTest, TabsOptionTakesModesOrABoolean) {
   ASSERT_EQ(u["status"], "succeeded") << u.dump();
   EXPECT_EQ(u["options"]["tab_room_budget"], 0);
   EXPECT_EQ(b["options"]["tab_room_budget"], light_tab_room(100'000));
+  EXPECT_EQ(b["options"]["merge_budget"], light_merge(480'000));
   const std::string svg_u = c.Get("/v1/jobs/" + unchanged + "/net.svg")->body;
   EXPECT_GT(std::stoi(svg_data(svg_u, "strips")), 2 * std::stoi(svg_data(svg_b, "strips")));
   expect_problem(c.Post("/v1/jobs?tab_room_budget=-5", test_mesh("sample.obj"), "model/obj"), 400,
@@ -212,10 +213,10 @@ TEST_P(ServeTest, SubmitGlbDracoAndMultipartGltf) {
   Server s({"--workers", "1"});
   std::vector<std::string> ids = {
       submit(s, test_mesh("testplate.glb"), "model/gltf-binary",
-             "?strategy=TU&detail=full" + kTabRoomQuery),
+             "?strategy=TU&detail=full" + kLightQuery),
       // Without colour: the textured box prints 12 sheets of colour at 200 mm (seconds each),
       // and reading the formats is what is tested here.
-      submit(s, test_mesh("Box_Draco.glb"), "", "?strategy=TU&colour=none" + kTabRoomQuery)};
+      submit(s, test_mesh("Box_Draco.glb"), "", "?strategy=TU&colour=none" + kLightQuery)};
   httplib::MultipartFormDataItems items = {
       {"mesh", test_mesh("gltf_external/Box.gltf"), "Box.gltf", "model/gltf+json"},
       {"buffers", test_mesh("gltf_external/Box0.bin"), "Box0.bin", "application/octet-stream"},
@@ -411,7 +412,7 @@ TEST_P(ServeTest, AnImageOverThePixelLimitIs413) {
 TEST_P(ServeTest, EventStreamEndsWithTheFinalState) {
   Server s({"--workers", "1"});
   const std::string id =
-      submit(s, test_mesh("sample.obj"), "model/obj", "?detail=full&strategy=TU" + kTabRoomQuery);
+      submit(s, test_mesh("sample.obj"), "model/obj", "?detail=full&strategy=TU" + kLightQuery);
   std::string stream;
   auto res = s.client().Get("/v1/jobs/" + id + "/events", [&](const char* data, size_t n) {
     stream.append(data, n);
@@ -529,8 +530,7 @@ TEST_P(ServeTest, QueueFullCancelAndShutdown) {
 // stops the job between pages rather than after the last.
 TEST_P(ServeTest, CancellingWhileThePagesAreWrittenStopsThePrint) {
   Server s({});
-  const std::string id =
-      submit(s, test_mesh("Duck.glb"), "", "?colour=auto&dpi=600" + kTabRoomQuery);
+  const std::string id = submit(s, test_mesh("Duck.glb"), "", "?colour=auto&dpi=600" + kLightQuery);
   wait_phase(s, id, "write");
   EXPECT_EQ(s.client().Delete("/v1/jobs/" + id)->status, 202);
   const json job = wait_final(s, id);
