@@ -79,7 +79,8 @@ FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double sc
 /// Moved-face tests the merge after the fit search spends at most unless a caller says otherwise
 /// (PrintOptions::merge_budget, JobOptions::merge_budget; MergeBudget::tests).
 inline constexpr std::size_t kDefaultMergeBudget = 480'000;
-/// Most tests a caller may give that merge: about an hour of merging on a large mesh.
+/// Most tests a caller may give that merge (the same bound as the tab room pass's moves; the time
+/// such a budget takes was not measured).
 inline constexpr std::size_t kMaxMergeBudget = 100'000'000;
 
 /// How much work merge_pieces may do: the Tabu Unfolder's moved-face tests, the tab room pass's
