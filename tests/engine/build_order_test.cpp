@@ -41,8 +41,7 @@ const Printed& duck() {
     JobOptions options;
     options.layout = PageLayoutMode::Fit;
     options.colour = false;  // the assembly aids are line art; colour is colour_print_test's
-    options.tab_room_budget = light_tab_room(options.tab_room_budget);
-    options.merge_budget = light_merge(options.merge_budget);
+    lighten(options);
     PipelineProgress quiet;
     UnfoldOutcome out =
         run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true, .pdf = true}, quiet);
@@ -58,8 +57,7 @@ const Printed& cad_part() {
     JobOptions options;
     options.layout = PageLayoutMode::Fit;
     options.colour = false;
-    options.tab_room_budget = light_tab_room(options.tab_room_budget);
-    options.merge_budget = light_merge(options.merge_budget);
+    lighten(options);
     PipelineProgress quiet;
     UnfoldOutcome out = run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {},
                                      {.svg_pages = true}, quiet);
@@ -682,8 +680,7 @@ TEST(AssemblyAids, TheViewsOfAnStlModelStandZUp) {
   JobOptions options;
   options.layout = PageLayoutMode::Fit;
   options.colour = false;
-  options.tab_room_budget = light_tab_room(options.tab_room_budget);
-  options.merge_budget = light_merge(options.merge_budget);
+  lighten(options);
   PipelineProgress quiet;
   const UnfoldOutcome out =
       run_pipeline(data_file("thingi10k_65004.stl"), options, {}, {.svg_pages = true}, quiet);
@@ -792,8 +789,7 @@ TEST(AssemblyAids, WithoutTheOverviewTheSheetsStartAtPageOne) {
   options.layout = PageLayoutMode::Fit;
   options.overview = false;
   options.colour = false;
-  options.tab_room_budget = light_tab_room(options.tab_room_budget);  // as duck()'s
-  options.merge_budget = light_merge(options.merge_budget);
+  lighten(options);  // as duck()'s
   PipelineProgress quiet;
   const UnfoldOutcome out =
       run_pipeline(data_file("Duck.glb"), options, {}, {.svg_pages = true}, quiet);

@@ -1084,8 +1084,7 @@ TEST(ColourPrintLabels, LabelsOverDarkColourPrintWhite) {
     JobOptions options;
     options.colour = colour;
     options.dpi = kDpi;
-    options.tab_room_budget = light_tab_room(options.tab_room_budget);
-    options.merge_budget = light_merge(options.merge_budget);
+    lighten(options);
     PipelineProgress quiet;
     const UnfoldOutcome out = run_pipeline(data_file("CesiumMilkTruck/CesiumMilkTruck.gltf"),
                                            options, {}, {.svg_pages = true, .pdf = true}, quiet);

@@ -66,8 +66,7 @@ struct Printed {
 
 Printed print(const std::string& file, JobOptions options) {
   options.strategy = Strategy::TU;
-  options.tab_room_budget = light_tab_room(options.tab_room_budget);
-  options.merge_budget = light_merge(options.merge_budget);
+  lighten(options);
   PipelineProgress quiet;
   const UnfoldOutcome out =
       run_pipeline(data_file(file), options, {}, {.svg_pages = true, .pdf = true}, quiet);
@@ -193,8 +192,7 @@ TEST(Placements, WithoutAPrintThePiecesAreTheParts) {
   JobOptions options;
   options.strategy = Strategy::TU;
   options.size_mm = 400;
-  options.tab_room_budget = light_tab_room(options.tab_room_budget);
-  options.merge_budget = light_merge(options.merge_budget);
+  lighten(options);
   const UnfoldOutcome out = run_pipeline(data_file("sample.obj"), options, {}, {}, quiet);
   const NetDocument doc = read_net_json(out.documents.net_json);
   EXPECT_FALSE(doc.print);

@@ -45,9 +45,8 @@ JobOptions sample_options() {
   options.strategy = Strategy::TU;
   options.seed = 3;
   options.time_limit = 60;
-  options.detail = {DetailMode::Full, 0};                                   // all 1,000 faces
-  options.tab_room_budget = test::light_tab_room(options.tab_room_budget);  // still runs
-  options.merge_budget = test::light_merge(options.merge_budget);
+  options.detail = {DetailMode::Full, 0};  // all 1,000 faces
+  test::lighten(options);                  // the tab room pass and the merge still run
   return options;
 }
 

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <string>
 
+#include "api/options.h"
+
 #if defined(__SANITIZE_ADDRESS__)
 #define PAPERNET_TEST_ASAN 1
 #elif defined(__has_feature)
@@ -50,6 +52,12 @@ constexpr std::size_t light_tab_room(std::size_t budget) {
   return at_most(budget, kLightTabRoomBudget);
 }
 constexpr std::size_t light_merge(std::size_t budget) { return at_most(budget, kLightMergeBudget); }
+
+/// Both budgets of a job a test runs itself, lightened.
+inline void lighten(JobOptions& options) {
+  options.tab_room_budget = light_tab_room(options.tab_room_budget);
+  options.merge_budget = light_merge(options.merge_budget);
+}
 
 /// `&name=light` to append to a service job's query, or a command line's ` --flag light`
 /// (empty when `light` is 0).
