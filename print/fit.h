@@ -106,6 +106,12 @@ struct MergeBudget {
   /// Candidate moves of the pass that makes room for tabs on a merged piece, per face of it.
   std::size_t tab_evaluations_per_face = 20;
   std::size_t tab_evaluations = kDefaultMergeBudget / 6;  ///< of all those passes
+  /// When no pair merges, a piece split between two of its neighbours (one piece fewer): the
+  /// shares of its faces that go to the first, tried in turn until a split unfolds (none: no
+  /// splits; three shares, 0.5, 0.25 and 0.75, left as many pieces as one, more slowly:
+  /// docs/print.md, "Pieces merged after the search").
+  std::vector<double> split_shares{0.5};
+  std::size_t split_tests_per_face = 50;  ///< of one unfolding of a side of a split
   /// Merges offered to merge_pieces' `keep`, kept or not.
   std::size_t keeps = 64;
   /// Seconds for the whole merge (0: no bound; the work bounds alone give the same pieces on
@@ -120,13 +126,17 @@ struct MergeBudget {
 /// of seeds 1 to `budget.tries`), lie flat without overlap, fit `room` at `scale` millimetres per
 /// unit as cut_to_fit's pieces do, and, with `tabs.min_height` > 0, leave room for a tab on every
 /// cut inside the piece (core/tabs' edges_without_tab_room). The pairs of the fewest faces are
-/// tried first, again after each merge. A piece of a face larger than the room (`pieces.large`)
-/// stays as it is. With `keep`, each merge is offered to it (at most `budget.keeps`) and made only
-/// when it says yes (the fit search keeps a merge that prints on as many sheets or fewer at a lower
-/// cost); a pair refused is not tried again while neither piece changes. Deterministic, unless
-/// `budget.seconds` stops it. With `progress`, reports phase "merge" after each unfolding and
-/// each merge offered, its `phase_fraction` the share used of the budget nearest its end (never
-/// decreasing), and throws CancelledException when it is cancelled.
+/// tried first, again after each merge. When no pair merges, a piece is split between two of its
+/// neighbours (`budget.split_shares`, the smallest pieces first): its faces nearest the one join
+/// it, the rest the other, each side unfolded anew from its piece's tree with the faces it takes
+/// hanging towards it, and made when both lie flat and fit as a merged pair must. A piece of a
+/// face larger than the room (`pieces.large`) stays as it is. With `keep`, each merge is offered to
+/// it (at most `budget.keeps`) and made only when it says yes (the fit search keeps a merge that
+/// prints on as many sheets or fewer at a lower cost); a pair refused is not tried again while
+/// neither piece changes. Deterministic, unless `budget.seconds` stops it. With `progress`, reports
+/// phase "merge" after each unfolding and each merge offered, its `phase_fraction` the share used
+/// of the budget nearest its end (never decreasing), and throws CancelledException when it is
+/// cancelled.
 FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces pieces,
                        double scale, FitRoom room, const TabClearanceOptions& tabs,
                        const MergeBudget& budget = {},

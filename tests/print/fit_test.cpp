@@ -389,7 +389,8 @@ TEST(Merge, PiecesMergedTwoAtATimeAreFewerNetsThatFitWithRoomForTabs) {
   EXPECT_THROW(merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget, {}, &reports),
                CancelledException);
 
-  // The glued trees alone merge pieces; with no unfolding at all, nothing merges.
+  // The glued trees alone merge pieces; with no unfolding at all (no splits either), nothing
+  // merges.
   MergeBudget only_glued = budget;
   only_glued.tries = 0;
   const FitPieces glued = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, only_glued);
@@ -397,6 +398,7 @@ TEST(Merge, PiecesMergedTwoAtATimeAreFewerNetsThatFitWithRoomForTabs) {
   EXPECT_EQ(slits_without_tab_room(mesh, glued, tabs), 0u);
   EXPECT_LT(glued.pieces, grown.pieces);
   only_glued.glued = 0;
+  only_glued.split_shares.clear();
   EXPECT_EQ(merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, only_glued).piece,
             grown.piece);
 
@@ -422,6 +424,89 @@ TEST(Merge, PiecesMergedTwoAtATimeAreFewerNetsThatFitWithRoomForTabs) {
       "merges)\n",
       name.c_str(), grown.pieces, merged.pieces, glued.pieces,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+}
+
+// When no pair of pieces merges, a piece is split between two of its neighbours
+// (MergeBudget::split_shares). A flat strip 3 units long in three pieces of a unit, at a scale
+// where 1.5 units fit the room's length and 2 do not: no two pieces merge, but the middle one
+// split between the two ends leaves two pieces, each a net of its faces (the independent
+// checker) that fits.
+TEST(Merge, APieceSplitBetweenTwoNeighboursLeavesOnePieceFewer) {
+  Mesh strip;
+  const int columns = 30;  // 0.1 units wide each, 0.2 tall
+  for (int i = 0; i <= columns; ++i) {
+    strip.vertices.push_back({0.1 * i, 0, 0});
+    strip.vertices.push_back({0.1 * i, 0.2, 0});
+  }
+  FitPieces three;
+  for (int i = 0; i < columns; ++i) {
+    const int f = static_cast<int>(strip.faces.size());
+    strip.faces.push_back({2 * i, 2 * i + 2, 2 * i + 3});
+    strip.faces.push_back({2 * i, 2 * i + 3, 2 * i + 1});
+    // A chain through each unit: the column's upper face hangs across its left edge from the
+    // lower face of the column before (but in the unit's first column), the lower face from it.
+    three.net.parent.push_back(f + 1);
+    three.net.parent.push_back(i % 10 == 0 ? -1 : f - 2);
+    three.piece.insert(three.piece.end(), 2, i / 10);
+  }
+  for (const auto& face : strip.faces) {
+    std::array<Vec2, 3> flat;
+    for (int k = 0; k < 3; ++k) flat[k] = {strip.vertices[face[k]].x, strip.vertices[face[k]].y};
+    three.net.points.push_back(flat);
+  }
+  three.pieces = 3;
+  three.cut_links = 2;
+  const NetCheckReport check = check_pieces(strip, three.net, three.piece);
+  ASSERT_TRUE(check.ok()) << check.summary();
+  const double scale = kRoom.y / 1.6;  // 2 units are longer than the room's diagonal
+  const std::vector<int> one(strip.faces.size(), 0);
+  const TabClearanceOptions no_tabs;  // min_height 0: tabs not asked for
+  ASSERT_EQ(no_tabs.min_height, 0);
+  MergeBudget budget;
+  budget.split_shares.clear();
+  EXPECT_EQ(merge_pieces(strip, one, three, scale, {kRoom, {}}, no_tabs, budget).pieces, 3);
+  budget.split_shares = MergeBudget{}.split_shares;
+  const FitPieces two = merge_pieces(strip, one, three, scale, {kRoom, {}}, no_tabs, budget);
+  ASSERT_EQ(two.pieces, 2);
+  EXPECT_EQ(two.cut_links, 1);
+  expect_nets_that_fit(strip, two, scale, "strip");
+  // The middle unit went half to each end: the ends are 1.5 units each.
+  int left = 0;
+  for (std::size_t f = 0; f < strip.faces.size(); ++f) left += two.piece[f] == two.piece[0];
+  EXPECT_EQ(left, 30);
+}
+
+// The splits on real meshes: never more pieces than the pairs alone leave (the splits start where
+// the pairs stop), each still a net of its faces that fits the room with room for a tab on every
+// cut inside, the same every time.
+TEST(Merge, SplitsLeaveNoMorePiecesThanPairsOnRealMeshes) {
+  int meshes = 0;
+  for (const auto& [name, mesh] : test::test_data_meshes()) {
+    if (name != "sample.obj" && name != "thingi10k_65004.stl") continue;
+    ++meshes;
+    const double scale = print_scale(mesh, {});  // 200 mm
+    const TabClearanceOptions tabs = tab_clearance_options(mesh, {});
+    const std::vector<int> one(mesh.faces.size(), 0);
+    const FitPieces grown =
+        grow_to_fit(mesh, one, scale, {kRoom, {}}, tabs.min_height, tabs.angle_deg, 6);
+    MergeBudget budget;  // less work than the print's: the sanitized builds run this too
+    budget.tests = 100'000;
+    budget.tab_evaluations = 20'000;
+    budget.split_shares.clear();
+    const FitPieces pairs = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget);
+    budget.split_shares = MergeBudget{}.split_shares;
+    const FitPieces split = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget);
+    expect_nets_that_fit(mesh, split, scale, name);
+    EXPECT_EQ(slits_without_tab_room(mesh, split, tabs), 0u) << name;
+    EXPECT_EQ(split.cut_links, split.pieces - 1) << name;
+    EXPECT_LE(split.pieces, pairs.pieces) << name;
+    const FitPieces again = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget);
+    EXPECT_EQ(again.piece, split.piece) << name;
+    EXPECT_EQ(again.net.parent, split.net.parent) << name;
+    std::printf("%s: %d pieces grown, %d merged by pairs, %d with splits\n", name.c_str(),
+                grown.pieces, pairs.pieces, split.pieces);
+  }
+  EXPECT_EQ(meshes, 2) << "tests/data lacks a mesh of this test";
 }
 
 // A piece never takes faces of two parts: an octahedron whose upper and lower halves are given
