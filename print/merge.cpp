@@ -62,7 +62,7 @@ std::vector<std::vector<int>> glued_trees(const DualGraph& graph, const std::vec
 
 // Piece b's faces split between its neighbours a and c, at each of `shares` (fractions of b's
 // faces that join a, roughly): a face joins a when it is nearer a than c across b (in faces) by
-// more than the split's margin, else c, so that each side stays in one piece with its neighbour.
+// the split's margin or more, else c; each side is then connected to its neighbour.
 // Of each split, `faces[0]` holds a's faces and those of b that join it (sorted), and `trees[0]`
 // an unfold tree of them as indices into `faces[0]`: a's tree, each of b's faces hanging from the
 // face before it on its way to a; `faces[1]` and `trees[1]` the same for c. Splits where a side
@@ -103,8 +103,8 @@ std::vector<Split> splits_between(const DualGraph& graph, const std::vector<int>
       }
     if (queue.size() != members[b].size()) return {};  // b in two (never: a piece is a tree)
   }
-  // How much nearer a each face is; a face whose path to a passes only faces nearer a by as much
-  // or more, the same for c, so each side is connected.
+  // How much nearer a each face is. The face before a face on its way to a is nearer a by as
+  // much or more, and the one before it on its way to c by as much or less: each side connected.
   const auto nearer = [&](int f) { return distance[1][f] - distance[0][f]; };
   std::vector<int> margins;
   for (int f : members[b]) margins.push_back(nearer(f));
