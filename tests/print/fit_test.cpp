@@ -21,6 +21,7 @@
 #include "print/svg.h"
 #include "tests/support/meshes.h"
 #include "tests/support/polygons.h"
+#include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
 
 namespace papernet {
@@ -489,8 +490,8 @@ TEST(Merge, SplitsLeaveNoMorePiecesThanPairsOnRealMeshes) {
     const std::vector<int> one(mesh.faces.size(), 0);
     const FitPieces grown =
         grow_to_fit(mesh, one, scale, {kRoom, {}}, tabs.min_height, tabs.angle_deg, 6);
-    MergeBudget budget;  // less work than the print's: the sanitized builds run this too
-    budget.tests = 100'000;
+    MergeBudget budget;  // less work than the print's, and less still sanitized
+    budget.tests = test::light_merge(100'000);
     budget.tab_evaluations = 20'000;
     budget.split_shares.clear();
     const FitPieces pairs = merge_pieces(mesh, one, grown, scale, {kRoom, {}}, tabs, budget);
