@@ -9,6 +9,7 @@
 #include "core/tabs/tab_clearance.h"
 #include "core/unfold/net.h"
 #include "core/vec.h"
+#include "print/merge_budget.h"
 
 namespace papernet {
 
@@ -75,13 +76,6 @@ FitPieces cut_to_fit(const Net& net, const std::vector<int>& piece, double scale
 FitPieces grow_to_fit(const Mesh& mesh, const std::vector<int>& piece, double scale, FitRoom room,
                       double tab_height = 0, double tab_angle_deg = 45,
                       std::size_t regrow_faces = 0);
-
-/// Moved-face tests the merge after the fit search spends at most unless a caller says otherwise
-/// (PrintOptions::merge_budget, JobOptions::merge_budget; MergeBudget::tests).
-inline constexpr std::size_t kDefaultMergeBudget = 480'000;
-/// Most tests a caller may give that merge (the same bound as the tab room pass's moves; the time
-/// such a budget takes was not measured).
-inline constexpr std::size_t kMaxMergeBudget = 100'000'000;
 
 /// How much work merge_pieces may do: the Tabu Unfolder's moved-face tests, the tab room pass's
 /// evaluations and the merges offered (work, not time: the same pieces on every run), and, where

@@ -12,7 +12,7 @@
 #include "core/unfold/folds.h"
 #include "core/unfold/net.h"
 #include "core/unfold/net_metrics.h"
-#include "print/fit.h"
+#include "print/merge_budget.h"
 #include "print/strips.h"
 #include "print/tab_mode.h"
 #include "print/tabs.h"
