@@ -133,8 +133,8 @@ TEST(UnfoldCli, DetailAutoPrintsWhatAPersonCanBuild) {
   const std::string base = scratch / "detail";
   std::string said;
   // A limit the job never meets (3 s here): sanitized, with another test beside it, the job can
-  // come near the default 60 s and end its search sooner. Line art: the colour pages are no part
-  // of what a person can build (half the job's time under ASan).
+  // come near the default 60 s and end its search sooner. Line art: colour is no part of what
+  // this test checks (faces, strips, labels), and was half the job's time under ASan.
   ASSERT_EQ(
       papernet("unfold " + papernet::test::test_data_dir() +
                    "/Duck.glb --time-limit 600 --colour none" + papernet::test::kLightMergeFlag +
