@@ -234,6 +234,7 @@ struct FitPrint {
   PieceGraph graph;
   PrintLayout layout;
   PageLayout pages;
+  LabelPass labels = LabelPass::Placed;
 
   // Sheets, and pieces and glue strips (and, at `label_price` pieces each, labels under the
   // legible size) at kPiecesPerSheet to a sheet.
@@ -244,8 +245,18 @@ struct FitPrint {
   }
 };
 
+// A print's numbered pieces laid out and nested onto sheets, with its labels placed or not.
+void lay_out_pages(const Mesh& mesh, FitPrint& print, const PrintOptions& options, double gap,
+                   const PageOptions& page, Vec2 alone, LabelPass labels) {
+  print.layout =
+      layout_net(mesh, arrange_pieces(print.pieces.net, print.pieces.piece, gap), options,
+                 print.pieces.piece, LargeFaces{print.pieces.large, alone}, labels);
+  print.pages = nest_pages(print.layout, print.pieces.piece, page, kCutSpacingMm);
+  print.labels = labels;
+}
+
 FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& print, double gap,
-                     const PageOptions& page, Vec2 alone) {
+                     const PageOptions& page, Vec2 alone, LabelPass labels) {
   // The pieces numbered in a build order, neighbours after each other (docs/print.md).
   FitPrint out{std::move(pieces), {}, {}, {}};
   out.graph = piece_graph(mesh, out.pieces.piece);
@@ -256,9 +267,7 @@ FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& pri
   }
   renumber_pieces(out.pieces.piece, build_order(out.graph, area));
   out.graph = piece_graph(mesh, out.pieces.piece);
-  out.layout = layout_net(mesh, arrange_pieces(out.pieces.net, out.pieces.piece, gap), print,
-                          out.pieces.piece, LargeFaces{out.pieces.large, alone});
-  out.pages = nest_pages(out.layout, out.pieces.piece, page, kCutSpacingMm);
+  lay_out_pages(mesh, out, print, gap, page, alone, labels);
   return out;
 }
 
@@ -309,6 +318,9 @@ class FitSearch {
     if (!best) throw std::logic_error("the fit search laid out no way");
     FitPrint chosen = std::move(kept_.at(*best));
     merge(chosen, progress);
+    // Its labels, where the tries left them out: the same faces, tabs, strips and sheets.
+    if (chosen.labels == LabelPass::Unplaced)
+      lay_out_pages(mesh_, chosen, print_, gap_, page_, room_.alone, LabelPass::Placed);
     return chosen;
   }
 
@@ -339,7 +351,7 @@ class FitSearch {
       if (progress.cancelled()) throw CancelledException();
       if (elapsed() + pace > seconds_) throw OutOfTime{};
       if (!check_pieces(mesh_, merged.net, merged.piece).ok()) return false;
-      FitPrint print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone);
+      FitPrint print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone, tries_);
       const double c = print.cost(label_price_);
       if (!(c < cost)) return false;
       cost = c;
@@ -386,7 +398,8 @@ class FitSearch {
           if (!next_pieces(i, cut)) return;
         }
         const auto started = std::chrono::steady_clock::now();
-        FitPrint print = lay_out_fit(mesh_, std::move(cut), print_, gap_, page_, room_.alone);
+        FitPrint print =
+            lay_out_fit(mesh_, std::move(cut), print_, gap_, page_, room_.alone, tries_);
         const double took =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         std::lock_guard lock(mutex_);
@@ -470,6 +483,11 @@ class FitSearch {
   const PageOptions& page_;
   const TabClearanceOptions tabs_;
   const double scale_, gap_, model_mm_, label_price_;
+  // How the tries lay out their labels: only where labels under the legible size count in a
+  // print's cost are they placed; elsewhere the tries' sheets, pieces and strips are those of the
+  // same layout with its labels (print/layout.h, LabelPass), and only the chosen print places
+  // them, once.
+  const LabelPass tries_ = label_price_ > 0 ? LabelPass::Placed : LabelPass::Unplaced;
   const FitRoom room_;
   const double seconds_;
   const bool may_tile_;

@@ -943,6 +943,138 @@ std::string label_text(int number) {
   return turned == text ? text : text + ".";
 }
 
+/// Places the labels of a laid-out net (`out`, before it is moved to the origin): their sizes and
+/// places, the leaders of those placed away from their edges, and each piece's number
+/// (docs/print.md, "Labels"). `tab_of`: each edge's tab in `out.tabs`, or -1.
+void place_labels(PrintLayout& out, const std::vector<int>& tab_of, const std::vector<int>& piece,
+                  int pieces, const PrintOptions& options) {
+  const PaperGrid on_paper(out.faces, out.edges, piece);
+  // The labels are placed in rounds: a label that names the piece across and is left under the
+  // legible size by every step below (the places it found at first were taken by labels that
+  // moved after) gives up the name from the start of the next round, in which its face's labels
+  // are placed again around the shorter text (docs/print.md, "Build order"). A round is kept when
+  // it leaves fewer labels under the legible size than the one before; at most three rounds.
+  const std::vector<Label> named = out.labels;
+  std::vector<char> plain(named.size(), 0);
+  std::vector<Label> kept_labels;
+  std::vector<Segment> kept_leaders;
+  std::size_t kept_small = 0;
+  for (int round = 0;; ++round) {
+    out.labels = named;
+    for (std::size_t i = 0; i < named.size(); ++i)
+      if (plain[i]) out.labels[i].text = label_text(out.edges[named[i].edge].cut_index + 1);
+    out.leaders.clear();
+    size_labels(out.faces, out.labels, options.max_label_mm);
+    std::vector<Label> fitted = out.labels;
+    make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
+                        options.max_label_mm);
+    // A label naming the piece across ("12→P3") that prints under the legible size even so, and
+    // even away from its edge with a leader line (a sliver with two cut edges), becomes the plain
+    // number, and its face's labels are placed again: its twin still names the piece
+    // (docs/print.md, "Build order").
+    std::vector<Label> trial = out.labels;
+    if (options.labels) place_far_labels(out.faces, on_paper, trial);
+    std::vector<char> again(out.faces.size(), 0);
+    bool shorten = false;
+    for (const Label& l : trial) {
+      if (l.size >= kLegibleLabelMm || l.text == label_text(out.edges[l.edge].cut_index + 1))
+        continue;
+      again[l.side.face] = 1;
+      shorten = true;
+    }
+    if (shorten) {
+      std::vector<int> index;
+      std::vector<Label> redo;
+      for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
+        if (!again[out.labels[i].side.face]) continue;
+        Label l = out.labels[i];
+        if (trial[i].size < kLegibleLabelMm) l.text = label_text(out.edges[l.edge].cut_index + 1);
+        index.push_back(i);
+        redo.push_back(std::move(l));
+      }
+      size_labels(out.faces, redo, options.max_label_mm);
+      for (std::size_t j = 0; j < index.size(); ++j)
+        fitted[index[j]] = out.labels[index[j]] = redo[j];
+      make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
+                          options.max_label_mm, &again);
+    }
+    // Where a label would still print under the legible size even away from its edge with a
+    // leader line (a small feature with many short cut edges), the labels moved beside their edges
+    // around it give up naming the piece across, in place (their boxes shrink about their
+    // centres), and the small labels look for room again. Of the two labels of an edge one keeps
+    // the name: the one whose twin prints under the legible size or plain already, else the one on
+    // the edge's second side when both are crowded (docs/print.md, "Build order").
+    trial = out.labels;
+    std::vector<Segment> trial_leaders;
+    if (options.labels) trial_leaders = place_far_labels(out.faces, on_paper, trial);
+    bool gave = false;
+    if (const std::vector<char> crowded = faces_near_small_labels(out.faces, trial);
+        std::find(crowded.begin(), crowded.end(), 1) != crowded.end()) {
+      std::vector<int> twin(out.labels.size(), -1), first(out.edges.size(), -1);
+      for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
+        int& f = first[out.labels[i].edge];
+        if (f < 0) {
+          f = i;
+        } else {
+          twin[i] = f;
+          twin[f] = i;
+        }
+      }
+      const auto gives_way = [&](int i) {
+        const Label& l = out.labels[i];
+        const bool moved =
+            l.size != fitted[i].size || l.at.x != fitted[i].at.x || l.at.y != fitted[i].at.y;
+        if (!crowded[l.side.face] || !moved || l.size < kLegibleLabelMm) return false;
+        if (twin[i] < 0) return true;
+        const Label& other = out.labels[twin[i]];
+        if (other.size < kLegibleLabelMm ||
+            other.text == label_text(out.edges[l.edge].cut_index + 1))
+          return false;  // the twin prints small, or gave the name up before
+        return !crowded[other.side.face] || l.side.face == out.edges[l.edge].a.face;
+      };
+      for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
+        const std::string plain = label_text(out.edges[out.labels[i].edge].cut_index + 1);
+        if (out.labels[i].text == plain || !gives_way(i)) continue;
+        out.labels[i].text = fitted[i].text = plain;
+        gave = true;
+      }
+      if (gave)
+        make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
+                            options.max_label_mm);
+    }
+    // The last trial is the result unless labels gave up their names since.
+    if (!gave) {
+      out.labels = std::move(trial);
+      out.leaders = std::move(trial_leaders);
+    } else if (options.labels) {
+      out.leaders = place_far_labels(out.faces, on_paper, out.labels);
+    }
+    const auto small = static_cast<std::size_t>(
+        std::count_if(out.labels.begin(), out.labels.end(),
+                      [](const Label& l) { return !l.text.empty() && l.size < kLegibleLabelMm; }));
+    if (round > 0 && small >= kept_small) {
+      out.labels = std::move(kept_labels);
+      out.leaders = std::move(kept_leaders);
+      break;
+    }
+    bool more = false;
+    for (std::size_t i = 0; round < 2 && i < out.labels.size(); ++i) {
+      const Label& l = out.labels[i];
+      if (l.text.empty() || l.size >= kLegibleLabelMm ||
+          l.text == label_text(out.edges[l.edge].cut_index + 1))
+        continue;
+      plain[i] = 1;
+      more = true;
+    }
+    if (!more) break;
+    kept_labels = out.labels;
+    kept_leaders = out.leaders;
+    kept_small = small;
+  }
+  if (pieces > 1)
+    out.piece_labels = print_detail::place_piece_labels(out.faces, out.labels, out.leaders, piece);
+}
+
 }  // namespace
 
 double print_scale(const Mesh& mesh, const PrintOptions& options) {
@@ -967,7 +1099,8 @@ TabClearanceOptions tab_clearance_options(const Mesh& mesh, const PrintOptions& 
 }
 
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options,
-                       const std::vector<int>& piece, const LargeFaces& large) {
+                       const std::vector<int>& piece, const LargeFaces& large,
+                       LabelPass label_pass) {
   options.validate();
   if (mesh.faces.empty()) throw InvalidInputException("nothing to print: the mesh has no faces");
   if (net.points.size() != mesh.faces.size() || net.parent.size() != mesh.faces.size())
@@ -1118,131 +1251,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
     }
   }
 
-  const PaperGrid on_paper(out.faces, out.edges, piece);
-  // The labels are placed in rounds: a label that names the piece across and is left under the
-  // legible size by every step below (the places it found at first were taken by labels that
-  // moved after) gives up the name from the start of the next round, in which its face's labels
-  // are placed again around the shorter text (docs/print.md, "Build order"). A round is kept when
-  // it leaves fewer labels under the legible size than the one before; at most three rounds.
-  const std::vector<Label> named = out.labels;
-  std::vector<char> plain(named.size(), 0);
-  std::vector<Label> kept_labels;
-  std::vector<Segment> kept_leaders;
-  std::size_t kept_small = 0;
-  for (int round = 0;; ++round) {
-    out.labels = named;
-    for (std::size_t i = 0; i < named.size(); ++i)
-      if (plain[i]) out.labels[i].text = label_text(out.edges[named[i].edge].cut_index + 1);
-    out.leaders.clear();
-    size_labels(out.faces, out.labels, options.max_label_mm);
-    std::vector<Label> fitted = out.labels;
-    make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
-                        options.max_label_mm);
-    // A label naming the piece across ("12→P3") that prints under the legible size even so, and
-    // even away from its edge with a leader line (a sliver with two cut edges), becomes the plain
-    // number, and its face's labels are placed again: its twin still names the piece
-    // (docs/print.md, "Build order").
-    std::vector<Label> trial = out.labels;
-    if (options.labels) place_far_labels(out.faces, on_paper, trial);
-    std::vector<char> again(out.faces.size(), 0);
-    bool shorten = false;
-    for (const Label& l : trial) {
-      if (l.size >= kLegibleLabelMm || l.text == label_text(out.edges[l.edge].cut_index + 1))
-        continue;
-      again[l.side.face] = 1;
-      shorten = true;
-    }
-    if (shorten) {
-      std::vector<int> index;
-      std::vector<Label> redo;
-      for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
-        if (!again[out.labels[i].side.face]) continue;
-        Label l = out.labels[i];
-        if (trial[i].size < kLegibleLabelMm) l.text = label_text(out.edges[l.edge].cut_index + 1);
-        index.push_back(i);
-        redo.push_back(std::move(l));
-      }
-      size_labels(out.faces, redo, options.max_label_mm);
-      for (std::size_t j = 0; j < index.size(); ++j)
-        fitted[index[j]] = out.labels[index[j]] = redo[j];
-      make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
-                          options.max_label_mm, &again);
-    }
-    // Where a label would still print under the legible size even away from its edge with a
-    // leader line (a small feature with many short cut edges), the labels moved beside their edges
-    // around it give up naming the piece across, in place (their boxes shrink about their
-    // centres), and the small labels look for room again. Of the two labels of an edge one keeps
-    // the name: the one whose twin prints under the legible size or plain already, else the one on
-    // the edge's second side when both are crowded (docs/print.md, "Build order").
-    trial = out.labels;
-    std::vector<Segment> trial_leaders;
-    if (options.labels) trial_leaders = place_far_labels(out.faces, on_paper, trial);
-    bool gave = false;
-    if (const std::vector<char> crowded = faces_near_small_labels(out.faces, trial);
-        std::find(crowded.begin(), crowded.end(), 1) != crowded.end()) {
-      std::vector<int> twin(out.labels.size(), -1), first(out.edges.size(), -1);
-      for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
-        int& f = first[out.labels[i].edge];
-        if (f < 0) {
-          f = i;
-        } else {
-          twin[i] = f;
-          twin[f] = i;
-        }
-      }
-      const auto gives_way = [&](int i) {
-        const Label& l = out.labels[i];
-        const bool moved =
-            l.size != fitted[i].size || l.at.x != fitted[i].at.x || l.at.y != fitted[i].at.y;
-        if (!crowded[l.side.face] || !moved || l.size < kLegibleLabelMm) return false;
-        if (twin[i] < 0) return true;
-        const Label& other = out.labels[twin[i]];
-        if (other.size < kLegibleLabelMm ||
-            other.text == label_text(out.edges[l.edge].cut_index + 1))
-          return false;  // the twin prints small, or gave the name up before
-        return !crowded[other.side.face] || l.side.face == out.edges[l.edge].a.face;
-      };
-      for (int i = 0; i < static_cast<int>(out.labels.size()); ++i) {
-        const std::string plain = label_text(out.edges[out.labels[i].edge].cut_index + 1);
-        if (out.labels[i].text == plain || !gives_way(i)) continue;
-        out.labels[i].text = fitted[i].text = plain;
-        gave = true;
-      }
-      if (gave)
-        make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
-                            options.max_label_mm);
-    }
-    // The last trial is the result unless labels gave up their names since.
-    if (!gave) {
-      out.labels = std::move(trial);
-      out.leaders = std::move(trial_leaders);
-    } else if (options.labels) {
-      out.leaders = place_far_labels(out.faces, on_paper, out.labels);
-    }
-    const auto small = static_cast<std::size_t>(
-        std::count_if(out.labels.begin(), out.labels.end(),
-                      [](const Label& l) { return !l.text.empty() && l.size < kLegibleLabelMm; }));
-    if (round > 0 && small >= kept_small) {
-      out.labels = std::move(kept_labels);
-      out.leaders = std::move(kept_leaders);
-      break;
-    }
-    bool more = false;
-    for (std::size_t i = 0; round < 2 && i < out.labels.size(); ++i) {
-      const Label& l = out.labels[i];
-      if (l.text.empty() || l.size >= kLegibleLabelMm ||
-          l.text == label_text(out.edges[l.edge].cut_index + 1))
-        continue;
-      plain[i] = 1;
-      more = true;
-    }
-    if (!more) break;
-    kept_labels = out.labels;
-    kept_leaders = out.leaders;
-    kept_small = small;
-  }
-  if (pieces > 1)
-    out.piece_labels = print_detail::place_piece_labels(out.faces, out.labels, out.leaders, piece);
+  if (label_pass == LabelPass::Placed) place_labels(out, tab_of, piece, pieces, options);
 
   // Translate so that everything starts at the origin.
   Box2 box = Box2::empty();

@@ -142,6 +142,13 @@ bool makes_tab_room(const PrintOptions& options);
 /// The text of a piece's number: "P" and the piece (0-based) plus one.
 std::string piece_name(int piece);
 
+/// Whether layout_net places the labels. Unplaced: each cut edge's labels keep their text, edge
+/// and side but get no size or place, and there are no leaders or piece numbers; the faces, tabs
+/// and glue strips are those of the same layout with its labels placed. For a layout that is
+/// only weighed, not printed (the fit search's tries, when labels do not count:
+/// engine/documents.cpp), which then skips most of its work on a dense net.
+enum class LabelPass { Placed, Unplaced };
+
 /// Lays out a net for printing. With `piece` (each face's piece, numbered in build order:
 /// print/build_order.h), the two labels of a cut edge that joins two pieces also name the piece
 /// across it ("12→P3": edge 12 glues to piece 3; docs/print.md, "Build order"), and each piece
@@ -151,6 +158,7 @@ std::string piece_name(int piece);
 ///        a net that does not match the mesh (sizes, non-finite points, vertex indices out of
 ///        range).
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {},
-                       const std::vector<int>& piece = {}, const LargeFaces& large = {});
+                       const std::vector<int>& piece = {}, const LargeFaces& large = {},
+                       LabelPass labels = LabelPass::Placed);
 
 }  // namespace papernet

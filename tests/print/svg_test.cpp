@@ -717,6 +717,63 @@ TEST(Labels, ASmallLabelMovesOntoItsTabWhereTheTabHoldsIt) {
   EXPECT_GT(on_tabs, 50u);
 }
 
+// A layout with its labels unplaced (LabelPass::Unplaced, the fit search's tries where labels
+// do not count) has every face, tab, glue strip and line of the layout with them, to the bit:
+// the search weighs the sheets of the print it will make. Its labels are there, each with its
+// text, edge and side, but unsized; it has no leaders and no piece numbers.
+TEST(Labels, UnplacedLabelsLeaveTheLayoutAsWithThem) {
+  const auto same_points = [](const auto& a, const auto& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (a[i].x != b[i].x || a[i].y != b[i].y) return false;
+    return true;
+  };
+  std::size_t leaders = 0, strips = 0;
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& placed = all_layouts()[n];
+    const PrintLayout unplaced =
+        layout_net(all_nets()[n].mesh, all_print_nets()[n].net, {}, {}, {}, LabelPass::Unplaced);
+    leaders += placed.leaders.size();
+    strips += placed.strips.size();
+    ASSERT_EQ(unplaced.faces.size(), placed.faces.size()) << name;
+    for (std::size_t f = 0; f < placed.faces.size(); ++f)
+      ASSERT_TRUE(same_points(unplaced.faces[f], placed.faces[f])) << name << ": face " << f;
+    ASSERT_EQ(unplaced.tabs.size(), placed.tabs.size()) << name;
+    for (std::size_t t = 0; t < placed.tabs.size(); ++t) {
+      EXPECT_EQ(unplaced.tabs[t].edge, placed.tabs[t].edge) << name;
+      EXPECT_TRUE(same_points(unplaced.tabs[t].corners, placed.tabs[t].corners)) << name;
+    }
+    ASSERT_EQ(unplaced.strips.size(), placed.strips.size()) << name;
+    for (std::size_t t = 0; t < placed.strips.size(); ++t) {
+      EXPECT_EQ(unplaced.strips[t].edge, placed.strips[t].edge) << name;
+      EXPECT_EQ(unplaced.strips[t].text, placed.strips[t].text) << name;
+      EXPECT_TRUE(same_points(unplaced.strips[t].corners, placed.strips[t].corners)) << name;
+    }
+    for (const auto lines : {&PrintLayout::cut, &PrintLayout::mountain, &PrintLayout::valley}) {
+      const std::vector<Segment>& a = placed.*lines;
+      const std::vector<Segment>& b = unplaced.*lines;
+      ASSERT_EQ(a.size(), b.size()) << name;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        EXPECT_TRUE(same_points(std::array{a[i].a, a[i].b}, std::array{b[i].a, b[i].b})) << name;
+    }
+    EXPECT_EQ(unplaced.size.x, placed.size.x) << name;
+    EXPECT_EQ(unplaced.size.y, placed.size.y) << name;
+    ASSERT_EQ(unplaced.labels.size(), placed.labels.size()) << name;
+    for (std::size_t i = 0; i < placed.labels.size(); ++i) {
+      EXPECT_EQ(unplaced.labels[i].edge, placed.labels[i].edge) << name;
+      EXPECT_EQ(unplaced.labels[i].side.face, placed.labels[i].side.face) << name;
+      EXPECT_EQ(unplaced.labels[i].size, 0) << name;
+    }
+    EXPECT_TRUE(unplaced.leaders.empty()) << name;
+    EXPECT_TRUE(unplaced.piece_labels.empty()) << name;
+  }
+  // Nets whose layout places labels away from their edges and prints glue strips: what the
+  // unplaced layout leaves out, and what it must keep.
+  EXPECT_GT(leaders, 0u);
+  EXPECT_GT(strips, 0u);
+}
+
 TEST(Layout, ScaleMakesTheLongestModelSideTheTargetSize) {
   Mesh m = test::cube();
   for (Vec3& v : m.vertices) v = Vec3{3 * v.x, v.y, 0.5 * v.z};  // 3 x 1 x 0.5 box
