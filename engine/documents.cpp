@@ -234,7 +234,6 @@ struct FitPrint {
   PieceGraph graph;
   PrintLayout layout;
   PageLayout pages;
-  LabelPass labels = LabelPass::Placed;
 
   // Sheets, and pieces and glue strips (and, at `label_price` pieces each, labels under the
   // legible size) at kPiecesPerSheet to a sheet.
@@ -252,7 +251,6 @@ void lay_out_pages(const Mesh& mesh, FitPrint& print, const PrintOptions& option
       layout_net(mesh, arrange_pieces(print.pieces.net, print.pieces.piece, gap), options,
                  print.pieces.piece, LargeFaces{print.pieces.large, alone}, labels);
   print.pages = nest_pages(print.layout, print.pieces.piece, page, kCutSpacingMm);
-  print.labels = labels;
 }
 
 FitPrint lay_out_fit(const Mesh& mesh, FitPieces pieces, const PrintOptions& print, double gap,
@@ -318,8 +316,9 @@ class FitSearch {
     if (!best) throw std::logic_error("the fit search laid out no way");
     FitPrint chosen = std::move(kept_.at(*best));
     merge(chosen, progress);
-    // Its labels, where the tries left them out: the same faces, tabs, strips and sheets.
-    if (chosen.labels == LabelPass::Unplaced)
+    // Its labels, where the tries (and the merge's) left them out: the same faces, tabs, strips
+    // and sheets.
+    if (tries_ == LabelPass::Unplaced)
       lay_out_pages(mesh_, chosen, print_, gap_, page_, room_.alone, LabelPass::Placed);
     return chosen;
   }

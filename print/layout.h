@@ -159,6 +159,6 @@ enum class LabelPass { Placed, Unplaced };
 ///        range).
 PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& options = {},
                        const std::vector<int>& piece = {}, const LargeFaces& large = {},
-                       LabelPass labels = LabelPass::Placed);
+                       LabelPass label_pass = LabelPass::Placed);
 
 }  // namespace papernet
