@@ -224,6 +224,14 @@ constexpr double kPiecesPerSheet = 20;
 // faces asked for, small labels come from the detail, and the choice is sheets and pieces alone.
 constexpr double kPiecesPerIllegibleLabel = 3;
 
+// Where the fit search's tries leave the labels out, it keeps time for the chosen print's layout
+// with its labels: this many times a try's average. One for the layout, one (at least) for moving
+// labels where they print legibly; on a dense net that takes longer (rocker-arm at 16,000 faces:
+// a try 0.6-1.0 s, the labelled layout 2.0-2.7 s), and the labels stop where the search's time
+// ends (PrintOptions::label_seconds). Then at least this long for the labels, however late.
+constexpr double kLabelledPaces = 2;
+constexpr double kLeastLabelSeconds = 1e-3;
+
 // Grown pieces of at most this many faces are grown again face by face in the search's ninth way
 // (grow_to_fit's `regrow_faces`).
 constexpr std::size_t kRegrowFaces = 6;
@@ -317,9 +325,13 @@ class FitSearch {
     FitPrint chosen = std::move(kept_.at(*best));
     merge(chosen, progress);
     // Its labels, where the tries (and the merge's) left them out: the same faces, tabs, strips
-    // and sheets.
-    if (tries_ == LabelPass::Unplaced)
-      lay_out_pages(mesh_, chosen, print_, gap_, page_, room_.alone, LabelPass::Placed);
+    // and sheets. They are moved where they print legibly while the search's time lasts after
+    // the layout (as long as a try) that places them.
+    if (tries_ == LabelPass::Unplaced) {
+      PrintOptions labelled = print_;
+      labelled.label_seconds = std::max(seconds_ - elapsed() - pace(), kLeastLabelSeconds);
+      lay_out_pages(mesh_, chosen, labelled, gap_, page_, room_.alone, LabelPass::Placed);
+    }
     return chosen;
   }
 
@@ -333,22 +345,34 @@ class FitSearch {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
   }
 
+  // The seconds a layout took on average (none laid out yet: 0). Under the mutex while the
+  // search's threads run.
+  double pace() const {
+    return laid_out_ == 0 ? 0 : laid_out_seconds_ / static_cast<double>(laid_out_);
+  }
+
+  // The seconds one more layout is expected to take, with the time kept for the chosen print's
+  // labelled layout when the tries leave labels out: kLabelledPaces layouts.
+  double one_more() const {
+    return pace() * (1 + (tries_ == LabelPass::Unplaced ? kLabelledPaces : 0));
+  }
+
   // The chosen way's pieces merged two at a time (print/fit.h, merge_pieces) where the print
   // costs less: as many sheets or fewer, fewer pieces to cut out and glue. While the search's
   // time lasts, at the pace of its layouts, within the job's merge budget.
   void merge(FitPrint& chosen, Progress& progress) {
     if (chosen.pieces.pieces <= 1 || laid_out_ == 0 || print_.merge_budget == 0) return;
-    const double pace = laid_out_seconds_ / static_cast<double>(laid_out_);
+    const double need = one_more();
     TabClearanceOptions tabs = tabs_;
     if (print_.tabs != TabMode::Auto) tabs.min_height = 0;
     double cost = chosen.cost(label_price_);
     MergeBudget budget = MergeBudget::of_tests(print_.merge_budget);
-    const double left = seconds_ - elapsed() - pace;
+    const double left = seconds_ - elapsed() - need;
     if (left <= 0) return;
     budget.seconds = std::isfinite(left) ? left : 0;
     const auto keep = [&](const FitPieces& merged) {
       if (progress.cancelled()) throw CancelledException();
-      if (elapsed() + pace > seconds_) throw OutOfTime{};
+      if (elapsed() + need > seconds_) throw OutOfTime{};
       if (!check_pieces(mesh_, merged.net, merged.piece).ok()) return false;
       FitPrint print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone, tries_);
       const double c = print.cost(label_price_);
@@ -421,9 +445,9 @@ class FitSearch {
       if (next_ >= std::size(kFitWays) || error_ || cancelled_ || !tiled_because_.empty())
         return false;
       if (next_ > 0) {
-        // Another way only while one more as long as the average ends in the time left, and
-        // while the best so far leaves sheets to save.
-        if (laid_out_ > 0 && elapsed() + laid_out_seconds_ / laid_out_ > seconds_) return false;
+        // Another way only while one more as long as the average ends in the time left (with
+        // the time kept for the labels), and while the best so far leaves sheets to save.
+        if (laid_out_ > 0 && elapsed() + one_more() > seconds_) return false;
         if (!kept_.empty() && kept_.rbegin()->second.pages.pages.size() <= 1) return false;
       }
       i = next_++;

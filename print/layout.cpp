@@ -1,6 +1,7 @@
 #include "print/layout.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -499,6 +500,23 @@ bool beside_on_piece(const std::vector<std::array<Vec2, 3>>& faces, const PaperG
   return box_on_piece(grid, box, beside.side.face) && faces_its_edge(faces, grid, beside);
 }
 
+/// When the labels' placement runs out of time (PrintOptions::label_seconds): never, without a
+/// limit. The steps that move labels stop at it; each label they did not reach keeps the size and
+/// place that fit its face.
+class LabelClock {
+ public:
+  explicit LabelClock(double seconds)
+      : limited_(std::isfinite(seconds) && seconds > 0),
+        end_(std::chrono::steady_clock::now() +
+             std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                 std::chrono::duration<double>(limited_ ? seconds : 0))) {}
+  bool out() const { return limited_ && std::chrono::steady_clock::now() >= end_; }
+
+ private:
+  bool limited_;
+  std::chrono::steady_clock::time_point end_;
+};
+
 /// Labels that did not fit their face at kLegibleLabelMm move where they print that large: onto
 /// the glue tab of their side when it has room (the tab is glued away, its face's partner label
 /// stays in view), else beside their edge at that size, on the face's side of it, reaching over
@@ -506,13 +524,15 @@ bool beside_on_piece(const std::vector<std::array<Vec2, 3>>& faces, const PaperG
 /// every other label, of any face
 /// (docs/print.md, "Labels"). Only the labels of the faces `only` marks move, when given.
 /// `fitted`: each label as size_labels placed it in its face (apart from the others there),
-/// where a moved label goes back when it meets another.
+/// where a moved label goes back when it meets another. Labels stop moving when `clock` runs out.
 void make_labels_legible(const std::vector<std::array<Vec2, 3>>& faces, const PaperGrid& grid,
                          const std::vector<Tab>& tabs, const std::vector<int>& tab_of,
                          std::vector<Label>& labels, const std::vector<Label>& fitted,
-                         double max_size, const std::vector<char>* only = nullptr) {
+                         double max_size, const LabelClock& clock,
+                         const std::vector<char>* only = nullptr) {
   LabelBoxes boxes(labels);
   for (const int i : smallest_first(labels)) {
+    if (clock.out()) break;
     const Label& label = labels[i];
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
     if (only && !(*only)[label.side.face]) continue;
@@ -602,9 +622,11 @@ constexpr std::size_t kMostSmallForWayLeaders = 40;
 /// (along a narrow strip that ends at the edge); where no place has a straight leader, the rings
 /// are tried again with a leader of two lines, bent in front of the edge; where none has that
 /// either, the leader is routed over the piece's faces (route_over_piece). A label that finds
-/// no place keeps its size. None moves when more than kMostFarLabels are under the legible size.
+/// no place keeps its size. None moves when more than kMostFarLabels are under the legible size,
+/// and none more when `clock` runs out.
 std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& faces,
-                                      const PaperGrid& grid, std::vector<Label>& labels) {
+                                      const PaperGrid& grid, std::vector<Label>& labels,
+                                      const LabelClock& clock) {
   std::vector<Segment> leaders;
   const auto small =
       static_cast<std::size_t>(std::count_if(labels.begin(), labels.end(), [](const Label& l) {
@@ -922,13 +944,16 @@ std::vector<Segment> place_far_labels(const std::vector<std::array<Vec2, 3>>& fa
     return false;
   };
   for (const int i : smallest_first(labels)) {
+    if (clock.out()) return leaders;
     const Label& label = labels[i];
     if (label.text.empty() || label.size >= kLegibleLabelMm) continue;
     if (!make_way(i)) lead_away(i, true);
   }
   // Once more for the labels still small: the labels moved away with a leader since left room.
-  for (const int i : smallest_first(labels))
+  for (const int i : smallest_first(labels)) {
+    if (clock.out()) break;
     if (!labels[i].text.empty() && labels[i].size < kLegibleLabelMm) make_way(i);
+  }
   return leaders;
 }
 
@@ -949,6 +974,7 @@ std::string label_text(int number) {
 void place_labels(PrintLayout& out, const std::vector<int>& tab_of, const std::vector<int>& piece,
                   int pieces, const PrintOptions& options) {
   const PaperGrid on_paper(out.faces, out.edges, piece);
+  const LabelClock clock(options.label_seconds);
   // The labels are placed in rounds: a label that names the piece across and is left under the
   // legible size by every step below (the places it found at first were taken by labels that
   // moved after) gives up the name from the start of the next round, in which its face's labels
@@ -967,13 +993,13 @@ void place_labels(PrintLayout& out, const std::vector<int>& tab_of, const std::v
     size_labels(out.faces, out.labels, options.max_label_mm);
     std::vector<Label> fitted = out.labels;
     make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
-                        options.max_label_mm);
+                        options.max_label_mm, clock);
     // A label naming the piece across ("12→P3") that prints under the legible size even so, and
     // even away from its edge with a leader line (a sliver with two cut edges), becomes the plain
     // number, and its face's labels are placed again: its twin still names the piece
     // (docs/print.md, "Build order").
     std::vector<Label> trial = out.labels;
-    if (options.labels) place_far_labels(out.faces, on_paper, trial);
+    if (options.labels) place_far_labels(out.faces, on_paper, trial, clock);
     std::vector<char> again(out.faces.size(), 0);
     bool shorten = false;
     for (const Label& l : trial) {
@@ -996,7 +1022,7 @@ void place_labels(PrintLayout& out, const std::vector<int>& tab_of, const std::v
       for (std::size_t j = 0; j < index.size(); ++j)
         fitted[index[j]] = out.labels[index[j]] = redo[j];
       make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
-                          options.max_label_mm, &again);
+                          options.max_label_mm, clock, &again);
     }
     // Where a label would still print under the legible size even away from its edge with a
     // leader line (a small feature with many short cut edges), the labels moved beside their edges
@@ -1006,7 +1032,7 @@ void place_labels(PrintLayout& out, const std::vector<int>& tab_of, const std::v
     // the edge's second side when both are crowded (docs/print.md, "Build order").
     trial = out.labels;
     std::vector<Segment> trial_leaders;
-    if (options.labels) trial_leaders = place_far_labels(out.faces, on_paper, trial);
+    if (options.labels) trial_leaders = place_far_labels(out.faces, on_paper, trial, clock);
     bool gave = false;
     if (const std::vector<char> crowded = faces_near_small_labels(out.faces, trial);
         std::find(crowded.begin(), crowded.end(), 1) != crowded.end()) {
@@ -1040,14 +1066,14 @@ void place_labels(PrintLayout& out, const std::vector<int>& tab_of, const std::v
       }
       if (gave)
         make_labels_legible(out.faces, on_paper, out.tabs, tab_of, out.labels, fitted,
-                            options.max_label_mm);
+                            options.max_label_mm, clock);
     }
     // The last trial is the result unless labels gave up their names since.
     if (!gave) {
       out.labels = std::move(trial);
       out.leaders = std::move(trial_leaders);
     } else if (options.labels) {
-      out.leaders = place_far_labels(out.faces, on_paper, out.labels);
+      out.leaders = place_far_labels(out.faces, on_paper, out.labels, clock);
     }
     const auto small = static_cast<std::size_t>(
         std::count_if(out.labels.begin(), out.labels.end(),
@@ -1066,7 +1092,8 @@ void place_labels(PrintLayout& out, const std::vector<int>& tab_of, const std::v
       plain[i] = 1;
       more = true;
     }
-    if (!more) break;
+    // Another round only while the clock lasts: this one's labels are kept as they are.
+    if (!more || clock.out()) break;
     kept_labels = out.labels;
     kept_leaders = out.leaders;
     kept_small = small;

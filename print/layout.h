@@ -46,6 +46,11 @@ struct PrintOptions {
   std::size_t merge_budget = kDefaultMergeBudget;
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
+  /// Clock limit of the labels' placement in seconds (not counting the layout before it); <= 0
+  /// or not finite: none. A label not yet moved where it prints at the legible size when it runs
+  /// out keeps the size that fits its face. The fit search sets it for the chosen print's labels
+  /// from what is left of its time (engine/documents.cpp).
+  double label_seconds = 0;
 
   /// \throw InvalidOptionException naming the bad option (by its JobOptions name).
   void validate() const;

@@ -774,6 +774,43 @@ TEST(Labels, UnplacedLabelsLeaveTheLayoutAsWithThem) {
   EXPECT_GT(strips, 0u);
 }
 
+// Out of time for its labels (PrintOptions::label_seconds, which the fit search sets for the
+// chosen print's labels from the time it has left), a layout moves none of them: each stays in
+// its face at the size that fits it, with no leader, where the layout with time moves many
+// (beside their edges, onto tabs, away with leaders). Its faces, tabs and glue strips are those of
+// the layout with time.
+TEST(Labels, OutOfTimeEachLabelStaysInItsFace) {
+  PrintOptions hurried;
+  hurried.label_seconds = 1e-9;
+  std::size_t moved = 0, small = 0;
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& timely = all_layouts()[n];
+    const PrintLayout late = layout_net(all_nets()[n].mesh, all_print_nets()[n].net, hurried);
+    ASSERT_EQ(late.faces.size(), timely.faces.size()) << name;
+    for (std::size_t f = 0; f < late.faces.size(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(late.faces[f][k].x, timely.faces[f][k].x) << name << ": face " << f;
+        ASSERT_EQ(late.faces[f][k].y, timely.faces[f][k].y) << name << ": face " << f;
+      }
+    EXPECT_EQ(late.tabs.size(), timely.tabs.size()) << name;
+    EXPECT_EQ(late.strips.size(), timely.strips.size()) << name;
+    EXPECT_TRUE(late.leaders.empty()) << name;
+    ASSERT_EQ(late.labels.size(), timely.labels.size()) << name;
+    for (std::size_t i = 0; i < late.labels.size(); ++i) {
+      const Label& l = late.labels[i];
+      EXPECT_GT(l.size, 0) << name << " label " << l.text;
+      EXPECT_TRUE(inside_face(l, late.faces[l.side.face])) << name << " label " << l.text;
+      small += l.size < kLegibleLabelMm;
+      const Label& t = timely.labels[i];
+      moved += !inside_face(t, timely.faces[t.side.face]);
+    }
+  }
+  // Labels the layout with time moved, and labels the late one leaves small: the test can tell.
+  EXPECT_GT(moved, 100u);
+  EXPECT_GE(small, moved);
+}
+
 TEST(Layout, ScaleMakesTheLongestModelSideTheTargetSize) {
   Mesh m = test::cube();
   for (Vec3& v : m.vertices) v = Vec3{3 * v.x, v.y, 0.5 * v.z};  // 3 x 1 x 0.5 box
