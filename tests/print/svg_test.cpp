@@ -717,17 +717,20 @@ TEST(Labels, ASmallLabelMovesOntoItsTabWhereTheTabHoldsIt) {
   EXPECT_GT(on_tabs, 50u);
 }
 
+/// True when two point sequences (a face's corners, a tab's, a line's ends) are the same, to the
+/// bit.
+bool same_points(const auto& a, const auto& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].x != b[i].x || a[i].y != b[i].y) return false;
+  return true;
+}
+
 // A layout with its labels unplaced (LabelPass::Unplaced, the fit search's tries where labels
 // do not count) has every face, tab, glue strip and line of the layout with them, to the bit:
 // the search weighs the sheets of the print it will make. Its labels are there, each with its
 // text, edge and side, but unsized; it has no leaders and no piece numbers.
 TEST(Labels, UnplacedLabelsLeaveTheLayoutAsWithThem) {
-  const auto same_points = [](const auto& a, const auto& b) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (a[i].x != b[i].x || a[i].y != b[i].y) return false;
-    return true;
-  };
   std::size_t leaders = 0, strips = 0;
   for (std::size_t n = 0; n < all_nets().size(); ++n) {
     const std::string& name = all_nets()[n].name;
@@ -789,10 +792,7 @@ TEST(Labels, OutOfTimeEachLabelStaysInItsFace) {
     const PrintLayout late = layout_net(all_nets()[n].mesh, all_print_nets()[n].net, hurried);
     ASSERT_EQ(late.faces.size(), timely.faces.size()) << name;
     for (std::size_t f = 0; f < late.faces.size(); ++f)
-      for (int k = 0; k < 3; ++k) {
-        ASSERT_EQ(late.faces[f][k].x, timely.faces[f][k].x) << name << ": face " << f;
-        ASSERT_EQ(late.faces[f][k].y, timely.faces[f][k].y) << name << ": face " << f;
-      }
+      ASSERT_TRUE(same_points(late.faces[f], timely.faces[f])) << name << ": face " << f;
     EXPECT_EQ(late.tabs.size(), timely.tabs.size()) << name;
     EXPECT_EQ(late.strips.size(), timely.strips.size()) << name;
     EXPECT_TRUE(late.leaders.empty()) << name;
