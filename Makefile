@@ -18,7 +18,8 @@ endif
 
 # Hardening (docs/reliability.md): sanitizer builds and fuzz runs, in build dirs of their own,
 # both with clang. build-asan has ASan+UBSan on every target and libFuzzer's coverage on the
-# sources the fuzzers run (fuzz/CMakeLists.txt): it runs all tests and holds the fuzz targets. build-tsan runs the tests with threads under TSan.
+# sources the fuzzers run (fuzz/CMakeLists.txt): it runs all tests and holds the fuzz targets.
+# build-tsan runs the tests with threads under TSan.
 # -O1 with line tables: readable reports at about half the compile time of -O2 -g.
 SAN_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" \
 	-DPAPERNET_WEB_DEMO=OFF -DPAPERNET_CLIENT_TESTS=OFF $(CMAKE_FLAGS)
