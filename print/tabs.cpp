@@ -147,7 +147,7 @@ void make_room_between_tabs(const std::vector<std::array<Vec2, 3>>& faces,
       if (options.large(side.face)) continue;  // its room was settled by place_tabs
       const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
       for (const TabShape& s : shapes) {
-        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
+        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.tan1, s.tan0} : s;
         const auto t = trapezoid(faces, side, shape, h);
         if (!face_grid.overlaps(t, options.tolerance)) out.push_back({e, side, t});
       }
@@ -252,7 +252,7 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
       // stretch of the edge.
       const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
       for (const TabShape& s : shapes) {
-        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.angle1, s.angle0} : s;
+        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.tan1, s.tan0} : s;
         // The tallest tab this shape can be bounds what it can add: skip hopeless shapes.
         if (area(trapezoid(faces, side, shape, hi)) <= best_area) continue;
         if (lo > 0 && grid.overlaps(trapezoid(faces, side, shape, lo), options.tolerance)) continue;

@@ -16,10 +16,11 @@
 namespace papernet {
 
 /// A glue tab's shape relative to its edge: the stretch [from, to] of the edge (fractions from
-/// the side's first point) its base covers and the slant of each end (radians).
+/// the side's first point) its base covers and the slant of each end, as its tangent (computed
+/// once by tab_shapes: the room tests build millions of tabs).
 struct TabShape {
   double from = 0, to = 1;
-  double angle0 = 0.785398163397448, angle1 = 0.785398163397448;
+  double tan0 = 1, tan1 = 1;  ///< 45 degrees
 };
 
 /// The tab shapes a printed net may use, best first: bases over the whole edge and over

@@ -27,7 +27,7 @@ std::vector<TabShape> tab_shapes(double angle_deg) {
   std::vector<TabShape> out;
   for (const auto& [from, to] : kSpans)
     for (double s0 : {a, 0.4 * a})
-      for (double s1 : {a, 0.4 * a}) out.push_back({from, to, s0, s1});
+      for (double s1 : {a, 0.4 * a}) out.push_back({from, to, std::tan(s0), std::tan(s1)});
   return out;
 }
 
@@ -38,7 +38,7 @@ std::array<Vec2, 4> tab_trapezoid(const std::array<Vec2, 3>& face, int k, const 
   const Vec2 d = (1 / full) * (e1 - e0), out{d.y, -d.x};  // the face is on the left of e0->e1
   const Vec2 p0 = e0 + shape.from * full * d, p1 = e0 + shape.to * full * d;
   const double len = (shape.to - shape.from) * full;
-  double i0 = height / std::tan(shape.angle0), i1 = height / std::tan(shape.angle1);
+  double i0 = height / shape.tan0, i1 = height / shape.tan1;
   if (i0 + i1 > 0.9 * len) {
     const double s = 0.9 * len / (i0 + i1);
     i0 *= s, i1 *= s;
