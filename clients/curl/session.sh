@@ -26,6 +26,9 @@ show() { { printf '$'; printf ' %q' "$@"; echo; } >&2; "$@"; }
 url=${PAPERNET_URL:-}
 if [ -z "$url" ]; then
   [ -n "${PAPERNET_BIN:-}" ] || fail "set PAPERNET_URL to a running server or PAPERNET_BIN to the binary"
+  # The file exists before the server starts: the loop below may read it before the shell that
+  # starts the server has opened it for its output.
+  : >"$work/server.out"
   "$PAPERNET_BIN" serve --host 127.0.0.1 --port 0 --data "$work/var" --access-log false >"$work/server.out" 2>&1 &
   server_pid=$!
   for _ in $(seq 100); do
