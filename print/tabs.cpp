@@ -102,6 +102,13 @@ std::array<Vec2, 4> trapezoid(const std::vector<std::array<Vec2, 3>>& faces, Edg
   return tab_trapezoid(faces[side.face], side.k, shape, height);
 }
 
+/// `s` as placed on `side` of `edge`. Along side b the edge runs the other way: the span is
+/// mirrored, and its ends' slants swapped, so that both sides mean the same stretch of the edge.
+TabShape seen_from(const NetEdge& edge, EdgeSide side, const TabShape& s) {
+  const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
+  return on_b ? TabShape{1 - s.to, 1 - s.from, s.tan1, s.tan0} : s;
+}
+
 double area(const std::array<Vec2, 4>& t) {
   return 0.5 * std::abs(cross(t[2] - t[0], t[3] - t[1]));
 }
@@ -145,10 +152,8 @@ void make_room_between_tabs(const std::vector<std::array<Vec2, 3>>& faces,
     if (!(h > 0)) return out;
     for (EdgeSide side : {edge.a, edge.b}) {
       if (options.large(side.face)) continue;  // its room was settled by place_tabs
-      const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
       for (const TabShape& s : shapes) {
-        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.tan1, s.tan0} : s;
-        const auto t = trapezoid(faces, side, shape, h);
+        const auto t = trapezoid(faces, side, seen_from(edge, side, s), h);
         if (!face_grid.overlaps(t, options.tolerance)) out.push_back({e, side, t});
       }
     }
@@ -248,11 +253,8 @@ TabPlacement place_tabs(const std::vector<std::array<Vec2, 3>>& faces,
     for (EdgeSide side : {a_last ? edge.b : edge.a, a_last ? edge.a : edge.b}) {
       const bool large = options.large(side.face);
       if (large && best.edge >= 0) break;
-      // Along side b the edge runs the other way: mirror the span so both sides mean the same
-      // stretch of the edge.
-      const bool on_b = side.face == edge.b.face && side.k == edge.b.k;
       for (const TabShape& s : shapes) {
-        const TabShape shape = on_b ? TabShape{1 - s.to, 1 - s.from, s.tan1, s.tan0} : s;
+        const TabShape shape = seen_from(edge, side, s);
         // The tallest tab this shape can be bounds what it can add: skip hopeless shapes.
         if (area(trapezoid(faces, side, shape, hi)) <= best_area) continue;
         if (lo > 0 && grid.overlaps(trapezoid(faces, side, shape, lo), options.tolerance)) continue;
