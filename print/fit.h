@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/progress.h"
-#include "core/tabs/tab_clearance.h"
+#include "core/tabs/tab_clearance_options.h"
 #include "core/unfold/net.h"
 #include "core/vec.h"
 #include "print/merge_budget.h"

@@ -8,7 +8,7 @@
 
 #include "core/mesh/mesh.h"
 #include "core/progress.h"
-#include "core/tabs/tab_clearance.h"
+#include "core/tabs/tab_clearance_options.h"
 #include "core/unfold/folds.h"
 #include "core/unfold/net.h"
 #include "core/unfold/net_metrics.h"

@@ -13,6 +13,7 @@
 #include <regex>
 
 #include "core/errors.h"
+#include "core/tabs/tab_clearance.h"
 #include "core/unfold/net_check.h"
 #include "core/unfold/progressive.h"
 #include "core/unfold/unfolding.h"
