@@ -395,7 +395,8 @@ class FitSearch {
       double from_;
     } reports{progress, static_cast<double>(passed_) / std::size(kFitWays)};
     try {
-      merge_pieces(mesh_, net_.piece, chosen.pieces, scale_, room_, tabs, budget, keep, &reports);
+      merge_pieces(mesh_, net_.piece, chosen.pieces, scale_, room_, tabs, budget, keep, &reports,
+                   threads_);
     } catch (const OutOfTime&) {
     }
   }

@@ -127,7 +127,10 @@ struct MergeBudget {
 /// face larger than the room (`pieces.large`) stays as it is. With `keep`, each merge is offered to
 /// it (at most `budget.keeps`) and made only when it says yes (the fit search keeps a merge that
 /// prints on as many sheets or fewer at a lower cost); a pair refused is not tried again while
-/// neither piece changes. Deterministic, unless `budget.seconds` stops it. With `progress`, reports
+/// neither piece changes. With `keep` and `threads` > 1, the pairs after one offered are unfolded
+/// on another thread while `keep` runs (one thread more, no more: the offers and pieces are those
+/// of one thread; an unfolding made ahead is made again where the budget left has shrunk below
+/// what it spent). Deterministic, unless `budget.seconds` stops it. With `progress`, reports
 /// phase "merge" after each unfolding and each merge offered, its `phase_fraction` the share used
 /// of the budget nearest its end (never decreasing), and throws CancelledException when it is
 /// cancelled.
@@ -135,7 +138,7 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
                        double scale, FitRoom room, const TabClearanceOptions& tabs,
                        const MergeBudget& budget = {},
                        const std::function<bool(const FitPieces&)>& keep = {},
-                       Progress* progress = nullptr);
+                       Progress* progress = nullptr, int threads = 1);
 
 /// True when the convex polygon `hull` (counter-clockwise) fits a `room` box turned along one of
 /// its edges, either way round.

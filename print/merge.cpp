@@ -1,7 +1,11 @@
 // Pieces merged by unfolding two at a time anew (print/fit.h, merge_pieces).
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <functional>
+#include <future>
+#include <map>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <utility>
@@ -142,14 +146,166 @@ std::vector<Split> splits_between(const DualGraph& graph, const std::vector<int>
   return out;
 }
 
+using Clock = std::chrono::steady_clock;
+
+// What is left of the merge's budgets when an unfolding starts.
+struct Left {
+  std::size_t tests = 0, evaluations = 0;
+  std::optional<Clock::time_point> deadline;  // none: no time bound
+};
+
+// What unfold_fitting found and spent. A call with more of the budgets left finds the same when
+// it was not cut short (no attempt bounded by what was left rather than by its share per face),
+// and one with less when `tests_needed` and `evaluations_needed` are left.
+struct Unfolded {
+  std::optional<Net> net;
+  std::size_t tests = 0, evaluations = 0;
+  std::size_t tests_needed = 0, evaluations_needed = 0;
+  bool cut_short = false;
+};
+
+// What every unfolding of the merge checks its net against.
+struct Target {
+  const Mesh& mesh;
+  double scale;
+  FitRoom room;
+  const TabClearanceOptions& tabs;
+  const MergeBudget& budget;
+};
+
+// `together`'s faces (sorted) unfolded anew as one piece that lies flat without overlap, fits
+// the room and, with tabs, leaves room for a tab on every cut inside it: from each tree of
+// `starts` (indices into `together`), then from the Tabu Unfolder's starts of seeds 1 to
+// `tries`, each of at most `tests_per_face` tests per face, within `left`. No net when no
+// unfolding does, or the faces make no single piece. Depends on nothing else, so it may run on
+// another thread while the merge goes on (`progress` is only asked whether to stop).
+Unfolded unfold_fitting(const Target& target, const std::vector<int>& together,
+                        const std::vector<std::vector<int>>& starts, int tries,
+                        std::size_t tests_per_face, const Left& left, Progress& progress) {
+  Unfolded out;
+  const Mesh both = mesh_of_faces(target.mesh, together);
+  const auto fits = [&](const Net& net) {
+    std::vector<Vec2> corners;
+    for (const auto& t : net.points)
+      for (Vec2 c : t) corners.push_back(target.scale * c);
+    return hull_fits(convex_hull(std::move(corners)), target.room.room);
+  };
+  const auto seconds_left = [&] {
+    return std::chrono::duration<double>(*left.deadline - Clock::now()).count();
+  };
+  const auto time_up = [&] { return left.deadline && seconds_left() <= 0; };
+  // A time limit for a step: what is left (0: none).
+  const auto limit = [&] { return left.deadline ? std::max(seconds_left(), 1e-3) : 0.0; };
+  const std::size_t test_share = tests_per_face * together.size();
+  const std::size_t evaluation_share = target.budget.tab_evaluations_per_face * together.size();
+  const int attempts = static_cast<int>(starts.size()) + tries;
+  for (int a = 0; a < attempts; ++a) {
+    if (out.tests >= left.tests) {
+      out.cut_short = true;
+      break;
+    }
+    if (time_up()) break;
+    out.tests_needed = std::max(out.tests_needed, out.tests + test_share);
+    const bool from_start = a < static_cast<int>(starts.size());
+    TabuOptions options;
+    options.seed = static_cast<std::uint64_t>(from_start ? a + 1 : a + 1 - starts.size());
+    options.time_limit_seconds = limit();
+    if (left.tests - out.tests < test_share) out.cut_short = true;
+    options.max_tests = std::min(left.tests - out.tests, test_share);
+    // Rounds whose moves are all tabu test nothing: bounded too.
+    options.max_iterations = target.budget.iterations_per_face * together.size();
+    UnfoldResult result;
+    try {
+      result = from_start ? unfold_tabu_from(both, starts[a], options, progress)
+                          : unfold_tabu(both, options, progress);
+    } catch (const InvalidInputException&) {
+      return out;  // no single piece: faces that meet at a vertex only, or a tree that overlaps
+    }
+    out.tests += std::min(left.tests - out.tests, std::max<std::size_t>(result.stats.tests, 1));
+    if (!result.overlap_free || !fits(result.net)) continue;
+    if (target.tabs.min_height > 0 &&
+        !edges_without_tab_room(both, result.net, target.tabs).empty()) {
+      if (out.evaluations >= left.evaluations) {
+        out.cut_short = true;
+        continue;
+      }
+      out.evaluations_needed = std::max(out.evaluations_needed, out.evaluations + evaluation_share);
+      TabClearanceOptions clear = target.tabs;
+      if (left.evaluations - out.evaluations < evaluation_share) out.cut_short = true;
+      clear.max_evaluations = std::min(left.evaluations - out.evaluations, evaluation_share);
+      clear.time_limit_seconds = limit();
+      TabClearanceResult cleared = clear_tab_room(both, result.net, clear, progress);
+      out.evaluations += std::min(left.evaluations - out.evaluations, cleared.evaluations);
+      if (cleared.blocked_after > 0 || !fits(cleared.net)) continue;
+      result.net = std::move(cleared.net);
+    }
+    out.net = std::move(result.net);
+    return out;
+  }
+  return out;
+}
+
+// Unfoldings of the pairs after the one whose merge is being offered, made on another thread
+// while `keep` lays the merge out: the merge goes on to them in that order when it is refused,
+// and finds those whose pieces it leaves as they are again after a merge it makes.
+class Ahead {
+ public:
+  struct Pair {
+    std::vector<int> together;
+    std::vector<std::vector<int>> starts;
+  };
+
+  // Starts unfolding `pairs` in turn, within `left`.
+  Ahead(const Target& target, std::vector<Pair> pairs, const Left& left)
+      : pairs_(std::move(pairs)) {
+    done_ = std::async(std::launch::async, [this, &target, left] {
+      for (Pair& pair : pairs_) {
+        Unfolded u;
+        try {
+          u = unfold_fitting(target, pair.together, pair.starts, target.budget.tries,
+                             target.budget.tests_per_face, left, stop_);
+        } catch (const CancelledException&) {
+          return;
+        }
+        std::lock_guard lock(mutex_);
+        found_.push_back({std::move(pair), std::move(u)});
+      }
+    });
+  }
+
+  // Stops, and gives what was unfolded.
+  std::vector<std::pair<Pair, Unfolded>> stop() {
+    stop_.asked = true;
+    done_.get();
+    return std::move(found_);
+  }
+
+  ~Ahead() {
+    stop_.asked = true;
+    if (done_.valid()) done_.wait();
+  }
+
+ private:
+  struct Stop : Progress {
+    bool cancelled() override { return asked; }
+    std::atomic<bool> asked = false;
+  };
+  std::vector<Pair> pairs_;
+  Stop stop_;
+  std::mutex mutex_;
+  std::vector<std::pair<Pair, Unfolded>> found_;
+  std::future<void> done_;
+};
+
 }  // namespace
 
 FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces pieces,
                        double scale, FitRoom room, const TabClearanceOptions& tabs,
                        const MergeBudget& budget, const std::function<bool(const FitPieces&)>& keep,
-                       Progress* progress) {
+                       Progress* progress, int threads) {
   const auto n = static_cast<int>(mesh.faces.size());
   const DualGraph graph = build_dual_graph(mesh);
+  const Target target{mesh, scale, room, tabs, budget};
   std::size_t tests_left = budget.tests;
   std::size_t evaluations_left = budget.tab_evaluations;
   std::size_t asks_left = budget.keeps;
@@ -157,16 +313,17 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
   // the same while neither piece changes).
   std::set<std::vector<int>> failed;
   Progress quiet;
-  using Clock = std::chrono::steady_clock;
   const Clock::time_point started = Clock::now();
+  std::optional<Clock::time_point> deadline;
+  if (budget.seconds > 0)
+    deadline = started + std::chrono::duration_cast<Clock::duration>(
+                             std::chrono::duration<double>(budget.seconds));
   // The time left, or 0 without a bound; below zero when the time is up.
   const auto left = [&] {
     if (budget.seconds <= 0) return 0.0;
     const double t = budget.seconds - std::chrono::duration<double>(Clock::now() - started).count();
     return t > 0 ? t : -1.0;
   };
-  // A time limit for a step: what is left (0: none).
-  const auto limit = [&] { return budget.seconds <= 0 ? 0.0 : std::max(left(), 1e-3); };
   // The share of the budget used: of whichever bound is nearest.
   const auto report = [&] {
     if (!progress) return;
@@ -185,57 +342,22 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
           std::max(info.phase_fraction, left() < 0 ? 1.0 : 1.0 - left() / budget.seconds);
     progress->report(info);
   };
-  // `together`'s faces (sorted) unfolded anew as one piece that lies flat without overlap, fits
-  // the room and, with tabs, leaves room for a tab on every cut inside it: from each tree of
-  // `starts` (indices into `together`), then from the Tabu Unfolder's starts of seeds 1 to
-  // `tries`, each of at most `tests_per_face` tests per face. None when no unfolding does within
-  // the budget, or the faces make no single piece.
-  const auto unfold_fitting = [&](const std::vector<int>& together,
-                                  const std::vector<std::vector<int>>& starts, int tries,
-                                  std::size_t tests_per_face) -> std::optional<Net> {
-    const Mesh both = mesh_of_faces(mesh, together);
-    const auto fits = [&](const Net& net) {
-      std::vector<Vec2> corners;
-      for (const auto& t : net.points)
-        for (Vec2 c : t) corners.push_back(scale * c);
-      return hull_fits(convex_hull(std::move(corners)), room.room);
-    };
-    const int attempts = static_cast<int>(starts.size()) + tries;
-    for (int a = 0; a < attempts && tests_left > 0 && left() >= 0; ++a) {
-      const bool from_start = a < static_cast<int>(starts.size());
-      TabuOptions options;
-      options.seed = static_cast<std::uint64_t>(from_start ? a + 1 : a + 1 - starts.size());
-      options.time_limit_seconds = limit();
-      options.max_tests = std::min(tests_left, tests_per_face * together.size());
-      // Rounds whose moves are all tabu test nothing: bounded too.
-      options.max_iterations = budget.iterations_per_face * together.size();
-      UnfoldResult result;
-      try {
-        result = from_start ? unfold_tabu_from(both, starts[a], options, quiet)
-                            : unfold_tabu(both, options, quiet);
-      } catch (const InvalidInputException&) {
-        return std::nullopt;  // no single piece: faces that meet at a vertex only, or a tree that
-                              // overlaps
-      }
-      tests_left -= std::min(tests_left, std::max<std::size_t>(result.stats.tests, 1));
-      report();
-      if (!result.overlap_free || !fits(result.net)) continue;
-      if (tabs.min_height > 0 && !edges_without_tab_room(both, result.net, tabs).empty()) {
-        if (evaluations_left == 0) continue;
-        TabClearanceOptions clear = tabs;
-        clear.max_evaluations =
-            std::min(evaluations_left, budget.tab_evaluations_per_face * together.size());
-        clear.time_limit_seconds = limit();
-        TabClearanceResult cleared = clear_tab_room(both, result.net, clear, quiet);
-        evaluations_left -= std::min(evaluations_left, cleared.evaluations);
-        report();
-        if (cleared.blocked_after > 0 || !fits(cleared.net)) continue;
-        result.net = std::move(cleared.net);
-      }
-      return std::move(result.net);
-    }
-    return std::nullopt;
+  // The merge's own unfoldings stop when the job is cancelled.
+  struct Cancel : Progress {
+    explicit Cancel(Progress* job) : job(job) {}
+    bool cancelled() override { return job && job->cancelled(); }
+    Progress* job;
+  } cancel{progress};
+  const auto within_left = [&] { return Left{tests_left, evaluations_left, deadline}; };
+  // An unfolding charged to the budgets: its net.
+  const auto charge = [&](Unfolded u) {
+    tests_left -= std::min(tests_left, u.tests);
+    evaluations_left -= std::min(evaluations_left, u.evaluations);
+    report();
+    return std::move(u.net);
   };
+  // Pairs unfolded ahead (Ahead), by their faces, with their starts.
+  std::map<std::vector<int>, std::pair<std::vector<std::vector<int>>, Unfolded>> ahead;
   // The faces `together` made piece p of `into`, each where `net` (of them) puts it.
   const auto join = [](FitPieces& into, const std::vector<int>& together, const Net& net, int p) {
     for (std::size_t i = 0; i < together.size(); ++i) {
@@ -280,26 +402,60 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
     };
     std::stable_sort(pairs.begin(), pairs.end(),
                      [&](auto a, auto b) { return faces(a) < faces(b); });
-    for (const auto& [p, q] : pairs) {
-      std::vector<int> together = members[p];
-      together.insert(together.end(), members[q].begin(), members[q].end());
-      std::sort(together.begin(), together.end());
-      if (failed.count(together)) continue;
-      // First from the two pieces' own trees glued across an edge they share (most merges need
-      // only a few moves from there), then from the Tabu Unfolder's own starts.
-      if (const std::optional<Net> net = unfold_fitting(
-              together, glued_trees(graph, pieces.net.parent, of, together, p, q, budget.glued),
-              budget.tries, budget.tests_per_face)) {
+    std::vector<std::vector<int>> together(pairs.size());
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const auto [p, q] = pairs[i];
+      together[i] = members[p];
+      together[i].insert(together[i].end(), members[q].begin(), members[q].end());
+      std::sort(together[i].begin(), together[i].end());
+    }
+    // Unfolded ahead for pairs that are no longer: dropped.
+    const std::set<std::vector<int>> now(together.begin(), together.end());
+    std::erase_if(ahead, [&](const auto& entry) { return !now.count(entry.first); });
+    // First from the two pieces' own trees glued across an edge they share (most merges need only
+    // a few moves from there), then from the Tabu Unfolder's own starts.
+    const auto starts = [&](std::size_t i) {
+      return glued_trees(graph, pieces.net.parent, of, together[i], pairs[i].first, pairs[i].second,
+                         budget.glued);
+    };
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (failed.count(together[i])) continue;
+      std::vector<std::vector<int>> from = starts(i);
+      Unfolded unfolded;
+      // Unfolded ahead from the same starts, with no less left than this needs: what it finds.
+      if (const auto it = ahead.find(together[i]);
+          it != ahead.end() && it->second.first == from && !it->second.second.cut_short &&
+          tests_left >= it->second.second.tests_needed &&
+          evaluations_left >= it->second.second.evaluations_needed)
+        unfolded = std::move(it->second.second);
+      else
+        unfolded = unfold_fitting(target, together[i], from, budget.tries, budget.tests_per_face,
+                                  within_left(), cancel);
+      ahead.erase(together[i]);
+      if (const std::optional<Net> net = charge(std::move(unfolded))) {
         FitPieces candidate = pieces;
-        join(candidate, together, *net, p);  // q's faces join p
-        if (offer(candidate)) {
+        join(candidate, together[i], *net, pairs[i].first);  // q's faces join p
+        // While `keep` lays the merge out, the next pairs are unfolded on another thread.
+        std::optional<Ahead> next;
+        if (keep && threads > 1) {
+          std::vector<Ahead::Pair> after;
+          for (std::size_t j = i + 1; j < pairs.size(); ++j)
+            if (!failed.count(together[j]) && !ahead.count(together[j]))
+              after.push_back({together[j], starts(j)});
+          if (!after.empty()) next.emplace(target, std::move(after), within_left());
+        }
+        const bool kept = offer(candidate);
+        if (next)
+          for (auto& [pair, found] : next->stop())
+            ahead[std::move(pair.together)] = {std::move(pair.starts), std::move(found)};
+        if (kept) {
           pieces = std::move(candidate);
           merged = true;
           break;
         }
       }
       if (asks_left == 0 || left() < 0) break;
-      failed.insert(std::move(together));
+      failed.insert(together[i]);
     }
     if (merged || budget.split_shares.empty()) continue;
     // No pair merges: a piece split between two of its neighbours (its faces nearest each join
@@ -327,10 +483,12 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
           for (const Split& split : splits_between(graph, pieces.net.parent, of, members, b, a, c,
                                                    budget.split_shares)) {
             std::optional<Net> to_a, to_c;
-            if (!(to_a = unfold_fitting(split.faces[0], {split.trees[0]}, 0,
-                                        budget.split_tests_per_face)) ||
-                !(to_c = unfold_fitting(split.faces[1], {split.trees[1]}, 0,
-                                        budget.split_tests_per_face)))
+            if (!(to_a =
+                      charge(unfold_fitting(target, split.faces[0], {split.trees[0]}, 0,
+                                            budget.split_tests_per_face, within_left(), cancel))) ||
+                !(to_c =
+                      charge(unfold_fitting(target, split.faces[1], {split.trees[1]}, 0,
+                                            budget.split_tests_per_face, within_left(), cancel))))
               continue;
             FitPieces candidate = pieces;
             join(candidate, split.faces[0], *to_a, a);

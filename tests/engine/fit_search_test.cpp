@@ -74,8 +74,9 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
 // the same pieces, sheets and drawing with 1, 2 and 3 threads (with more than one, the ways
 // finish in an order that varies from run to run). On ADIS16480 the cheapest way is the eighth
 // of 16 (a growth, checked before it is laid out), neither the first nor the last. One mesh: the
-// test takes 90 s under ASan with two. The merge after the search, which runs on one thread,
-// has a lighter budget sanitized (tests/support/sanitized.h).
+// test takes 90 s under ASan with two. The merge after the search (with more than one thread,
+// unfolding pairs ahead while a merge is laid out) has a lighter budget sanitized
+// (tests/support/sanitized.h).
 TEST(FitSearch, TheChoiceIsTheSameWithAnyNumberOfThreads) {
   JobOptions options;
   options.merge_budget = light_merge(options.merge_budget);

@@ -27,6 +27,13 @@
 namespace papernet {
 namespace {
 
+// The mesh of tests/data called `name`, as test_data_meshes gives it (no faces: there is none).
+Mesh data_mesh(const std::string& name) {
+  for (auto& [file, mesh] : test::test_data_meshes())
+    if (file == name) return mesh;
+  return {};
+}
+
 struct Unfolded {
   Mesh mesh;
   Net net;
@@ -349,9 +356,7 @@ TEST(Grow, SmallPiecesGrownAgainFaceByFaceLeaveFewerPieces) {
 // takes only the first leaves one piece fewer.
 TEST(Merge, PiecesMergedTwoAtATimeAreFewerNetsThatFitWithRoomForTabs) {
   const std::string name = "thingi10k_65004.stl";
-  Mesh mesh;
-  for (auto& [file, loaded] : test::test_data_meshes())
-    if (file == name) mesh = loaded;
+  const Mesh mesh = data_mesh(name);
   ASSERT_FALSE(mesh.faces.empty()) << "tests/data has no " << name;
   const double scale = print_scale(mesh, {});  // 200 mm
   const TabClearanceOptions tabs = tab_clearance_options(mesh, {});
@@ -425,6 +430,50 @@ TEST(Merge, PiecesMergedTwoAtATimeAreFewerNetsThatFitWithRoomForTabs) {
       "merges)\n",
       name.c_str(), grown.pieces, merged.pieces, glued.pieces,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+}
+
+// With a second thread, the pairs after the one offered to `keep` are unfolded while it is
+// laid out (print/merge.cpp, Ahead): the same merges are offered, in the same order, and the
+// same pieces made as on one thread, also when the budget runs out on the way. Pieces grown for
+// half the room merge for the whole. With 20,000 tests (5 offers) unfoldings made ahead are
+// used, and two are made again, made ahead with more tests left than the merge had when it came
+// to them (counted once by hand; here they come out the same either way: the tests they spent
+// were within the fewer); with 100,000, 9 offers.
+TEST(Merge, UnfoldingAheadOnASecondThreadOffersTheSameMerges) {
+  const std::string name = "thingi10k_134617.stl";
+  const Mesh mesh = data_mesh(name);
+  ASSERT_FALSE(mesh.faces.empty()) << "tests/data has no " << name;
+  const double scale = print_scale(mesh, {});
+  const TabClearanceOptions tabs = tab_clearance_options(mesh, {});
+  const std::vector<int> one(mesh.faces.size(), 0);
+  const FitPieces grown =
+      grow_to_fit(mesh, one, scale, {0.5 * kRoom, {}}, tabs.min_height, tabs.angle_deg, 6);
+  for (const std::size_t tests : {std::size_t{20'000}, std::size_t{100'000}}) {
+    MergeBudget budget;
+    budget.tests = tests;
+    budget.tab_evaluations = 5'000;
+    // Refuses every third offer, and records each.
+    const auto merge = [&](int threads, std::vector<std::vector<int>>& offers) {
+      return merge_pieces(
+          mesh, one, grown, scale, {kRoom, {}}, tabs, budget,
+          [&](const FitPieces& candidate) {
+            offers.push_back(candidate.piece);
+            return offers.size() % 3 != 0;
+          },
+          nullptr, threads);
+    };
+    std::vector<std::vector<int>> alone, ahead;
+    const FitPieces on_one = merge(1, alone);
+    const FitPieces on_two = merge(2, ahead);
+    EXPECT_GE(alone.size(), 3u) << tests << " tests";  // one refused at least
+    EXPECT_EQ(ahead, alone) << tests << " tests";
+    EXPECT_EQ(on_two.piece, on_one.piece) << tests << " tests";
+    EXPECT_EQ(on_two.net.parent, on_one.net.parent) << tests << " tests";
+    EXPECT_EQ(on_two.net.points, on_one.net.points) << tests << " tests";
+    expect_nets_that_fit(mesh, on_two, scale, name);
+    std::printf("%s, %zu tests: %d pieces grown, %d merged, %zu merges offered\n", name.c_str(),
+                tests, grown.pieces, on_one.pieces, alone.size());
+  }
 }
 
 // When no pair of pieces merges, a piece is split between two of its neighbours
