@@ -25,8 +25,11 @@ class FreeSpace {
   int ny() const { return ny_; }
   Vec2 corner(int i, int j) const { return lo_ + Vec2{i * cell_, j * cell_}; }
 
-  /// Marks every cell that `poly` touches or overlaps (call runs() afterwards).
+  /// Marks every cell that the convex polygon `poly` touches or overlaps, as convex_overlap with
+  /// a tolerance of -1e-9 cells does (call runs() afterwards): in each row of cells, those across
+  /// the x-range of the polygon's part within the row's band.
   void take(std::span<const Vec2> poly) {
+    const double eps = 1e-9 * cell_;
     double x0 = poly[0].x, x1 = x0, y0 = poly[0].y, y1 = y0;
     for (Vec2 p : poly)
       x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y),
@@ -35,13 +38,26 @@ class FreeSpace {
     const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((x1 - lo_.x) / cell_)) + 1);
     const int j0 = std::max(0, static_cast<int>(std::floor((y0 - lo_.y) / cell_)) - 1);
     const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((y1 - lo_.y) / cell_)) + 1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const Vec2 c = corner(i, j);
-        const std::array<Vec2, 4> box = {c, c + Vec2{cell_, 0}, c + Vec2{cell_, cell_},
-                                         c + Vec2{0, cell_}};
-        if (convex_overlap(poly, box, -1e-9 * cell_)) taken_[index(i, j)] = 1;
+    for (int j = j0; j <= j1; ++j) {
+      // The band's x-range of the polygon: its corners within the band and where its sides
+      // cross the band's two lines.
+      const double b0 = lo_.y + j * cell_ - eps, b1 = lo_.y + (j + 1) * cell_ + eps;
+      double a = std::numeric_limits<double>::infinity(), b = -a;
+      for (std::size_t k = 0; k < poly.size(); ++k) {
+        const Vec2 p = poly[k], q = poly[(k + 1) % poly.size()];
+        if (p.y >= b0 && p.y <= b1) a = std::min(a, p.x), b = std::max(b, p.x);
+        for (const double line : {b0, b1})
+          if ((p.y - line) * (q.y - line) < 0) {
+            const double x = p.x + (line - p.y) / (q.y - p.y) * (q.x - p.x);
+            a = std::min(a, x), b = std::max(b, x);
+          }
       }
+      if (!(a <= b)) continue;
+      // Cell i spans [lo.x + i cell, lo.x + (i + 1) cell], grown by eps.
+      const int ia = std::max(i0, static_cast<int>(std::ceil((a - lo_.x - eps) / cell_)) - 1);
+      const int ib = std::min(i1, static_cast<int>(std::floor((b - lo_.x + eps) / cell_)));
+      for (int i = ia; i <= ib; ++i) taken_[index(i, j)] = 1;
+    }
   }
 
   /// Takes cells [i, i + w) x [j, j + h) and updates their rows' runs.
