@@ -312,7 +312,6 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
   // Pairs that no try merged, or whose merge was not kept, as their faces (a pair's faces stay
   // the same while neither piece changes).
   std::set<std::vector<int>> failed;
-  Progress quiet;
   const Clock::time_point started = Clock::now();
   std::optional<Clock::time_point> deadline;
   if (budget.seconds > 0)
