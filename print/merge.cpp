@@ -312,15 +312,14 @@ FitPieces merge_pieces(const Mesh& mesh, const std::vector<int>& part, FitPieces
   // Pairs that no try merged, or whose merge was not kept, as their faces (a pair's faces stay
   // the same while neither piece changes).
   std::set<std::vector<int>> failed;
-  const Clock::time_point started = Clock::now();
   std::optional<Clock::time_point> deadline;
   if (budget.seconds > 0)
-    deadline = started + std::chrono::duration_cast<Clock::duration>(
-                             std::chrono::duration<double>(budget.seconds));
+    deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                  std::chrono::duration<double>(budget.seconds));
   // The time left, or 0 without a bound; below zero when the time is up.
   const auto left = [&] {
-    if (budget.seconds <= 0) return 0.0;
-    const double t = budget.seconds - std::chrono::duration<double>(Clock::now() - started).count();
+    if (!deadline) return 0.0;
+    const double t = std::chrono::duration<double>(*deadline - Clock::now()).count();
     return t > 0 ? t : -1.0;
   };
   // The share of the budget used: of whichever bound is nearest.
