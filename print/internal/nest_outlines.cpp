@@ -151,6 +151,64 @@ constexpr std::size_t kMoreProbes = 256;
 // time that saves a sheet).
 constexpr int kLastSheetRounds = 3;
 
+// The mask's counts and probes (Shape::cells, widest, probes, more_probes).
+void finish(Shape& shape) {
+  const int h = shape.mask.height();
+  std::vector<std::pair<int, int>> runs;                                // (row, longest run)
+  std::vector<std::size_t> before(static_cast<std::size_t>(h) + 1, 0);  // cells in rows before
+  for (int j = 0; j < h; ++j) {
+    before[static_cast<std::size_t>(j) + 1] =
+        before[static_cast<std::size_t>(j)] + static_cast<std::size_t>(shape.mask.count(j));
+    runs.emplace_back(j, shape.mask.longest_run(j, true));
+  }
+  shape.cells = before.back();
+  std::stable_sort(runs.begin(), runs.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  runs.resize(std::min(runs.size(), kWidestRows));
+  shape.widest = std::move(runs);
+  // Every step-th cell, in rows from the first, from the middle of the first step on.
+  const auto spread = [&](std::size_t count, std::vector<std::pair<int, int>>& out) {
+    const std::size_t step = std::max<std::size_t>(1, shape.cells / count);
+    for (std::size_t next = step / 2, j = 0; next < shape.cells; next += step) {
+      while (before[j + 1] <= next) ++j;
+      out.emplace_back(shape.mask.nth_set(static_cast<int>(j), static_cast<int>(next - before[j])),
+                       static_cast<int>(j));
+    }
+  };
+  spread(kProbes, shape.probes);
+  spread(kMoreProbes, shape.more_probes);
+}
+
+// The mask without its empty rows and columns at the borders (the fringe of kCover).
+void trim(Shape& shape) {
+  const Bits& m = shape.mask;
+  int x0 = m.width(), x1 = -1, y0 = m.height(), y1 = -1;
+  for (int j = 0; j < m.height(); ++j)
+    for (int w = 0; w < (m.width() + 63) / 64; ++w) {
+      const std::uint64_t bits = m.word(j, w);
+      if (bits == 0) continue;
+      y0 = std::min(y0, j), y1 = std::max(y1, j);
+      x0 = std::min(x0, 64 * w + std::countr_zero(bits));
+      x1 = std::max(x1, 64 * w + 63 - std::countl_zero(bits));
+    }
+  if (y1 < 0) {
+    shape.mask = Bits();
+    return;
+  }
+  if (x0 == 0 && y0 == 0 && x1 == m.width() - 1 && y1 == m.height() - 1) return;
+  Bits out(x1 - x0 + 1, y1 - y0 + 1);
+  for (int j = y0; j <= y1; ++j)
+    for (int w = 0; w < (out.width() + 63) / 64; ++w) {
+      std::uint64_t bits = m.from(j, x0 + 64 * w);
+      const int left = out.width() - 64 * w;
+      if (left < 64) bits &= (std::uint64_t{1} << left) - 1;
+      out.add(j - y0, w, bits);
+    }
+  shape.ox += x0;
+  shape.oy += y0;
+  shape.mask = std::move(out);
+}
+
 Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, double angle,
                 std::int64_t grow) {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -222,29 +280,8 @@ Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, double angle
       }
     }
   }
-  std::vector<std::pair<int, int>> runs;                                // (row, longest run)
-  std::vector<std::size_t> before(static_cast<std::size_t>(h) + 1, 0);  // cells in rows before
-  for (int j = 0; j < h; ++j) {
-    before[static_cast<std::size_t>(j) + 1] =
-        before[static_cast<std::size_t>(j)] + static_cast<std::size_t>(shape.mask.count(j));
-    runs.emplace_back(j, shape.mask.longest_run(j, true));
-  }
-  shape.cells = before.back();
-  std::stable_sort(runs.begin(), runs.end(),
-                   [](const auto& a, const auto& b) { return a.second > b.second; });
-  runs.resize(std::min(runs.size(), kWidestRows));
-  shape.widest = std::move(runs);
-  // Every step-th cell, in rows from the first, from the middle of the first step on.
-  const auto spread = [&](std::size_t count, std::vector<std::pair<int, int>>& out) {
-    const std::size_t step = std::max<std::size_t>(1, shape.cells / count);
-    for (std::size_t next = step / 2, j = 0; next < shape.cells; next += step) {
-      while (before[j + 1] <= next) ++j;
-      out.emplace_back(shape.mask.nth_set(static_cast<int>(j), static_cast<int>(next - before[j])),
-                       static_cast<int>(j));
-    }
-  };
-  spread(kProbes, shape.probes);
-  spread(kMoreProbes, shape.more_probes);
+  trim(shape);
+  finish(shape);
   return shape;
 }
 

@@ -733,5 +733,40 @@ TEST(Nest, PartsLeftOnTheLastSheetGoFirstWhenThatSavesASheet) {
   EXPECT_EQ(sheets.size(), 3u);
 }
 
+// A part is held by the cells it covers, not by their box: a rectangle 99.2 mm long on a sheet
+// 100 mm wide covers 200 columns of cells (half a millimetre each), but the box of its outline
+// grown to reach every cell it touches spans 201. Held by that box it fitted no sheet's grid and
+// took a sheet of its own, and a 10 mm square another.
+TEST(Nest, APartFitsTheSheetByTheCellsItCoversNotTheirBox) {
+  using print_detail::IntPoint;
+  constexpr std::int64_t mm = 1000;
+  const auto rectangle = [](std::int64_t x, std::int64_t y) {
+    return print_detail::NestPart{{{0, 0}, {x, 0}, {x, y}, {0, y}, {0, 0}}};
+  };
+  const std::vector<print_detail::NestPart> parts = {rectangle(99'200, 40 * mm),
+                                                     rectangle(10 * mm, 10 * mm)};
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(parts, 0, 100 * mm, 100 * mm);
+  ASSERT_EQ(placed.size(), 2u);
+  ASSERT_EQ(placed[0].sheet, 0);
+  ASSERT_EQ(placed[1].sheet, 0);
+  std::vector<std::vector<Vec2>> moved;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    std::vector<Vec2>& shape = moved.emplace_back();
+    for (const IntPoint& p : parts[i][0]) {
+      const Vec2 q =
+          rotate(Vec2{static_cast<double>(p.x), static_cast<double>(p.y)}, placed[i].angle) +
+          Vec2{static_cast<double>(placed[i].dx), static_cast<double>(placed[i].dy)};
+      EXPECT_GE(q.x, -1) << "part " << i;
+      EXPECT_GE(q.y, -1) << "part " << i;
+      EXPECT_LE(q.x, 100 * mm + 1.0) << "part " << i;
+      EXPECT_LE(q.y, 100 * mm + 1.0) << "part " << i;
+      shape.push_back((1.0 / mm) * q);
+    }
+    shape.pop_back();  // the repeated first point
+  }
+  EXPECT_LE(test::overlap_thickness(moved[0], moved[1]), 1e-6);
+}
+
 }  // namespace
 }  // namespace papernet
