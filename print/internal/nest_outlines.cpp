@@ -209,11 +209,9 @@ void trim(Shape& shape) {
   shape.mask = std::move(out);
 }
 
-Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, double angle,
-                std::int64_t grow) {
-  const double c = std::cos(angle), s = std::sin(angle);
+// The cells of a part's polygons, grown by `grow`, as it comes (turned 0).
+Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, std::int64_t grow) {
   Shape shape;
-  shape.angle = angle;
   // Each polygon turned and grown on its own: no union of a piece's faces, which Clipper's can
   // get stuck on (slivers of CAD models met in FixupIntersectionOrder), and the grown polygons'
   // cells together are those of the grown union.
@@ -223,9 +221,7 @@ Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, double angle
   ClipperLib::ClipperOffset offset;
   for (std::size_t k = 0; k < polygons.size(); ++k) {
     ClipperLib::Path path;
-    for (const IntPoint& p : polygons[k])
-      path.push_back({static_cast<ClipperLib::cInt>(std::llround(c * p.x - s * p.y)),
-                      static_cast<ClipperLib::cInt>(std::llround(s * p.x + c * p.y))});
+    for (const IntPoint& p : polygons[k]) path.push_back({p.x, p.y});
     const double area = std::abs(ClipperLib::Area(path));
     shape.area += area;
     offset.Clear();
@@ -283,6 +279,25 @@ Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, double angle
   trim(shape);
   finish(shape);
   return shape;
+}
+
+// `shape` turned a quarter more, counter-clockwise about the origin, as `angle`: the grid maps onto
+// itself (cell (i, j) onto cell (-j - 1, i)), and so do the cells a polygon covers, but for
+// polygons whose edges run through cells' centres, which either way are a fringe kCover beyond
+// the cells the part touches.
+Shape quarter_turned(const Shape& shape, double angle) {
+  Shape out;
+  out.angle = angle;
+  out.area = shape.area;
+  const int w = shape.mask.width(), h = shape.mask.height();
+  out.ox = -(shape.oy + h);
+  out.oy = shape.ox;
+  out.mask = Bits(h, w);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      if ((shape.mask.word(j, i / 64) >> (i % 64)) & 1) out.mask.set_span(h - 1 - j, h - 1 - j, i);
+  finish(out);
+  return out;
 }
 
 bool collides(const Bits& sheet, const Bits& mask, int x, int y) {
@@ -355,7 +370,8 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
   std::vector<std::vector<Shape>> shapes(parts.size());
   for (std::size_t i = 0; i < parts.size(); ++i)
     for (int q = 0; q < 4; ++q)
-      shapes[i].push_back(rasterise(parts[i], q * 0.5 * std::numbers::pi, grow));
+      shapes[i].push_back(q == 0 ? rasterise(parts[i], grow)
+                                 : quarter_turned(shapes[i].back(), q * 0.5 * std::numbers::pi));
   // Parts placed in `order`, each on the first sheet where it fits; how many sheets it took.
   const auto fill = [&](const std::vector<std::size_t>& order, std::vector<NestedOutline>& out) {
     std::vector<Sheet> sheets;
