@@ -70,6 +70,52 @@ bool fits_at_some_turn(const std::vector<Vec2>& points, Vec2 room, double slack)
 // A4 with 10 mm margins, less room for 6 mm tabs and 2 mm to cut along.
 constexpr Vec2 kRoom{210 - 20 - 14, 297 - 20 - 14};
 
+/// Each part's polygons as nest_outlines placed them (turned, then moved), in millimetres
+/// (parts are in micrometres; a polygon's repeated first point dropped), by sheet. Fails the test
+/// where a part is unplaced or reaches past a `width` x `height` sheet.
+std::map<int, std::vector<std::vector<Vec2>>> placed_polygons(
+    const std::vector<print_detail::NestPart>& parts,
+    const std::vector<print_detail::NestedOutline>& placed, std::int64_t width,
+    std::int64_t height) {
+  std::map<int, std::vector<std::vector<Vec2>>> on_sheet;
+  EXPECT_EQ(placed.size(), parts.size());
+  for (std::size_t i = 0; i < parts.size() && i < placed.size(); ++i) {
+    EXPECT_GE(placed[i].sheet, 0) << "part " << i;
+    for (const auto& shape : parts[i]) {
+      std::vector<Vec2> moved;
+      for (const print_detail::IntPoint& p : shape) {
+        const Vec2 q =
+            rotate(Vec2{static_cast<double>(p.x), static_cast<double>(p.y)}, placed[i].angle) +
+            Vec2{static_cast<double>(placed[i].dx), static_cast<double>(placed[i].dy)};
+        EXPECT_GE(q.x, -1) << "part " << i;
+        EXPECT_GE(q.y, -1) << "part " << i;
+        EXPECT_LE(q.x, static_cast<double>(width) + 1.0) << "part " << i;
+        EXPECT_LE(q.y, static_cast<double>(height) + 1.0) << "part " << i;
+        moved.push_back(1e-3 * q);
+      }
+      moved.pop_back();  // the repeated first point
+      on_sheet[placed[i].sheet].push_back(moved);
+    }
+  }
+  return on_sheet;
+}
+
+/// A part: the rectangle from the origin to (x, y), in micrometres.
+print_detail::NestPart rectangle(std::int64_t x, std::int64_t y) {
+  return {{{0, 0}, {x, 0}, {x, y}, {0, y}, {0, 0}}};
+}
+
+/// The deepest overlap of two polygons on one sheet, in millimetres (the polygons of one part only
+/// touch, as those of two parts must).
+double deepest_overlap(const std::map<int, std::vector<std::vector<Vec2>>>& on_sheet) {
+  double deepest = 0;
+  for (const auto& [sheet, shapes] : on_sheet)
+    for (std::size_t i = 0; i < shapes.size(); ++i)
+      for (std::size_t j = i + 1; j < shapes.size(); ++j)
+        deepest = std::max(deepest, test::overlap_thickness(shapes[i], shapes[j]));
+  return deepest;
+}
+
 TEST(Fit, CutsALargeNetIntoTreesThatEachFitTheSheet) {
   const Unfolded u = tabu_net("sample.obj");
   ASSERT_FALSE(u.mesh.faces.empty());
@@ -682,31 +728,9 @@ TEST(Nest, PartsFillHollowsWithoutOverlapsInsideTheSheet) {
   const std::vector<print_detail::NestedOutline> placed =
       print_detail::nest_outlines(parts, 0, w, h);
   ASSERT_EQ(placed.size(), parts.size());
-  std::map<int, std::vector<std::vector<Vec2>>> on_sheet;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    ASSERT_GE(placed[i].sheet, 0) << "part " << i;
-    for (const auto& shape : parts[i]) {
-      std::vector<Vec2> moved;
-      for (const IntPoint& p : shape) {
-        const Vec2 q =
-            rotate(Vec2{static_cast<double>(p.x), static_cast<double>(p.y)}, placed[i].angle) +
-            Vec2{static_cast<double>(placed[i].dx), static_cast<double>(placed[i].dy)};
-        EXPECT_GE(q.x, -1) << "part " << i;
-        EXPECT_GE(q.y, -1) << "part " << i;
-        EXPECT_LE(q.x, w + 1.0) << "part " << i;
-        EXPECT_LE(q.y, h + 1.0) << "part " << i;
-        moved.push_back((1.0 / mm) * q);
-      }
-      moved.pop_back();  // the repeated first point
-      on_sheet[placed[i].sheet].push_back(moved);
-    }
-  }
+  const auto on_sheet = placed_polygons(parts, placed, w, h);
   EXPECT_EQ(placed[1].sheet, placed[0].sheet) << "the first square goes into the L's hollow";
-  // Shapes of one part only touch; shapes of two parts must not overlap.
-  for (const auto& [sheet, shapes] : on_sheet)
-    for (std::size_t i = 0; i < shapes.size(); ++i)
-      for (std::size_t j = i + 1; j < shapes.size(); ++j)
-        EXPECT_LE(test::overlap_thickness(shapes[i], shapes[j]), 1e-6) << "sheet " << sheet;
+  EXPECT_LE(deepest_overlap(on_sheet), 1e-6);
 }
 
 // Six rectangles on sheets of 100 x 100 mm, each 1 mm short of whole tens (so that their cells
@@ -716,13 +740,12 @@ TEST(Nest, PartsFillHollowsWithoutOverlapsInsideTheSheet) {
 TEST(Nest, PartsLeftOnTheLastSheetGoFirstWhenThatSavesASheet) {
   using print_detail::IntPoint;
   constexpr std::int64_t mm = 1000;
-  const auto rectangle = [](std::int64_t a, std::int64_t b) {
+  const auto tens = [](std::int64_t a, std::int64_t b) {
     const std::int64_t x = (10 * a - 1) * mm, y = (10 * b - 1) * mm;
     return print_detail::NestPart{{{0, 0}, {x, 0}, {x, y}, {0, y}, {0, 0}}};
   };
-  const std::vector<print_detail::NestPart> parts = {rectangle(3, 9), rectangle(5, 9),
-                                                     rectangle(8, 3), rectangle(10, 10),
-                                                     rectangle(7, 4), rectangle(5, 6)};
+  const std::vector<print_detail::NestPart> parts = {tens(3, 9),   tens(5, 9), tens(8, 3),
+                                                     tens(10, 10), tens(7, 4), tens(5, 6)};
   const std::vector<print_detail::NestedOutline> placed =
       print_detail::nest_outlines(parts, 0, 100 * mm, 100 * mm);
   std::set<int> sheets;
@@ -738,34 +761,40 @@ TEST(Nest, PartsLeftOnTheLastSheetGoFirstWhenThatSavesASheet) {
 // grown to reach every cell it touches spans 201. Held by that box it fitted no sheet's grid and
 // took a sheet of its own, and a 10 mm square another.
 TEST(Nest, APartFitsTheSheetByTheCellsItCoversNotTheirBox) {
-  using print_detail::IntPoint;
   constexpr std::int64_t mm = 1000;
-  const auto rectangle = [](std::int64_t x, std::int64_t y) {
-    return print_detail::NestPart{{{0, 0}, {x, 0}, {x, y}, {0, y}, {0, 0}}};
-  };
   const std::vector<print_detail::NestPart> parts = {rectangle(99'200, 40 * mm),
                                                      rectangle(10 * mm, 10 * mm)};
   const std::vector<print_detail::NestedOutline> placed =
       print_detail::nest_outlines(parts, 0, 100 * mm, 100 * mm);
   ASSERT_EQ(placed.size(), 2u);
-  ASSERT_EQ(placed[0].sheet, 0);
-  ASSERT_EQ(placed[1].sheet, 0);
-  std::vector<std::vector<Vec2>> moved;
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    std::vector<Vec2>& shape = moved.emplace_back();
-    for (const IntPoint& p : parts[i][0]) {
-      const Vec2 q =
-          rotate(Vec2{static_cast<double>(p.x), static_cast<double>(p.y)}, placed[i].angle) +
-          Vec2{static_cast<double>(placed[i].dx), static_cast<double>(placed[i].dy)};
-      EXPECT_GE(q.x, -1) << "part " << i;
-      EXPECT_GE(q.y, -1) << "part " << i;
-      EXPECT_LE(q.x, 100 * mm + 1.0) << "part " << i;
-      EXPECT_LE(q.y, 100 * mm + 1.0) << "part " << i;
-      shape.push_back((1.0 / mm) * q);
-    }
-    shape.pop_back();  // the repeated first point
-  }
-  EXPECT_LE(test::overlap_thickness(moved[0], moved[1]), 1e-6);
+  EXPECT_EQ(placed[0].sheet, 0);
+  EXPECT_EQ(placed[1].sheet, 0);
+  EXPECT_LE(deepest_overlap(placed_polygons(parts, placed, 100 * mm, 100 * mm)), 1e-6);
+}
+
+// A part turned a quarter is held by its cells turned (the grid maps onto itself under a quarter
+// turn about the origin), which must be those of the part as turned and placed: an L 45 mm wide
+// and 90 mm tall fits a sheet 100 x 50 mm only lying down, and the three 20 mm squares after it
+// fit only into its hollow. Cells turned the other way round leave the hollow where the L lies.
+TEST(Nest, APartTurnedAQuarterIsHeldByItsCellsTurned) {
+  constexpr std::int64_t mm = 1000;
+  const std::int64_t w = 100 * mm, h = 50 * mm;
+  const std::vector<print_detail::NestPart> parts = {{{{0, 0},
+                                                       {45 * mm, 0},
+                                                       {45 * mm, 15 * mm},
+                                                       {15 * mm, 15 * mm},
+                                                       {15 * mm, 90 * mm},
+                                                       {0, 90 * mm},
+                                                       {0, 0}}},
+                                                     rectangle(20 * mm, 20 * mm),
+                                                     rectangle(20 * mm, 20 * mm),
+                                                     rectangle(20 * mm, 20 * mm)};
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(parts, 0, w, h);
+  ASSERT_EQ(placed.size(), parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) EXPECT_EQ(placed[i].sheet, 0) << "part " << i;
+  EXPECT_NEAR(std::abs(std::sin(placed[0].angle)), 1, 1e-9) << "the L lies down";
+  EXPECT_LE(deepest_overlap(placed_polygons(parts, placed, w, h)), 1e-6);
 }
 
 }  // namespace
