@@ -41,6 +41,14 @@ double distance_to_box(Vec2 p, const std::array<Vec2, 4>& box) {
   return inside ? 0.0 : nearest;
 }
 
+/// How far `p` lies from the axis-aligned box `bounds`: at most how far it lies from anything
+/// inside it.
+double distance_to_bounds(Vec2 p, const Box2& bounds) {
+  const double dx = std::max({bounds.lo.x - p.x, p.x - bounds.hi.x, 0.0});
+  const double dy = std::max({bounds.lo.y - p.y, p.y - bounds.hi.y, 0.0});
+  return std::sqrt(dx * dx + dy * dy);
+}
+
 /// How far `p`, inside triangle `t`, lies from its sides.
 double distance_to_sides(Vec2 p, const std::array<Vec2, 3>& t) {
   double nearest = std::numeric_limits<double>::infinity();
@@ -63,11 +71,21 @@ std::vector<Label> place_piece_labels(const std::vector<std::array<Vec2, 3>>& fa
   for (int p : piece) count = std::max(count, p + 1);
   std::vector<std::vector<int>> faces_of(static_cast<std::size_t>(count));
   for (int f = 0; f < static_cast<int>(faces.size()); ++f) faces_of[piece[f]].push_back(f);
-  std::vector<std::vector<std::array<Vec2, 4>>> boxes(faces_of.size());  // edge labels by piece
+  // The edge labels' and leaders' boxes, by piece, each with its axis-aligned bounds.
+  struct Clear {
+    std::array<Vec2, 4> box;
+    Box2 bounds;
+  };
+  std::vector<std::vector<Clear>> boxes(faces_of.size());
+  const auto keep_clear = [&](int p, const std::array<Vec2, 4>& box) {
+    Box2 bounds = Box2::empty();
+    for (Vec2 q : box) bounds.add(q);
+    boxes[p].push_back({box, bounds});
+  };
   for (const Label& l : labels)
-    if (!l.text.empty() && l.size > 0) boxes[piece[l.side.face]].push_back(label_box(l));
+    if (!l.text.empty() && l.size > 0) keep_clear(piece[l.side.face], label_box(l));
   for (const Segment& s : leaders)
-    if (s.face >= 0 && norm(s.b - s.a) > 0) boxes[piece[s.face]].push_back(leader_box(s.a, s.b));
+    if (s.face >= 0 && norm(s.b - s.a) > 0) keep_clear(piece[s.face], leader_box(s.a, s.b));
   std::vector<Circle> circle(faces.size());
   for (std::size_t f = 0; f < faces.size(); ++f) circle[f] = incircle(faces[f]);
   std::vector<Label> out;
@@ -88,30 +106,50 @@ std::vector<Label> place_piece_labels(const std::vector<std::array<Vec2, 3>>& fa
     const double c = label_chars(label.text);
     const double diagonal = std::sqrt(0.09 * c * c + 0.25);
     label.angle = 0;
-    double best_size = -1, best_clear = -1;
-    Vec2 best_at{}, clearest_at{};
-    int best_face = -1, clearest_face = -1;
-    for (const int f : candidates) {
-      const auto& t = faces[f];
-      const Vec2 centre = circle[f].centre;
-      std::array<Vec2, 10> points;
-      points[0] = centre;
-      for (int k = 0; k < 3; ++k) {
-        points[1 + k] = centre + 0.3 * (t[k] - centre);
-        points[4 + k] = centre + 0.6 * (t[k] - centre);
-        points[7 + k] = centre + 0.6 * (0.5 * (t[k] + t[(k + 1) % 3]) - centre);
+    // How far `at` lies from the nearest box, where that is nearer than `within` (infinity:
+    // wherever it is); else a distance at least `within`. Boxes whose bounds lie farther are
+    // passed over.
+    const auto clear_of_boxes = [&](Vec2 at, double within) {
+      double clear = std::numeric_limits<double>::infinity();
+      for (const Clear& b : boxes[p])
+        if (distance_to_bounds(at, b.bounds) <= within * (1 + 1e-9) + 1e-12)
+          clear = std::min(clear, distance_to_box(at, b.box));
+      return clear;
+    };
+    const auto each_place = [&](auto&& visit) {
+      for (const int f : candidates) {
+        const auto& t = faces[f];
+        const Vec2 centre = circle[f].centre;
+        std::array<Vec2, 10> points;
+        points[0] = centre;
+        for (int k = 0; k < 3; ++k) {
+          points[1 + k] = centre + 0.3 * (t[k] - centre);
+          points[4 + k] = centre + 0.6 * (t[k] - centre);
+          points[7 + k] = centre + 0.6 * (0.5 * (t[k] + t[(k + 1) % 3]) - centre);
+        }
+        for (const Vec2 at : points) visit(f, at);
       }
-      for (const Vec2 at : points) {
-        double clear = std::numeric_limits<double>::infinity();
-        for (const auto& box : boxes[p]) clear = std::min(clear, distance_to_box(at, box));
-        // As large as the face holds (its disc within 0.9 of the room to the face's sides),
-        // at most kLargestMm, with its disc clear of the edge labels by kLabelGap of its size.
-        const double size = std::min({kLargestMm, 0.9 * distance_to_sides(at, t) / diagonal,
-                                      clear / (diagonal + kLabelGap)});
-        if (size > best_size) best_size = size, best_at = at, best_face = f;
+    };
+    double best_size = -1;
+    Vec2 best_at{};
+    int best_face = -1;
+    each_place([&](int f, Vec2 at) {
+      // As large as the face holds (its disc within 0.9 of the room to the face's sides), at most
+      // kLargestMm, with its disc clear of the edge labels by kLabelGap of its size: boxes
+      // farther than that size allows do not limit it.
+      const double held = std::min(kLargestMm, 0.9 * distance_to_sides(at, faces[f]) / diagonal);
+      const double within = held * (diagonal + kLabelGap);
+      const double size = std::min(held, clear_of_boxes(at, within) / (diagonal + kLabelGap));
+      if (size > best_size) best_size = size, best_at = at, best_face = f;
+    });
+    double best_clear = -1;
+    Vec2 clearest_at{};
+    int clearest_face = -1;
+    if (!(best_face >= 0 && best_size >= kLegibleLabelMm))
+      each_place([&](int f, Vec2 at) {
+        const double clear = clear_of_boxes(at, std::numeric_limits<double>::infinity());
         if (clear > best_clear) best_clear = clear, clearest_at = at, clearest_face = f;
-      }
-    }
+      });
     if (best_face >= 0 && best_size >= kLegibleLabelMm) {
       label.at = best_at;
       label.side = {best_face, 0};
