@@ -212,9 +212,9 @@ void trim(Shape& shape) {
 // The cells of a part's polygons, grown by `grow`, as it comes (turned 0).
 Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, std::int64_t grow) {
   Shape shape;
-  // Each polygon turned and grown on its own: no union of a piece's faces, which Clipper's can
-  // get stuck on (slivers of CAD models met in FixupIntersectionOrder), and the grown polygons'
-  // cells together are those of the grown union.
+  // Each polygon grown on its own: no union of a piece's faces, which Clipper's can get stuck on
+  // (slivers of CAD models met in FixupIntersectionOrder), and the grown polygons' cells together
+  // are those of the grown union.
   std::vector<ClipperLib::Paths> grown(polygons.size());
   std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), lo_y = lo_x;
   std::int64_t hi_x = std::numeric_limits<std::int64_t>::min(), hi_y = hi_x;
