@@ -741,8 +741,7 @@ TEST(Nest, PartsLeftOnTheLastSheetGoFirstWhenThatSavesASheet) {
   using print_detail::IntPoint;
   constexpr std::int64_t mm = 1000;
   const auto tens = [](std::int64_t a, std::int64_t b) {
-    const std::int64_t x = (10 * a - 1) * mm, y = (10 * b - 1) * mm;
-    return print_detail::NestPart{{{0, 0}, {x, 0}, {x, y}, {0, y}, {0, 0}}};
+    return rectangle((10 * a - 1) * mm, (10 * b - 1) * mm);
   };
   const std::vector<print_detail::NestPart> parts = {tens(3, 9),   tens(5, 9), tens(8, 3),
                                                      tens(10, 10), tens(7, 4), tens(5, 6)};
