@@ -359,7 +359,10 @@ class FitSearch {
 
   // The chosen way's pieces merged two at a time (print/fit.h, merge_pieces) where the print
   // costs less: as many sheets or fewer, fewer pieces to cut out and glue. While the search's
-  // time lasts, at the pace of its layouts, within the job's merge budget.
+  // time lasts, at the pace of its layouts, within the job's merge budget. A merged piece need
+  // only fit the sheet (room_.alone), not the room kept for tabs all round it: each merge is laid
+  // out and nested with the tabs it gets before it is kept, and refused when its piece with them
+  // fits no sheet.
   void merge(FitPrint& chosen, Progress& progress) {
     if (chosen.pieces.pieces <= 1 || laid_out_ == 0 || print_.merge_budget == 0) return;
     const double need = one_more();
@@ -374,7 +377,12 @@ class FitSearch {
       if (progress.cancelled()) throw CancelledException();
       if (elapsed() + need > seconds_) throw OutOfTime{};
       if (!check_pieces(mesh_, merged.net, merged.piece).ok()) return false;
-      FitPrint print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone, tries_);
+      FitPrint print;
+      try {
+        print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone, tries_);
+      } catch (const InvalidOptionException&) {
+        return false;  // "face_too_large": the merged piece with its tabs fits no sheet
+      }
       const double c = print.cost(label_price_);
       if (!(c < cost)) return false;
       cost = c;
@@ -395,8 +403,8 @@ class FitSearch {
       double from_;
     } reports{progress, static_cast<double>(passed_) / std::size(kFitWays)};
     try {
-      merge_pieces(mesh_, net_.piece, chosen.pieces, scale_, room_, tabs, budget, keep, &reports,
-                   threads_);
+      merge_pieces(mesh_, net_.piece, chosen.pieces, scale_, FitRoom{room_.alone, room_.alone},
+                   tabs, budget, keep, &reports, threads_);
     } catch (const OutOfTime&) {
     }
   }
