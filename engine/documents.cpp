@@ -380,8 +380,9 @@ class FitSearch {
       FitPrint print;
       try {
         print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone, tries_);
-      } catch (const InvalidOptionException&) {
-        return false;  // "face_too_large": the merged piece with its tabs fits no sheet
+      } catch (const InvalidOptionException& e) {
+        if (e.code() != "face_too_large") throw;
+        return false;  // the merged piece with its tabs fits no sheet
       }
       const double c = print.cost(label_price_);
       if (!(c < cost)) return false;
