@@ -21,6 +21,7 @@
 #include "tests/support/meshes.h"
 #include "tests/support/paths.h"
 #include "tests/support/polygons.h"
+#include "tests/support/printable.h"
 #include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
 
@@ -248,24 +249,6 @@ TEST(FitSearch, GlueStripsPrintOnTheSheetOfTheirEdge) {
   EXPECT_EQ(strips, 2 * out.print->strips) << "each strip carries its number twice";
 }
 
-/// Checks the shapes drawn on page `page` (1-based) of an A4 print with 10 mm margins: every
-/// point on the printable area, no two shapes overlapping.
-void expect_on_the_printable_area_apart(const std::vector<std::vector<Vec2>>& shapes,
-                                        std::size_t page) {
-  const PageOptions a4;  // A4, 10 mm margins
-  for (const auto& shape : shapes)
-    for (Vec2 p : shape) {
-      EXPECT_GE(p.x, a4.margin_mm - 1e-3) << "page " << page;
-      EXPECT_GE(p.y, a4.margin_mm - 1e-3) << "page " << page;
-      EXPECT_LE(p.x, a4.paper.width - a4.margin_mm + 1e-3) << "page " << page;
-      EXPECT_LE(p.y, a4.paper.height - a4.margin_mm + 1e-3) << "page " << page;
-    }
-  for (std::size_t i = 0; i < shapes.size(); ++i)
-    for (std::size_t j = i + 1; j < shapes.size(); ++j)
-      EXPECT_LE(overlap_thickness(shapes[i], shapes[j]), 1e-3)
-          << "page " << page << ": shapes " << i << " and " << j << " overlap";
-}
-
 // A face larger than the room a piece needs for its tabs, but not than the sheet, prints as a
 // piece of its own, turned across the sheet, its tabs on the faces beside it (docs/print.md,
 // "Fit layout"). A flat box 200 x 200 x 20 mm: its top and bottom are two right triangles each,
@@ -295,7 +278,7 @@ TEST(FitSearch, AFaceLargerThanTheRoomForTabsPrintsAloneTurnedAcrossTheSheet) {
     strips += strip_shapes.size();
     shapes.insert(shapes.end(), tab_shapes.begin(), tab_shapes.end());
     shapes.insert(shapes.end(), strip_shapes.begin(), strip_shapes.end());
-    expect_on_the_printable_area_apart(shapes, k + 1);
+    expect_on_the_printable_area_apart(shapes, PageOptions{}, "page " + std::to_string(k + 1));
   }
   EXPECT_EQ(faces, box.faces.size());
   // Every cut edge between pieces is glued by a tab or a strip.
@@ -342,7 +325,7 @@ TEST(FitSearch, AMergedPieceMayFillTheRoomKeptForTabsWhenItsTabsFitTheSheet) {
       const auto more = svg_polygons(svg_group(svg, group));
       shapes.insert(shapes.end(), more.begin(), more.end());
     }
-    expect_on_the_printable_area_apart(shapes, k + 1);
+    expect_on_the_printable_area_apart(shapes, PageOptions{}, "page " + std::to_string(k + 1));
   }
   const NetCheckReport check = check_pieces(doc.mesh, doc.net, doc.piece);
   EXPECT_TRUE(check.ok()) << check.summary();

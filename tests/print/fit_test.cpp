@@ -21,6 +21,7 @@
 #include "print/svg.h"
 #include "tests/support/meshes.h"
 #include "tests/support/polygons.h"
+#include "tests/support/printable.h"
 #include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
 
@@ -659,19 +660,7 @@ TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
     const auto strip_shapes = test::svg_polygons(test::svg_group(svg, "strips"));
     strips += strip_shapes.size();
     shapes.insert(shapes.end(), strip_shapes.begin(), strip_shapes.end());
-    for (const auto& s : shapes)
-      for (Vec2 p : s) {
-        // SVG numbers are rounded to 1 µm.
-        EXPECT_GE(p.x, page.margin_mm - 1e-3) << name;
-        EXPECT_GE(p.y, page.margin_mm - 1e-3) << name;
-        EXPECT_LE(p.x, page.paper.width - page.margin_mm + 1e-3) << name;
-        EXPECT_LE(p.y, page.paper.height - page.margin_mm + 1e-3) << name;
-      }
-    std::size_t overlaps = 0;
-    for (std::size_t i = 0; i < shapes.size(); ++i)
-      for (std::size_t j = i + 1; j < shapes.size(); ++j)
-        if (test::overlap_thickness(shapes[i], shapes[j]) > 1e-3) ++overlaps;
-    EXPECT_EQ(overlaps, 0u) << name;
+    test::expect_on_the_printable_area_apart(shapes, page, name);
   }
   EXPECT_EQ(faces, u.mesh.faces.size());
   EXPECT_EQ(tabs, layout.tabs.size());
