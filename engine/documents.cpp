@@ -379,10 +379,18 @@ class FitSearch {
       if (!check_pieces(mesh_, merged.net, merged.piece).ok()) return false;
       FitPrint print;
       try {
-        print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone, tries_);
+        print = lay_out_fit(mesh_, merged, print_, gap_, page_, room_.alone, LabelPass::Unplaced);
       } catch (const InvalidOptionException& e) {
         if (e.code() != "face_too_large") throw;
         return false;  // the merged piece with its tabs fits no sheet
+      }
+      // Its labels only add to its cost (those under the legible size), and leave its sheets,
+      // pieces and strips as they are: a merge that costs no less without them is refused before
+      // they are placed, which is most of a layout's time on a net with small labels.
+      if (!(print.cost(0) < cost)) return false;
+      if (tries_ == LabelPass::Placed) {
+        if (elapsed() + need > seconds_) throw OutOfTime{};
+        lay_out_pages(mesh_, print, print_, gap_, page_, room_.alone, LabelPass::Placed);
       }
       const double c = print.cost(label_price_);
       if (!(c < cost)) return false;
@@ -431,15 +439,27 @@ class FitSearch {
           if (!next_pieces(i, cut)) return;
         }
         const auto started = std::chrono::steady_clock::now();
-        FitPrint print =
-            lay_out_fit(mesh_, std::move(cut), print_, gap_, page_, room_.alone, tries_);
+        // Where the tries place their labels, a way after one already laid out is laid out
+        // without them first: its labels only add to its cost (those under the legible size)
+        // and leave its sheets, pieces and strips as they are, so a way that a way before it
+        // costs as little as it does without them cannot be the choice, and its labels, most of
+        // a layout's time on a net with small labels, are not placed.
+        const bool labels_last = tries_ == LabelPass::Placed && i > 0 && any_tried_before(i);
+        FitPrint print = lay_out_fit(mesh_, std::move(cut), print_, gap_, page_, room_.alone,
+                                     labels_last ? LabelPass::Unplaced : tries_);
+        const bool beaten = labels_last && beaten_before(i, print.cost(0));
+        if (labels_last && !beaten)
+          lay_out_pages(mesh_, print, print_, gap_, page_, room_.alone, LabelPass::Placed);
         const double took =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         std::lock_guard lock(mutex_);
         laid_out_seconds_ += took;
         ++laid_out_;
         ++passed_;
-        keep(i, std::move(print));
+        if (beaten)
+          tried_[i] = {print.cost(0), print.pages.pages.size()};  // at most its cost: not kept
+        else
+          keep(i, std::move(print));
       }
     } catch (...) {
       std::lock_guard lock(mutex_);
@@ -495,6 +515,22 @@ class FitSearch {
       if (!same) return true;
       ++passed_;
     }
+  }
+
+  // Whether a way before way i has been laid out (under the lock).
+  bool any_tried_before(std::size_t i) {
+    std::lock_guard lock(mutex_);
+    return std::any_of(tried_.begin(), tried_.begin() + static_cast<std::ptrdiff_t>(i),
+                       [](const Tried& t) { return t.cost.has_value(); });
+  }
+
+  // Whether a way before way i costs at most `cost` (under the lock): then way i, costing that
+  // much or more, is not the choice. A way passed over so keeps its cost without labels, at most
+  // its cost, which the way that beat it beats as well.
+  bool beaten_before(std::size_t i, double cost) {
+    std::lock_guard lock(mutex_);
+    return std::any_of(tried_.begin(), tried_.begin() + static_cast<std::ptrdiff_t>(i),
+                       [&](const Tried& t) { return t.cost && *t.cost <= cost; });
   }
 
   // Keeps way i's print, under the lock, while it can still be the choice: while no way before

@@ -75,7 +75,8 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
 
 // The search lays out several ways at once, and chooses as a search of one way at a time does:
 // the same pieces, sheets and drawing with 1, 2 and 3 threads (with more than one, the ways
-// finish in an order that varies from run to run). On ADIS16480 the cheapest way is the eighth
+// finish in an order that varies from run to run, and so do the ways passed over before their
+// labels are placed, at the defaults' detail=auto). On ADIS16480 the cheapest way is the eighth
 // of 16 (a growth, checked before it is laid out), neither the first nor the last. One mesh: the
 // test takes 90 s under ASan with two. The merge after the search (with more than one thread,
 // unfolding pairs ahead while a merge is laid out) has a lighter budget sanitized
