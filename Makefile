@@ -28,9 +28,10 @@ export UBSAN_OPTIONS ?= print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS ?= suppressions=$(CURDIR)/scripts/lsan.supp:print_suppressions=0
 export TSAN_OPTIONS ?= halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/scripts/tsan.supp
 # Tests with threads of their own (HTTP server, job service workers, the merge of a print's
-# pieces unfolding ahead); these run under TSan.
+# pieces unfolding ahead, the fit search laying out its ways two and three at a time); these run
+# under TSan.
 # "Stores/" prefixes the suites that run against both stores (SQLite and PostgreSQL).
-TSAN_TESTS ?= ^(Stores/)?(ServeTest|JobServiceTest|JobStoreTest|StaticFiles|Streams|Merge)\.
+TSAN_TESTS ?= ^(Stores/)?(ServeTest|JobServiceTest|JobStoreTest|StaticFiles|Streams|Merge)\.|^FitSearch\.TheChoiceIsTheSameWithAnyNumberOfThreads$$
 # Left out of the sanitizer runs: tests whose verdict depends on speed. They unfold whole meshes
 # within a time budget (Tabu 30 s, progressive 120 s) or wait a fixed time (60 s) for a full
 # unfold, or expect a net within a 0.5 s limit, or a whole job within its 10 s limit plus a
@@ -81,7 +82,8 @@ sanitize-address: build-asan
 
 sanitize-thread: deps
 	CXX=clang++ cmake -S . -B build-tsan $(SAN_FLAGS) -DPAPERNET_SANITIZE=thread
-	cmake --build build-tsan -j $(JOBS) --target papernet_server_tests papernet_print_tests
+	cmake --build build-tsan -j $(JOBS) --target papernet_server_tests papernet_print_tests \
+		papernet_engine_tests
 	rm -rf build-tsan/sanitizer-logs && mkdir -p build-tsan/sanitizer-logs
 	TSAN_OPTIONS=$(TSAN_OPTIONS):log_path=$(CURDIR)/build-tsan/sanitizer-logs/tsan \
 	ctest --test-dir build-tsan --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)' \
