@@ -20,7 +20,6 @@
 #include "tests/support/job_input.h"
 #include "tests/support/meshes.h"
 #include "tests/support/paths.h"
-#include "tests/support/polygons.h"
 #include "tests/support/printable.h"
 #include "tests/support/sanitized.h"
 #include "tests/support/svg.h"
