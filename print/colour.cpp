@@ -835,10 +835,26 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
     cairo_scale(cr, scale, scale);
     cairo_translate(cr, -b.lo.x, -b.lo.y);
     const double line = 1 / scale;  // the bleed: a pixel at the resolution drawn
+    // What is painted for a triangle lies within 4 bleeds of it (`grown`), antialiasing a pixel
+    // more: a face or tab whose box stays 8 pixels off the image paints none of its pixels, and
+    // is passed over. Only a piece cut by the page's clip has such parts: a tiled net's piece,
+    // which spans many pages, and would otherwise be painted whole on each of them.
+    const Box2 image{{b.lo.x - 8 * line, b.lo.y - 8 * line},
+                     {b.lo.x + (w + 8) * line, b.lo.y + (h + 8) * line}};
+    bool drawn = false;  // a face or tab painted: an image without any is left out
+    const auto off_image = [&](const Box2& box) {
+      const bool off = box.hi.x < image.lo.x || box.lo.x > image.hi.x || box.hi.y < image.lo.y ||
+                       box.lo.y > image.hi.y;
+      drawn = drawn || !off;
+      return off;
+    };
     for (int f : members[r]) {
       const auto corners = page_face(f);
       // Triangles coloured from one source face share its map: one fill for them all.
       const auto& triangles = colour.faces[f];
+      Box2 painted = Box2::empty();  // its triangles are parts of it (ColourTriangle)
+      for (Vec2 p : corners) painted.add(p);
+      if (off_image(painted)) continue;
       std::vector<std::size_t> order(triangles.size());
       for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
       auto key = [&](std::size_t i) {
@@ -876,7 +892,9 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
                                   mine[(own_side.k + 1) % 3], mine[own_side.k]);
       const std::array<Vec2, 3> hinged{hinge(under[0]), hinge(under[1]), hinge(under[2])};
       std::vector<Vec2> tab;
-      for (Vec2 q : tu.tab->corners) tab.push_back(map(q));
+      Box2 painted = Box2::empty();
+      for (Vec2 q : tu.tab->corners) tab.push_back(map(q)), painted.add(tab.back());
+      if (off_image(painted)) continue;
       // The tab shows the under face's triangle nearest the edge's middle, its map extended
       // over the whole tab (a tab can reach past that triangle, and past its face).
       const Vec2 middle = 0.5 * (mine[own_side.k] + mine[(own_side.k + 1) % 3]);
@@ -896,7 +914,7 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
     if (status != CAIRO_STATUS_SUCCESS)
       throw IOException(std::string("cairo failed drawing colour: ") +
                         cairo_status_to_string(status));
-    images.push_back({b.lo, w / scale, h / scale, std::move(surface)});
+    if (drawn) images.push_back({b.lo, w / scale, h / scale, std::move(surface)});
   }
   return images;
 }
