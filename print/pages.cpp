@@ -403,13 +403,16 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
   if (!pages.fitted && page.row + 1 < pages.rows)
     mark({m - 0.8 * m, y1 - ov}, {x1 + 0.8 * m, y1 - ov});
   if (!pages.fitted && page.row > 0) mark({m - 0.8 * m, m + ov}, {x1 + 0.8 * m, m + ov});
-  const double fs = std::clamp(0.4 * m, 1.5, 3.5);
   std::string name =
       "page " + std::to_string(index + 1) + " of " + std::to_string(pages.pages.size());
   if (page.overview) name += ": overview";
   if (!pages.fitted && pages.pages.size() > 1)
     name +=
         " (row " + std::to_string(page.row + 1) + ", column " + std::to_string(page.col + 1) + ")";
+  // Smaller on paper too narrow for the line (a character of sans-serif is at most about 0.6 of
+  // its size wide): 50 mm paper's "page 30 of 560 (row 3, column 20)" ran past both edges.
+  const double fs = std::min(std::clamp(0.4 * m, 1.5, 3.5),
+                             0.9 * pages.width / (0.6 * static_cast<double>(name.size())));
   d.shapes.push_back(
       {Layer::Marks, {{0.5 * pages.width, pages.height - 0.5 * m}}, false, name, fs, 0});
   return d;

@@ -226,5 +226,43 @@ TEST(Pdf, HasTheExpectedPageCountAndRenders) {
   }
 }
 
+TEST(Pdf, ThePageLineFitsNarrowPaper) {
+  // An octahedron 400 mm across tiled on 50 x 50 mm paper: dozens of pages, each with its line
+  // "page k of n (row r, column c)", which at the usual size ran past both edges of the page.
+  const Mesh mesh = test::octahedron(-0.4);
+  PrintOptions print;
+  print.size_mm = 400;
+  PrintLayout layout = layout_net(mesh, test::bfs_net(mesh), print);
+  PageOptions o;
+  o.paper = parse_paper("50x50mm");
+  const PageLayout pages = paginate(layout, o);
+  ASSERT_GT(pages.pages.size(), 10u);
+  const std::string path = temp_path("narrow.pdf");
+  std::ofstream(path, std::ios::binary) << write_pdf(layout, pages);
+  const int last = static_cast<int>(pages.pages.size());
+  const ToolRun text = run("pdftotext", "-bbox -f " + std::to_string(last) + " -l " +
+                                            std::to_string(last) + " " + path + " -");
+  std::filesystem::remove(path);
+  if (!text.present) GTEST_SKIP() << "pdftotext missing: install poppler-utils";
+  ASSERT_EQ(text.status, 0) << text.out;
+  // The words of the last page, the line's among them, from where the PDF draws them.
+  const double width = 50 / 25.4 * 72;  // points
+  int words = 0;
+  bool named = false;
+  for (std::size_t at = text.out.find("<word"); at != std::string::npos;
+       at = text.out.find("<word", at + 1)) {
+    const auto attribute = [&](const std::string& name) {
+      return std::stod(text.out.substr(text.out.find(name + "=\"", at) + name.size() + 2));
+    };
+    EXPECT_GE(attribute("xMin"), 0);
+    EXPECT_LE(attribute("xMax"), width);
+    const std::size_t open = text.out.find('>', at) + 1;
+    named = named || text.out.substr(open, text.out.find('<', open) - open) == "column";
+    ++words;
+  }
+  EXPECT_TRUE(named) << text.out;
+  EXPECT_GT(words, 0);
+}
+
 }  // namespace
 }  // namespace papernet
