@@ -188,7 +188,7 @@ NetCheckReport check_net(const Mesh& mesh, const Net& net, const NetCheckOptions
              std::to_string(net.points.size()) + " triangles for " + std::to_string(nf) + " faces");
     return report;
   }
-  const double diag = bounding_box_diagonal(mesh);
+  const double diag = options.diagonal > 0 ? options.diagonal : bounding_box_diagonal(mesh);
   const double len_tol = options.length_tolerance * diag;
 
   // Congruence with orientation: edge lengths as on the mesh, and the third corner where the face

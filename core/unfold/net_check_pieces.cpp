@@ -6,8 +6,9 @@
 namespace papernet {
 
 NetCheckReport check_pieces(const Mesh& mesh, const Net& net, const std::vector<int>& piece,
-                            const NetCheckOptions& options) {
+                            NetCheckOptions options) {
   const std::size_t nf = mesh.faces.size();
+  if (!(options.diagonal > 0)) options.diagonal = bounding_box_diagonal(mesh);
   NetCheckReport out;
   if (piece.size() != nf || net.parent.size() != nf || net.points.size() != nf) {
     out.failures.push_back("the net has " + std::to_string(net.points.size()) + " faces and " +

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <string>
 
 #include "core/unfold/unfolding.h"
@@ -156,6 +158,62 @@ TEST(NetCheck, AcceptsASliverFlatWithinTheTolerance) {
   net.points[0][2].y = -0.1;
   mesh.vertices[2].y = 0.1;
   EXPECT_TRUE(mentions(check_net(mesh, net), "is flipped")) << check_net(mesh, net).summary();
+}
+
+// A fan of six faces around a vertex whose angles add up to a full turn and `excess` radians
+// (its rim zigzags up and down), laid out as one path: the last face overlaps the first in a
+// wedge `excess` wide at the rim, about excess / 2 deep. Beside it, far off, one face that makes
+// the mesh a thousand times wider than the fan.
+struct FanBesideAFarFace {
+  Mesh mesh;
+  Net net;
+  std::vector<int> piece;
+};
+
+FanBesideAFarFace fan_beside_a_far_face(double excess) {
+  // Each apex angle is 60 degrees and excess / 6: rim points at height +-h apart by 60 degrees
+  // have cos(angle) = (1/2 - h^2) / (1 + h^2).
+  const double angle = std::numbers::pi / 3 + excess / 6;
+  const double h = std::sqrt((0.5 - std::cos(angle)) / (1 + std::cos(angle)));
+  Mesh fan;
+  fan.vertices.push_back({0, 0, 0});
+  for (int k = 0; k < 6; ++k)
+    fan.vertices.push_back({std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3),
+                            k % 2 == 0 ? h : -h});
+  for (int k = 0; k < 6; ++k) fan.faces.push_back({0, 1 + k, 1 + (k + 1) % 6});
+  const Net fan_net = Unfolding(fan, {-1, 0, 1, 2, 3, 4}).net();
+  Mesh far;
+  far.vertices = {{2000, 0, 0}, {2001, 0, 0}, {2000, 1, 0}};
+  far.faces = {{0, 1, 2}};
+  const Net far_net = Unfolding(far, {-1}).net();
+  FanBesideAFarFace out{fan, fan_net, std::vector<int>(6, 0)};
+  for (Vec3 v : far.vertices) out.mesh.vertices.push_back(v);
+  out.mesh.faces.push_back({7, 8, 9});
+  out.net.parent.push_back(-1);
+  out.net.points.push_back(far_net.points[0]);
+  out.piece.push_back(1);
+  return out;
+}
+
+TEST(NetCheck, PiecesAreCheckedWithTheWholeMeshsTolerance) {
+  // An overlap 1e-5 deep: over a hundred times the tolerance of the fan's own diagonal (2), a
+  // tenth of the mesh's (2,000).
+  const FanBesideAFarFace small = fan_beside_a_far_face(2e-5);
+  const NetCheckReport pieces = check_pieces(small.mesh, small.net, small.piece);
+  EXPECT_TRUE(pieces.ok()) << pieces.summary();
+  // Checked alone, with its own diagonal, the fan fails.
+  Mesh fan = small.mesh;
+  fan.faces.pop_back();
+  fan.vertices.resize(7);
+  Net fan_net = small.net;
+  fan_net.parent.pop_back();
+  fan_net.points.pop_back();
+  EXPECT_TRUE(mentions(check_net(fan, fan_net), "face 0 and face 5 overlap"))
+      << check_net(fan, fan_net).summary();
+  // An overlap a person would see still fails in the piece, named.
+  const FanBesideAFarFace large = fan_beside_a_far_face(0.02);
+  const NetCheckReport seen = check_pieces(large.mesh, large.net, large.piece);
+  EXPECT_TRUE(mentions(seen, "piece 0: face 0 and face 5 overlap")) << seen.summary();
 }
 
 TEST(NetCheck, RejectsWrongSizes) {
