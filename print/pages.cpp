@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <numbers>
 
@@ -78,10 +79,20 @@ void PageOptions::validate() const {
   if (!std::isfinite(margin_mm) || margin_mm < 0) fail("margin_mm", "margin must be >= 0 mm");
   if (!std::isfinite(overlap_mm) || overlap_mm < 0) fail("overlap_mm", "overlap must be >= 0 mm");
   const double w = paper.width - 2 * margin_mm, h = paper.height - 2 * margin_mm;
+  const auto mm = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g mm", v);
+    return std::string(text);
+  };
   if (w <= 0 || h <= 0)
-    fail("margin_mm", "margins leave no printable area on " + paper.name + " paper");
+    fail("margin_mm", "margins of " + mm(margin_mm) + " leave no printable area on " + paper.name +
+                          " paper (" + mm(paper.width) + " x " + mm(paper.height) + ")");
+  // Named with the figures: a person who set only the paper learns which of the three to change.
   if (overlap_mm >= 0.5 * std::min(w, h))
-    fail("overlap_mm", "overlap must be less than half the printable width of the page");
+    fail("overlap_mm", "the overlap of tiled pages (" + mm(overlap_mm) +
+                           ") must be less than half the printable area's narrower side: " +
+                           paper.name + " paper within margins of " + mm(margin_mm) + " prints " +
+                           mm(std::min(w, h)) + " across");
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <string>
 
 #include "core/errors.h"
 #include "print/pages.h"
@@ -68,6 +69,19 @@ TEST(Pages, ParsePaperAndLengths) {
     EXPECT_EQ(e.option(), "margin_mm");
   }
   EXPECT_EQ(parse_paper("300x200").name, "300x200mm");
+  // Paper too small for the tiles' overlap: the message gives the figures to change.
+  PageOptions small;
+  small.paper = parse_paper("30x30mm");
+  try {
+    small.validate();
+    ADD_FAILURE() << "an overlap of half the printable side passed";
+  } catch (const InvalidOptionException& e) {
+    EXPECT_EQ(e.option(), "overlap_mm");
+    EXPECT_NE(std::string(e.what()).find("(10 mm)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("30x30mm paper within margins of 10 mm prints 10 mm"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Pages, TilesCoverTheNetWithOverlapAndUseTheCheaperOrientation) {
