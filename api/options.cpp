@@ -412,6 +412,15 @@ std::string options_help() {
   return out;
 }
 
+namespace {
+// A number of seconds as a person writes it: 600, 0.5, 1e+09 (std::to_string gave 600.000000).
+std::string seconds(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+}  // namespace
+
 void validate_options(const JobOptions& o, const OptionsLimits& limits) {
   if (o.target_faces)
     range(*o.target_faces >= 4 && *o.target_faces <= limits.max_target_faces, "target_faces",
@@ -423,7 +432,7 @@ void validate_options(const JobOptions& o, const OptionsLimits& limits) {
     range(
         std::isfinite(*o.time_limit) && *o.time_limit > 0 && *o.time_limit <= limits.max_time_limit,
         "time_limit",
-        "must be more than 0 and at most " + std::to_string(limits.max_time_limit) + " seconds");
+        "must be more than 0 and at most " + seconds(limits.max_time_limit) + " seconds");
   if (o.size_mm)
     range(std::isfinite(*o.size_mm) && *o.size_mm > 0 && *o.size_mm <= 100'000, "size_mm",
           "must be more than 0 and at most 100000 millimetres");

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <exception>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
@@ -220,6 +221,11 @@ TEST(OptionsTest, RangesAndLimitsAreChecked) {
                 &option),
             "option_out_of_range");
   EXPECT_EQ(option, "time_limit");
+  try {  // the bound as a person writes it (it read "30.000000 seconds")
+    parse_options_query({{"time_limit", "31"}}, limits);
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("at most 30 seconds"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(error_code([&] {
               parse_options_query({{"time_limit", "0"}}, limits);
             }),
