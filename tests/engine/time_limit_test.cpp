@@ -5,6 +5,7 @@
 // measure the sanitizer's slowness.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -13,6 +14,7 @@
 #include "core/io/load.h"
 #include "core/unfold/net_check.h"
 #include "engine/pipeline.h"
+#include "tests/support/job_input.h"
 #include "tests/support/paths.h"
 
 namespace papernet::test {
@@ -99,6 +101,40 @@ TEST(TimeLimit, AColourNetTiledOverManyPagesIsPrintedWithinTheLimit) {
   EXPECT_EQ(out.documents.pdf.substr(0, 5), "%PDF-");
   std::cout << "[ figures  ] " << seconds << " s, " << out.print->pages << " pages, " << coloured
             << " with colour\n";
+}
+
+TEST(TimeLimit, PagesPrintWithoutColourWhereEvenTheLowestResolutionWouldOverrun) {
+  // The milk truck at 2,430 faces tiled on 50 x 50 mm paper: 777 pages, each painting its faces'
+  // many small triangles, a cost the resolution hardly lowers (42 s with a limit of 10 s, every
+  // page at 50 dpi but the first). Now the pages past the time print in line art, with a warning
+  // naming them; those before keep their colour.
+  JobInput input = data_file("CesiumMilkTruck/CesiumMilkTruck.gltf");
+  JobOptions options;
+  options.time_limit = 10;
+  options.paper = "50x50mm";
+  options.detail = {DetailMode::Faces, 3000};
+  double seconds = 0;
+  const UnfoldOutcome out =
+      run_within_limit(input, options, {.svg_pages = true, .pdf = true}, seconds);
+  ASSERT_TRUE(out.print);
+  EXPECT_EQ(out.print->layout, "tile");
+  const auto& pages = out.documents.svg_pages;
+  ASSERT_EQ(pages.size(), static_cast<std::size_t>(out.print->pages));
+  const auto warning = std::find_if(out.net.warnings.begin(), out.net.warnings.end(),
+                                    [](const NetRepair& w) { return w.code == "colour_left_out"; });
+  ASSERT_NE(warning, out.net.warnings.end());
+  const std::size_t without = warning->count, first = pages.size() - without;
+  EXPECT_NE(warning->message.find("pages " + std::to_string(first + 1) + " to " +
+                                  std::to_string(pages.size()) + " print without their colour"),
+            std::string::npos)
+      << warning->message;
+  // Colour on the first page, and on none from the first named on.
+  ASSERT_GT(first, 0u);
+  EXPECT_NE(pages[0].find("<image"), std::string::npos);
+  for (std::size_t i = first; i < pages.size(); ++i)
+    ASSERT_EQ(pages[i].find("<image"), std::string::npos) << "page " << i + 1;
+  std::cout << "[ figures  ] " << seconds << " s, " << pages.size() << " pages, " << first
+            << " in colour\n";
 }
 
 }  // namespace
