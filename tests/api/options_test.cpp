@@ -223,6 +223,7 @@ TEST(OptionsTest, RangesAndLimitsAreChecked) {
   EXPECT_EQ(option, "time_limit");
   try {  // the bound as a person writes it (it read "30.000000 seconds")
     parse_options_query({{"time_limit", "31"}}, limits);
+    ADD_FAILURE() << "a time limit over the bound passed";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("at most 30 seconds"), std::string::npos) << e.what();
   }

@@ -81,9 +81,7 @@ TEST(TimeLimit, AColourNetTiledOverManyPagesIsPrintedWithinTheLimit) {
   // over 560 pages, each drawn in colour. Each page painted the whole net's colour, clipped to
   // the page: 169 s with a limit of 10 s (its pages at the lowest resolution), 6 s now
   // (docs/colour.md, "Time limit").
-  JobInput input;
-  input.mesh = read_mesh_file(test_data_dir() + "/Duck.glb", 64 << 20);
-  input.format = MeshFormat::Glb;
+  const JobInput input = data_file("Duck.glb");
   JobOptions options;  // detail auto, colour auto, 200 mm
   options.time_limit = 10;
   options.paper = "50x50mm";
@@ -108,7 +106,7 @@ TEST(TimeLimit, PagesPrintWithoutColourWhereEvenTheLowestResolutionWouldOverrun)
   // many small triangles, a cost the resolution hardly lowers (42 s with a limit of 10 s, every
   // page at 50 dpi but the first). Now the pages past the time print in line art, with a warning
   // naming them; those before keep their colour.
-  JobInput input = data_file("CesiumMilkTruck/CesiumMilkTruck.gltf");
+  const JobInput input = data_file("CesiumMilkTruck/CesiumMilkTruck.gltf");
   JobOptions options;
   options.time_limit = 10;
   options.paper = "50x50mm";
