@@ -13,6 +13,7 @@
 
 #include "core/errors.h"
 #include "core/io/image.h"
+#include "core/unfold/overlap.h"
 #include "core/union_find.h"
 
 namespace papernet {
@@ -843,8 +844,7 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
                      {b.lo.x + (w + 8) * line, b.lo.y + (h + 8) * line}};
     bool drawn = false;  // a face or tab painted: an image without any is left out
     const auto off_image = [&](const Box2& box) {
-      const bool off = box.hi.x < image.lo.x || box.lo.x > image.hi.x || box.hi.y < image.lo.y ||
-                       box.lo.y > image.hi.y;
+      const bool off = !boxes_overlap(box, image, 0);
       drawn = drawn || !off;
       return off;
     };
@@ -852,9 +852,7 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
       const auto corners = page_face(f);
       // Triangles coloured from one source face share its map: one fill for them all.
       const auto& triangles = colour.faces[f];
-      Box2 painted = Box2::empty();  // its triangles are parts of it (ColourTriangle)
-      for (Vec2 p : corners) painted.add(p);
-      if (off_image(painted)) continue;
+      if (off_image(triangle_box(corners))) continue;  // its triangles are parts of it
       std::vector<std::size_t> order(triangles.size());
       for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
       auto key = [&](std::size_t i) {
