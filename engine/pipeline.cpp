@@ -188,24 +188,45 @@ double share(double total, std::size_t faces, std::size_t all) {
   return all == 0 ? total : total * static_cast<double>(faces) / static_cast<double>(all);
 }
 
-// The warning "unfolded_in_pieces" when a part's net is grown pieces (unfold_piece), or none.
+// The warning "unfolded_in_pieces" when a part's net is grown pieces (unfold_piece), or none:
+// why for each kind of part (none found within the time limit; none there is), then how.
 std::optional<NetRepair> grown_warning(const std::vector<Piece>& pieces) {
-  std::size_t parts = 0, grown = 0, faces = 0, overlaps = 0;
+  std::size_t parts = 0, grown = 0;
+  std::size_t searched = 0, searched_faces = 0, overlaps = 0, trees = 0, tree_faces = 0;
   for (const Piece& piece : pieces) {
     if (!piece.grown) continue;
     ++parts;
     grown += piece.grown->pieces;
-    faces += piece.mesh.faces.size();
-    overlaps += piece.grown->overlaps;
+    if (piece.grown->tree) {
+      ++trees;
+      tree_faces += piece.mesh.faces.size();
+    } else {
+      ++searched;
+      searched_faces += piece.mesh.faces.size();
+      overlaps += piece.grown->overlaps;
+    }
   }
   if (parts == 0) return std::nullopt;
-  return NetRepair{"unfolded_in_pieces", parts,
-                   "no overlap-free net in one piece within the time limit for " +
-                       std::to_string(parts) + (parts == 1 ? " part" : " parts") + " of " +
-                       std::to_string(faces) + " faces (the best left " + std::to_string(overlaps) +
-                       " overlapping face pairs): unfolded in " + std::to_string(grown) +
-                       " pieces grown from single faces instead; a longer time limit or "
-                       "another seed may find one piece"};
+  const auto of_parts = [](std::size_t n, std::size_t faces) {
+    return std::to_string(n) + (n == 1 ? " part" : " parts") + " of " + std::to_string(faces) +
+           " faces";
+  };
+  std::string text;
+  if (searched > 0)
+    text = "no overlap-free net in one piece within the time limit for " +
+           of_parts(searched, searched_faces) + " (the best left " + std::to_string(overlaps) +
+           " overlapping face pairs)";
+  if (trees > 0)
+    text += (searched > 0 ? "; " : "") +
+            std::string("no overlap-free net in one piece exists for ") +
+            of_parts(trees, tree_faces) +
+            (trees == 1 ? " (its faces join without a loop: its dual graph is a tree, and the one "
+                          "edge unfolding that leaves overlaps itself)"
+                        : " (their faces join without a loop: their dual graphs are trees, and the "
+                          "one edge unfolding each leaves overlaps itself)");
+  text += ": unfolded in " + std::to_string(grown) + " pieces grown from single faces instead";
+  if (searched > 0) text += "; a longer time limit or another seed may find one piece";
+  return NetRepair{"unfolded_in_pieces", parts, text};
 }
 
 // The warning for colour baked onto approximate faces in triangles larger than usual

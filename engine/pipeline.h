@@ -126,8 +126,9 @@ InputReport inspect_input(const JobInput& input, const JobOptions& options,
 /// load, validate, (simplify), unfold by the job's strategy, measure an approximation's distance,
 /// make room for glue tabs, check the net, and write the documents asked for. `options` must
 /// have passed validate_options. A part with no overlap-free net in one piece within the time
-/// limit, not even of a coarser mesh, is unfolded in several pieces (warning
-/// "unfolded_in_pieces"): every mesh that passes validation gets a net.
+/// limit, not even of a coarser mesh, or with none at all (a dual graph that is a tree, whose one
+/// edge unfolding overlaps), is unfolded in several pieces (warning "unfolded_in_pieces"): every
+/// mesh that passes validation gets a net.
 /// \throw IOException (unreadable; LimitExceededException over a limit), InvalidMeshException
 ///        (the mesh cannot be unfolded, with the validator's report),
 ///        InvalidOptionException (options the print refuses), CancelledException; a net that

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <utility>
 
+#include "core/errors.h"
+#include "core/mesh/dual_graph.h"
 #include "core/mesh/hausdorff.h"
 #include "core/mesh/simplify.h"
 #include "core/tabs/tab_clearance.h"
@@ -77,7 +79,8 @@ Piece grow_pieces(const Mesh& mesh, const JobOptions& options, std::size_t overl
           false,
           0,
           iterations,
-          GrownPieces{std::move(grown.piece), static_cast<std::size_t>(grown.pieces), overlaps}};
+          GrownPieces{std::move(grown.piece), static_cast<std::size_t>(grown.pieces), overlaps,
+                      build_dual_graph(mesh).is_tree()}};
 }
 
 // `collapsed`: `mesh` is the part collapsed by detail (kCollapsedFinishSeconds).
@@ -92,7 +95,15 @@ Piece unfold_mesh(const Mesh& mesh, const JobOptions& options, double seconds,
     // Every face is in the net: the steps after it need their time for all of them.
     const double kept = after.per_face * static_cast<double>(mesh.faces.size()) - after.reserved;
     tabu.time_limit_seconds = std::max(kLeastSeconds, seconds - std::max(0.0, kept));
-    UnfoldResult r = unfold_tabu(mesh, tabu, progress);
+    UnfoldResult r;
+    try {
+      r = unfold_tabu(mesh, tabu, progress);
+    } catch (const InvalidInputException&) {
+      // Its dual graph is a tree and its one edge unfolding overlaps: no net in one piece at all,
+      // as the progressive strategies find when they unfold the whole part.
+      if (!build_dual_graph(mesh).is_tree()) throw;
+      return grow_pieces(mesh, options, 0, 0);
+    }
     if (!r.overlap_free) return grow_pieces(mesh, options, r.overlaps, r.stats.iterations);
     return {mesh, std::move(r.net), true, false, 0, r.stats.iterations, {}};
   }

@@ -22,6 +22,10 @@ std::size_t DualGraph::edge_count() const {
   return twice / 2;
 }
 
+bool DualGraph::is_tree() const {
+  return !neighbour.empty() && edge_count() + 1 == neighbour.size() && component_count() == 1;
+}
+
 std::size_t DualGraph::component_count() const {
   const int n = static_cast<int>(neighbour.size());
   std::vector<char> seen(n, 0);

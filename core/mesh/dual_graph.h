@@ -19,6 +19,9 @@ struct DualGraph {
   std::size_t edge_count() const;
   /// Number of connected components of the dual graph (0 for an empty mesh).
   std::size_t component_count() const;
+  /// True when the faces are connected and their adjacency has no cycle: the unfold tree is the
+  /// whole dual graph, so the mesh has a single edge unfolding.
+  bool is_tree() const;
 };
 
 /// Builds the dual graph of `mesh`.

@@ -27,15 +27,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// True when the faces' adjacency has no cycle: then the unfold tree is the whole dual graph.
-bool dual_graph_is_tree(const Mesh& mesh) {
-  const DualGraph graph = build_dual_graph(mesh);
-  std::size_t twice_edges = 0;
-  for (const auto& n : graph.neighbour)
-    for (int q : n) twice_edges += q >= 0 ? 1 : 0;
-  return twice_edges / 2 + 1 == mesh.faces.size();
-}
-
 // A dual edge {a, b} as an ordered pair.
 std::pair<int, int> dual_edge(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 
@@ -203,7 +194,7 @@ UnfoldResult tabu_attempts(const Mesh& mesh, const std::vector<int>* start,
       Unfolding other(mesh, min_perimeter_tree(mesh, build_dual_graph(mesh), seed));
       if (other.overlap_count() < unfolding.overlap_count()) unfolding = std::move(other);
     }
-    if (attempt == 0 && unfolding.overlap_count() > 0 && dual_graph_is_tree(mesh))
+    if (attempt == 0 && unfolding.overlap_count() > 0 && build_dual_graph(mesh).is_tree())
       throw InvalidInputException(
           "its dual graph is a tree (every edge between two faces must stay uncut to keep the "
           "net in one piece), so it has a single edge unfolding, and that one has " +

@@ -42,11 +42,13 @@ Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progres
 
 /// A net of several pieces grown from single faces (unfold_piece, when the unfolder found no
 /// overlap-free net in one piece): each face's piece, from 0, and how many; `overlaps` is what
-/// the unfolder's best single piece had left.
+/// the unfolder's best single piece had left. `tree`: the part's dual graph is a tree, so its one
+/// edge unfolding, which overlaps, is the only net in one piece there is (`overlaps` unset).
 struct GrownPieces {
   std::vector<int> piece;
   std::size_t pieces = 0;
   std::size_t overlaps = 0;
+  bool tree = false;
 };
 
 /// One part unfolded into one piece (engine/unfold_piece.cpp), or into grown pieces.

@@ -317,6 +317,54 @@ TEST(Pipeline, EveryPartIsItsOwnPieceOrOnlyTheLargestOrStrictRefusesThem) {
   EXPECT_EQ(run_pipeline(three_parts(), strict, {}, {}, quiet).net.pieces.size(), 1u);
 }
 
+// A ribbon wound three turns up a helix (radii 1 and 1.5, 36 steps of two triangles), as OBJ:
+// its dual graph is a path, so its only edge unfolding is the ribbon laid flat, which winds round
+// onto itself.
+JobInput helix_ribbon() {
+  std::string obj;
+  constexpr int kSteps = 36;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double t = 2 * M_PI * 3 * i / kSteps, z = 0.05 * i;
+    for (const double r : {1.0, 1.5})
+      obj += "v " + std::to_string(r * std::cos(t)) + " " + std::to_string(r * std::sin(t)) + " " +
+             std::to_string(z) + "\n";
+  }
+  for (int i = 0; i < kSteps; ++i) {
+    const int a = 2 * i + 1;
+    obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 2) +
+           "\nf " + std::to_string(a + 1) + " " + std::to_string(a + 3) + " " +
+           std::to_string(a + 2) + "\n";
+  }
+  return {obj, MeshFormat::Obj, {}};
+}
+
+// A part with no net in one piece at all (the ribbon above) is unfolded in grown pieces by every
+// strategy, Tabu Unfolding too (which refused it, exit 2, before), and the warning says that no
+// such net exists rather than that a longer time limit may find one.
+TEST(Pipeline, APartWhoseOnlyUnfoldingOverlapsIsUnfoldedInPiecesByEveryStrategy) {
+  PipelineProgress quiet;
+  for (const Strategy strategy : {Strategy::TU, Strategy::AUTO, Strategy::QQ}) {
+    SCOPED_TRACE(static_cast<int>(strategy));
+    JobOptions options = tu();
+    options.strategy = strategy;
+    const UnfoldOutcome out = run_pipeline(helix_ribbon(), options, {}, {.svg_pages = true}, quiet);
+    EXPECT_EQ(out.net.mesh.faces.size(), 72u);
+    EXPECT_GT(*std::max_element(out.net.piece.begin(), out.net.piece.end()), 0);
+    expect_checked(out);
+    const auto warning =
+        std::find_if(out.net.warnings.begin(), out.net.warnings.end(),
+                     [](const NetRepair& w) { return w.code == "unfolded_in_pieces"; });
+    ASSERT_NE(warning, out.net.warnings.end());
+    EXPECT_EQ(warning->count, 1u);
+    EXPECT_NE(warning->message.find("no overlap-free net in one piece exists for 1 part of 72 "
+                                    "faces (its faces join without a loop: its dual graph is a "
+                                    "tree"),
+              std::string::npos)
+        << warning->message;
+    EXPECT_EQ(warning->message.find("longer time limit"), std::string::npos) << warning->message;
+  }
+}
+
 // One defect of each kind a real model has, each in a small mesh of its own: a pinch (two
 // tetrahedra sharing a vertex), an edge of three faces (a fin on a tetrahedron), a zero-area
 // face (a cap closing a T-junction in a square) and a flipped face (in a tetrahedron).
