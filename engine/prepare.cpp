@@ -91,6 +91,13 @@ Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progres
   }
   if (progress.cancelled()) throw CancelledException();
   ValidationReport report = validate(mesh);
+  if (mesh.faces.empty() && !report.problems.empty() &&
+      report.problems.front().code == "empty_mesh") {
+    // Every face the file has was repaired away (all of zero area, say): say which repairs.
+    std::string repairs;
+    for (const NetRepair& r : out.repairs) repairs += (repairs.empty() ? "" : "; ") + r.message;
+    report.problems.front().message = "the mesh has no faces left after repair: " + repairs;
+  }
   if (!options.strict)
     for (const MeshProblem& p : report.problems)
       if (p.blocking && p.code != "several_components")  // repair leaves none: a bug if it did

@@ -527,6 +527,22 @@ TEST(Pipeline, EachDefectIsRepairedAndReportedAndStrictRefusesIt) {
   EXPECT_GE(out.net.pieces.size(), 5u);
 }
 
+// A file whose every face is repaired away (one of zero area, one repeating it) is refused with
+// the repairs that left nothing, not only with "no faces": the file had two.
+TEST(Pipeline, AMeshWithNoFaceLeftAfterRepairIsRefusedNamingTheRepairs) {
+  PipelineProgress quiet;
+  const JobInput input{"v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 2 3\n", MeshFormat::Obj, {}};
+  try {
+    run_pipeline(input, tu(), {}, {}, quiet);
+    ADD_FAILURE() << "no InvalidMeshException";
+  } catch (const InvalidMeshException& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "the mesh has no faces left after repair: removed 1 degenerate face (zero area or a "
+              "repeated vertex) without opening the surface: faces 0; removed 1 duplicate face "
+              "(the same three vertices as another face): faces 1");
+  }
+}
+
 TEST(Pipeline, LimitsAndPrintOptionsAreRefusedByName) {
   PipelineProgress quiet;
   PipelineLimits limits;
