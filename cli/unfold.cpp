@@ -277,8 +277,12 @@ int unfold(int argc, char** argv) {
                               " an overview")
                 << "), " << out.print->pieces << " piece(s), " << out.print->tabs << " glue tabs, "
                 << out.print->strips << " glue strips, " << out.print->tabs_omitted
-                << " cut edges without glue, smallest label " << out.print->smallest_label_mm
-                << " mm (" << out.print->small_labels << " under " << kLegibleLabelMm << " mm)\n";
+                << " cut edges without glue, ";
+      if (out.print->labels == 0)
+        std::cerr << "no edge labels\n";
+      else
+        std::cerr << "smallest label " << out.print->smallest_label_mm << " mm ("
+                  << out.print->small_labels << " under " << kLegibleLabelMm << " mm)\n";
       if (!out.print->layout_note.empty())
         std::cerr << "papernet unfold: " << output << ": " << out.print->layout_note << "\n";
     }

@@ -341,6 +341,26 @@ TEST(UnfoldCli, RepairsWhatItCanAndStrictRefusesIt) {
   }
 }
 
+// The page summary says "no edge labels" when none is printed, not "smallest label 0 mm": with
+// --labels no, and for a net of one piece (a single face: nothing glued).
+TEST(UnfoldCli, APrintWithoutLabelsSaysSoInItsSummary) {
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string face = scratch / "face.obj", out = scratch / "out.svg";
+  {
+    std::ofstream obj(face);
+    obj << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  }
+  for (const std::string& run : {face, test_data_dir() + "/sample.obj --labels no"}) {
+    std::string said;
+    ASSERT_EQ(papernet("unfold " + run + " -o " + out, &said), 0) << said;
+    EXPECT_NE(said.find(" cut edges without glue, no edge labels\n"), std::string::npos) << said;
+    EXPECT_EQ(said.find("smallest label"), std::string::npos) << said;
+  }
+  std::string said;
+  ASSERT_EQ(papernet("unfold " + test_data_dir() + "/sample.obj -o " + out, &said), 0) << said;
+  EXPECT_NE(said.find(" cut edges without glue, smallest label "), std::string::npos) << said;
+}
+
 // With no overlap-free net in one piece within the time limit (Tabu Unfolding given a millisecond
 // for a CAD part of 1,466 faces), the command still writes a net, in pieces grown from single
 // faces: exit 0, the warning on stderr, grown=1 in the summary line.
