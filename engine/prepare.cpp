@@ -96,7 +96,8 @@ Prepared prepare(LoadedMesh loaded, const JobOptions& options, Progress& progres
     // Every face the file has was repaired away (all of zero area, say): say which repairs.
     std::string repairs;
     for (const NetRepair& r : out.repairs) repairs += (repairs.empty() ? "" : "; ") + r.message;
-    report.problems.front().message = "the mesh has no faces left after repair: " + repairs;
+    if (!repairs.empty())
+      report.problems.front().message = "the mesh has no faces left after repair: " + repairs;
   }
   if (!options.strict)
     for (const MeshProblem& p : report.problems)
