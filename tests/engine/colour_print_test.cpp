@@ -1019,10 +1019,8 @@ TEST(ColourPrintTime, PagesPastTheTimeLimitPrintTheirColourAtALowerResolution) {
     lowest = std::min(lowest, dpi);
   }
   ASSERT_LE(first_lowered, 2u);
-  const auto warning =
-      std::find_if(late.net.warnings.begin(), late.net.warnings.end(),
-                   [](const NetRepair& w) { return w.code == "colour_resolution_lowered"; });
-  ASSERT_NE(warning, late.net.warnings.end());
+  const NetRepair* warning = entry_of(late.net.warnings, "colour_resolution_lowered");
+  ASSERT_NE(warning, nullptr);
   EXPECT_EQ(warning->count, pages.size() - first_lowered);
   EXPECT_NE(warning->message.find("pages " + std::to_string(first_lowered + 1) + " to " +
                                   std::to_string(pages.size()) + " print"),

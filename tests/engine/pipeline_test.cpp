@@ -187,9 +187,7 @@ TEST(Pipeline, AnApproximatePieceSaysItHasNoUvs) {
   ASSERT_EQ(out.net.result, "approximate");
   ASSERT_EQ(out.net.colour.uvs.size(), out.net.mesh.faces.size());
   for (const auto& f : out.net.colour.uvs) EXPECT_TRUE(std::isnan(f[0][0]));
-  bool said = false;
-  for (const NetRepair& r : out.net.repairs) said |= r.code == "approximate_pieces_uncoloured";
-  EXPECT_TRUE(said);
+  EXPECT_NE(entry_of(out.net.repairs, "approximate_pieces_uncoloured"), nullptr);
 }
 
 // The Duck at the defaults folds into a coarser mesh of its own faces, without texture
@@ -231,9 +229,7 @@ TEST(Pipeline, AnApproximatePieceOfATexturedModelCarriesItsColoursAtItsCorners) 
   EXPECT_GT(yellow, corners * 8 / 10) << yellow << " of " << corners;
   EXPECT_GT(orange, corners / 50) << orange << " of " << corners;
   for (const int m : c.face_materials) EXPECT_EQ(m, -1);
-  bool said = false;
-  for (const NetRepair& r : out.net.repairs) said |= r.code == "approximate_pieces_vertex_coloured";
-  EXPECT_TRUE(said);
+  EXPECT_NE(entry_of(out.net.repairs, "approximate_pieces_vertex_coloured"), nullptr);
 }
 
 TEST(Pipeline, ATextureThatCannotBeUsedGivesANetAndANote) {
@@ -253,9 +249,7 @@ TEST(Pipeline, ATextureThatCannotBeUsedGivesANetAndANote) {
   EXPECT_TRUE(out.net.colour.textures.empty());
   EXPECT_EQ(out.net.colour.materials.at(0).texture, -1);
   EXPECT_EQ(out.net.colour.uvs.size(), 12u);
-  bool said = false;
-  for (const NetRepair& r : out.net.repairs) said |= r.code == "texture_not_used";
-  EXPECT_TRUE(said);
+  EXPECT_NE(entry_of(out.net.repairs, "texture_not_used"), nullptr);
 }
 
 // Three tetrahedra apart (the third smaller): three parts.
@@ -351,10 +345,8 @@ TEST(Pipeline, APartWhoseOnlyUnfoldingOverlapsIsUnfoldedInPiecesByEveryStrategy)
     EXPECT_EQ(out.net.mesh.faces.size(), 72u);
     EXPECT_GT(*std::max_element(out.net.piece.begin(), out.net.piece.end()), 0);
     expect_checked(out);
-    const auto warning =
-        std::find_if(out.net.warnings.begin(), out.net.warnings.end(),
-                     [](const NetRepair& w) { return w.code == "unfolded_in_pieces"; });
-    ASSERT_NE(warning, out.net.warnings.end());
+    const NetRepair* warning = entry_of(out.net.warnings, "unfolded_in_pieces");
+    ASSERT_NE(warning, nullptr);
     EXPECT_EQ(warning->count, 1u);
     EXPECT_NE(warning->message.find("no overlap-free net in one piece exists for 1 part of 72 "
                                     "faces (its faces join without a loop: its dual graph is a "
@@ -392,10 +384,8 @@ TEST(Pipeline, DetailAutoLeavesOutPartsTooSmallToBuild) {
     for (const NetPiece& p : out.net.pieces) parts.insert(p.component);
     return parts.size();
   };
-  const auto left_out = [](const UnfoldOutcome& out) -> const NetRepair* {
-    for (const NetRepair& w : out.net.warnings)
-      if (w.code == "small_parts_left_out") return &w;
-    return nullptr;
+  const auto left_out = [](const UnfoldOutcome& out) {
+    return entry_of(out.net.warnings, "small_parts_left_out");
   };
   JobOptions options;
   options.size_mm = 60;

@@ -3,7 +3,6 @@
 // checker, one root per piece.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <map>
 #include <regex>
 #include <set>
@@ -217,10 +216,8 @@ TEST(Placements, APartWithNoNetInOnePieceIsUnfoldedInGrownPieces) {
   options.time_limit = 1e-3;
   const Printed printed = print("thingi10k_65004.stl", options);
   const NetDocument& doc = printed.doc;
-  const auto warning =
-      std::find_if(doc.warnings.begin(), doc.warnings.end(),
-                   [](const NetRepair& w) { return w.code == "unfolded_in_pieces"; });
-  ASSERT_NE(warning, doc.warnings.end());
+  const NetRepair* warning = entry_of(doc.warnings, "unfolded_in_pieces");
+  ASSERT_NE(warning, nullptr);
   EXPECT_EQ(warning->count, 1u);
   EXPECT_EQ(doc.result, "complete");
   EXPECT_EQ(doc.mesh.faces.size(), 1466u);

@@ -5,7 +5,6 @@
 // measure the sanitizer's slowness.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -118,9 +117,8 @@ TEST(TimeLimit, PagesPrintWithoutColourWhereEvenTheLowestResolutionWouldOverrun)
   EXPECT_EQ(out.print->layout, "tile");
   const auto& pages = out.documents.svg_pages;
   ASSERT_EQ(pages.size(), static_cast<std::size_t>(out.print->pages));
-  const auto warning = std::find_if(out.net.warnings.begin(), out.net.warnings.end(),
-                                    [](const NetRepair& w) { return w.code == "colour_left_out"; });
-  ASSERT_NE(warning, out.net.warnings.end());
+  const NetRepair* warning = entry_of(out.net.warnings, "colour_left_out");
+  ASSERT_NE(warning, nullptr);
   const std::size_t without = warning->count, first = pages.size() - without;
   EXPECT_NE(warning->message.find("pages " + std::to_string(first + 1) + " to " +
                                   std::to_string(pages.size()) + " print without their colour"),

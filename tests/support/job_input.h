@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/io/load.h"
 #include "engine/pipeline.h"
@@ -29,6 +31,13 @@ inline JobInput data_file(const std::string& name) {
         input.external_files[entry.path().filename().string()] =
             read_mesh_file(entry.path().string(), 64 << 20);
   return input;
+}
+
+/// The entry of a result's `warnings` or `repairs` with code `code`, or null.
+inline const NetRepair* entry_of(const std::vector<NetRepair>& entries, std::string_view code) {
+  for (const NetRepair& entry : entries)
+    if (entry.code == code) return &entry;
+  return nullptr;
 }
 
 }  // namespace papernet::test
