@@ -52,7 +52,7 @@ struct NetMetrics {
 
 /// The `print` object: how the pieces lie on the printed sheets (README.md "The net").
 struct NetPrint {
-  std::string paper;                             ///< "A4", "A3", "Letter" or "WxHmm"
+  std::string paper;  ///< a name of named_papers() (print/pages.h) or "WxHmm"
   double page_width_mm = 0, page_height_mm = 0;  ///< the page as printed (landscape when tiled so)
   double margin_mm = 0;                          ///< unprinted border on each side of a page
   double mm_per_unit = 1;                        ///< the print's scale

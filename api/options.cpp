@@ -148,7 +148,7 @@ std::string paper(const std::string& name, const json& value) {
   try {
     return parse_paper(s).name;
   } catch (const InvalidOptionException&) {
-    bad_value(name, value, "a paper: A4, A3, Letter, WxHmm (e.g. 300x200mm) or none");
+    bad_value(name, value, "a paper: " + paper_names() + " (e.g. 300x200mm) or none");
   }
 }
 
@@ -189,7 +189,8 @@ constexpr Spec kOptions[] = {
      [](JobOptions& o, const std::string& n, const json& v) { o.size_mm = number(n, v); }},
     {"scale", "F", "millimetres per model unit (instead of the size)",
      [](JobOptions& o, const std::string& n, const json& v) { o.scale = number(n, v); }},
-    {"paper", "P", "A4, A3, Letter, WxHmm, or none (the SVG sized to the net)",
+    {"paper", "P",
+     "A4, A3, A5, Letter, Legal, Tabloid (11 x 17 in), WxHmm, or none (the SVG sized to the net)",
      [](JobOptions& o, const std::string& n, const json& v) { o.paper = paper(n, v); }},
     {"margin_mm", "LEN", "page margin, mm",
      [](JobOptions& o, const std::string& n, const json& v) { o.margin_mm = number(n, v); }},

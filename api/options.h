@@ -57,7 +57,8 @@ struct JobOptions {
   std::optional<double> size_mm;
   /// Millimetres per mesh unit (exclusive with `size_mm`); neither set means 200 mm.
   std::optional<double> scale;
-  /// "A4", "A3", "Letter", "WxHmm" or "none" (the SVG sized to the net; the PDF on A4).
+  /// A name of named_papers() (print/pages.h), "WxHmm" or "none" (the SVG sized to the net; the
+  /// PDF on A4).
   std::string paper = PageOptions{}.paper.name;
   double margin_mm = PageOptions{}.margin_mm;
   /// Shared strip between neighbouring tiles of a net larger than a page (layout tile).

@@ -40,11 +40,23 @@ std::string shortest(double v) {
 
 }  // namespace
 
+const std::vector<Paper>& named_papers() {
+  static const std::vector<Paper> papers = {{"A4", 210, 297},        {"A3", 297, 420},
+                                            {"A5", 148, 210},        {"Letter", 215.9, 279.4},
+                                            {"Legal", 215.9, 355.6}, {"Tabloid", 279.4, 431.8}};
+  return papers;
+}
+
+std::string paper_names() {
+  std::string out;
+  for (const Paper& p : named_papers()) out += p.name + ", ";
+  return out + "WxHmm";
+}
+
 Paper parse_paper(std::string_view text) {
   const std::string t = lower(text);
-  if (t == "a4") return {"A4", 210, 297};
-  if (t == "a3") return {"A3", 297, 420};
-  if (t == "letter") return {"Letter", 215.9, 279.4};
+  for (const Paper& p : named_papers())
+    if (t == lower(p.name)) return p;
   double w = 0, h = 0;
   std::string_view rest;
   const std::string_view s = t;
@@ -54,7 +66,7 @@ Paper parse_paper(std::string_view text) {
     return {shortest(w) + "x" + shortest(h) + "mm", std::min(w, h), std::max(w, h)};
   throw InvalidOptionException(
       "invalid_option_value", "paper",
-      "unknown paper '" + std::string(text) + "': use A4, A3, Letter or WxHmm (e.g. 300x200mm)");
+      "unknown paper '" + std::string(text) + "': use " + paper_names() + " (e.g. 300x200mm)");
 }
 
 double parse_length_mm(std::string_view text) {

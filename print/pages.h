@@ -16,8 +16,14 @@ struct Paper {
   double width = 210, height = 297;
 };
 
-/// Parses "A4", "A3", "Letter" (any case) or "WxHmm" / "WxH" in millimetres ("300x200mm"; its
-/// name is then written "300x200mm"). \throw InvalidOptionException naming the bad value.
+/// The papers known by name: A4, A3, A5, Letter, Legal and Tabloid (ANSI B, 11 x 17 in).
+const std::vector<Paper>& named_papers();
+
+/// "A4, A3, A5, Letter, Legal, Tabloid, WxHmm": what parse_paper takes, for messages and help.
+std::string paper_names();
+
+/// Parses a paper of named_papers() (any case) or "WxHmm" / "WxH" in millimetres ("300x200mm";
+/// its name is then written "300x200mm"). \throw InvalidOptionException naming the bad value.
 Paper parse_paper(std::string_view text);
 
 /// Parses a length: "200mm", "20cm", "8in", "150pt" or a bare number of millimetres.

@@ -1,8 +1,16 @@
 // TypeScript declarations of papernet.js (the papernet HTTP API client).
 
 export type Strategy = "AUTO" | "QQ" | "SEMP" | "SEQ" | "TU";
-/** A4, A3, Letter, a size "WxHmm" (e.g. "300x200mm"), or none (the SVG sized to the net). */
-export type Paper = "A4" | "Letter" | "A3" | "none" | `${number}x${number}mm`;
+/** A4, A3, A5, Letter, Legal, Tabloid, a size "WxHmm" (e.g. "300x200mm"), or none (the SVG sized to the net). */
+export type Paper =
+  | "A4"
+  | "Letter"
+  | "A3"
+  | "A5"
+  | "Legal"
+  | "Tabloid"
+  | "none"
+  | `${number}x${number}mm`;
 export type MeshFormat = "glb" | "gltf" | "drc" | "obj" | "off" | "ply" | "stl";
 export type JobStatus = "queued" | "running" | "succeeded" | "approximated" | "failed" | "cancelled";
 export type ResultFile = "net.json" | "net.svg" | "net.pdf" | "mesh.glb";

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <exception>
 #include <fstream>
 #include <iterator>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "api/openapi.h"
+#include "print/pages.h"
 #include "tests/support/paths.h"
 
 using namespace papernet;
@@ -342,6 +344,18 @@ TEST(OptionsTest, PaperIsANamedSheetOrASizeAndABadOneIsNamed) {
             "option_out_of_range");
   EXPECT_EQ(option, "margin_mm");
   EXPECT_EQ(error_code([] { parse_options_json(R"({"paper":"30x30mm","margin_mm":2})"); }), "");
+  // Each paper known by name is taken in any case, and the help and the OpenAPI document name it.
+  const std::string help = options_help();
+  const nlohmann::json api = nlohmann::json::parse(openapi_document());
+  const std::string described =
+      api["components"]["schemas"]["Options"]["properties"]["paper"]["description"];
+  for (const Paper& p : named_papers()) {
+    std::string lower = p.name;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    EXPECT_EQ(parse_options_query({{"paper", lower}}).paper, p.name);
+    EXPECT_NE(help.find(p.name), std::string::npos) << p.name;
+    EXPECT_NE(described.find(p.name), std::string::npos) << p.name;
+  }
 }
 
 // The command line reads the same options by their flags: lengths with units, yes/no options

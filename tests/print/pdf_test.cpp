@@ -52,7 +52,20 @@ TEST(Pages, ParsePaperAndLengths) {
   const Paper p = parse_paper("300x200mm");
   EXPECT_DOUBLE_EQ(p.width, 200);
   EXPECT_DOUBLE_EQ(p.height, 300);
+  EXPECT_DOUBLE_EQ(parse_paper("A5").width, 148);
+  EXPECT_DOUBLE_EQ(parse_paper("a5").height, 210);
+  EXPECT_DOUBLE_EQ(parse_paper("LEGAL").height, 355.6);
+  EXPECT_DOUBLE_EQ(parse_paper("Tabloid").width, 279.4);
+  EXPECT_DOUBLE_EQ(parse_paper("tabloid").height, 431.8);
   EXPECT_THROW(parse_paper("B5"), std::invalid_argument);
+  try {
+    parse_paper("A6");
+    ADD_FAILURE() << "A6 taken";
+  } catch (const InvalidOptionException& e) {  // the refusal lists what is taken
+    EXPECT_NE(std::string(e.what()).find("A4, A3, A5, Letter, Legal, Tabloid, WxHmm"),
+              std::string::npos)
+        << e.what();
+  }
   EXPECT_THROW(parse_paper("0x10mm"), std::invalid_argument);
   EXPECT_DOUBLE_EQ(parse_length_mm("200mm"), 200);
   EXPECT_DOUBLE_EQ(parse_length_mm("2cm"), 20);

@@ -662,7 +662,7 @@ TEST_P(ServeTest, BadPaperIs400NamingItAndAMeshInPartsIsPiecesOrStrictlyTheMeshP
   auto multipart = c.Post(
       "/v1/jobs",
       httplib::MultipartFormDataItems{{"mesh", cube, "sample.obj", "model/obj"},
-                                      {"options", R"({"paper":"A5"})", "", "application/json"}});
+                                      {"options", R"({"paper":"A6"})", "", "application/json"}});
   ASSERT_TRUE(multipart);
   EXPECT_EQ(multipart->status, 400);
   EXPECT_EQ(json::parse(multipart->body)["option"], "paper");
