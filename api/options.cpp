@@ -127,6 +127,13 @@ TabMode tab_mode(const std::string& name, const json& value) {
   bad_value(name, value, "one of auto, strips, none (or true, false)");
 }
 
+FitGoal fit_goal(const std::string& name, const json& value) {
+  const std::string s = lower(text(name, value));
+  if (s == "sheets") return FitGoal::Sheets;
+  if (s == "pieces") return FitGoal::Pieces;
+  bad_value(name, value, "sheets or pieces");
+}
+
 Detail detail(const std::string& name, const json& value) {
   if (value.is_string()) {
     const std::string s = lower(value.get<std::string>());
@@ -212,6 +219,10 @@ constexpr Spec kOptions[] = {
        else
          bad_value(n, v, "fit or tile");
      }},
+    {"prefer", "sheets|pieces",
+     "layout fit: sheets, the fewest sheets, one fewer worth up to 20 more pieces and glue strips "
+     "to cut out; pieces, the fewest pieces and strips, one fewer worth up to 20 more sheets",
+     [](JobOptions& o, const std::string& n, const json& v) { o.prefer = fit_goal(n, v); }},
     {"tabs", "MODE",
      "auto: a glue tab where one fits, else a separate glue strip; strips: strips only; none: "
      "no glue",
@@ -512,6 +523,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"margin_mm", o.margin_mm},
               {"overlap_mm", o.overlap_mm},
               {"layout", o.layout ? json(page_layout_name(*o.layout)) : json(nullptr)},
+              {"prefer", fit_goal_name(o.prefer)},
               {"tabs", tab_mode_name(o.tabs)},
               {"tab_height_mm", o.tab_height_mm},
               {"min_tab_height_mm", o.min_tab_height_mm},
@@ -596,6 +608,7 @@ PrintOptions print_options(const JobOptions& o) {
   print.min_tab_height_mm = o.min_tab_height_mm;
   print.tab_room_budget = o.tab_room_budget;
   print.merge_budget = o.merge_budget;
+  print.prefer = o.prefer;
   print.labels = o.labels;
   return print;
 }

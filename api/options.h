@@ -68,6 +68,8 @@ struct JobOptions {
   /// sheet is an error) or tile (each part one piece, tiled across pages to tape together).
   /// Unset: fit, or tile when a face is larger than a sheet (the result says so).
   std::optional<PageLayoutMode> layout;
+  /// What the fit layout saves first: sheets (the default), or pieces and glue strips to cut out.
+  FitGoal prefer = PrintOptions{}.prefer;
   /// Glue: auto (tabs on the net where they fit, after making room for them; strips for the
   /// rest), strips (only strips) or none.
   TabMode tabs = PrintOptions{}.tabs;

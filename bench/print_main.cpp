@@ -1,9 +1,10 @@
 // papernet-print-bench [--bench DIR] [--res 400,1000] [--size-mm 200] [--detail full|auto|N]
-//                      [--margin-mm 10] [--blender TSV]
+//                      [--margin-mm 10] [--prefer sheets|pieces] [--blender TSV]
 // What a person printing on A4 gets (docs/print.md, "Against Blender's exporter"): for each mesh
 // of DIR/RES/*.obj, one job in this process as `papernet unfold MESH -o kit.pdf` runs it (layout
 // fit, the default strategy, tabs auto, no colour) at SIZE mm with the given detail and page
-// margins (papernet's default: 10 mm; the Blender run must use the same); the sheets,
+// margins (papernet's default: 10 mm; the Blender run must use the same), saving sheets (the
+// default) or pieces first (the job's `prefer`); the sheets,
 // pieces, tabs, strips, smallest label and seconds. With --blender, the TSV that
 // blender_print_peer.py wrote for the same meshes (Blender's bundled "Export Paper Model" add-on,
 // "limit island size" on), side by side, and the targets counted. Prints Markdown; it is
@@ -34,8 +35,8 @@ struct Ours {
   bool overview = false;
   int pieces = 0;
   bool tiled = false;
-  std::size_t tabs = 0, strips = 0, small_labels = 0;
-  double smallest_label_mm = 0;
+  std::size_t tabs = 0, strips = 0, labels = 0, small_labels = 0;
+  double smallest_label_mm = 0;  ///< 0 without labels
   double seconds = 0;
   std::string error;  ///< the job's error (refused), or empty
 };
@@ -46,7 +47,8 @@ struct Peer {
   std::string error;
 };
 
-Ours run_one(const fs::path& path, double size_mm, double margin_mm, const Detail& detail) {
+Ours run_one(const fs::path& path, double size_mm, double margin_mm, const Detail& detail,
+             FitGoal prefer) {
   Ours r;
   r.mesh = path.filename().string();
   const auto start = std::chrono::steady_clock::now();
@@ -60,6 +62,7 @@ Ours run_one(const fs::path& path, double size_mm, double margin_mm, const Detai
     options.layout = PageLayoutMode::Fit;
     options.colour = false;
     options.detail = detail;
+    options.prefer = prefer;
     PipelineProgress quiet;
     const UnfoldOutcome out = run_pipeline(input, options, {}, {.pdf = true}, quiet);
     r.faces = out.net.mesh.faces.size();
@@ -70,6 +73,7 @@ Ours run_one(const fs::path& path, double size_mm, double margin_mm, const Detai
       r.tiled = out.print->layout != "fit";
       r.tabs = out.print->tabs;
       r.strips = out.print->strips;
+      r.labels = out.print->labels;
       r.small_labels = out.print->small_labels;
       r.smallest_label_mm = out.print->smallest_label_mm;
     }
@@ -128,7 +132,7 @@ std::vector<std::string> split(const std::string& list) {
 }
 
 int run(const std::string& bench, const std::vector<std::string>& resolutions, double size_mm,
-        double margin_mm, const std::string& detail, const std::string& blender) {
+        double margin_mm, const std::string& detail, FitGoal prefer, const std::string& blender) {
   const std::map<std::string, Peer> peer =
       blender.empty() ? std::map<std::string, Peer>{} : read_peer(blender);
   const bool with_peer = !peer.empty();
@@ -138,8 +142,9 @@ int run(const std::string& bench, const std::vector<std::string>& resolutions, d
       if (entry.path().extension() == ".obj") meshes.push_back(entry.path());
     std::sort(meshes.begin(), meshes.end());
     if (meshes.empty()) throw std::runtime_error("no .obj meshes in " + bench + "/" + res);
-    std::printf("### %s faces: %zu meshes, %.0f mm on A4, %g mm margins, detail %s\n\n",
-                res.c_str(), meshes.size(), size_mm, margin_mm, detail.c_str());
+    std::printf("### %s faces: %zu meshes, %.0f mm on A4, %g mm margins, detail %s%s\n\n",
+                res.c_str(), meshes.size(), size_mm, margin_mm, detail.c_str(),
+                prefer == FitGoal::Pieces ? ", saving pieces first" : "");
     std::printf(
         "| mesh | sheets | pieces | tabs | strips | smallest label (under 1.5 mm) | s |%s\n",
         with_peer ? " Blender sheets | Blender islands | Blender s |" : "");
@@ -147,7 +152,7 @@ int run(const std::string& bench, const std::vector<std::string>& resolutions, d
     std::vector<double> pieces, seconds, sheets, peer_sheets, peer_islands;
     int refused = 0, tiled = 0, both = 0, not_more = 0, peer_refused = 0, peer_missing = 0;
     for (const fs::path& path : meshes) {
-      const Ours r = run_one(path, size_mm, margin_mm, parse_detail(detail));
+      const Ours r = run_one(path, size_mm, margin_mm, parse_detail(detail), prefer);
       std::string mesh = r.mesh.substr(0, r.mesh.size() - 4);
       if (!r.error.empty()) {
         ++refused;
@@ -158,9 +163,12 @@ int run(const std::string& bench, const std::vector<std::string>& resolutions, d
         pieces.push_back(r.pieces);
         seconds.push_back(r.seconds);
         sheets.push_back(r.sheets);
-        std::printf("| %s | %d%s | %d | %zu | %zu | %.2f mm (%zu) | %.1f |", mesh.c_str(), r.sheets,
-                    r.tiled ? " tiled" : "", r.pieces, r.tabs, r.strips, r.smallest_label_mm,
-                    r.small_labels, r.seconds);
+        char smallest[64] = "none";  // a print without labels: one piece, no tab
+        if (r.labels > 0)
+          std::snprintf(smallest, sizeof smallest, "%.2f mm (%zu)", r.smallest_label_mm,
+                        r.small_labels);
+        std::printf("| %s | %d%s | %d | %zu | %zu | %s | %.1f |", mesh.c_str(), r.sheets,
+                    r.tiled ? " tiled" : "", r.pieces, r.tabs, r.strips, smallest, r.seconds);
       }
       if (with_peer) {
         const auto it = peer.find(res + "/" + r.mesh);
@@ -208,6 +216,7 @@ int main(int argc, char** argv) {
   std::string bench = PAPERNET_SHARED_DATA "/bench", blender, detail = "full";
   std::vector<std::string> resolutions{"400", "1000"};
   double size_mm = 200, margin_mm = papernet::JobOptions{}.margin_mm;
+  papernet::FitGoal prefer = papernet::FitGoal::Sheets;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--bench")
@@ -222,9 +231,12 @@ int main(int argc, char** argv) {
       margin_mm = std::stod(value);
     else if (flag == "--blender")
       blender = value;
+    else if (flag == "--prefer" && (value == "sheets" || value == "pieces"))
+      prefer = value == "pieces" ? papernet::FitGoal::Pieces : papernet::FitGoal::Sheets;
     else {
       std::cerr << "usage: papernet-print-bench [--bench DIR] [--res 400,1000] [--size-mm 200] "
-                   "[--detail full|auto|N] [--margin-mm 10] [--blender TSV]\n";
+                   "[--detail full|auto|N] [--margin-mm 10] [--prefer sheets|pieces] "
+                   "[--blender TSV]\n";
       return 1;
     }
   }
@@ -233,7 +245,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    return papernet::bench::run(bench, resolutions, size_mm, margin_mm, detail, blender);
+    return papernet::bench::run(bench, resolutions, size_mm, margin_mm, detail, prefer, blender);
   } catch (const std::exception& e) {
     std::cerr << "papernet-print-bench: " << e.what() << "\n";
     return 1;

@@ -213,10 +213,6 @@ constexpr FitWay kFitWays[] = {
     {FitWay::Cut, 0.4, 0.85}, {FitWay::Cut, 0.7, 1},   {FitWay::Cut, 0.5, 1},
     {FitWay::Cut, 0.4, 1}};
 
-// What a piece, or a glue strip, costs against a sheet when the cuts are chosen: one sheet fewer
-// is worth up to this many more pieces and strips to cut out and glue.
-constexpr double kPiecesPerSheet = 20;
-
 // With detail=auto, a label under the legible size costs as much as this many pieces: the detail
 // was chosen for legible labels, and the few left under that size come from crowded short cut
 // edges, which another way of making pieces may not have (a scan of 76,840 faces: 17 pieces with
@@ -243,12 +239,23 @@ struct FitPrint {
   PrintLayout layout;
   PageLayout pages;
 
-  // Sheets, and pieces and glue strips (and, at `label_price` pieces each, labels under the
-  // legible size) at kPiecesPerSheet to a sheet.
-  double cost(double label_price) const {
+  // Pieces and glue strips to cut out, and at `label_price` pieces each labels under the legible
+  // size, against sheets: with FitGoal::Sheets, in sheets, the rest at kPiecesPerSheet to a sheet;
+  // with FitGoal::Pieces, in pieces, each sheet worth 1 / kPiecesPerSheet of a piece.
+  double cost(double label_price, FitGoal goal) const {
     const auto cut_out = static_cast<double>(pieces.pieces) + layout.strips.size() +
                          label_price * static_cast<double>(label_sizes(layout).illegible);
-    return static_cast<double>(pages.pages.size()) + cut_out / kPiecesPerSheet;
+    const auto sheets = static_cast<double>(pages.pages.size());
+    return goal == FitGoal::Sheets ? sheets + cut_out / kPiecesPerSheet
+                                   : cut_out + sheets / kPiecesPerSheet;
+  }
+
+  // Whether no print can cost less: it is on one sheet (Sheets: no sheet left to save, as
+  // pieces count for less), and one piece for each of the model's `parts` without a glue strip
+  // (Pieces: nothing left to save at all).
+  bool nothing_to_save(FitGoal goal, int parts) const {
+    return pages.pages.size() <= 1 &&
+           (goal == FitGoal::Sheets || (pieces.pieces <= parts && layout.strips.empty()));
   }
 };
 
@@ -316,14 +323,28 @@ class FitSearch {
     // The choice a search of one way at a time makes (the ways laid out are a prefix of the
     // list, less those it skips too).
     std::optional<std::size_t> best;
+    std::size_t end = std::size(kFitWays);  // the ways that search lays out: those before
     for (std::size_t i = 0; i < std::size(kFitWays); ++i) {
       if (!tried_[i].cost) continue;
       if (!best || *tried_[i].cost < *tried_[*best].cost) best = i;
-      if (tried_[*best].pages <= 1) break;
+      if (tried_[*best].last) {
+        end = i + 1;
+        break;
+      }
     }
     if (!best) throw std::logic_error("the fit search laid out no way");
     FitPrint chosen = std::move(kept_.at(*best));
     merge(chosen, progress);
+    // Saving pieces, the way that costs least in sheets is merged as well, and kept when it ends
+    // cheaper: its pieces, more but nested tighter, may merge into as few as the chosen way's on
+    // fewer sheets (tests/data's thingi10k 134617: 6 pieces on 4 sheets so, where the way of the
+    // fewest pieces laid out took 6 sheets for its 6 and merged no further).
+    if (fewest_sheets_ && fewest_sheets_->way != *best && fewest_sheets_->way < end) {
+      FitPrint other = std::move(fewest_sheets_->print);
+      merge(other, progress);
+      if (other.cost(label_price_, print_.prefer) < chosen.cost(label_price_, print_.prefer))
+        chosen = std::move(other);
+    }
     // Its labels, where the tries (and the merge's) left them out: the same faces, tabs, strips
     // and sheets. They are moved where they print legibly while the search's time lasts after
     // the layout (as long as a try) that places them.
@@ -368,7 +389,7 @@ class FitSearch {
     const double need = one_more();
     TabClearanceOptions tabs = tabs_;
     if (print_.tabs != TabMode::Auto) tabs.min_height = 0;
-    double cost = chosen.cost(label_price_);
+    double cost = chosen.cost(label_price_, print_.prefer);
     MergeBudget budget = MergeBudget::of_tests(print_.merge_budget);
     const double left = seconds_ - elapsed() - need;
     if (left <= 0) return;
@@ -387,12 +408,12 @@ class FitSearch {
       // Its labels only add to its cost (those under the legible size), and leave its sheets,
       // pieces and strips as they are: a merge that costs no less without them is refused before
       // they are placed, which is most of a layout's time on a net with small labels.
-      if (!(print.cost(0) < cost)) return false;
+      if (!(print.cost(0, print_.prefer) < cost)) return false;
       if (tries_ == LabelPass::Placed) {
         if (elapsed() + need > seconds_) throw OutOfTime{};
         lay_out_pages(mesh_, print, print_, gap_, page_, room_.alone, LabelPass::Placed);
       }
-      const double c = print.cost(label_price_);
+      const double c = print.cost(label_price_, print_.prefer);
       if (!(c < cost)) return false;
       cost = c;
       chosen = std::move(print);
@@ -420,8 +441,13 @@ class FitSearch {
 
   struct Tried {
     std::optional<double> cost;  // none: not laid out (yet)
-    std::size_t pages = 0;
+    bool last = false;           // no way after it can cost less
   };
+
+  // Whether no way after `print` can cost less (FitPrint::nothing_to_save).
+  bool last(const FitPrint& print) const {
+    return print.nothing_to_save(print_.prefer, static_cast<int>(net_.pieces.size()));
+  }
 
   // Takes the next way, makes its pieces and lays them out, until the ways or the time run out.
   // Only the thread with `progress` reports and looks for cancellation.
@@ -447,7 +473,8 @@ class FitSearch {
         const bool labels_last = tries_ == LabelPass::Placed && i > 0 && any_tried_before(i);
         FitPrint print = lay_out_fit(mesh_, std::move(cut), print_, gap_, page_, room_.alone,
                                      labels_last ? LabelPass::Unplaced : tries_);
-        const bool beaten = labels_last && beaten_before(i, print.cost(0));
+        const bool beaten = labels_last && beaten_before(i, print.cost(0, print_.prefer)) &&
+                            !fewest_sheets_yet(i, print.cost(0, FitGoal::Sheets));
         if (labels_last && !beaten)
           lay_out_pages(mesh_, print, print_, gap_, page_, room_.alone, LabelPass::Placed);
         const double took =
@@ -457,7 +484,7 @@ class FitSearch {
         ++laid_out_;
         ++passed_;
         if (beaten)
-          tried_[i] = {print.cost(0), print.pages.pages.size()};  // at most its cost: not kept
+          tried_[i] = {print.cost(0, print_.prefer), last(print)};  // at most its cost: not kept
         else
           keep(i, std::move(print));
       }
@@ -476,9 +503,10 @@ class FitSearch {
         return false;
       if (next_ > 0) {
         // Another way only while one more as long as the average ends in the time left (with
-        // the time kept for the labels), and while the best so far leaves sheets to save.
+        // the time kept for the labels), and while the best so far leaves sheets (or pieces)
+        // to save.
         if (laid_out_ > 0 && elapsed() + one_more() > seconds_) return false;
-        if (!kept_.empty() && kept_.rbegin()->second.pages.pages.size() <= 1) return false;
+        if (!kept_.empty() && last(kept_.rbegin()->second)) return false;
       }
       i = next_++;
       const FitWay way = kFitWays[i];
@@ -533,12 +561,29 @@ class FitSearch {
                        [&](const Tried& t) { return t.cost && *t.cost <= cost; });
   }
 
+  // Saving pieces, whether way i, costing `sheets` in sheets without its labels (they only add to
+  // it), may cost the least in sheets of the ways laid out so far (under the lock): then it is
+  // laid out with its labels and kept aside (keep) however many pieces it has.
+  bool fewest_sheets_yet(std::size_t i, double sheets) {
+    if (print_.prefer != FitGoal::Pieces) return false;
+    std::lock_guard lock(mutex_);
+    return !fewest_sheets_ || sheets < fewest_sheets_->cost ||
+           (sheets == fewest_sheets_->cost && i < fewest_sheets_->way);
+  }
+
   // Keeps way i's print, under the lock, while it can still be the choice: while no way before
   // it costs as little. Those after it that cost as much or more go, so that of the prints kept
-  // each costs less than those before it.
+  // each costs less than those before it. Saving pieces, it is also kept aside while it costs
+  // the least in sheets (the first of those that cost the same).
   void keep(std::size_t i, FitPrint print) {
-    const double cost = print.cost(label_price_);
-    tried_[i] = {cost, print.pages.pages.size()};
+    if (print_.prefer == FitGoal::Pieces) {
+      const double sheets = print.cost(label_price_, FitGoal::Sheets);
+      if (!fewest_sheets_ || sheets < fewest_sheets_->cost ||
+          (sheets == fewest_sheets_->cost && i < fewest_sheets_->way))
+        fewest_sheets_ = {i, sheets, print};
+    }
+    const double cost = print.cost(label_price_, print_.prefer);
+    tried_[i] = {cost, last(print)};
     for (std::size_t j = 0; j < i; ++j)
       if (tried_[j].cost && *tried_[j].cost <= cost) return;
     for (auto it = kept_.upper_bound(i); it != kept_.end();)
@@ -571,6 +616,14 @@ class FitSearch {
   std::array<Tried, std::size(kFitWays)> tried_{};
   // Each print kept costs less than those kept before it: the best so far is the last.
   std::map<std::size_t, FitPrint> kept_;
+  // Saving pieces (FitGoal::Pieces), the way laid out with its labels that costs least in
+  // sheets, merged too (run).
+  struct Kept {
+    std::size_t way;
+    double cost;
+    FitPrint print;
+  };
+  std::optional<Kept> fewest_sheets_;
   std::exception_ptr error_;
   bool cancelled_ = false;
   std::string tiled_because_;

@@ -28,6 +28,8 @@ std::string tab_mode_name(TabMode mode) {
   return "auto";
 }
 
+std::string fit_goal_name(FitGoal goal) { return goal == FitGoal::Pieces ? "pieces" : "sheets"; }
+
 void PrintOptions::validate() const {
   const auto fail = [](const char* option, const std::string& message) {
     throw InvalidOptionException("option_out_of_range", option, message);

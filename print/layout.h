@@ -12,6 +12,7 @@
 #include "core/unfold/folds.h"
 #include "core/unfold/net.h"
 #include "core/unfold/net_metrics.h"
+#include "print/fit_goal.h"
 #include "print/merge_budget.h"
 #include "print/strips.h"
 #include "print/tab_mode.h"
@@ -44,6 +45,8 @@ struct PrintOptions {
   /// more pieces on some meshes, at seconds more (docs/print.md, "Pieces merged after the
   /// search").
   std::size_t merge_budget = kDefaultMergeBudget;
+  /// What the fit layout saves first, sheets or pieces to cut out (FitGoal).
+  FitGoal prefer = FitGoal::Sheets;
   bool labels = true;
   double max_label_mm = 4;  ///< label text height cap; labels shrink to fit their face
   /// Clock limit of the labels' placement in seconds (not counting the layout before it); <= 0

@@ -34,6 +34,8 @@ export interface Options {
   margin_mm?: number;
   /** Overlap of the tiles of a net larger than a page, in millimetres. */
   overlap_mm?: number;
+  /** Layout fit: what the choice of pieces saves first, "sheets" (default) or "pieces" to cut out. */
+  prefer?: "sheets" | "pieces";
   /** Glue: "auto" (tabs where they fit, strips elsewhere), "strips", "none"; true = "auto", false = "none". */
   tabs?: "auto" | "strips" | "none" | boolean;
   /** Tallest glue tab and widest strip half in millimetres (default 6; 0: no glue). */

@@ -358,6 +358,19 @@ TEST(OptionsTest, PaperIsANamedSheetOrASizeAndABadOneIsNamed) {
   }
 }
 
+// What the fit layout saves first: sheets (the default) or pieces; anything else is named.
+TEST(OptionsTest, PreferIsSheetsOrPieces) {
+  std::string option;
+  EXPECT_EQ(JobOptions{}.prefer, FitGoal::Sheets);
+  EXPECT_EQ(parse_options_query({{"prefer", "Pieces"}}).prefer, FitGoal::Pieces);
+  EXPECT_EQ(parse_options_json(R"({"prefer":"sheets"})").prefer, FitGoal::Sheets);
+  EXPECT_EQ(options_to_json(parse_options_json(R"({"prefer":"pieces"})"))["prefer"], "pieces");
+  EXPECT_EQ(print_options(parse_options_json(R"({"prefer":"pieces"})")).prefer, FitGoal::Pieces);
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"prefer":"glue"})"); }, &option),
+            "invalid_option_value");
+  EXPECT_EQ(option, "prefer");
+}
+
 // The command line reads the same options by their flags: lengths with units, yes/no options
 // alone or with a word, and a bad value names the option.
 TEST(OptionsTest, CommandLineFlagsFillTheSameOptions) {

@@ -31,6 +31,7 @@ struct Printed {
   std::size_t pages = 0;
   int pieces = 0;
   NetDocument doc;
+  std::size_t strips = 0;
 };
 
 // `unfolded` printed on A4 with `seconds` for the search (0: only the largest pieces that fit),
@@ -44,7 +45,7 @@ Printed print(const UnfoldOutcome& unfolded, const JobOptions& options, double s
   if (svg)
     for (const std::string& page : out.documents.svg_pages) *svg += page;
   return {out.documents.svg_pages.size(), out.print ? out.print->pieces : 0,
-          read_net_json(out.documents.net_json)};
+          read_net_json(out.documents.net_json), out.print ? out.print->strips : 0};
 }
 
 TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
@@ -70,6 +71,33 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
   }
   std::printf("sample.obj on A4: %zu sheets with %d pieces; searched, %zu with %d\n", largest.pages,
               largest.pieces, searched.pages, searched.pieces);
+}
+
+// prefer=pieces (FitGoal::Pieces) chooses the print with the fewest pieces and glue strips to cut
+// out, a sheet worth a twentieth of one; prefer=sheets, the default, the fewest sheets, a piece
+// worth a twentieth of one. On sample.obj at the defaults: 7 pieces on 2 sheets, or 4 pieces on 3.
+// Both pass the net checker.
+TEST(FitSearch, SavingPiecesPrintsFewerPiecesOnMoreSheetsThanSavingSheets) {
+  JobOptions options;
+  options.colour = false;
+  options.overview = false;  // every page a sheet
+  options.merge_budget = light_merge(options.merge_budget);
+  PipelineProgress quiet;
+  const UnfoldOutcome unfolded = run_pipeline(data_file("sample.obj"), options, {}, {}, quiet);
+  const Printed sheets = print(unfolded, options, 60);
+  options.prefer = FitGoal::Pieces;
+  const Printed pieces = print(unfolded, options, 60);
+  EXPECT_LT(pieces.pieces + pieces.strips, sheets.pieces + sheets.strips);
+  EXPECT_GT(pieces.pages, sheets.pages);
+  for (const Printed* p : {&sheets, &pieces}) {
+    const NetCheckReport check = check_pieces(p->doc.mesh, p->doc.net, p->doc.piece);
+    EXPECT_TRUE(check.ok()) << check.summary();
+    EXPECT_EQ(p->doc.pieces.size(), static_cast<std::size_t>(p->pieces));
+  }
+  std::printf(
+      "sample.obj: saving sheets %d pieces and %zu strips on %zu sheets, saving pieces %d "
+      "and %zu on %zu\n",
+      sheets.pieces, sheets.strips, sheets.pages, pieces.pieces, pieces.strips, pieces.pages);
 }
 
 // The search lays out several ways at once, and chooses as a search of one way at a time does:

@@ -13,7 +13,7 @@ const keyStore = "papernet.apiKey";
 const client = new PapernetClient("", { apiKey: sessionStorage.getItem(keyStore) || undefined });
 const ui = {
   drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
-  paper: $("paper"), detail: $("detail"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
+  paper: $("paper"), prefer: $("prefer"), detail: $("detail"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
   model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
   sheet: $("sheet"), keyBox: $("key-box"), key: $("api-key"),
   downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
@@ -359,7 +359,7 @@ async function run() {
   const mesh = files.find((f) => formatOfFileName(f.name));
   if (!mesh) return;
   const buffers = files.filter((f) => f !== mesh).map((f) => ({ name: f.name, data: f }));
-  const options = { strategy: ui.strategy.value, paper: ui.paper.value, components: ui.components.value };
+  const options = { strategy: ui.strategy.value, paper: ui.paper.value, prefer: ui.prefer.value, components: ui.components.value };
   if (Number(ui.size.value) > 0) options.size_mm = Number(ui.size.value);
   if (Number(ui.timeLimit.value) > 0) options.time_limit = Number(ui.timeLimit.value);
   const detail = ui.detail.value.trim().toLowerCase();

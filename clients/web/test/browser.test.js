@@ -366,8 +366,14 @@ test("the demo shows a textured glTF textured and upright, folded, flat and in t
   await page.setInputFiles("#file", join(dataDir, "BoxTextured.glb"));
   await page.selectOption("#strategy", "TU");
   await page.fill("#detail", "full");
-  await page.selectOption("#paper", "A4");
+  await page.selectOption("#paper", "A5");
+  await page.selectOption("#prefer", "pieces");
+  const submitted = page.waitForRequest((r) => r.method() === "POST" && new URL(r.url()).pathname === "/v1/jobs");
   await page.click("#start");
+  // The paper and what the pieces save first go to the service as chosen.
+  const query = new URL((await submitted).url()).searchParams;
+  assert.equal(query.get("paper"), "A5");
+  assert.equal(query.get("prefer"), "pieces");
   assert.equal(await jobEnded(page, 120000), "done", await page.textContent("#status"));
 
   // The texture (the Cesium logo, 256 × 256) is mapped by the faces' coordinates.
