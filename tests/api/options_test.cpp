@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <string>
 
@@ -347,15 +348,18 @@ TEST(OptionsTest, PaperIsANamedSheetOrASizeAndABadOneIsNamed) {
   // Each paper known by name is taken in any case, and the help and the OpenAPI document name it.
   const std::string help = options_help();
   const nlohmann::json api = nlohmann::json::parse(openapi_document());
-  const std::string described =
-      api["components"]["schemas"]["Options"]["properties"]["paper"]["description"];
+  const nlohmann::json& schema = api["components"]["schemas"]["Options"]["properties"]["paper"];
+  const std::string described = schema["description"];
+  const std::regex pattern(schema["pattern"].get<std::string>());
   for (const Paper& p : named_papers()) {
     std::string lower = p.name;
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     EXPECT_EQ(parse_options_query({{"paper", lower}}).paper, p.name);
     EXPECT_NE(help.find(p.name), std::string::npos) << p.name;
     EXPECT_NE(described.find(p.name), std::string::npos) << p.name;
+    EXPECT_TRUE(std::regex_match(p.name, pattern) && std::regex_match(lower, pattern)) << p.name;
   }
+  EXPECT_FALSE(std::regex_match(std::string("A6"), pattern));
 }
 
 // What the fit layout saves first: sheets (the default) or pieces; anything else is named.
