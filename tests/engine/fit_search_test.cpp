@@ -75,8 +75,8 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
 
 // prefer=pieces (FitGoal::Pieces) chooses the print with the fewest pieces and glue strips to cut
 // out, a sheet worth a twentieth of one; prefer=sheets, the default, the fewest sheets, a piece
-// worth a twentieth of one. On sample.obj at the defaults: 7 pieces on 2 sheets, or 4 pieces on 3.
-// Both pass the net checker.
+// worth a twentieth of one. On sample.obj at the defaults: 7 pieces on 2 sheets, or 4 pieces on 3
+// (12 on 2, or 4 on 3, with the light merge sanitized). Both pass the net checker.
 TEST(FitSearch, SavingPiecesPrintsFewerPiecesOnMoreSheetsThanSavingSheets) {
   JobOptions options;
   options.colour = false;
