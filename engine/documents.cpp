@@ -567,6 +567,12 @@ class FitSearch {
   bool fewest_sheets_yet(std::size_t i, double sheets) {
     if (print_.prefer != FitGoal::Pieces) return false;
     std::lock_guard lock(mutex_);
+    return fewer_sheets_than_aside(i, sheets);
+  }
+
+  // Whether way i, costing `sheets` in sheets, goes before the way kept aside for costing the
+  // least in sheets (none yet, less, or as much and earlier). Under the lock.
+  bool fewer_sheets_than_aside(std::size_t i, double sheets) const {
     return !fewest_sheets_ || sheets < fewest_sheets_->cost ||
            (sheets == fewest_sheets_->cost && i < fewest_sheets_->way);
   }
@@ -578,9 +584,7 @@ class FitSearch {
   void keep(std::size_t i, FitPrint print) {
     if (print_.prefer == FitGoal::Pieces) {
       const double sheets = print.cost(label_price_, FitGoal::Sheets);
-      if (!fewest_sheets_ || sheets < fewest_sheets_->cost ||
-          (sheets == fewest_sheets_->cost && i < fewest_sheets_->way))
-        fewest_sheets_ = {i, sheets, print};
+      if (fewer_sheets_than_aside(i, sheets)) fewest_sheets_ = {i, sheets, print};
     }
     const double cost = print.cost(label_price_, print_.prefer);
     tried_[i] = {cost, last(print)};
