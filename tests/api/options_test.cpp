@@ -360,6 +360,19 @@ TEST(OptionsTest, PaperIsANamedSheetOrASizeAndABadOneIsNamed) {
     EXPECT_TRUE(std::regex_match(p.name, pattern) && std::regex_match(lower, pattern)) << p.name;
   }
   EXPECT_FALSE(std::regex_match(std::string("A6"), pattern));
+  // A size is taken in any case too: the pattern takes what the parser takes, and refuses what
+  // it refuses.
+  for (const std::string size : {"300x200mm", "300X200MM", "300x200", "148.5x210mm", "210X297Mm",
+                                 "300x200cm", "300 x 200mm", "x200mm", "300x", "300*200mm"}) {
+    bool parsed = true;
+    try {
+      parse_options_query({{"paper", size}});
+    } catch (const InvalidOptionException&) {
+      parsed = false;
+    }
+    EXPECT_EQ(std::regex_match(size, pattern), parsed) << size;
+  }
+  EXPECT_EQ(parse_options_query({{"paper", "300X200MM"}}).paper, "300x200mm");
 }
 
 // What the fit layout saves first: sheets (the default) or pieces; anything else is named.
