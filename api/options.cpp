@@ -266,7 +266,7 @@ constexpr Spec kOptions[] = {
     {"overview", "",
      "with layout fit, a first page mapping the sheets, the pieces on each, the model as built "
      "(two views, each piece numbered) and the build order (unset: when there is more than one "
-     "piece)",
+     "piece); left out on paper too small for it (warning overview_left_out)",
      [](JobOptions& o, const std::string& n, const json& v) { o.overview = boolean(n, v); }},
     {"components", "all|largest",
      "all: every connected part of the mesh its own piece; largest: only the largest part",

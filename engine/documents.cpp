@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <future>
 #include <iterator>
 #include <map>
@@ -820,10 +821,18 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.smallest_label_mm = labels.smallest_mm;
   summary.small_labels = labels.illegible;
   if (fit && options.overview.value_or(pieces.pieces > 1)) {
-    add_overview(pages, layout, pieces.piece, std::move(graph), mesh, view_axes(outcome.format),
-                 options.colour);
-    summary.overview = true;
+    summary.overview = add_overview(pages, layout, pieces.piece, std::move(graph), mesh,
+                                    view_axes(outcome.format), options.colour);
     for (const Page& p : pages.pages) summary.overview_pages += p.overview ? 1 : 0;
+    if (!summary.overview) {
+      char area[64];
+      std::snprintf(area, sizeof area, "%.0f x %.0f mm", page.paper.width - 2 * page.margin_mm,
+                    page.paper.height - 2 * page.margin_mm);
+      outcome.net.warnings.push_back({"overview_left_out", 1,
+                                      "the overview page is left out: " + page.paper.name +
+                                          " paper within its margins (" + area +
+                                          ") is too small for it"});
+    }
   }
   if (unpaged) docs.svg_pages = {write_net_svg(*unpaged, page.margin_mm, paint)};
   report(progress, "write", 0);

@@ -23,10 +23,11 @@ namespace {
 constexpr double kTextMm = 3;      // captions and the build order
 constexpr double kSmallestMm = 2;  // they shrink to this at most, on a crowded overview
 constexpr double kTitleMm = 5;
-constexpr double kPieceMm = 4;      // a piece's number on its sheet's thumbnail
-constexpr double kGapMm = 6;        // between thumbnails
-constexpr double kLinePitch = 1.5;  // line spacing, in text heights
-constexpr double kViewDpi = 150;    // the views of the model (the overview is on plain paper)
+constexpr double kPieceMm = 4;       // a piece's number on its sheet's thumbnail
+constexpr double kGapMm = 6;         // between thumbnails
+constexpr double kLinePitch = 1.5;   // line spacing, in text heights
+constexpr double kTitlePitch = 1.2;  // the title's, when it takes more than a line
+constexpr double kViewDpi = 150;     // the views of the model (the overview is on plain paper)
 
 bool holds(const Page& page, Vec2 p) {
   return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
@@ -416,16 +417,95 @@ int step_columns(const std::vector<std::string>& steps, double size, double widt
                     std::max(1, static_cast<int>(steps.size())));
 }
 
-// The header of the first overview page (title, two lines on the labels), and of the pages that
-// continue it (a title).
-double first_top(double m) { return m + 1.5 * kTitleMm + 2 * kLinePitch * kTextMm + kTextMm + 2; }
-double next_top(double m) { return m + 1.5 * kTitleMm + 2; }
+/// `text` broken at its spaces into lines no wider than `width` at `size` (a word wider than that
+/// on a line of its own; a no-break space does not break).
+std::vector<std::string> wrap_words(const std::string& text, double width, double size) {
+  std::vector<std::string> lines;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find(' ', at), text.size());
+    const std::string word = text.substr(at, end - at);
+    if (!lines.empty() && text_width(lines.back() + " " + word, size) <= width)
+      lines.back() += " " + word;
+    else
+      lines.push_back(word);
+    at = end + 1;
+  }
+  return lines;
+}
+
+/// The header of an overview page, each line broken to fit the printable width: the title
+/// (kTitleMm) and, on the first page, how to read the labels (kTextMm).
+struct Header {
+  std::vector<std::string> title, lines;
+
+  /// The title's lines' centres from the page's top margin `m` down, then the others'.
+  double title_y(double m, std::size_t i) const {
+    return m + 0.5 * kTitleMm + static_cast<double>(i) * kTitlePitch * kTitleMm;
+  }
+  double line_y(double m, std::size_t i) const {
+    return title_y(m, title.size() - 1) + kTitleMm +
+           static_cast<double>(i + 1) * kLinePitch * kTextMm;
+  }
+  /// Where what follows it begins.
+  double bottom(double m) const {
+    return lines.empty() ? title_y(m, title.size() - 1) + kTitleMm + 2
+                         : line_y(m, lines.size() - 1) + kTextMm + 2;
+  }
+  /// Whether every line fits `width` (no word wider than it).
+  bool fits(double width) const {
+    const auto narrow = [&](double size) {
+      return [&, size](const std::string& l) { return text_width(l, size) <= width; };
+    };
+    return std::all_of(title.begin(), title.end(), narrow(kTitleMm)) &&
+           std::all_of(lines.begin(), lines.end(), narrow(kTextMm));
+  }
+};
+
+/// The header of the first page of an overview of `pieces` pieces on `sheets` sheets.
+Header first_header(int pieces, int sheets, double width) {
+  const std::string title = std::string("Overview: ") + std::to_string(pieces) +
+                            (pieces == 1 ? " piece on " : " pieces on ") + std::to_string(sheets) +
+                            (sheets == 1 ? " sheet" : " sheets");
+  Header h{wrap_words(title, width, kTitleMm), {}};
+  for (const char* line :
+       {"Cut out each piece along its solid lines; build in order P1,\u00a0P2,\u00a0P3,\u00a0...",
+        "An edge labelled 12\u2192P3 glues to edge 12 of piece P3."})
+    for (std::string& l : wrap_words(line, width, kTextMm)) h.lines.push_back(std::move(l));
+  return h;
+}
+
+/// The header of overview page `which` + 1 of `parts` (which > 0).
+Header next_header(int which, int parts, double width) {
+  return {wrap_words("Overview, continued (" + std::to_string(which + 1) + " of " +
+                         std::to_string(parts) + ")",
+                     width, kTitleMm),
+          {}};
+}
+
+/// The build order's lines at `size` on a page `width` wide: each step (build_steps) broken at
+/// its spaces into lines that fit a column (step_columns) of their own.
+std::vector<std::string> step_lines(const Overview& overview, double width, double size) {
+  std::vector<std::string> lines;
+  for (const std::string& step : build_steps(overview))
+    for (std::string& line : wrap_words(step, width - 4 * size, size))
+      lines.push_back(std::move(line));
+  return lines;
+}
 
 // The least width of a thumbnail on a one-page overview, mm: below it the overview continues on
 // more pages with thumbnails kFlowCellMm wide.
 constexpr double kLeastThumbMm = 25;
 constexpr double kFlowCellMm = 32;
 constexpr double kFlowTextMm = 2.5;
+// The least size of a thumbnail on an overview of several pages (its longer side), mm: below
+// it the overview is left out (its pieces' numbers would not fit it).
+constexpr double kLeastFlowThumbMm = 20;
+// The build order's heading where it goes on from a page before, and its size in the lines'.
+constexpr const char* kStepsContinued = "Build order, continued";
+constexpr double kHeadingScale = 1.3;
+// The fewest lines of the build order a page of the overview after the first holds.
+constexpr int kLeastSteps = 3;
 
 }  // namespace
 
@@ -450,25 +530,35 @@ namespace {
 /// The overview's pages for `pages` (its overview pages first): everything on one page where
 /// the thumbnails print at least kLeastThumbMm wide and the build order takes at most 40 % of it
 /// at 2 mm or more; else the grid at kFlowCellMm a thumbnail and then the build order, their
-/// text kFlowTextMm high,
-/// each continued on as many pages as it needs.
-OverviewPlan plan_overview(const PageLayout& pages, const Overview& overview) {
+/// text kFlowTextMm high, each continued on as many pages as it needs. None where the paper is
+/// too small for it: its header's words wider than the printable area, a row of thumbnails
+/// kLeastFlowThumbMm large with their captions taller than the first page holds below its
+/// header, or fewer than kLeastSteps lines of the build order (or its heading wider than the
+/// printable area) on a page after the first. A step of the build order wider than a column
+/// goes on on the lines below it.
+std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overview& overview) {
   const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
   const Cells cells = cells_of(pages, overview, kTextMm);
-  const std::vector<std::string> steps = build_steps(overview);
-  const int count = static_cast<int>(steps.size()), n = cells.count();
+  const int n = cells.count();
+  const Header first = first_header(static_cast<int>(overview.page.size()),
+                                    static_cast<int>(cells.sheets.size()), width);
+  // The pages after the first: their title with the most digits it may print.
+  const Header next = next_header(998, 999, width);
+  if (!first.fits(width) || !next.fits(width)) return std::nullopt;
+  const double top = first.bottom(m), next_top = next.bottom(m);
   OverviewPlan plan;
   // One page: the build order as small as it must be to take at most 40 % of the page, the
   // sheets as large as the room above it holds them.
   double size = kTextMm, block = 0;
-  int columns = 1, rows = 0;
+  int columns = 1, rows = 0, count = 0;
   for (;; size = std::max(kSmallestMm, size - 0.25)) {
+    const std::vector<std::string> steps = step_lines(overview, width, size);
+    count = static_cast<int>(steps.size());
     columns = step_columns(steps, size, width);
     rows = (count + columns - 1) / columns;
     block = (rows + 2) * kLinePitch * size;
     if (block <= 0.4 * (pages.height - 2 * m) || size <= kSmallestMm) break;
   }
-  const double top = first_top(m);
   const Grid fitted = n > 0 ? fit_grid(cells, width, bottom - block - kGapMm - top) : Grid{};
   if (block <= 0.4 * (pages.height - 2 * m) &&
       (n == 0 || fitted.scale * cells.sw >= kLeastThumbMm)) {
@@ -484,6 +574,15 @@ OverviewPlan plan_overview(const PageLayout& pages, const Overview& overview) {
   // Several pages: rows of thumbnails while they fit, then the build order's lines, in text of
   // kFlowTextMm.
   plan.text = kFlowTextMm;
+  const std::vector<std::string> steps = step_lines(overview, width, kFlowTextMm);
+  count = static_cast<int>(steps.size());
+  // The build order's heading on a page after the first.
+  if (count > 0 && text_width(kStepsContinued, kHeadingScale * kFlowTextMm) > width)
+    return std::nullopt;
+  const double pitch = kLinePitch * kFlowTextMm;
+  // Lines of the build order a page after the first holds: its title, a line of space.
+  const auto lines_below = [&](double y) { return static_cast<int>((bottom - y) / pitch) - 2; };
+  if (count > 0 && lines_below(next_top) < kLeastSteps) return std::nullopt;
   const Cells small = cells_of(pages, overview, kFlowTextMm);
   OverviewPlan::Part part;
   part.grid_top = top;
@@ -493,35 +592,35 @@ OverviewPlan plan_overview(const PageLayout& pages, const Overview& overview) {
     Grid g = grid_of(small, width, cols, 0);
     // A row fits any page, the first (below its longer header) included.
     g.scale = std::min(g.cell_w / small.sw, (bottom - top - g.caption) / small.sh);
+    if (!(g.scale * std::max(small.sw, small.sh) >= kLeastFlowThumbMm)) return std::nullopt;
     g.cell_h = small.sh * g.scale + g.caption;
     plan.grid = g;
-    for (int first = 0; first < n; first += cols) {
+    for (int first_cell = 0; first_cell < n; first_cell += cols) {
       if (y + g.cell_h > bottom && part.last_cell > part.first_cell) {
         plan.parts.push_back(part);
-        part = {first, first, next_top(m), 0, 0, 0, 0};
-        y = next_top(m);
+        part = {first_cell, first_cell, next_top, 0, 0, 0, 0};
+        y = next_top;
       }
-      part.last_cell = std::min(n, first + cols);
+      part.last_cell = std::min(n, first_cell + cols);
       y += g.cell_h + kGapMm;
     }
   }
   plan.step_size = kFlowTextMm;
   plan.columns = step_columns(steps, kFlowTextMm, width);
-  const double pitch = kLinePitch * kFlowTextMm;
-  for (int next = 0; next < count;) {
-    int room = static_cast<int>((bottom - y) / pitch) - 2;  // the title, a line of space
-    if (room < 3) {
+  for (int at = 0; at < count;) {
+    int room = lines_below(y);
+    if (room < kLeastSteps) {
       plan.parts.push_back(part);
-      part = {n, n, next_top(m), next, next, 0, 0};
-      y = next_top(m);
-      room = static_cast<int>((bottom - y) / pitch) - 2;
+      part = {n, n, next_top, at, at, 0, 0};
+      y = next_top;
+      room = lines_below(y);
     }
-    const int take = std::min(count - next, plan.columns * room);
-    part.first_step = next;
-    part.last_step = next + take;
+    const int take = std::min(count - at, plan.columns * room);
+    part.first_step = at;
+    part.last_step = at + take;
     part.rows = (take + plan.columns - 1) / plan.columns;
     part.steps_top = y;
-    next += take;
+    at += take;
     y = bottom;  // the page is full, or the build order ends here
   }
   plan.parts.push_back(part);
@@ -530,7 +629,7 @@ OverviewPlan plan_overview(const PageLayout& pages, const Overview& overview) {
 
 }  // namespace
 
-void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vector<int>& piece,
+bool add_overview(PageLayout& pages, const PrintLayout& layout, const std::vector<int>& piece,
                   PieceGraph graph, Mesh model, ViewAxes axes, bool colour) {
   auto overview = std::make_shared<Overview>();
   int count = 0;
@@ -569,7 +668,13 @@ void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
     overview->page.assign(static_cast<std::size_t>(count), -1);
     for (int p = 0; p < count; ++p)
       if (sheet[p] >= 0) overview->page[p] = sheet[p] + static_cast<int>(added);
-    overview->plan = std::make_shared<const OverviewPlan>(plan_overview(pages, *overview));
+    std::optional<OverviewPlan> plan = plan_overview(pages, *overview);
+    if (!plan) {  // the paper is too small for it
+      pages.pages.erase(pages.pages.begin(),
+                        pages.pages.begin() + static_cast<std::ptrdiff_t>(added));
+      return false;
+    }
+    overview->plan = std::make_shared<const OverviewPlan>(std::move(*plan));
     if (overview->plan->parts.size() == added) break;
   }
   // Never seen: the rounds did not agree. The pages follow the last plan (whose captions were
@@ -580,6 +685,7 @@ void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
   for (int p = 0; p < count; ++p)
     if (sheet[p] >= 0) overview->page[p] = sheet[p] + static_cast<int>(added);
   pages.overview = std::move(overview);
+  return true;
 }
 
 PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, int index) {
@@ -596,26 +702,13 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
   const OverviewPlan::Part& part = plan.parts[which];
 
   // The title and how to read the labels; on the pages after the first, a title.
-  double y = m + 0.5 * kTitleMm;
-  const std::string title = std::string("Overview: ") + std::to_string(count) +
-                            (count == 1 ? " piece on " : " pieces on ") +
-                            std::to_string(cells.sheets.size()) +
-                            (cells.sheets.size() == 1 ? " sheet" : " sheets");
-  if (which > 0) {
-    out.text(Layer::Labels, {0.5 * pages.width, y},
-             "Overview, continued (" + std::to_string(which + 1) + " of " +
-                 std::to_string(plan.parts.size()) + ")",
-             kTitleMm);
-  } else {
-    out.text(Layer::Labels, {0.5 * pages.width, y}, title, kTitleMm);
-    y += kTitleMm;
-    for (const char* line :
-         {"Cut out each piece along its solid lines; build in order P1, P2, P3, ...",
-          "An edge labelled 12\u2192P3 glues to edge 12 of piece P3."}) {
-      y += kLinePitch * kTextMm;
-      out.text(Layer::Labels, {0.5 * pages.width, y}, line, kTextMm);
-    }
-  }
+  const Header header = which > 0
+                            ? next_header(which, static_cast<int>(plan.parts.size()), width)
+                            : first_header(count, static_cast<int>(cells.sheets.size()), width);
+  for (std::size_t i = 0; i < header.title.size(); ++i)
+    out.text(Layer::Labels, {0.5 * pages.width, header.title_y(m, i)}, header.title[i], kTitleMm);
+  for (std::size_t i = 0; i < header.lines.size(); ++i)
+    out.text(Layer::Labels, {0.5 * pages.width, header.line_y(m, i)}, header.lines[i], kTextMm);
 
   // The sheets as thumbnails, each captioned with its pieces (the sheet list), and the views.
   if (part.last_cell > part.first_cell)
@@ -624,10 +717,10 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
 
   // The build order, in columns, line by line down each column.
   if (part.last_step > part.first_step) {
-    const std::vector<std::string> steps = build_steps(overview);
     const double size = plan.step_size, bottom = part.steps_top;
+    const std::vector<std::string> steps = step_lines(overview, width, size);
     out.text(Layer::Labels, {0.5 * pages.width, bottom + 0.5 * kLinePitch * size + 1},
-             part.first_step > 0 ? "Build order, continued" : "Build order", 1.3 * size);
+             part.first_step > 0 ? kStepsContinued : "Build order", kHeadingScale * size);
     const double column_width = width / plan.columns;
     for (int i = part.first_step; i < part.last_step; ++i) {
       const int c = (i - part.first_step) / part.rows, r = (i - part.first_step) % part.rows;

@@ -33,8 +33,10 @@ struct Overview {
 /// `graph` the pieces' neighbours (piece_graph), `model` the mesh the net folds into (its faces
 /// those of `layout`; none: the overview shows no views of the model), `axes` its up and front and
 /// `colour` whether the views show each piece in a colour of its own. Each piece's page is the
-/// page that holds its first face.
-void add_overview(PageLayout& pages, const PrintLayout& layout, const std::vector<int>& piece,
+/// page that holds its first face. False, and `pages` as they were, where the paper is too small
+/// for a legible overview (its header's words wider than the printable area, or too little
+/// room below it for a row of thumbnails or for a few lines of the build order).
+bool add_overview(PageLayout& pages, const PrintLayout& layout, const std::vector<int>& piece,
                   PieceGraph graph, Mesh model = {}, ViewAxes axes = {}, bool colour = true);
 
 /// The shapes of the overview page `index` (without its page number: draw_page adds it). The

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <regex>
 #include <set>
 #include <string>
@@ -814,6 +815,40 @@ TEST(AssemblyAids, WithoutTheOverviewTheSheetsStartAtPageOne) {
   for (const PiecePlacement& p : doc.print->placements)
     lowest[p.page] = std::min(lowest[p.page], p.piece);
   EXPECT_TRUE(std::is_sorted(lowest.begin(), lowest.end()));
+}
+
+// Paper too small for a legible overview (sample.obj at 20 mm on 30 x 30 mm paper, 5 mm
+// margins): the kit prints without it, asked for or not, and the result says so; it once
+// planned overview pages without end and ran out of memory.
+TEST(AssemblyAids, PaperTooSmallForTheOverviewPrintsTheKitWithoutIt) {
+  for (const std::optional<bool> asked : {std::optional<bool>{}, std::optional<bool>{true}}) {
+    SCOPED_TRACE(asked ? "overview yes" : "overview unset");
+    JobOptions options;
+    options.paper = "30x30mm";
+    options.margin_mm = 5;
+    options.overlap_mm = 1;
+    options.size_mm = 20;
+    options.overview = asked;
+    options.colour = false;
+    PipelineProgress quiet;
+    const UnfoldOutcome out =
+        run_pipeline(data_file("sample.obj"), options, {}, {.svg_pages = true}, quiet);
+    const NetDocument doc = read_net_json(out.documents.net_json);
+    ASSERT_TRUE(doc.print);
+    EXPECT_GT(doc.pieces.size(), 1u);
+    EXPECT_EQ(doc.print->overview_page, -1);
+    const NetRepair* warning = entry_of(doc.warnings, "overview_left_out");
+    ASSERT_NE(warning, nullptr);
+    EXPECT_NE(warning->message.find("30x30mm"), std::string::npos) << warning->message;
+    ASSERT_EQ(static_cast<std::size_t>(doc.print->pages), out.documents.svg_pages.size());
+    for (const std::string& svg : out.documents.svg_pages)
+      EXPECT_EQ(svg.find("overview"), std::string::npos);
+    std::set<int> pages;
+    for (const PiecePlacement& p : doc.print->placements) pages.insert(p.page);
+    EXPECT_EQ(pages.count(0), 1u) << "the sheets start at page 1";
+    const NetCheckReport check = check_pieces(doc.mesh, doc.net, doc.piece);
+    EXPECT_TRUE(check.ok()) << check.summary();
+  }
 }
 
 }  // namespace

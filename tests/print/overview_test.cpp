@@ -1,9 +1,12 @@
 // The overview of a print of many sheets and pieces (print/overview.h): when its sheets and
 // build order do not fit one page legibly, it goes on over more pages, and together they still
 // list every piece once with its sheet and every step of the build order once, all of it inside
-// the printable area, no text over another.
+// the printable area, no text over another, on any paper that holds it; paper too small for it
+// leaves it out.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <regex>
 #include <set>
@@ -15,8 +18,13 @@
 namespace papernet::test {
 namespace {
 
-/// `sheets` A4 sheets (10 mm margins) holding `pieces` pieces of one triangle each, in order;
-/// each piece glues to the `joins` pieces before it (long lines in the build order).
+/// Paper of `width` x `height` mm with `margin` mm margins.
+struct Sheet {
+  double width = 210, height = 297, margin = 10;
+};
+
+/// `sheets` sheets of `paper` holding `pieces` pieces of one triangle each, in order; each piece
+/// glues to the `joins` pieces before it (long lines in the build order).
 struct Print {
   PrintLayout layout;
   PageLayout pages;
@@ -24,27 +32,29 @@ struct Print {
   PieceGraph graph;
 };
 
-Print print_of(int sheets, int pieces, int joins) {
+Print print_of(int sheets, int pieces, int joins, Sheet paper = {}) {
   Print p;
-  p.pages.width = 210;
-  p.pages.height = 297;
-  p.pages.margin = 10;
+  p.pages.width = paper.width;
+  p.pages.height = paper.height;
+  p.pages.margin = paper.margin;
   p.pages.fitted = true;
+  const double w = paper.width - 2 * paper.margin, h = paper.height - 2 * paper.margin;
   for (int s = 0; s < sheets; ++s) {
     Page page;
     page.col = s;
-    page.lo = {300.0 * s, 0};
-    page.hi = {300.0 * s + 190, 277};
+    page.lo = {1000.0 * s, 0};
+    page.hi = {1000.0 * s + w, h};
     p.pages.pages.push_back(page);
   }
   p.graph.joins.resize(static_cast<std::size_t>(pieces));
   for (int k = 0; k < pieces; ++k) {
     const int s = k * sheets / pieces;
-    const Vec2 at{300.0 * s + 10 + 40 * (k % 4), 20 + 40.0 * (k % 6)};
-    p.layout.faces.push_back({at, at + Vec2{30, 0}, at + Vec2{0, 30}});
+    const Vec2 at{1000.0 * s + w * (0.05 + 0.2 * (k % 4)), h * (0.07 + 0.14 * (k % 6))};
+    const double side = 0.15 * std::min(w, h);
+    p.layout.faces.push_back({at, at + Vec2{side, 0}, at + Vec2{0, side}});
     p.piece.push_back(k);
     Label number;
-    number.at = at + Vec2{8, 8};
+    number.at = at + Vec2{0.25 * side, 0.25 * side};
     number.size = 4;
     number.text = piece_name(k);
     p.layout.piece_labels.push_back(number);
@@ -73,58 +83,103 @@ std::vector<Text> texts(const PageDrawing& d) {
   return out;
 }
 
+/// The number of overview pages at the start of `pages`.
+int overview_pages_of(const PageLayout& pages) {
+  int n = 0;
+  while (n < static_cast<int>(pages.pages.size()) && pages.pages[n].overview) ++n;
+  return n;
+}
+
+/// Checks the overview of `p` (`sheets` sheets, `pieces` pieces): every text inside the
+/// printable area, 2 mm high or more, none over another; each piece listed once with its sheet,
+/// each step of the build order once.
+void check_overview(const Print& p, const Sheet& paper, int sheets, int pieces) {
+  const int overview_pages = overview_pages_of(p.pages);
+  ASSERT_EQ(static_cast<int>(p.pages.pages.size()), sheets + overview_pages);
+  const double m = paper.margin;
+  std::map<int, int> listed;  // piece -> the page its caption names
+  std::set<int> steps;
+  static const std::regex caption("^page (\\d+):(.*)$"), name("P(\\d+)"),
+      step("^P(\\d+)( glues to .*|: start here)$");
+  for (int k = 0; k < overview_pages; ++k) {
+    const PageDrawing d = draw_overview(p.layout, p.pages, k);
+    const std::vector<Text> all = texts(d);
+    int page = -1;
+    bool more = false;
+    for (const Text& t : all) {
+      EXPECT_GE(t.x0, m - 1e-6) << t.text;
+      EXPECT_LE(t.x1, paper.width - m + 1e-6) << t.text;
+      EXPECT_GE(t.y0, m - 1e-6) << t.text;
+      EXPECT_LE(t.y1, paper.height - m + 1e-6) << t.text << " on overview page " << k + 1;
+      EXPECT_GE(t.y1 - t.y0, 0.7 * 2 - 1e-6) << t.text << ": 2 mm or more";
+      std::smatch match;
+      if (more || std::regex_match(t.text, match, caption)) {
+        if (!more) page = std::stoi(match[1]) - 1;
+        const std::string rest = more ? t.text : std::string(match[2]);
+        for (auto it = std::sregex_iterator(rest.begin(), rest.end(), name);
+             it != std::sregex_iterator(); ++it)
+          EXPECT_TRUE(listed.emplace(std::stoi((*it)[1]) - 1, page).second) << (*it)[0];
+        more = !rest.empty() && rest.back() == ',';
+      } else if (std::regex_match(t.text, match, step)) {
+        EXPECT_TRUE(steps.insert(std::stoi(match[1]) - 1).second) << t.text;
+      }
+    }
+    for (std::size_t a = 0; a < all.size(); ++a)
+      for (std::size_t b = a + 1; b < all.size(); ++b)
+        EXPECT_FALSE(all[a].x0 < all[b].x1 && all[b].x0 < all[a].x1 && all[a].y0 < all[b].y1 &&
+                     all[b].y0 < all[a].y1)
+            << "\"" << all[a].text << "\" covers \"" << all[b].text << "\"";
+  }
+  ASSERT_EQ(static_cast<int>(listed.size()), pieces) << "each piece listed once";
+  for (const auto& [piece, page] : listed)
+    EXPECT_EQ(page, overview_pages + piece * sheets / pieces) << "P" << piece + 1;
+  EXPECT_EQ(static_cast<int>(steps.size()), pieces) << "each piece's build step once";
+}
+
 TEST(Overview, ManySheetsAndPiecesGoOnOverMorePagesListingEachOnce) {
   for (const auto& [sheets, pieces, joins] : {std::array{3, 12, 2}, std::array{72, 448, 8}}) {
+    SCOPED_TRACE(std::to_string(pieces) + " pieces on " + std::to_string(sheets) + " sheets");
     Print p = print_of(sheets, pieces, joins);
-    add_overview(p.pages, p.layout, p.piece, p.graph);
-    int overview_pages = 0;
-    while (overview_pages < static_cast<int>(p.pages.pages.size()) &&
-           p.pages.pages[overview_pages].overview)
-      ++overview_pages;
-    ASSERT_EQ(static_cast<int>(p.pages.pages.size()), sheets + overview_pages);
+    ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
+    const int overview_pages = overview_pages_of(p.pages);
     if (sheets == 3) {
       EXPECT_EQ(overview_pages, 1) << "a small print's overview is one page";
     } else {
       EXPECT_GT(overview_pages, 1) << "448 pieces on 72 sheets do not fit one page";
     }
-    std::map<int, int> listed;  // piece -> the page its caption names
-    std::set<int> steps;
-    static const std::regex caption("^page (\\d+):(.*)$"), name("P(\\d+)"),
-        step("^P(\\d+)( glues to .*|: start here)$");
-    for (int k = 0; k < overview_pages; ++k) {
-      const PageDrawing d = draw_overview(p.layout, p.pages, k);
-      const std::vector<Text> all = texts(d);
-      int page = -1;
-      bool more = false;
-      for (const Text& t : all) {
-        EXPECT_GE(t.x0, 10 - 1e-6) << t.text;
-        EXPECT_LE(t.x1, 200 + 1e-6) << t.text;
-        EXPECT_GE(t.y0, 10 - 1e-6) << t.text;
-        EXPECT_LE(t.y1, 287 + 1e-6) << t.text << " on overview page " << k + 1;
-        EXPECT_GE(t.y1 - t.y0, 0.7 * 2 - 1e-6) << t.text << ": 2 mm or more";
-        std::smatch m;
-        if (more || std::regex_match(t.text, m, caption)) {
-          if (!more) page = std::stoi(m[1]) - 1;
-          const std::string rest = more ? t.text : std::string(m[2]);
-          for (auto it = std::sregex_iterator(rest.begin(), rest.end(), name);
-               it != std::sregex_iterator(); ++it)
-            EXPECT_TRUE(listed.emplace(std::stoi((*it)[1]) - 1, page).second) << (*it)[0];
-          more = !rest.empty() && rest.back() == ',';
-        } else if (std::regex_match(t.text, m, step)) {
-          EXPECT_TRUE(steps.insert(std::stoi(m[1]) - 1).second) << t.text;
-        }
-      }
-      for (std::size_t a = 0; a < all.size(); ++a)
-        for (std::size_t b = a + 1; b < all.size(); ++b)
-          EXPECT_FALSE(all[a].x0 < all[b].x1 && all[b].x0 < all[a].x1 && all[a].y0 < all[b].y1 &&
-                       all[b].y0 < all[a].y1)
-              << "\"" << all[a].text << "\" covers \"" << all[b].text << "\"";
-    }
-    ASSERT_EQ(static_cast<int>(listed.size()), pieces) << "each piece listed once";
-    for (const auto& [piece, page] : listed)
-      EXPECT_EQ(page, overview_pages + piece * sheets / pieces) << "P" << piece + 1;
-    EXPECT_EQ(static_cast<int>(steps.size()), pieces) << "each piece's build step once";
+    check_overview(p, {}, sheets, pieces);
   }
+}
+
+// On small paper the header breaks into lines that fit, and everything stays inside the
+// printable area: A5, A6, 100 x 100 mm and a strip 70 mm wide.
+TEST(Overview, SmallPaperHoldsTheOverviewWithinItsMargins) {
+  for (const Sheet paper :
+       {Sheet{148, 210, 10}, Sheet{105, 148, 10}, Sheet{100, 100, 10}, Sheet{70, 300, 10}})
+    for (const auto& [sheets, pieces, joins] : {std::array{3, 12, 2}, std::array{20, 60, 3}}) {
+      SCOPED_TRACE(std::to_string(paper.width) + " x " + std::to_string(paper.height) + " mm, " +
+                   std::to_string(pieces) + " pieces on " + std::to_string(sheets) + " sheets");
+      Print p = print_of(sheets, pieces, joins, paper);
+      ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
+      check_overview(p, paper, sheets, pieces);
+    }
+}
+
+// Paper too small for a legible overview (its header's words wider than the printable area, or
+// too little room below the header) leaves it out, the pages as they were; it once planned
+// overview pages without end (papernet unfold --paper 40x40mm ran out of memory).
+TEST(Overview, PaperTooSmallForItLeavesItOut) {
+  for (const Sheet paper : {Sheet{40, 40, 10}, Sheet{30, 30, 5}, Sheet{25, 300, 2},
+                            Sheet{300, 40, 10}, Sheet{80, 80, 10}, Sheet{50, 300, 10}})
+    for (const auto& [sheets, pieces, joins] : {std::array{1, 2, 1}, std::array{20, 60, 3}}) {
+      SCOPED_TRACE(std::to_string(paper.width) + " x " + std::to_string(paper.height) + " mm, " +
+                   std::to_string(pieces) + " pieces on " + std::to_string(sheets) + " sheets");
+      Print p = print_of(sheets, pieces, joins, paper);
+      EXPECT_FALSE(add_overview(p.pages, p.layout, p.piece, p.graph));
+      EXPECT_EQ(overview_pages_of(p.pages), 0);
+      EXPECT_EQ(static_cast<int>(p.pages.pages.size()), sheets);
+      EXPECT_FALSE(p.pages.overview);
+    }
 }
 
 }  // namespace
