@@ -19,8 +19,8 @@
 namespace papernet::cli {
 namespace {
 
+constexpr const char* kUsageLine = "usage: papernet unfold FILE -o OUT [-o OUT]... [options]\n";
 constexpr const char* kUsage =
-    "usage: papernet unfold FILE -o OUT [-o OUT]... [options]\n"
     "FILE: glb, gltf, drc, obj, off, ply or stl (the files it names beside it are read too), or\n"
     "a folder that holds one such file.\n"
     "OUT is chosen by extension: .json (papernet.net/2), .svg (one page, or OUT-1.svg ... per\n"
@@ -31,6 +31,10 @@ constexpr const char* kUsage =
     "cannot be unfolded, 1 other errors. Prints one summary line (key=value) on stdout;\n"
     "grown=K counts the parts unfolded in pieces grown from single faces.\n"
     "Options (the service's names, README.md 'Options'; --name=value works too):\n";
+
+// After a mistake in the command, below the usage line: where the rest is (the whole usage
+// would scroll the message naming the mistake off the screen).
+constexpr const char* kTryHelp = "papernet unfold --help lists every option\n";
 
 // The command line's limits: those of the loader (core/io/load.h), and 60 s by default.
 const PipelineLimits kLimits{std::size_t{256} << 20, 2'000'000, 60};
@@ -190,14 +194,14 @@ int unfold(int argc, char** argv) {
   try {
     c = parse(argc, argv);
   } catch (const InvalidOptionException& e) {
-    std::cerr << "papernet unfold: " << in_flags(e) << "\n" << kUsage << options_help();
+    std::cerr << "papernet unfold: " << in_flags(e) << "\n" << kUsageLine << kTryHelp;
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "papernet unfold: " << e.what() << "\n" << kUsage << options_help();
+    std::cerr << "papernet unfold: " << e.what() << "\n" << kUsageLine << kTryHelp;
     return 1;
   }
   if (!c) {
-    std::cout << kUsage << options_help();
+    std::cout << kUsageLine << kUsage << options_help();
     return 0;
   }
   const std::string& file = c->file;

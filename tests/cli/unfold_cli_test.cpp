@@ -307,10 +307,26 @@ TEST(UnfoldCli, DetailAutoPlugsSmallTunnelsAndThickensSlivers) {
   EXPECT_LT((2 - (v - 3 * f / 2 + f)) / 2, 10);
 }
 
+// A mistake in the command: exit 1, the message naming it on the first line, then the usage
+// line and where the options are listed (the whole list, 80 lines, scrolled the message off the
+// screen); --help lists them. (Until 2026-12-05 the output was /dev/null, which the command
+// refuses as an output of no known type, so the exit code said nothing of the options.)
 TEST(UnfoldCli, BadStrategyOrTargetExitsOne) {
-  const std::string mesh = papernet::test::test_data_dir() + "/sample.obj -o /dev/null";
-  EXPECT_EQ(papernet("unfold " + mesh + " --strategy QX"), 1);
-  EXPECT_EQ(papernet("unfold " + mesh + " --target-faces 0"), 1);
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string mesh =
+      papernet::test::test_data_dir() + "/sample.obj -o " + std::string(scratch / "bad.json");
+  std::string said;
+  EXPECT_EQ(papernet("unfold " + mesh + " --strategy QX", &said), 1);
+  EXPECT_EQ(said.rfind("papernet unfold: ", 0), 0u) << said;
+  EXPECT_NE(said.substr(0, said.find('\n')).find("QX"), std::string::npos) << said;
+  EXPECT_NE(said.find("papernet unfold --help lists every option"), std::string::npos) << said;
+  EXPECT_EQ(std::count(said.begin(), said.end(), '\n'), 3) << said;
+  EXPECT_EQ(papernet("unfold " + mesh + " --target-faces 0", &said), 1);
+  EXPECT_NE(said.substr(0, said.find('\n')).find("target"), std::string::npos) << said;
+  EXPECT_EQ(papernet("unfold --help", &said), 0);
+  EXPECT_EQ(said.rfind("usage: papernet unfold FILE", 0), 0u) << said;
+  EXPECT_NE(said.find("--strategy AUTO|QQ|SEMP|SEQ|TU"), std::string::npos) << said;
+  EXPECT_NE(said.find("--overview [yes|no]"), std::string::npos) << said;
 }
 
 // A mesh with faults is repaired, and the command says what it repaired; with --strict the
