@@ -14,11 +14,15 @@
 namespace papernet {
 namespace {
 
-// The nesting grid works in integer coordinates: micrometres.
+// The nesting grid works in integer coordinates: micrometres (on a sheet up to kMostNestMm long).
 constexpr double kUnitsPerMm = 1000;
+// The longest sheet nested at nest_outlines' cells of 0.5 mm (the named papers all are, Tabloid's
+// 432 mm the longest); a longer one is nested scaled down to this (nest_parts).
+constexpr double kMostNestMm = 450;
 
-print_detail::IntPoint to_int(Vec2 p) {
-  return {std::llround(p.x * kUnitsPerMm), std::llround(p.y * kUnitsPerMm)};
+/// `p` (mm) in units of which `units` make a millimetre.
+print_detail::IntPoint to_int(Vec2 p, double units) {
+  return {std::llround(p.x * units), std::llround(p.y * units)};
 }
 
 /// What is nested: the shapes of one piece (its faces and their tabs) or one glue strip, turned
@@ -81,6 +85,11 @@ Placement nest_parts(std::vector<Part>& parts, double w, double h, double spacin
   // Each part keeps half the spacing of paper around it; its turn is chosen on its points with
   // room for that (and a few micrometres of rounding to spare).
   const double grow = 0.5 * spacing_mm;
+  // A sheet longer than kMostNestMm is nested as one that long, every part scaled down with it:
+  // its grid's cells grow with the sheet, so that a sheet of a plotter's size nests in about the
+  // time A3 does rather than in the square of its size times longer.
+  const double shrink = std::max(1.0, std::max(w, h) / kMostNestMm);
+  const double units = kUnitsPerMm / shrink;  // nest_outlines' units per millimetre
   std::vector<print_detail::NestPart> turned;
   for (Part& part : parts) {
     std::vector<Vec2> points;
@@ -89,13 +98,12 @@ Placement nest_parts(std::vector<Part>& parts, double w, double h, double spacin
     print_detail::NestPart& polygons = turned.emplace_back();
     for (const auto& shape : part.shapes) {
       std::vector<print_detail::IntPoint>& polygon = polygons.emplace_back();
-      for (Vec2 p : shape) polygon.push_back(to_int(rotate(p, part.turn)));
+      for (Vec2 p : shape) polygon.push_back(to_int(rotate(p, part.turn), units));
     }
   }
-  const std::vector<print_detail::NestedOutline> placed =
-      print_detail::nest_outlines(turned, std::llround(grow * kUnitsPerMm),
-                                  static_cast<std::int64_t>(std::floor(w * kUnitsPerMm)),
-                                  static_cast<std::int64_t>(std::floor(h * kUnitsPerMm)));
+  const std::vector<print_detail::NestedOutline> placed = print_detail::nest_outlines(
+      turned, std::llround(grow * units), static_cast<std::int64_t>(std::floor(w * units)),
+      static_cast<std::int64_t>(std::floor(h * units)));
   Placement out;
   for (std::size_t i = 0; i < parts.size(); ++i) {
     if (placed[i].sheet < 0)
@@ -104,9 +112,9 @@ Placement nest_parts(std::vector<Part>& parts, double w, double h, double spacin
           "a piece does not fit the printable area of " + paper + " paper");
     out.sheets = std::max(out.sheets, placed[i].sheet + 1);
     out.angle.push_back(parts[i].turn + placed[i].angle);
-    out.shift.push_back(Vec2{static_cast<double>(placed[i].dx) / kUnitsPerMm,
-                             static_cast<double>(placed[i].dy) / kUnitsPerMm} +
-                        Vec2{(first_sheet + placed[i].sheet) * (w + kSheetGap), 0});
+    out.shift.push_back(
+        Vec2{static_cast<double>(placed[i].dx) / units, static_cast<double>(placed[i].dy) / units} +
+        Vec2{(first_sheet + placed[i].sheet) * (w + kSheetGap), 0});
   }
   return out;
 }

@@ -28,6 +28,10 @@ constexpr double kGapMm = 6;         // between thumbnails
 constexpr double kLinePitch = 1.5;   // line spacing, in text heights
 constexpr double kTitlePitch = 1.2;  // the title's, when it takes more than a line
 constexpr double kViewDpi = 150;     // the views of the model (the overview is on plain paper)
+// The longest side of a thumbnail (and so of the views of the model), mm: on paper far larger
+// than A3 (a plotter's) the overview's thumbnails stay this size, where they grew with the page
+// (on 3 x 3 m paper, views of 1.4 m painted at 150 dpi three times finer: 2 GB and 24 s).
+constexpr double kMostThumbMm = 250;
 
 bool holds(const Page& page, Vec2 p) {
   return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
@@ -295,6 +299,9 @@ Grid grid_of(const Cells& cells, double width, int cols, double scale) {
   return g;
 }
 
+/// The largest scale of a thumbnail: kMostThumbMm on its longer side.
+double most_scale(const Cells& cells) { return kMostThumbMm / std::max(cells.sw, cells.sh); }
+
 /// The grid that shows every cell in `room` (mm high) with the largest thumbnails.
 Grid fit_grid(const Cells& cells, double width, double room) {
   Grid best;
@@ -303,7 +310,7 @@ Grid fit_grid(const Cells& cells, double width, double room) {
     const int r = (n + c - 1) / c;
     const double cell_w = (width - (c - 1) * kGapMm) / c;
     const double cell_h = (room - (r - 1) * kGapMm) / r - cells.caption_height(cell_w);
-    const double s = std::min(cell_w / cells.sw, cell_h / cells.sh);
+    const double s = std::min({cell_w / cells.sw, cell_h / cells.sh, most_scale(cells)});
     if (s > best.scale) best = grid_of(cells, width, c, s);
   }
   return best;
@@ -591,7 +598,8 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
     const int cols = std::clamp(static_cast<int>((width + kGapMm) / (kFlowCellMm + kGapMm)), 1, n);
     Grid g = grid_of(small, width, cols, 0);
     // A row fits any page, the first (below its longer header) included.
-    g.scale = std::min(g.cell_w / small.sw, (bottom - top - g.caption) / small.sh);
+    g.scale =
+        std::min({g.cell_w / small.sw, (bottom - top - g.caption) / small.sh, most_scale(small)});
     if (!(g.scale * std::max(small.sw, small.sh) >= kLeastFlowThumbMm)) return std::nullopt;
     g.cell_h = small.sh * g.scale + g.caption;
     plan.grid = g;

@@ -632,39 +632,49 @@ TEST(Grow, PartsGrowApart) {
   EXPECT_TRUE(check_pieces(mesh, whole.net, whole.piece).ok());
 }
 
+// On A4, and on paper six times its size (a plotter's, 1260 x 1782 mm, nested on a grid scaled
+// down with it: print/nest.cpp, kMostNestMm) with the model six times as large.
 TEST(Fit, DrawnSheetsHoldEveryFaceOnceInsideThePrintableAreaWithoutOverlaps) {
   const Unfolded u = tabu_net("sample.obj");
   ASSERT_FALSE(u.mesh.faces.empty());
-  const PrintOptions print;
-  const double scale = print_scale(u.mesh, print);
-  const std::vector<int> one(u.mesh.faces.size(), 0);
-  const FitPieces fit = cut_to_fit(u.net, one, scale, {kRoom, {}}, "A4", 200);
-  PrintLayout layout = layout_net(u.mesh, arrange_pieces(fit.net, fit.piece, 20 / scale), print);
-  ASSERT_GT(layout.tabs.size(), 0u);
-  const PageOptions page;  // A4, 10 mm margins
-  const PageLayout pages = nest_pages(layout, fit.piece, page, 2);
-  EXPECT_TRUE(pages.fitted);
-  const std::vector<std::string> svgs = write_page_svgs(layout, pages);
-  ASSERT_EQ(svgs.size(), pages.pages.size());
-  EXPECT_LE(static_cast<int>(svgs.size()), fit.pieces + 1);
-  std::size_t faces = 0, tabs = 0, strips = 0;
-  for (std::size_t k = 0; k < svgs.size(); ++k) {
-    const std::string& svg = svgs[k];
-    const std::string name = "page " + std::to_string(k + 1) + " of " + std::to_string(svgs.size());
-    EXPECT_NE(svg.find(name), std::string::npos) << name;
-    std::vector<std::vector<Vec2>> shapes = test::svg_polygons(test::svg_group(svg, "faces"));
-    faces += shapes.size();
-    const auto tab_shapes = test::svg_polygons(test::svg_group(svg, "tabs"));
-    tabs += tab_shapes.size();
-    shapes.insert(shapes.end(), tab_shapes.begin(), tab_shapes.end());
-    const auto strip_shapes = test::svg_polygons(test::svg_group(svg, "strips"));
-    strips += strip_shapes.size();
-    shapes.insert(shapes.end(), strip_shapes.begin(), strip_shapes.end());
-    test::expect_on_the_printable_area_apart(shapes, page, name);
+  for (const double times : {1.0, 6.0}) {
+    SCOPED_TRACE(times == 1 ? "A4" : "1260 x 1782 mm");
+    PrintOptions print;
+    print.size_mm = 200 * times;
+    const double scale = print_scale(u.mesh, print);
+    const std::vector<int> one(u.mesh.faces.size(), 0);
+    PageOptions page;  // A4, 10 mm margins
+    if (times > 1) page.paper = {"1260x1782mm", 1260, 1782};
+    const FitPieces fit =
+        cut_to_fit(u.net, one, scale, {Vec2{page.paper.width - 34, page.paper.height - 34}, {}},
+                   page.paper.name, print.size_mm);
+    PrintLayout layout = layout_net(u.mesh, arrange_pieces(fit.net, fit.piece, 20 / scale), print);
+    ASSERT_GT(layout.tabs.size(), 0u);
+    const PageLayout pages = nest_pages(layout, fit.piece, page, 2);
+    EXPECT_TRUE(pages.fitted);
+    const std::vector<std::string> svgs = write_page_svgs(layout, pages);
+    ASSERT_EQ(svgs.size(), pages.pages.size());
+    EXPECT_LE(static_cast<int>(svgs.size()), fit.pieces + 1);
+    std::size_t faces = 0, tabs = 0, strips = 0;
+    for (std::size_t k = 0; k < svgs.size(); ++k) {
+      const std::string& svg = svgs[k];
+      const std::string name =
+          "page " + std::to_string(k + 1) + " of " + std::to_string(svgs.size());
+      EXPECT_NE(svg.find(name), std::string::npos) << name;
+      std::vector<std::vector<Vec2>> shapes = test::svg_polygons(test::svg_group(svg, "faces"));
+      faces += shapes.size();
+      const auto tab_shapes = test::svg_polygons(test::svg_group(svg, "tabs"));
+      tabs += tab_shapes.size();
+      shapes.insert(shapes.end(), tab_shapes.begin(), tab_shapes.end());
+      const auto strip_shapes = test::svg_polygons(test::svg_group(svg, "strips"));
+      strips += strip_shapes.size();
+      shapes.insert(shapes.end(), strip_shapes.begin(), strip_shapes.end());
+      test::expect_on_the_printable_area_apart(shapes, page, name);
+    }
+    EXPECT_EQ(faces, u.mesh.faces.size());
+    EXPECT_EQ(tabs, layout.tabs.size());
+    EXPECT_EQ(strips, layout.strips.size());
   }
-  EXPECT_EQ(faces, u.mesh.faces.size());
-  EXPECT_EQ(tabs, layout.tabs.size());
-  EXPECT_EQ(strips, layout.strips.size());
 }
 
 // The grid nester on its own: an L-shaped part (two rectangles, nested as one) leaves a hollow

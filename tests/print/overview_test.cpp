@@ -39,17 +39,18 @@ Print print_of(int sheets, int pieces, int joins, Sheet paper = {}) {
   p.pages.margin = paper.margin;
   p.pages.fitted = true;
   const double w = paper.width - 2 * paper.margin, h = paper.height - 2 * paper.margin;
+  const double apart = w + 100;  // the sheets' distance in the layout
   for (int s = 0; s < sheets; ++s) {
     Page page;
     page.col = s;
-    page.lo = {1000.0 * s, 0};
-    page.hi = {1000.0 * s + w, h};
+    page.lo = {apart * s, 0};
+    page.hi = {apart * s + w, h};
     p.pages.pages.push_back(page);
   }
   p.graph.joins.resize(static_cast<std::size_t>(pieces));
   for (int k = 0; k < pieces; ++k) {
     const int s = k * sheets / pieces;
-    const Vec2 at{1000.0 * s + w * (0.05 + 0.2 * (k % 4)), h * (0.07 + 0.14 * (k % 6))};
+    const Vec2 at{apart * s + w * (0.05 + 0.2 * (k % 4)), h * (0.07 + 0.14 * (k % 6))};
     const double side = 0.15 * std::min(w, h);
     p.layout.faces.push_back({at, at + Vec2{side, 0}, at + Vec2{0, side}});
     p.piece.push_back(k);
@@ -163,6 +164,25 @@ TEST(Overview, SmallPaperHoldsTheOverviewWithinItsMargins) {
       ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
       check_overview(p, paper, sheets, pieces);
     }
+}
+
+// On paper far larger than A3 (3 x 3 m, a plotter's) the thumbnails stay at most 250 mm long,
+// where they grew with the page (the views of the model beside them were painted 1.4 m large).
+TEST(Overview, LargePaperKeepsItsThumbnailsSmall) {
+  const Sheet paper{3000, 3000, 10};
+  Print p = print_of(3, 12, 2, paper);
+  ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
+  check_overview(p, paper, 3, 12);
+  const PageDrawing d = draw_overview(p.layout, p.pages, 0);
+  double longest = 0;  // of the dashed sides of the thumbnails' printable areas
+  int sides = 0;
+  for (const Shape& s : d.shapes)
+    if (s.layer == Layer::Marks && s.points.size() == 2 && s.text.empty()) {
+      longest = std::max(longest, norm(s.points[1] - s.points[0]));
+      ++sides;
+    }
+  EXPECT_GE(sides, 12) << "four sides of each of the 3 thumbnails";
+  EXPECT_NEAR(longest, 250, 1e-6);
 }
 
 // Paper too small for a legible overview (its header's words wider than the printable area, or
