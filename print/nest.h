@@ -12,8 +12,9 @@ namespace papernet {
 /// `spacing_mm`, so pieces keep that much paper between them to cut along), turned to lie along
 /// its minimum-area box, then placed by print/internal/nest_outlines.h: largest first, on the
 /// first sheet where one of its quarter turns fits, at the lowest free place of a grid of cells
-/// (into other pieces' hollows too). Pieces must already fit a page's printable area with their
-/// tabs (cut_to_fit).
+/// (into other pieces' hollows too; cells of 0.5 mm, larger on a sheet longer than 450 mm, whose
+/// grid has as many cells as one that long). Pieces must already fit a page's printable area
+/// with their tabs (cut_to_fit).
 ///
 /// `piece` gives each face's piece. Moves everything in `layout` (faces, tabs, strips, lines,
 /// labels) rigidly to its sheet: sheet k is the window [k * (w + gap), (k + 1) * w + k * gap] x
