@@ -27,6 +27,7 @@ constexpr double kPieceMm = 4;       // a piece's number on its sheet's thumbnai
 constexpr double kGapMm = 6;         // between thumbnails
 constexpr double kLinePitch = 1.5;   // line spacing, in text heights
 constexpr double kTitlePitch = 1.2;  // the title's, when it takes more than a line
+constexpr double kStepGap = 4;       // between columns of the build order, in text heights
 constexpr double kViewDpi = 150;     // the views of the model (the overview is on plain paper)
 // The longest side of a thumbnail (and so of the views of the model), mm: on paper far larger
 // than A3 (a plotter's) the overview's thumbnails stay this size, where they grew with the page
@@ -420,7 +421,7 @@ std::vector<std::string> build_steps(const Overview& overview) {
 int step_columns(const std::vector<std::string>& steps, double size, double width) {
   double widest = 0;
   for (const std::string& s : steps) widest = std::max(widest, text_width(s, size));
-  return std::clamp(static_cast<int>(width / (widest + 4 * size)), 1,
+  return std::clamp(static_cast<int>(width / (widest + kStepGap * size)), 1,
                     std::max(1, static_cast<int>(steps.size())));
 }
 
@@ -495,7 +496,7 @@ Header next_header(int which, int parts, double width) {
 std::vector<std::string> step_lines(const Overview& overview, double width, double size) {
   std::vector<std::string> lines;
   for (const std::string& step : build_steps(overview))
-    for (std::string& line : wrap_words(step, width - 4 * size, size))
+    for (std::string& line : wrap_words(step, width - kStepGap * size, size))
       lines.push_back(std::move(line));
   return lines;
 }
