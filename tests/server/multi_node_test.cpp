@@ -3,6 +3,7 @@
 // database may restart under running jobs, and a job that kills every node stops being retried.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <regex>
 #include <set>
@@ -42,6 +43,19 @@ bool wait_until(const std::function<bool()>& condition, std::chrono::seconds lim
        std::chrono::steady_clock::now() < end; std::this_thread::sleep_for(20ms))
     if (condition()) return true;
   return condition();
+}
+
+// A node stores a job's end before it logs it, so a client can read the job's final status
+// before the line is there: waits (at most 10 s) until each of `ids` has a completion line in
+// `logs()`.
+void await_logged(const std::vector<std::string>& ids, const std::function<std::string()>& logs) {
+  wait_until(
+      [&] {
+        const auto done = completions(logs());
+        return std::all_of(ids.begin(), ids.end(),
+                           [&](const std::string& id) { return done.count(id) > 0; });
+      },
+      10s);
 }
 
 // The events a node streams for a job until `enough` says so (or the stream ends).
@@ -162,6 +176,7 @@ TEST_F(MultiNode, KillNineMidJobAndTheOtherNodeFinishesEveryJob) {
   EXPECT_NE(done.find("event: done"), std::string::npos) << done;
 
   // Each job completed exactly once, on A before the kill or on B.
+  await_logged(ids, [&] { return a_log + b.log(); });
   const auto on_a = completions(a_log), on_b = completions(b.log());
   int twice = 0, never = 0;
   for (const std::string& id : ids) {
@@ -352,6 +367,7 @@ TEST(MultiNodeRestart, ThePostgresServerRestartsUnderRunningJobsAndNoJobIsLost) 
     const json job = wait_final(b, id, 120);
     EXPECT_EQ(job["status"], "succeeded") << job.dump();
   }
+  await_logged(ids, [&] { return a.log() + b.log(); });
   const auto on_a = completions(a.log()), on_b = completions(b.log());
   for (const std::string& id : ids)
     EXPECT_EQ((on_a.count(id) ? on_a.at(id) : 0) + (on_b.count(id) ? on_b.at(id) : 0), 1) << id;
