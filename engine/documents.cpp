@@ -36,6 +36,12 @@ double piece_gap_mm(const JobOptions& options) { return 2 * options.tab_height_m
 // The colour resolution of the whole net's SVG beside paged prints (a preview), dots per inch.
 constexpr double kPreviewDpi = 96;
 
+// The seconds a page's colour takes per pixel of its printable area until the pages' own are
+// measured (ColourPace), times the machine's slowness: drawing and writing the Duck's pages in
+// colour at 300 dpi took 30 ns on A0 paper (4.0 s a page) and 34 ns on A4 (0.25 s), on a
+// machine whose slowness was 1.2 (2026-12-06).
+constexpr double kColourSecondsPerPixel = 28e-9;
+
 // Paper left between nested pieces (with their tabs) on a sheet, to cut along.
 constexpr double kCutSpacingMm = 2;
 
@@ -635,49 +641,79 @@ class FitSearch {
 };
 
 // Paces the drawing of coloured pages against the print's deadline (docs/colour.md, "Time
-// limit"): before each page is drawn, when the pages left would take longer than the time left
-// at the pace of the pages drawn since the last change, the resolution drops so that they fit,
-// by the square root of their share (a page's cost is about its pixels: rasterising and
-// compressing them), to at least kMinColourDpi. It never rises again: the pages of a kit differ
-// at most from sharp to less sharp, once or a few times. When the pages left would take longer
-// even at kMinColourDpi (hundreds of pages of a net tiled on small paper, each painting its
-// faces' many small triangles: a cost per triangle, not per pixel), they print without colour.
+// limit"). A page's cost is taken to be its pixels (rasterising them and cairo's zlib compression
+// of them): its printable area at the resolution drawn (an overview page's views are drawn before,
+// at their own resolution: none). Before each page is drawn the seconds per pixel are measured
+// over the pages drawn since the last change, or, before any, taken from the machine (a prior:
+// one A0 page at 300 dpi takes 4 s, which alone overran a short limit); when the pages left would
+// take longer than the time left, the resolution drops so that they fit, to at least
+// kMinColourDpi. It never rises again: the pages of a kit differ at most from sharp to less
+// sharp, once or a few times. When the pages left would take longer even at kMinColourDpi
+// (hundreds of pages of a net tiled on small paper, each painting its faces' many small
+// triangles: a cost per triangle, not per pixel), they print without colour.
 class ColourPace {
  public:
-  ColourPace(std::chrono::steady_clock::time_point deadline, double dpi)
-      : deadline_(deadline), asked_(dpi), dpi_(dpi) {}
+  // `seconds_per_pixel`: the prior, used until a page with colour has been drawn.
+  ColourPace(std::chrono::steady_clock::time_point deadline, double dpi, const PageLayout& pages,
+             double seconds_per_pixel)
+      : deadline_(deadline), asked_(dpi), dpi_(dpi), per_pixel_(seconds_per_pixel) {
+    const double m = pages.margin;
+    const double area = std::max(0.0, pages.width - 2 * m) * std::max(0.0, pages.height - 2 * m);
+    for (const Page& page : pages.pages) areas_.push_back(page.overview ? 0 : area);
+    drawn_dpi_.assign(areas_.size(), 0);
+  }
 
-  // The resolution to draw page `page` at, `left` pages after it, when page - 1 is done; 0: no
-  // colour, on this page and the rest.
-  double next_dpi(int page, int left) {
+  // The resolution to draw page `page` at, the pages before it drawn and all but the last of them
+  // written; 0: no colour, on this page and the rest.
+  double next_dpi(int page) {
     const auto now = std::chrono::steady_clock::now();
-    ++drawn_;
-    if (dpi_ == 0 || left < 0) return dpi_;
-    const double per_page = std::chrono::duration<double>(now - since_).count() / drawn_;
-    const double time_left = std::chrono::duration<double>(deadline_ - now).count();
-    const double needed = per_page * (left + 1);
-    if (needed <= time_left) return dpi_;
-    if (dpi_ <= kMinColourDpi) {
-      // At the lowest resolution already, measured there: the rest in line art when they would
-      // end more than the second a job may overrun its limit past it (a job late already, its
-      // few pages in colour, keeps them: the Duck given 0.3 s).
-      if (drawn_ < kPagesMeasured || needed - std::max(time_left, 0.0) <= kColourOverrun)
-        return dpi_;
-      // In colour while the time left holds the rest in line art (about a twentieth of a page in
-      // colour each: the milk truck's 777 pages tiled on 50 mm paper took 2.4 s in all without
-      // colour, 41.1 s at 50 dpi).
-      if (time_left > kLineArtShare * needed) return dpi_;
-      first_without_ = page;
-      return dpi_ = 0;
+    const auto at = static_cast<std::size_t>(page);
+    // Pixels done by now: the pages before the last drawn whole, the last drawn a share (its
+    // drawing, without the writing that runs beside the next page's drawing).
+    const double last = at > 0 ? pixels(at - 1, drawn_dpi_[at - 1]) : 0;
+    const double done = drawn_ + kDrawnShare * last;
+    drawn_ += last;
+    const double pending = (1 - kDrawnShare) * last;
+    // Measured since the last change, unless an overview page was drawn or written meanwhile
+    // (its cost is not its pixels): then from now.
+    const auto overview = [&](std::size_t k) { return k < at && areas_[at - 1 - k] == 0; };
+    if (overview(0) || overview(1)) {
+      since_ = now;
+      done_since_ = done;
+    } else if (dpi_ > 0 && done > done_since_) {
+      per_pixel_ = std::chrono::duration<double>(now - since_).count() / (done - done_since_);
+      ++measured_;
     }
-    const double share = std::max(time_left, 0.0) / needed;
-    const double dpi = std::max(kMinColourDpi, std::floor(dpi_ * std::sqrt(share)));
-    if (dpi >= dpi_) return dpi_;
-    if (first_lowered_ < 0) first_lowered_ = page;
-    dpi_ = dpi;
-    since_ = now;
-    drawn_ = 0;
-    return dpi_;
+    // An overview page (its views drawn already): the choice waits for the first sheet.
+    if (areas_[at] == 0) return drawn_dpi_[at] = dpi_;
+    double rest = 0;  // the area of the pages left, mm²
+    for (std::size_t k = at; k < areas_.size(); ++k) rest += areas_[k];
+    const double time_left = std::chrono::duration<double>(deadline_ - now).count();
+    const auto needed = [&](double dpi) { return per_pixel_ * (pending + rest * squared(dpi)); };
+    if (dpi_ == 0 || rest == 0 || needed(dpi_) <= time_left) return drawn_dpi_[at] = dpi_;
+    if (dpi_ > kMinColourDpi) {
+      const double room = std::max(time_left / per_pixel_ - pending, 0.0) / rest;
+      const double dpi = std::max(kMinColourDpi, std::floor(25.4 * std::sqrt(room)));
+      if (dpi < dpi_) {
+        if (first_lowered_ < 0) first_lowered_ = page;
+        dpi_ = dpi;
+        since_ = now;
+        done_since_ = done;
+        measured_ = 0;
+      }
+      return drawn_dpi_[at] = dpi_;
+    }
+    // At the lowest resolution already, measured there: the rest in line art when they would end
+    // more than the second a job may overrun its limit past it (a job late already, its few pages
+    // in colour, keeps them: the Duck given 0.3 s), from the page where the time left no longer
+    // holds the rest in line art (about a twentieth of a page in colour each: the milk truck's 777
+    // pages tiled on 50 mm paper took 2.4 s in all without colour, 41.1 s at 50 dpi).
+    const double at_least = needed(dpi_);
+    if (measured_ < kPagesMeasured || at_least - std::max(time_left, 0.0) <= kColourOverrun ||
+        time_left > kLineArtShare * at_least)
+      return drawn_dpi_[at] = dpi_;
+    first_without_ = page;
+    return drawn_dpi_[at] = dpi_ = 0;
   }
 
   // The warnings for pages drawn at a lower resolution than asked, and for pages drawn without
@@ -706,16 +742,28 @@ class ColourPace {
   }
 
  private:
-  // Pages drawn at the lowest resolution before their pace may leave the colour out, and the
+  // Pages measured at the lowest resolution before their pace may leave the colour out, and the
   // seconds past the deadline their colour may take.
   static constexpr int kPagesMeasured = 2;
   static constexpr double kColourOverrun = 1;
   static constexpr double kLineArtShare = 0.05;  // of a page's time in colour, without it
+  // A page's share of its cost that is its drawing (its colour rasterised) rather than its
+  // writing (compressed into the PDF), which runs beside the next page's drawing: the Duck on A0
+  // paper at 300 dpi, 2.5 s and 4 s.
+  static constexpr double kDrawnShare = 0.4;
+
+  static double squared(double dpi) { return (dpi / 25.4) * (dpi / 25.4); }
+  double pixels(std::size_t page, double dpi) const { return areas_[page] * squared(dpi); }
 
   std::chrono::steady_clock::time_point deadline_;
   double asked_, dpi_;
+  double per_pixel_;               // seconds
+  std::vector<double> areas_;      // of each page that its colour may cover, mm²
+  std::vector<double> drawn_dpi_;  // each page's resolution, once chosen
+  double drawn_ = 0;               // pixels of the pages drawn so far
   std::chrono::steady_clock::time_point since_ = std::chrono::steady_clock::now();
-  int drawn_ = 0;
+  double done_since_ = 0;  // pixels done when the resolution last changed
+  int measured_ = 0;       // pages measured at the resolution
   int first_lowered_ = -1;
   int first_without_ = -1;
 };
@@ -855,15 +903,19 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   // two drawings.
   const auto policy = paint ? std::launch::async : std::launch::deferred;
   auto draw = [&](int i, const PrintColour* with) { return draw_page(layout, pages, i, with); };
-  ColourPace pace(deadline, colour ? colour->dpi : 0);
+  ColourPace pace(
+      deadline, colour ? colour->dpi : 0, pages,
+      colour && std::isfinite(seconds) ? kColourSecondsPerPixel * machine_slowness() : 0);
+  const auto paint_at = [&](int i) {
+    if (colour) colour->dpi = pace.next_dpi(i);
+    return colour && colour->dpi > 0 ? paint : nullptr;
+  };
   std::future<PageDrawing> next;
-  if ((pdf || svg_pages) && n > 0) next = std::async(policy, draw, 0, paint);
+  if ((pdf || svg_pages) && n > 0) next = std::async(policy, draw, 0, paint_at(0));
   for (int i = 0; (pdf || svg_pages) && i < n; ++i) {
     if (progress.cancelled()) throw CancelledException();
     const PageDrawing drawing = next.get();
-    if (colour) colour->dpi = pace.next_dpi(i + 1, n - i - 1);
-    if (i + 1 < n)
-      next = std::async(policy, draw, i + 1, colour && colour->dpi > 0 ? paint : nullptr);
+    if (i + 1 < n) next = std::async(policy, draw, i + 1, paint_at(i + 1));
     if (pdf) pdf->add_page(drawing);
     if (svg_pages) docs.svg_pages.push_back(write_page_svg(layout, drawing, i, n));
     report(progress, "write", 0.8 * (i + 1) / n);

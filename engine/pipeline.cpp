@@ -84,7 +84,7 @@ double thread_seconds() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
-double machine_slowness() {
+double probe_slowness() {
   static const double slowness = [] {
     constexpr int kSide = 40;  // 2 x 40 x 40 triangles
     PolygonGrid grid(1);
@@ -244,6 +244,8 @@ NetRepair coarser_colour_warning(double step_mm, double time_limit) {
 }
 
 }  // namespace
+
+double engine_detail::machine_slowness() { return probe_slowness(); }
 
 UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
                            const PipelineLimits& limits, const DocumentRequest& documents,

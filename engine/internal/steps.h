@@ -161,6 +161,10 @@ std::vector<std::optional<Image>> decode_textures(const MeshColour& library);
 /// nested on its own, and that is most of the search's time).
 constexpr int kFitSearchThreads = 2;
 
+/// How many times slower than the machine the pipeline's times per face were measured on this
+/// one runs (engine/pipeline.cpp): timed once per process (about 12 ms), at least a quarter.
+double machine_slowness();
+
 /// The pieces as one document: their meshes and nets side by side (engine/documents.cpp).
 NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
                      const JobOptions& options);
