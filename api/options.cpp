@@ -192,7 +192,9 @@ constexpr Spec kOptions[] = {
     {"time_limit", "S",
      "seconds the whole job may take (unset: 60 on the command line, the server's setting there)",
      [](JobOptions& o, const std::string& n, const json& v) { o.time_limit = number(n, v); }},
-    {"size_mm", "LEN", "longest side of the folded model (unset: 200 mm)",
+    {"size_mm", "LEN",
+     "longest side of the folded model (unset: 200 mm); a print holds a surface of at most 20 m², "
+     "on at most 1,000 sheets",
      [](JobOptions& o, const std::string& n, const json& v) { o.size_mm = number(n, v); }},
     {"scale", "F", "millimetres per model unit (instead of the size)",
      [](JobOptions& o, const std::string& n, const json& v) { o.scale = number(n, v); }},

@@ -1,4 +1,5 @@
-// How many faces each part is printed with (docs/print.md, "Detail").
+// How many faces each part is printed with, and how large a print may be (docs/print.md, "Detail"
+// and "Print size").
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -55,6 +56,14 @@ constexpr double kSmallestPartMm = 10;
 // little denser is printed as it is rather than approximated.
 constexpr double kDetailSlack = 1.25;
 
+// The most a print holds (docs/print.md, "Print size"): the model's surface as printed, and the
+// sheets of its paper that surface fills at the least (each sheet's printable area covered
+// whole). The layout's grids hold cells of millimetres over the paper, so a larger print took
+// minutes and gigabytes: the Duck at 20 m on A0 paper 69 s and 10.5 GB with a 15 s limit, at
+// 100 m on A4 still running after 2 minutes. 20 m² is about 400 A4 sheets filled whole.
+constexpr double kMostPrintSurfaceMm2 = 20e6;
+constexpr double kMostPrintSheets = 1000;
+
 double area(const Mesh& mesh) {
   double a = 0;
   for (const auto& t : mesh.faces) {
@@ -78,7 +87,66 @@ bool folds(const Mesh& part, double flat) {
   return false;
 }
 
+// `v` rounded to a whole number with thousands separated by commas.
+std::string whole(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.0f", std::round(v));
+  const std::string digits = buf;
+  const std::size_t sign = !digits.empty() && digits[0] == '-' ? 1 : 0;
+  std::string out = digits.substr(0, sign);
+  for (std::size_t i = sign; i < digits.size(); ++i) {
+    if (i > sign && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+// `v` > 0 rounded down to three significant digits (at least its whole part).
+std::string down_to_3_digits(double v) {
+  if (v >= 100) return whole(std::floor(v));
+  const double unit = std::pow(10.0, std::floor(std::log10(v)) - 2);
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.3g", std::floor(v / unit) * unit);
+  return buf;
+}
+
 }  // namespace
+
+void check_print_size(const std::vector<Mesh>& parts, const JobOptions& options, double scale) {
+  double surface = 0;  // mm²
+  Box3 box = Box3::empty();
+  for (const Mesh& part : parts) {
+    surface += area(part) * scale * scale;
+    for (const Vec3& v : part.vertices) box.add(v);
+  }
+  const double sheet = has_paper(options) ? [&] {
+    const PageOptions page = page_options(options);
+    return std::max(0.0, page.paper.width - 2 * page.margin_mm) *
+           std::max(0.0, page.paper.height - 2 * page.margin_mm);
+  }() : 0;
+  const double most =
+      sheet > 0 ? std::min(kMostPrintSurfaceMm2, kMostPrintSheets * sheet) : kMostPrintSurfaceMm2;
+  if (!(surface > most)) return;
+  const Vec3 size = box.size();
+  const double model_mm = scale * std::max({size.x, size.y, size.z});
+  std::string message = "the model's surface at " + whole(model_mm) + " mm is " +
+                        down_to_3_digits(surface / 1e6) + " m² of paper";
+  if (sheet > 0)
+    message += ", at least " + whole(std::ceil(surface / sheet)) + " sheets of " + options.paper;
+  message += "; a print holds at most " + whole(kMostPrintSurfaceMm2 / 1e6) + " m²";
+  if (sheet > 0) message += ", on at most " + whole(kMostPrintSheets) + " sheets";
+  const double growth = std::sqrt(most / surface);
+  const std::string on = sheet > 0 ? " on " + options.paper : "";
+  if (options.scale) {
+    message += ": a scale of at most " + down_to_3_digits(*options.scale * growth) +
+               " mm per unit prints" + on + " (option 'scale')";
+  } else {
+    message += ": at most " + whole(std::floor(model_mm * growth)) + " mm prints" + on +
+               " (option 'size_mm')";
+  }
+  if (sheet > 0 && kMostPrintSheets * sheet < kMostPrintSurfaceMm2) message += ", or larger paper";
+  throw InvalidOptionException("print_too_large", options.scale ? "scale" : "size_mm", message);
+}
 
 double parts_print_scale(const std::vector<Mesh>& parts, const JobOptions& options) {
   Mesh all;

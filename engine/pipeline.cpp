@@ -265,6 +265,7 @@ UnfoldOutcome run_pipeline(const JobInput& input, const JobOptions& options,
   Prepared prepared = prepare(load_input(input, limits, tracked), options, tracked);
   // The model's size on paper is the whole model's, small parts included.
   const double scale = parts_print_scale(prepared.parts, options);
+  if (plan.print) check_print_size(prepared.parts, options, scale);
   std::optional<NetRepair> small_parts = leave_out_small_parts(prepared, options, scale);
   // Pages in colour take most of the print's time: its drawing's part of the bar grows.
   tracked.set_colour(plan.print && options.colour &&

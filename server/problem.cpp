@@ -50,6 +50,7 @@ constexpr ProblemType kProblemTypes[] = {
     {"invalid_mesh", 422, "Mesh cannot be unfolded"},
     {"unfold_failed", 422, "No overlap-free net found"},
     {"face_too_large", 422, "A face is larger than a sheet"},
+    {"print_too_large", 422, "Print larger than a kit holds"},
     {"time_limit_exceeded", 422, "Job ran out of time"},
     {"interrupted_too_often", 422, "Job interrupted too often"},
     {"queue_full", 429, "Queue full"},

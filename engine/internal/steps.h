@@ -76,6 +76,11 @@ std::size_t buildable_faces(const Mesh& part, double scale);
 SimplifyTarget detail_target(const Mesh& part, const JobOptions& options, double scale,
                              std::size_t all_faces);
 
+/// Checks that the print of `parts` at `scale` is one a layout holds: the model's surface as
+/// printed at most 20 m², and on paper at most 1,000 sheets' printable area (engine/detail.cpp).
+/// \throw InvalidOptionException "print_too_large", naming the size that prints.
+void check_print_size(const std::vector<Mesh>& parts, const JobOptions& options, double scale);
+
 /// With detail auto, leaves out of `prepared` the parts with folds (and their colours) whose
 /// bounding box's diagonal prints under 10 mm at `scale`, never the largest; a flat part stays
 /// (engine/detail.cpp, kSmallestPartMm): the warning "small_parts_left_out" counting them, or

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -17,6 +18,7 @@
 #include "core/io/load.h"
 #include "core/mesh/validate.h"
 #include "core/unfold/net_check.h"
+#include "engine/internal/steps.h"
 #include "tests/support/job_input.h"
 
 namespace papernet::test {
@@ -669,6 +671,95 @@ TEST(Pipeline, ProgressFractionNeverGoesBackAndEndsAtOne) {
   const auto first_write = std::find_if(reports.begin(), reports.end(),
                                         [](const ProgressInfo& r) { return r.phase == "write"; });
   EXPECT_GT(reports[reports.size() - 2].fraction - first_write->fraction, 0.3);
+}
+
+// The message of the print_too_large error `run(options)` throws (failing the test without it),
+// naming `option`.
+template <class Run>
+std::string print_too_large(const JobOptions& options, const std::string& option, Run run) {
+  try {
+    run(options);
+  } catch (const InvalidOptionException& e) {
+    EXPECT_EQ(e.code(), "print_too_large") << e.what();
+    EXPECT_EQ(e.option(), option);
+    return e.what();
+  }
+  ADD_FAILURE() << "no print_too_large";
+  return "";
+}
+
+// The number (with thousands separated by commas) of the first group of `pattern` in `message`.
+double number_in(const std::string& message, const std::string& pattern) {
+  std::smatch m;
+  if (!std::regex_search(message, m, std::regex(pattern))) {
+    ADD_FAILURE() << "no \"" << pattern << "\" in: " << message;
+    return 0;
+  }
+  std::string digits = m[1].str();
+  std::erase(digits, ',');
+  return std::stod(digits);
+}
+
+// A print holds the model's surface of at most 20 m², on paper at most 1,000 sheets' printable
+// area (docs/print.md, "Print size"): the Duck at 100 m on A4 is refused before its unfold
+// (it ran for minutes, in gigabytes), naming the size that prints; that size passes the check
+// the pipeline makes, 1 % more does not. Without a print there is no bound.
+TEST(PrintSize, ALargerPrintIsRefusedNamingTheSizeThatPrints) {
+  const JobInput input = data_file("Duck.glb");
+  PipelineProgress quiet;
+  const auto pipeline = [&](const JobOptions& options) {
+    run_pipeline(input, options, {}, {.pdf = true}, quiet);
+  };
+  engine_detail::Prepared prepared =
+      engine_detail::prepare(engine_detail::load_input(input, {}, quiet), {}, quiet);
+  const auto check = [&](const JobOptions& options) {
+    engine_detail::check_print_size(prepared.parts, options,
+                                    engine_detail::parts_print_scale(prepared.parts, options));
+  };
+  JobOptions options;
+  options.size_mm = 100'000;
+  const std::string message = print_too_large(options, "size_mm", pipeline);
+  EXPECT_NE(message.find("the model's surface at 100,000 mm is "), std::string::npos) << message;
+  EXPECT_GT(number_in(message, R"(at least ([\d,]+) sheets of A4)"), 400'000) << message;
+  const double most =
+      number_in(message, R"(at most ([\d,]+) mm prints on A4 \(option 'size_mm'\))");
+  ASSERT_GT(most, 1000) << message;
+  options.size_mm = most;
+  EXPECT_NO_THROW(check(options));
+  options.size_mm = 1.01 * most;
+  print_too_large(options, "size_mm", check);
+
+  // Small paper: its 1,000 sheets hold less than 20 m², and the message says larger paper helps.
+  options.paper = "40x40mm";
+  options.overlap_mm = 2;
+  options.size_mm = 800;
+  const std::string small = print_too_large(options, "size_mm", pipeline);
+  EXPECT_NE(small.find("sheets of 40x40mm"), std::string::npos) << small;
+  EXPECT_NE(small.find(", or larger paper"), std::string::npos) << small;
+  options.size_mm = number_in(small, R"(at most ([\d,]+) mm prints on 40x40mm)");
+  EXPECT_NO_THROW(check(options));
+  options.size_mm = 1.01 * *options.size_mm;
+  print_too_large(options, "size_mm", check);
+
+  // A scale, and no paper (the SVG sized to the net): 20 m² bound it, the scale named.
+  JobOptions scaled;
+  scaled.paper = "none";
+  scaled.scale = 10'000;
+  const std::string by_scale = print_too_large(scaled, "scale", [&](const JobOptions& o) {
+    run_pipeline(input, o, {}, {.svg = true}, quiet);
+  });
+  EXPECT_EQ(by_scale.find("sheets"), std::string::npos) << by_scale;
+  scaled.scale = number_in(by_scale, R"(a scale of at most ([\d,.]+) mm per unit prints \()");
+  EXPECT_NO_THROW(check(scaled));
+  scaled.scale = 1.01 * *scaled.scale;
+  print_too_large(scaled, "scale", check);
+
+  // Without a print, no bound: the net's JSON of the Duck at 100 m.
+  options = JobOptions{};
+  options.size_mm = 100'000;
+  const UnfoldOutcome out = run_pipeline(input, options, {}, {}, quiet);
+  EXPECT_FALSE(out.print);
+  expect_checked(out);
 }
 
 }  // namespace

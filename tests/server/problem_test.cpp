@@ -47,6 +47,13 @@ TEST(ProblemTest, OptionErrorsNameTheOption) {
   EXPECT_EQ(p.code, "option_out_of_range");
   EXPECT_EQ(p.extra["option"], "seed");
   EXPECT_EQ(p.detail, "too big");
+  // The print's refusals while the job runs: 422, the option named (engine/detail.cpp).
+  for (const char* code : {"face_too_large", "print_too_large"}) {
+    const Problem print = mapped(InvalidOptionException(code, "size_mm", "at most 2,792 mm"));
+    EXPECT_EQ(print.status, 422) << code;
+    EXPECT_EQ(print.code, code);
+    EXPECT_EQ(print.extra["option"], "size_mm");
+  }
 }
 
 TEST(ProblemTest, RetryAfterOnQueueFullAndShutdown) {
