@@ -272,14 +272,19 @@ int unfold(int argc, char** argv) {
     }
     const std::string ext = extension(output);
     if (out.print && (ext == "svg" || ext == "pdf")) {
-      std::cerr << "papernet unfold: " << output << ": " << out.print->pages << " page(s) ("
-                << out.print->layout
-                << (!out.print->overview ? ""
-                    : out.print->overview_pages <= 1
-                        ? ", page 1 an overview"
-                        : ", pages 1 to " + std::to_string(out.print->overview_pages) +
-                              " an overview")
-                << "), " << out.print->pieces << " piece(s), " << out.print->tabs << " glue tabs, "
+      std::cerr << "papernet unfold: " << output << ": ";
+      // Without paper the SVG is one drawing of the net (the PDF's pages are A4 tiles of it).
+      if (ext == "svg" && !has_paper(c->options))
+        std::cerr << "one drawing of the net (paper none)";
+      else
+        std::cerr << out.print->pages << " page(s) (" << out.print->layout
+                  << (!out.print->overview ? ""
+                      : out.print->overview_pages <= 1
+                          ? ", page 1 an overview"
+                          : ", pages 1 to " + std::to_string(out.print->overview_pages) +
+                                " an overview")
+                  << ")";
+      std::cerr << ", " << out.print->pieces << " piece(s), " << out.print->tabs << " glue tabs, "
                 << out.print->strips << " glue strips, " << out.print->tabs_omitted
                 << " cut edges without glue, ";
       if (out.print->labels == 0)

@@ -110,6 +110,8 @@ TEST(UnfoldCli, SimplifyPrintsALowPolyVersionWithFewerStrips) {
       std::regex_search(said, std::regex(R"(, \d+ glue tabs, )" + m[1].str() + " glue strips")))
       << said;
   EXPECT_LE(std::stoi(m[1].str()), 5) << said;
+  // Without paper the SVG is one drawing, not pages.
+  EXPECT_NE(said.find(".svg: one drawing of the net (paper none), "), std::string::npos) << said;
   // Not below the mesh's own face count: the mesh itself, complete.
   ASSERT_EQ(papernet("unfold " + papernet::test::test_data_dir() +
                          "/Box_Draco.glb --simplify 12 -o " + base + ".json",
