@@ -37,9 +37,10 @@ double piece_gap_mm(const JobOptions& options) { return 2 * options.tab_height_m
 constexpr double kPreviewDpi = 96;
 
 // The seconds a page's colour takes per pixel of its printable area until the pages' own are
-// measured (ColourPace), times the machine's slowness: drawing and writing the Duck's pages in
-// colour at 300 dpi took 30 ns on A0 paper (4.0 s a page) and 34 ns on A4 (0.25 s), on a
-// machine whose slowness was 1.2 (2026-12-06).
+// measured (ColourPace), times the machine's slowness, for pages written into one document:
+// drawing the Duck's pages in colour at 300 dpi and writing them into the PDF took 30 ns on A0
+// paper (4.0 s a page) and 34 ns on A4 (0.25 s), on a machine whose slowness was 1.2
+// (2026-12-06); into the PDF and the SVG pages, 57 ns on A0 (7.7 s a page).
 constexpr double kColourSecondsPerPixel = 28e-9;
 
 // Paper left between nested pieces (with their tabs) on a sheet, to cut along.
@@ -653,10 +654,16 @@ class FitSearch {
 // triangles: a cost per triangle, not per pixel), they print without colour.
 class ColourPace {
  public:
-  // `seconds_per_pixel`: the prior, used until a page with colour has been drawn.
+  // `seconds_per_pixel`: the prior for a page drawn and written once, used until a page with
+  // colour has been drawn; `writes`: the documents each page is written into (the PDF, the SVG
+  // pages), each compressing its images (in the SVG as PNG) about as long as the other.
   ColourPace(std::chrono::steady_clock::time_point deadline, double dpi, const PageLayout& pages,
-             double seconds_per_pixel)
-      : deadline_(deadline), asked_(dpi), dpi_(dpi), per_pixel_(seconds_per_pixel) {
+             double seconds_per_pixel, int writes)
+      : deadline_(deadline),
+        asked_(dpi),
+        dpi_(dpi),
+        drawn_share_(kDrawnShare / (kDrawnShare + writes * (1 - kDrawnShare))),
+        per_pixel_(seconds_per_pixel * (kDrawnShare + writes * (1 - kDrawnShare))) {
     const double m = pages.margin;
     const double area = std::max(0.0, pages.width - 2 * m) * std::max(0.0, pages.height - 2 * m);
     for (const Page& page : pages.pages) areas_.push_back(page.overview ? 0 : area);
@@ -671,9 +678,9 @@ class ColourPace {
     // Pixels done by now: the pages before the last drawn whole, the last drawn a share (its
     // drawing, without the writing that runs beside the next page's drawing).
     const double last = at > 0 ? pixels(at - 1, drawn_dpi_[at - 1]) : 0;
-    const double done = drawn_ + kDrawnShare * last;
+    const double done = drawn_ + drawn_share_ * last;
     drawn_ += last;
-    const double pending = (1 - kDrawnShare) * last;
+    const double pending = (1 - drawn_share_) * last;
     // Measured since the last change, unless an overview page was drawn or written meanwhile
     // (its cost is not its pixels): then from now.
     const auto overview = [&](std::size_t k) { return k < at && areas_[at - 1 - k] == 0; };
@@ -748,8 +755,8 @@ class ColourPace {
   static constexpr double kColourOverrun = 1;
   static constexpr double kLineArtShare = 0.05;  // of a page's time in colour, without it
   // A page's share of its cost that is its drawing (its colour rasterised) rather than its
-  // writing (compressed into the PDF), which runs beside the next page's drawing: the Duck on A0
-  // paper at 300 dpi, 2.5 s and 4 s.
+  // writing into one document (compressed into the PDF), which runs beside the next page's
+  // drawing: the Duck on A0 paper at 300 dpi, 2.5 s and 4 s (the SVG's PNG 3.7 s).
   static constexpr double kDrawnShare = 0.4;
 
   static double squared(double dpi) { return (dpi / 25.4) * (dpi / 25.4); }
@@ -757,6 +764,7 @@ class ColourPace {
 
   std::chrono::steady_clock::time_point deadline_;
   double asked_, dpi_;
+  double drawn_share_;             // of a page's cost, with its writes
   double per_pixel_;               // seconds
   std::vector<double> areas_;      // of each page that its colour may cover, mm²
   std::vector<double> drawn_dpi_;  // each page's resolution, once chosen
@@ -905,7 +913,8 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   auto draw = [&](int i, const PrintColour* with) { return draw_page(layout, pages, i, with); };
   ColourPace pace(
       deadline, colour ? colour->dpi : 0, pages,
-      colour && std::isfinite(seconds) ? kColourSecondsPerPixel * machine_slowness() : 0);
+      colour && std::isfinite(seconds) ? kColourSecondsPerPixel * machine_slowness() : 0,
+      (pdf ? 1 : 0) + (svg_pages ? 1 : 0));
   const auto paint_at = [&](int i) {
     if (colour) colour->dpi = pace.next_dpi(i);
     return colour && colour->dpi > 0 ? paint : nullptr;
