@@ -906,9 +906,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   if (request.pdf) pdf.emplace(layout, pages.width, pages.height);
   const int n = static_cast<int>(pages.pages.size());
   // With colour, page i + 1 is drawn (its images rasterised) on a thread of its own while page i
-  // is written (cairo compresses its images): the two take about as long, and at most two pages'
-  // images are held. Only that thread samples the textures; the resolution changes only between
-  // two drawings.
+  // is written (cairo compresses its images; the writing is the longer: the Duck on A0 at 300 dpi
+  // 2.5 s drawing, 4 s written into the PDF, 7.7 s into the PDF and an SVG page), and at most two
+  // pages' images are held. Only that thread samples the textures; the resolution changes only
+  // between two drawings.
   const auto policy = paint ? std::launch::async : std::launch::deferred;
   auto draw = [&](int i, const PrintColour* with) { return draw_page(layout, pages, i, with); };
   ColourPace pace(
