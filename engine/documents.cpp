@@ -3,8 +3,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <future>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -36,12 +38,27 @@ double piece_gap_mm(const JobOptions& options) { return 2 * options.tab_height_m
 // The colour resolution of the whole net's SVG beside paged prints (a preview), dots per inch.
 constexpr double kPreviewDpi = 96;
 
+// The most pixels the colour of one drawing of the whole net may hold (its images are held at
+// once until written): an A0 sheet's printable area at 300 dpi, as many as the largest page's.
+constexpr double kMostDrawingPixels = 140e6;
+
 // The seconds a page's colour takes per pixel of its printable area until the pages' own are
 // measured (ColourPace), times the machine's slowness, for pages written into one document:
 // drawing the Duck's pages in colour at 300 dpi and writing them into the PDF took 30 ns on A0
 // paper (4.0 s a page) and 34 ns on A4 (0.25 s), on a machine whose slowness was 1.2
 // (2026-12-06); into the PDF and the SVG pages, 57 ns on A0 (7.7 s a page).
 constexpr double kColourSecondsPerPixel = 28e-9;
+
+// The same for one drawing of the whole net (without paper, or the preview beside the pages),
+// which cannot measure its pace before it is done: per pixel of its pieces' images and per
+// triangle of colour, times the machine's slowness. Measured 2026-12-06 without paper: the milk
+// truck at 1,000 mm, 252,000 triangles, 39.5 million pixels at 50 dpi 5.7 s and 74.3 million at
+// 100 dpi 8.7 s (slowness 1.2-1.3: about 70 ns a pixel, 7 us a triangle); the truck at 200 mm at
+// 300 dpi 3.7 s (42 million pixels, 78,000 triangles); the Duck at 300 dpi 3.2 s (43 million,
+// slowness 1.65); the Menger sponge of level 3 at 82 dpi 13 s (60 million pixels, up to 250,000
+// triangles, slowness 1.23), more than these allow for.
+constexpr double kDrawingSecondsPerPixel = 90e-9;
+constexpr double kDrawingSecondsPerTriangle = 10e-6;
 
 // Paper left between nested pieces (with their tabs) on a sheet, to cut along.
 constexpr double kCutSpacingMm = 2;
@@ -723,6 +740,9 @@ class ColourPace {
     return drawn_dpi_[at] = dpi_ = 0;
   }
 
+  // The seconds a pixel takes drawn and written once: as measured over the pages, else the prior.
+  double seconds_per_pixel_written_once() const { return per_pixel_ * drawn_share_ / kDrawnShare; }
+
   // The warnings for pages drawn at a lower resolution than asked, and for pages drawn without
   // colour, of `pages`.
   std::vector<NetRepair> warnings(int pages) const {
@@ -775,6 +795,33 @@ class ColourPace {
   int first_lowered_ = -1;
   int first_without_ = -1;
 };
+
+// The resolution of the colour of one drawing of the whole net, whose images hold `pixels(d)`
+// pixels at d dpi: `asked`, lowered to the highest whole dpi whose pixels `seconds` draw (and
+// write once) at `per_pixel` seconds a pixel (0: no bound) after `fixed` seconds whatever the
+// resolution, and at most kMostDrawingPixels; 0
+// (line art) when that is below kMinColourDpi. `by_time`: whether the time lowered it below what
+// the pixels allow.
+double drawing_dpi(double asked, const std::function<double(double)>& pixels, double seconds,
+                   double per_pixel, double fixed, bool& by_time) {
+  // The highest dpi from kMinColourDpi to `asked` whose pixels are at most `most` (0: none).
+  const auto highest = [&](double most) {
+    if (pixels(asked) <= most) return asked;
+    if (pixels(kMinColourDpi) > most) return 0.0;
+    double lo = kMinColourDpi, hi = asked;  // pixels(lo) <= most < pixels(hi)
+    while (hi - lo > 1) {
+      const double mid = std::floor(0.5 * (lo + hi));
+      (pixels(mid) <= most ? lo : hi) = mid;
+    }
+    return lo;
+  };
+  by_time = false;
+  const double by_pixels = highest(kMostDrawingPixels);
+  if (by_pixels == 0 || !(per_pixel > 0) || !std::isfinite(seconds)) return by_pixels;
+  const double in_time = highest(std::max(seconds - fixed, 0.0) / per_pixel);
+  by_time = in_time < by_pixels;
+  return in_time;
+}
 
 // The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
 // net document as printed (describe_print), within `seconds` where it can. A fit layout tries
@@ -890,7 +937,64 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
                                           ") is too small for it"});
     }
   }
-  if (unpaged) docs.svg_pages = {write_net_svg(*unpaged, page.margin_mm, paint)};
+  // Seconds left of the job's time limit (infinite without one).
+  const auto seconds_left = [&] {
+    return std::isfinite(seconds)
+               ? std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count()
+               : std::numeric_limits<double>::infinity();
+  };
+  // The seconds one drawing of the whole net takes whatever its resolution (its triangles of
+  // colour) on this machine; 0 without a time limit.
+  const auto triangle_seconds = [&] {
+    if (!colour || !std::isfinite(seconds)) return 0.0;
+    std::size_t triangles = 0;
+    for (const auto& face : colour->faces) triangles += face.size();
+    return static_cast<double>(triangles) * kDrawingSecondsPerTriangle * machine_slowness();
+  };
+  if (unpaged) {
+    // Without paper the one drawing is the print: its colour at the resolution asked, lowered to
+    // what the time left draws (half of it when the PDF's pages follow) and to kMostDrawingPixels,
+    // else left out, each with the pages' warning.
+    const PrintColour* drawn = paint;
+    if (colour) {
+      const double asked = colour->dpi;
+      const auto pixels = [&](double dpi) { return colour_images_pixels(*unpaged, *colour, dpi); };
+      bool by_time = false;
+      colour->dpi =
+          drawing_dpi(asked, pixels, (request.pdf ? 0.5 : 1) * seconds_left(),
+                      std::isfinite(seconds) ? kDrawingSecondsPerPixel * machine_slowness() : 0,
+                      triangle_seconds(), by_time);
+      const auto dpi = [](double d) { return std::to_string(static_cast<long>(d)) + " dpi"; };
+      const std::string most = std::to_string(static_cast<long>(kMostDrawingPixels / 1e6));
+      const std::string drawing = "the drawing of the net (paper none) prints ";
+      if (colour->dpi == 0) {
+        drawn = nullptr;
+        outcome.net.warnings.push_back(
+            {"colour_left_out", 1,
+             drawing + "without its colour (line art only): even at " + dpi(kMinColourDpi) +
+                 (by_time ? " it would not have been drawn within the job's time limit; a "
+                            "longer time limit prints it in colour"
+                          : " its colour would be more than the " + most +
+                                " million pixels one drawing holds; on paper each page "
+                                "holds its own")});
+      } else if (colour->dpi < asked) {
+        outcome.net.warnings.push_back(
+            {"colour_resolution_lowered", 1,
+             drawing + "its colour at " + dpi(colour->dpi) + ", lower than the " + dpi(asked) +
+                 " asked" +
+                 (by_time ? ", so that the job ends within its time limit; a longer time limit "
+                            "prints it at a higher resolution"
+                          : ": at " + dpi(asked) + " its colour would be " +
+                                std::to_string(static_cast<long>(pixels(asked) / 1e6)) +
+                                " million pixels, more than the " + most +
+                                " million one drawing holds; on paper every page prints "
+                                "at " +
+                                dpi(asked))});
+      }
+    }
+    docs.svg_pages = {write_net_svg(*unpaged, page.margin_mm, drawn)};
+    if (colour) colour->dpi = options.dpi;  // the PDF's pages are paced on their own
+  }
   report(progress, "write", 0);
   summary.pages = static_cast<int>(pages.pages.size());
   summary.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));
@@ -932,12 +1036,28 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   }
   for (NetRepair& warning : pace.warnings(n)) outcome.net.warnings.push_back(std::move(warning));
   if (pdf) docs.pdf = pdf->finish();
-  // The whole net in one SVG beside paged prints is a preview (the pages are the print): its
-  // colour at screen resolution, not the print's.
-  if (colour) colour->dpi = std::min(options.dpi, kPreviewDpi);
-  if (request.svg)
-    docs.svg =
-        paged && n == 1 ? docs.svg_pages.front() : write_net_svg(layout, page.margin_mm, paint);
+  if (request.svg) {
+    if ((paged && n == 1) || unpaged) {
+      docs.svg = docs.svg_pages.front();  // the one page, or the one drawing without paper
+    } else {
+      // The whole net in one SVG beside paged prints is a preview (the pages are the print): its
+      // colour at screen resolution at most, lowered to what the time left draws at the pages'
+      // pace, else left out (no warning: the print is as it says).
+      const PrintColour* drawn = paint;
+      if (colour) {
+        bool by_time = false;
+        colour->dpi = drawing_dpi(
+            std::min(options.dpi, kPreviewDpi),
+            [&](double dpi) { return colour_images_pixels(layout, *colour, dpi); }, seconds_left(),
+            std::isfinite(seconds) ? std::max(pace.seconds_per_pixel_written_once(),
+                                              kDrawingSecondsPerPixel * machine_slowness())
+                                   : 0,
+            triangle_seconds(), by_time);
+        if (colour->dpi == 0) drawn = nullptr;
+      }
+      docs.svg = write_net_svg(layout, page.margin_mm, drawn);
+    }
+  }
   if (!request.svg_pages && paged) docs.svg_pages.clear();
 }
 

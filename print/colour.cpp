@@ -23,11 +23,6 @@ using SurfacePtr = std::shared_ptr<cairo_surface_t>;
 
 SurfacePtr own(cairo_surface_t* s) { return SurfacePtr(s, cairo_surface_destroy); }
 
-// The most pixels one image holds (144 MB as ARGB): a piece larger than that at the dpi asked
-// (a whole A3 sheet at 300 dpi is 17 million) is drawn at a lower resolution, so memory stays
-// bounded.
-constexpr double kMaxImagePixels = 36e6;
-
 bool finite(const UV& uv) { return std::isfinite(uv[0]) && std::isfinite(uv[1]); }
 bool finite(const RGBA& c) {
   return std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]);
@@ -772,6 +767,66 @@ PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi
   return out;
 }
 
+namespace {
+
+// A tab glues under the face across its edge: it shows that face hinged onto the tab's side.
+struct TabUnder {
+  const Tab* tab;
+  int under;
+};
+
+// The pieces of a layout (faces joined by folds) with colour, each by the index of one of its
+// faces: its coloured faces, the tabs that show a coloured face, and the box of both on the page
+// (`map` takes a layout point there).
+struct ColouredPieces {
+  std::vector<char> has_colour;
+  std::vector<std::vector<int>> members;
+  std::vector<std::vector<TabUnder>> tabs;
+  std::vector<Box2> box;
+};
+
+template <class Map>
+ColouredPieces coloured_pieces(const PrintLayout& layout, const PrintColour& colour, Map map) {
+  const std::size_t n = layout.faces.size();
+  UnionFind pieces(n);
+  for (const NetEdge& e : layout.edges)
+    if (e.kind != EdgeKind::Cut && e.b.face >= 0) pieces.unite(e.a.face, e.b.face);
+  ColouredPieces out{std::vector<char>(n, 0), std::vector<std::vector<int>>(n),
+                     std::vector<std::vector<TabUnder>>(n), std::vector<Box2>(n, Box2::empty())};
+  for (std::size_t f = 0; f < n; ++f) {
+    if (colour.faces[f].empty()) continue;
+    const int r = pieces.find(static_cast<int>(f));
+    out.has_colour[r] = 1;
+    out.members[r].push_back(static_cast<int>(f));
+    for (Vec2 p : layout.faces[f]) out.box[r].add(map(p));
+  }
+  for (const Tab& tab : layout.tabs) {
+    const NetEdge& e = layout.edges[tab.edge];
+    const int under = e.a.face == tab.side.face ? e.b.face : e.a.face;
+    if (under < 0 || colour.faces[under].empty()) continue;
+    const int r = pieces.find(tab.side.face);
+    out.tabs[r].push_back({&tab, under});
+    out.has_colour[r] = 1;
+    for (Vec2 p : tab.corners) out.box[r].add(map(p));
+  }
+  return out;
+}
+
+}  // namespace
+
+double colour_images_pixels(const PrintLayout& layout, const PrintColour& colour, double dpi) {
+  if (colour.faces.size() != layout.faces.size()) return 0;
+  const ColouredPieces coloured = coloured_pieces(layout, colour, [](Vec2 p) { return p; });
+  const double per_mm2 = (dpi / 25.4) * (dpi / 25.4);
+  double pixels = 0;
+  for (std::size_t r = 0; r < coloured.box.size(); ++r)
+    if (coloured.has_colour[r]) {
+      const Vec2 size = coloured.box[r].size();
+      pixels += std::min(size.x * size.y * per_mm2, kMaxImagePixels);
+    }
+  return pixels;
+}
+
 std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColour& colour, Vec2 lo,
                                      Vec2 hi, Vec2 at, Vec2 clip_lo, Vec2 clip_hi) {
   std::vector<PageImage> images;
@@ -782,35 +837,7 @@ std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColou
     const auto& t = layout.faces[f];
     return std::array<Vec2, 3>{map(t[0]), map(t[1]), map(t[2])};
   };
-  // Pieces: faces joined by folds.
-  UnionFind pieces(n);
-  for (const NetEdge& e : layout.edges)
-    if (e.kind != EdgeKind::Cut && e.b.face >= 0) pieces.unite(e.a.face, e.b.face);
-  std::vector<Box2> box(n, Box2::empty());
-  std::vector<char> has_colour(n, 0);
-  std::vector<std::vector<int>> members(n);
-  for (std::size_t f = 0; f < n; ++f) {
-    if (colour.faces[f].empty()) continue;
-    const int r = pieces.find(static_cast<int>(f));
-    has_colour[r] = 1;
-    members[r].push_back(static_cast<int>(f));
-    for (Vec2 p : page_face(static_cast<int>(f))) box[r].add(p);
-  }
-  // A tab glues under the face across its edge: it shows that face hinged onto the tab's side.
-  struct TabUnder {
-    const Tab* tab;
-    int under;
-  };
-  std::vector<std::vector<TabUnder>> tabs(n);
-  for (const Tab& tab : layout.tabs) {
-    const NetEdge& e = layout.edges[tab.edge];
-    const int under = e.a.face == tab.side.face ? e.b.face : e.a.face;
-    if (under < 0 || colour.faces[under].empty()) continue;
-    const int r = pieces.find(tab.side.face);
-    tabs[r].push_back({&tab, under});
-    has_colour[r] = 1;
-    for (Vec2 p : tab.corners) box[r].add(map(p));
-  }
+  const auto [has_colour, members, tabs, box] = coloured_pieces(layout, colour, map);
   const double px_per_mm = colour.dpi / 25.4;
   const double bleed = 1 / px_per_mm;
   for (std::size_t r = 0; r < n; ++r) {

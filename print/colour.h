@@ -80,6 +80,11 @@ struct PrintNote {
 PrintColour print_colour(const MeshColour& colour, std::size_t faces, double dpi,
                          std::vector<PrintNote>& notes);
 
+/// The most pixels one image of colour_images holds (144 MB as ARGB): a piece larger than that
+/// at the dpi asked (a whole A3 sheet at 300 dpi is 17 million) is drawn at a lower resolution,
+/// so memory stays bounded.
+constexpr double kMaxImagePixels = 36e6;
+
 /// A piece's colour placed on a page: the image's top-left corner and size in page
 /// millimetres (y down), its pixels an ARGB32 cairo image surface (transparent where nothing is
 /// coloured).
@@ -95,6 +100,10 @@ struct PageImage {
 /// page's [clip_lo, clip_hi].
 std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColour& colour, Vec2 lo,
                                      Vec2 hi, Vec2 at, Vec2 clip_lo, Vec2 clip_hi);
+
+/// The pixels colour_images' images of the whole of `layout` hold at `dpi`, unclipped: those of
+/// the boxes of its coloured pieces with their tabs, each at most kMaxImagePixels.
+double colour_images_pixels(const PrintLayout& layout, const PrintColour& colour, double dpi);
 
 /// The image's pixels as a PNG file's bytes.
 std::string encode_png(cairo_surface_t* surface);
