@@ -799,9 +799,8 @@ class ColourPace {
 // The resolution of the colour of one drawing of the whole net, whose images hold `pixels(d)`
 // pixels at d dpi: `asked`, lowered to the highest whole dpi whose pixels `seconds` draw (and
 // write once) at `per_pixel` seconds a pixel (0: no bound) after `fixed` seconds whatever the
-// resolution, and at most kMostDrawingPixels; 0
-// (line art) when that is below kMinColourDpi. `by_time`: whether the time lowered it below what
-// the pixels allow.
+// resolution, and at most kMostDrawingPixels; 0 (line art) when that is below kMinColourDpi.
+// `by_time`: whether the time lowered it below what the pixels allow.
 double drawing_dpi(double asked, const std::function<double(double)>& pixels, double seconds,
                    double per_pixel, double fixed, bool& by_time) {
   // The highest dpi from kMinColourDpi to `asked` whose pixels are at most `most` (0: none).
