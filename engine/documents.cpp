@@ -822,6 +822,25 @@ double drawing_dpi(double asked, const std::function<double(double)>& pixels, do
   return in_time;
 }
 
+// The warning that `labels.illegible` labels print under the legible size (docs/print.md,
+// "Labels"): what is left after moving them onto tabs, over folds and away on their piece.
+NetRepair small_labels_warning(const LabelSizes& labels, DetailMode detail) {
+  char sizes[96];
+  if (labels.smallest_mm >= 0.01)
+    std::snprintf(sizes, sizeof sizes, "under %.1f mm (the smallest %.2f mm)", kLegibleLabelMm,
+                  labels.smallest_mm);
+  else
+    std::snprintf(sizes, sizeof sizes, "under %.1f mm (the smallest under 0.01 mm)",
+                  kLegibleLabelMm);
+  std::string message = std::to_string(labels.illegible) + " of " + std::to_string(labels.count) +
+                        " labels print " + sizes + ", too small to read without a magnifier: ";
+  message += detail == DetailMode::Auto
+                 ? "short cut edges crowded where no larger place was found; print larger"
+                 : "short edges kept by the detail asked; detail auto collapses them, or print "
+                   "larger";
+  return NetRepair{"small_labels", labels.illegible, std::move(message)};
+}
+
 // The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
 // net document as printed (describe_print), within `seconds` where it can. A fit layout tries
 // the ways of kFitWays in turn, `search_threads` at a time, while half of them last (at least
@@ -922,6 +941,8 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.labels = labels.count;
   summary.smallest_label_mm = labels.smallest_mm;
   summary.small_labels = labels.illegible;
+  if (labels.illegible > 0)
+    outcome.net.warnings.push_back(small_labels_warning(labels, options.detail.mode));
   if (fit && options.overview.value_or(pieces.pieces > 1)) {
     summary.overview = add_overview(pages, layout, pieces.piece, std::move(graph), mesh,
                                     view_axes(outcome.format), options.colour);
