@@ -978,7 +978,8 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     const PrintColour* drawn = paint;
     if (colour) {
       const double asked = colour->dpi;
-      const auto pixels = [&](double dpi) { return colour_images_pixels(*unpaged, *colour, dpi); };
+      const std::vector<double> areas = colour_image_areas(*unpaged, *colour);
+      const auto pixels = [&](double dpi) { return colour_images_pixels(areas, dpi); };
       bool by_time = false;
       colour->dpi =
           drawing_dpi(asked, pixels, (request.pdf ? 0.5 : 1) * seconds_left(),
@@ -1066,9 +1067,10 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
       const PrintColour* drawn = paint;
       if (colour) {
         bool by_time = false;
+        const std::vector<double> areas = colour_image_areas(layout, *colour);
         colour->dpi = drawing_dpi(
             std::min(options.dpi, kPreviewDpi),
-            [&](double dpi) { return colour_images_pixels(layout, *colour, dpi); }, seconds_left(),
+            [&](double dpi) { return colour_images_pixels(areas, dpi); }, seconds_left(),
             std::isfinite(seconds) ? std::max(pace.seconds_per_pixel_written_once(),
                                               kDrawingSecondsPerPixel * machine_slowness())
                                    : 0,

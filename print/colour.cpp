@@ -814,16 +814,22 @@ ColouredPieces coloured_pieces(const PrintLayout& layout, const PrintColour& col
 
 }  // namespace
 
-double colour_images_pixels(const PrintLayout& layout, const PrintColour& colour, double dpi) {
-  if (colour.faces.size() != layout.faces.size()) return 0;
+std::vector<double> colour_image_areas(const PrintLayout& layout, const PrintColour& colour) {
+  std::vector<double> areas;
+  if (colour.faces.size() != layout.faces.size()) return areas;
   const ColouredPieces coloured = coloured_pieces(layout, colour, [](Vec2 p) { return p; });
-  const double per_mm2 = (dpi / 25.4) * (dpi / 25.4);
-  double pixels = 0;
   for (std::size_t r = 0; r < coloured.box.size(); ++r)
     if (coloured.has_colour[r]) {
       const Vec2 size = coloured.box[r].size();
-      pixels += std::min(size.x * size.y * per_mm2, kMaxImagePixels);
+      areas.push_back(size.x * size.y);
     }
+  return areas;
+}
+
+double colour_images_pixels(const std::vector<double>& areas, double dpi) {
+  const double per_mm2 = (dpi / 25.4) * (dpi / 25.4);
+  double pixels = 0;
+  for (double area : areas) pixels += std::min(area * per_mm2, kMaxImagePixels);
   return pixels;
 }
 

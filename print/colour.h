@@ -101,9 +101,13 @@ struct PageImage {
 std::vector<PageImage> colour_images(const PrintLayout& layout, const PrintColour& colour, Vec2 lo,
                                      Vec2 hi, Vec2 at, Vec2 clip_lo, Vec2 clip_hi);
 
-/// The pixels colour_images' images of the whole of `layout` hold at `dpi`, unclipped: those of
-/// the boxes of its coloured pieces with their tabs, each at most kMaxImagePixels.
-double colour_images_pixels(const PrintLayout& layout, const PrintColour& colour, double dpi);
+/// The areas of colour_images' images of the whole of `layout`, unclipped, in square layout
+/// units (millimetres for a printed layout): one for each coloured piece, the box of its faces
+/// and tabs.
+std::vector<double> colour_image_areas(const PrintLayout& layout, const PrintColour& colour);
+
+/// The pixels images of `areas` (square millimetres) hold at `dpi`, each at most kMaxImagePixels.
+double colour_images_pixels(const std::vector<double>& areas, double dpi);
 
 /// The image's pixels as a PNG file's bytes.
 std::string encode_png(cairo_surface_t* surface);
