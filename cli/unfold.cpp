@@ -2,6 +2,7 @@
 // the engine's pipeline (engine/pipeline.h), then the files and what to tell the user.
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <exception>
 #include <fstream>
 #include <iostream>
@@ -287,11 +288,15 @@ int unfold(int argc, char** argv) {
       std::cerr << ", " << out.print->pieces << " piece(s), " << out.print->tabs << " glue tabs, "
                 << out.print->strips << " glue strips, " << out.print->tabs_omitted
                 << " cut edges without glue, ";
-      if (out.print->labels == 0)
+      if (out.print->labels == 0) {
         std::cerr << "no edge labels\n";
-      else
-        std::cerr << "smallest label " << out.print->smallest_label_mm << " mm ("
-                  << out.print->small_labels << " under " << kLegibleLabelMm << " mm)\n";
+      } else {
+        const double smallest = out.print->smallest_label_mm;
+        char mm[32];  // 1.50 mm, 0.05 mm, 4e-06 mm
+        std::snprintf(mm, sizeof mm, smallest >= 0.01 ? "%.2f" : "%.2g", smallest);
+        std::cerr << "smallest label " << mm << " mm (" << out.print->small_labels << " under "
+                  << kLegibleLabelMm << " mm)\n";
+      }
       if (!out.print->layout_note.empty())
         std::cerr << "papernet unfold: " << output << ": " << out.print->layout_note << "\n";
     }

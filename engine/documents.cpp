@@ -825,13 +825,11 @@ double drawing_dpi(double asked, const std::function<double(double)>& pixels, do
 // The warning that `labels.illegible` labels print under the legible size (docs/print.md,
 // "Labels"): what is left after moving them onto tabs, over folds and away on their piece.
 NetRepair small_labels_warning(const LabelSizes& labels, DetailMode detail) {
-  char sizes[96];
-  if (labels.smallest_mm >= 0.01)
-    std::snprintf(sizes, sizeof sizes, "under %.1f mm (the smallest %.2f mm)", kLegibleLabelMm,
-                  labels.smallest_mm);
-  else
-    std::snprintf(sizes, sizeof sizes, "under %.1f mm (the smallest under 0.01 mm)",
-                  kLegibleLabelMm);
+  char sizes[96];  // the smallest 0.05 mm, 4e-06 mm
+  std::snprintf(sizes, sizeof sizes,
+                labels.smallest_mm >= 0.01 ? "under %.1f mm (the smallest %.2f mm)"
+                                           : "under %.1f mm (the smallest %.2g mm)",
+                kLegibleLabelMm, labels.smallest_mm);
   std::string message = std::to_string(labels.illegible) + " of " + std::to_string(labels.count) +
                         " labels print " + sizes + ", too small to read without a magnifier: ";
   message += detail == DetailMode::Auto

@@ -275,7 +275,8 @@ TEST(AssemblyAids, LabelsLeftSmallAreWarned) {
   EXPECT_NE(warning->message.find(std::to_string(small.size()) + " of "), std::string::npos)
       << warning->message;
   std::smatch said;  // the SVG writes sizes rounded
-  ASSERT_TRUE(std::regex_search(warning->message, said, std::regex(R"(the smallest ([0-9.]+) mm)")))
+  ASSERT_TRUE(
+      std::regex_search(warning->message, said, std::regex(R"(the smallest ([0-9.e+-]+) mm)")))
       << warning->message;
   EXPECT_NEAR(std::stod(said[1].str()), smallest, 0.01) << warning->message;
   // At 200 mm the same part prints every label legibly.
