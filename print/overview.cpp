@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -36,16 +37,6 @@ constexpr double kMostThumbMm = 250;
 
 bool holds(const Page& page, Vec2 p) {
   return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
-}
-
-/// "P1, P4, P5".
-std::string names(const std::vector<int>& pieces) {
-  std::string out;
-  for (const int p : pieces) {
-    if (!out.empty()) out += ", ";
-    out += piece_name(p);
-  }
-  return out;
 }
 
 /// `head` then the names of `pieces`, broken into lines no wider than `width` at `size`.
@@ -401,30 +392,6 @@ void draw_cells(const PrintLayout& layout, const PageLayout& pages, const Overvi
   }
 }
 
-/// The build order's lines: "P3 glues to P1, P2" (the pieces before it that it shares an edge
-/// with), "P1: start here", "P7: start a new part".
-std::vector<std::string> build_steps(const Overview& overview) {
-  std::vector<std::string> steps;
-  const int count = static_cast<int>(overview.page.size());
-  for (int p = 0; p < count; ++p) {
-    std::vector<int> earlier;
-    for (const int q : overview.graph.joins[p])
-      if (q < p) earlier.push_back(q);
-    steps.push_back(p == 0            ? piece_name(p) + ": start here"
-                    : earlier.empty() ? piece_name(p) + ": start a new part"
-                                      : piece_name(p) + " glues to " + names(earlier));
-  }
-  return steps;
-}
-
-/// The columns of the build order at text height `size` on a page `width` wide.
-int step_columns(const std::vector<std::string>& steps, double size, double width) {
-  double widest = 0;
-  for (const std::string& s : steps) widest = std::max(widest, text_width(s, size));
-  return std::clamp(static_cast<int>(width / (widest + kStepGap * size)), 1,
-                    std::max(1, static_cast<int>(steps.size())));
-}
-
 /// `text` broken at its spaces into lines no wider than `width` at `size` (a word wider than that
 /// on a line of its own; a no-break space does not break).
 std::vector<std::string> wrap_words(const std::string& text, double width, double size) {
@@ -440,6 +407,71 @@ std::vector<std::string> wrap_words(const std::string& text, double width, doubl
     at = end + 1;
   }
   return lines;
+}
+
+/// The build order's steps, each as lines no wider than `width` at `size`: "P3 glues to P1, P2"
+/// (the pieces before it that it shares an edge with), broken after a comma onto more lines where
+/// it is wider ("P3 glues to P1," at least on its first; with `at_spaces`, at every space where
+/// even that is wider), "P1: start here", "P7: start a new part".
+std::vector<std::vector<std::string>> build_steps(const Overview& overview, double width,
+                                                  double size, bool at_spaces) {
+  std::vector<std::vector<std::string>> steps;
+  const int count = static_cast<int>(overview.page.size());
+  for (int p = 0; p < count; ++p) {
+    std::vector<int> earlier;
+    for (const int q : overview.graph.joins[p])
+      if (q < p) earlier.push_back(q);
+    std::vector<std::string> step = p == 0 ? std::vector{piece_name(p) + ": start here"}
+                                    : earlier.empty()
+                                        ? std::vector{piece_name(p) + ": start a new part"}
+                                        : wrap(piece_name(p) + " glues to", earlier, width, size);
+    // On paper too narrow for its first line, at every space.
+    if (at_spaces && text_width(step.front(), size) > width) {
+      std::string text;
+      for (const std::string& line : step) text += (text.empty() ? "" : " ") + line;
+      step = wrap_words(text, width, size);
+    }
+    steps.push_back(std::move(step));
+  }
+  return steps;
+}
+
+// The most columns of the build order on a page.
+constexpr int kMostStepColumns = 8;
+
+/// The build order's lines at `size` in `columns` columns on a page `width` wide (build_steps,
+/// each column kStepGap text heights wider than its lines).
+std::vector<std::string> step_lines(const Overview& overview, double width, double size,
+                                    int columns) {
+  std::vector<std::string> lines;
+  for (std::vector<std::string>& step :
+       build_steps(overview, width / columns - kStepGap * size, size, columns == 1))
+    for (std::string& line : step) lines.push_back(std::move(line));
+  return lines;
+}
+
+/// The columns of the build order at text height `size` on a page `width` wide: those that take
+/// the fewest rows (the fewest of them for as many rows), no step's first line wider than its
+/// column; with `break_steps`, long steps broken onto more lines in narrower columns, else the
+/// most columns where no step is broken (but for a step wider than the page).
+int step_columns(const Overview& overview, double width, double size, bool break_steps) {
+  int best = 1;
+  std::size_t best_rows = std::numeric_limits<std::size_t>::max();
+  for (int columns = 1; columns <= kMostStepColumns; ++columns) {
+    const double room = width / columns - kStepGap * size;
+    std::size_t lines = 0;
+    bool fits = true, whole = true;
+    for (const std::vector<std::string>& step : build_steps(overview, room, size, columns == 1)) {
+      fits = fits && text_width(step.front(), size) <= room;
+      whole = whole && step.size() == 1;
+      lines += step.size();
+    }
+    if (columns > 1 && !(fits && (whole || break_steps))) break;
+    const std::size_t rows = (lines + columns - 1) / columns;
+    if (rows < best_rows) best = columns, best_rows = rows;
+    if (lines <= static_cast<std::size_t>(columns)) break;  // one row: no fewer
+  }
+  return best;
 }
 
 /// The header of an overview page, each line broken to fit the printable width: the title
@@ -489,16 +521,6 @@ Header next_header(int which, int parts, double width) {
                          std::to_string(parts) + ")",
                      width, kTitleMm),
           {}};
-}
-
-/// The build order's lines at `size` on a page `width` wide: each step (build_steps) broken at
-/// its spaces into lines that fit a column (step_columns) of their own.
-std::vector<std::string> step_lines(const Overview& overview, double width, double size) {
-  std::vector<std::string> lines;
-  for (const std::string& step : build_steps(overview))
-    for (std::string& line : wrap_words(step, width - kStepGap * size, size))
-      lines.push_back(std::move(line));
-  return lines;
 }
 
 // The least width of a thumbnail on a one-page overview, mm: below it the overview continues on
@@ -560,9 +582,8 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
   double size = kTextMm, block = 0;
   int columns = 1, rows = 0, count = 0;
   for (;; size = std::max(kSmallestMm, size - 0.25)) {
-    const std::vector<std::string> steps = step_lines(overview, width, size);
-    count = static_cast<int>(steps.size());
-    columns = step_columns(steps, size, width);
+    columns = step_columns(overview, width, size, false);
+    count = static_cast<int>(step_lines(overview, width, size, columns).size());
     rows = (count + columns - 1) / columns;
     block = (rows + 2) * kLinePitch * size;
     if (block <= 0.4 * (pages.height - 2 * m) || size <= kSmallestMm) break;
@@ -582,8 +603,8 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
   // Several pages: rows of thumbnails while they fit, then the build order's lines, in text of
   // kFlowTextMm.
   plan.text = kFlowTextMm;
-  const std::vector<std::string> steps = step_lines(overview, width, kFlowTextMm);
-  count = static_cast<int>(steps.size());
+  plan.columns = step_columns(overview, width, kFlowTextMm, true);
+  count = static_cast<int>(step_lines(overview, width, kFlowTextMm, plan.columns).size());
   // The build order's heading on a page after the first.
   if (count > 0 && text_width(kStepsContinued, kHeadingScale * kFlowTextMm) > width)
     return std::nullopt;
@@ -615,7 +636,6 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
     }
   }
   plan.step_size = kFlowTextMm;
-  plan.columns = step_columns(steps, kFlowTextMm, width);
   for (int at = 0; at < count;) {
     int room = lines_below(y);
     if (room < kLeastSteps) {
@@ -727,7 +747,7 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
   // The build order, in columns, line by line down each column.
   if (part.last_step > part.first_step) {
     const double size = plan.step_size, bottom = part.steps_top;
-    const std::vector<std::string> steps = step_lines(overview, width, size);
+    const std::vector<std::string> steps = step_lines(overview, width, size, plan.columns);
     out.text(Layer::Labels, {0.5 * pages.width, bottom + 0.5 * kLinePitch * size + 1},
              part.first_step > 0 ? kStepsContinued : "Build order", kHeadingScale * size);
     const double column_width = width / plan.columns;

@@ -546,9 +546,26 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
   std::set<int> steps;
   int caption_page = -1;
   bool more = false;  // the caption's last line ended in a comma: its next line goes on
+  // The build order's step "P7 glues to P3, P4", broken after a comma onto more lines when long:
+  // the step being read (-1: none) and the pieces named on its lines so far.
+  int step_piece = -1;
+  std::set<int> named;
+  const auto read_step = [&](const std::string& line) {
+    for (auto it = std::sregex_iterator(line.begin(), line.end(), names);
+         it != std::sregex_iterator(); ++it)
+      named.insert(std::stoi((*it)[1]) - 1);
+    if (!line.empty() && line.back() == ',') return;  // goes on on the next line
+    std::set<int> earlier;
+    for (int q : adj.joins.at(step_piece))
+      if (q < step_piece) earlier.insert(q);
+    EXPECT_EQ(named, earlier) << "P" << step_piece + 1 << " glues to ... " << line;
+    step_piece = -1;
+  };
   for (const std::string& t : overview) {
     std::smatch m;
-    if (more || std::regex_match(t, m, caption)) {
+    if (step_piece >= 0) {
+      read_step(t);
+    } else if (more || std::regex_match(t, m, caption)) {
       if (!more) caption_page = std::stoi(m[1]) - 1;
       const std::string rest = more ? t : std::string(m[2]);
       for (auto it = std::sregex_iterator(rest.begin(), rest.end(), names);
@@ -556,17 +573,10 @@ TEST(AssemblyAids, TheOverviewListsEveryPieceOnceWithItsSheet) {
         listed[std::stoi((*it)[1]) - 1].push_back(caption_page);
       more = !rest.empty() && rest.back() == ',';
     } else if (std::regex_match(t, m, step)) {
-      const int p = std::stoi(m[1]) - 1;
-      steps.insert(p);
-      std::set<int> named;
-      const std::string rest = m[2];
-      for (auto it = std::sregex_iterator(rest.begin(), rest.end(), names);
-           it != std::sregex_iterator(); ++it)
-        named.insert(std::stoi((*it)[1]) - 1);
-      std::set<int> earlier;
-      for (int q : adj.joins.at(p))
-        if (q < p) earlier.insert(q);
-      EXPECT_EQ(named, earlier) << t;
+      step_piece = std::stoi(m[1]) - 1;
+      steps.insert(step_piece);
+      named.clear();
+      read_step(m[2]);
     } else if (std::regex_match(t, m, start)) {
       const int p = std::stoi(m[1]) - 1;
       steps.insert(p);
