@@ -450,6 +450,38 @@ std::vector<std::string> step_lines(const Overview& overview, double width, doub
   return lines;
 }
 
+/// How far the build order's steps have flowed down the columns: the step, and its lines placed.
+struct StepFlow {
+  std::size_t step = 0, line = 0;
+};
+
+/// Flows `steps` on from `at` down `columns` columns of `rows` lines and says where they stop,
+/// appending their lines to `lines` when given. A step that a column holds whole is never split
+/// between two: it goes on to the next column, the rest of its own left blank (empty lines).
+StepFlow flow_steps(const std::vector<std::vector<std::string>>& steps, StepFlow at, int columns,
+                    int rows, std::vector<std::string>* lines) {
+  const auto whole = static_cast<std::size_t>(rows);
+  for (int c = 0; c < columns && at.step < steps.size(); ++c) {
+    std::size_t left = whole;
+    while (left > 0 && at.step < steps.size()) {
+      const std::vector<std::string>& step = steps[at.step];
+      const std::size_t rest = step.size() - at.line;
+      if (rest > left && at.line == 0 && step.size() <= whole && left < whole) break;
+      const std::size_t take = std::min(rest, left);
+      if (lines) {
+        const auto from = step.begin() + static_cast<std::ptrdiff_t>(at.line);
+        lines->insert(lines->end(), from, from + static_cast<std::ptrdiff_t>(take));
+      }
+      left -= take;
+      at.line += take;
+      if (at.line == step.size()) at = {at.step + 1, 0};
+    }
+    if (lines && c + 1 < columns && at.step < steps.size())
+      lines->insert(lines->end(), left, std::string());
+  }
+  return at;
+}
+
 /// The columns of the build order at text height `size` on a page `width` wide: those that take
 /// the fewest rows (the fewest of them for as many rows), no step's first line wider than its
 /// column; with `break_steps`, long steps broken onto more lines in narrower columns, else the
@@ -544,7 +576,7 @@ struct OverviewPlan {
   struct Part {
     int first_cell = 0, last_cell = 0;
     double grid_top = 0;
-    int first_step = 0, last_step = 0;
+    int first_step = 0, last_step = 0;  ///< of `steps`, the build order's lines
     int rows = 0;  ///< of the build order on this page (its lines column by column)
     double steps_top = 0;
   };
@@ -552,6 +584,8 @@ struct OverviewPlan {
   double text = kTextMm;  ///< the captions'
   double step_size = kTextMm;
   int columns = 1;
+  /// The build order's lines, column by column (empty: a column's foot left blank).
+  std::vector<std::string> steps;
   std::vector<Part> parts;  ///< one per overview page
 };
 
@@ -597,6 +631,7 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
     const int grid_rows = n > 0 ? (n + fitted.cols - 1) / fitted.cols : 0;
     const double foot =
         n > 0 ? top + grid_rows * fitted.cell_h + (grid_rows - 1) * kGapMm + kGapMm : top;
+    plan.steps = step_lines(overview, width, size, columns);
     plan.parts.push_back({0, n, top, 0, count, rows, foot});
     return plan;
   }
@@ -604,7 +639,9 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
   // kFlowTextMm.
   plan.text = kFlowTextMm;
   plan.columns = step_columns(overview, width, kFlowTextMm, true);
-  count = static_cast<int>(step_lines(overview, width, kFlowTextMm, plan.columns).size());
+  const std::vector<std::vector<std::string>> steps = build_steps(
+      overview, width / plan.columns - kStepGap * kFlowTextMm, kFlowTextMm, plan.columns == 1);
+  count = static_cast<int>(steps.size());
   // The build order's heading on a page after the first.
   if (count > 0 && text_width(kStepsContinued, kHeadingScale * kFlowTextMm) > width)
     return std::nullopt;
@@ -636,20 +673,27 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
     }
   }
   plan.step_size = kFlowTextMm;
-  for (int at = 0; at < count;) {
+  for (StepFlow at; at.step < steps.size();) {
     int room = lines_below(y);
+    const int first = static_cast<int>(plan.steps.size());
     if (room < kLeastSteps) {
       plan.parts.push_back(part);
-      part = {n, n, next_top, at, at, 0, 0};
+      part = {n, n, next_top, first, first, 0, 0};
       y = next_top;
       room = lines_below(y);
     }
-    const int take = std::min(count - at, plan.columns * room);
-    part.first_step = at;
-    part.last_step = at + take;
-    part.rows = (take + plan.columns - 1) / plan.columns;
+    // The page's rows, or on the last page the fewest that hold the rest.
+    int rows = room;
+    for (int r = 1; r < room; ++r)
+      if (flow_steps(steps, at, plan.columns, r, nullptr).step == steps.size()) {
+        rows = r;
+        break;
+      }
+    at = flow_steps(steps, at, plan.columns, rows, &plan.steps);
+    part.first_step = first;
+    part.last_step = static_cast<int>(plan.steps.size());
+    part.rows = rows;
     part.steps_top = y;
-    at += take;
     y = bottom;  // the page is full, or the build order ends here
   }
   plan.parts.push_back(part);
@@ -747,11 +791,12 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
   // The build order, in columns, line by line down each column.
   if (part.last_step > part.first_step) {
     const double size = plan.step_size, bottom = part.steps_top;
-    const std::vector<std::string> steps = step_lines(overview, width, size, plan.columns);
+    const std::vector<std::string>& steps = plan.steps;
     out.text(Layer::Labels, {0.5 * pages.width, bottom + 0.5 * kLinePitch * size + 1},
              part.first_step > 0 ? kStepsContinued : "Build order", kHeadingScale * size);
     const double column_width = width / plan.columns;
     for (int i = part.first_step; i < part.last_step; ++i) {
+      if (steps[i].empty()) continue;  // a column's foot left blank
       const int c = (i - part.first_step) / part.rows, r = (i - part.first_step) % part.rows;
       out.text(Layer::Labels, {m + (c + 0.5) * column_width, bottom + (r + 2) * kLinePitch * size},
                steps[i], size);

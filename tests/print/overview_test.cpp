@@ -157,25 +157,37 @@ TEST(Overview, ManySheetsAndPiecesGoOnOverMorePagesListingEachOnce) {
 // On an overview of several pages the build order of many pieces takes several columns, its long
 // steps broken after a comma onto more lines, rather than one column as wide as its longest step
 // (the Menger sponge's 448 pieces on 72 sheets at the defaults: 12 overview pages, 7 of them a
-// single column of the build order; 9 now, in two columns). check_overview reads each step once,
-// every text apart.
+// single column of the build order; 9 now, in two columns), and no step split between two
+// columns where one holds it whole. check_overview reads each step once, every text apart.
 TEST(Overview, TheBuildOrderOfManyPiecesTakesSeveralColumns) {
   Print p = print_of(72, 448, 8);
   ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
   check_overview(p, {}, 72, 448);
   const int overview_pages = overview_pages_of(p.pages);
-  static const std::regex step("^P\\d+ glues to .*,$");  // a step broken onto the next line
+  static const std::regex step("^P\\d+ glues to .*,$"),  // a step broken onto the next line
+      head("^P\\d+( glues to |: start ).*$");
   std::size_t broken = 0;
   for (int k = 0; k < overview_pages; ++k) {
-    std::set<long> columns;  // the steps' centres, to a tenth of a millimetre
-    for (const Text& t : texts(draw_overview(p.layout, p.pages, k))) {
-      if (t.text.rfind("P", 0) != 0 || t.text.find(" glues to ") == std::string::npos) continue;
-      columns.insert(std::lround(5 * (t.x0 + t.x1)));
+    const std::vector<Text> all = texts(draw_overview(p.layout, p.pages, k));
+    // The build order's lines: below its heading.
+    double below = -1;
+    for (const Text& t : all)
+      if (t.text.rfind("Build order", 0) == 0) below = t.y1;
+    if (below < 0) continue;
+    std::map<long, const Text*> columns;  // by centre, to a tenth of a millimetre: the top line
+    for (const Text& t : all) {
+      if (t.y0 < below) continue;
+      const Text*& top = columns[std::lround(5 * (t.x0 + t.x1))];
+      if (top == nullptr || t.y0 < top->y0) top = &t;
       broken += std::regex_match(t.text, step);
     }
-    if (k + 1 < overview_pages && !columns.empty()) {
+    if (k + 1 < overview_pages) {
       EXPECT_GE(columns.size(), 2u) << "overview page " << k + 1 << ": one column";
     }
+    // A step a column holds whole is not split between two: each column begins with one.
+    for (const auto& [centre, top] : columns)
+      EXPECT_TRUE(std::regex_match(top->text, head))
+          << "overview page " << k + 1 << ": a column begins with \"" << top->text << "\"";
   }
   EXPECT_GT(broken, 0u) << "no long step broken: the test's steps are too short to tell";
   std::printf("448 pieces on 72 sheets: %d overview pages, %zu steps broken\n", overview_pages,
