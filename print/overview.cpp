@@ -439,13 +439,24 @@ std::vector<std::vector<std::string>> build_steps(const Overview& overview, doub
 // The most columns of the build order on a page.
 constexpr int kMostStepColumns = 8;
 
-/// The build order's lines at `size` in `columns` columns on a page `width` wide (build_steps,
-/// each column kStepGap text heights wider than its lines).
+/// The width of the build order's lines in `columns` columns on a page `width` wide at `size`:
+/// each column kStepGap text heights wider than its lines.
+double step_room(double width, double size, int columns) {
+  return width / columns - kStepGap * size;
+}
+
+/// The build order's steps in `columns` columns (build_steps; broken at their spaces only in one
+/// column, where even a step's first line is wider than the page).
+std::vector<std::vector<std::string>> column_steps(const Overview& overview, double width,
+                                                   double size, int columns) {
+  return build_steps(overview, step_room(width, size, columns), size, columns == 1);
+}
+
+/// The build order's lines at `size` in `columns` columns on a page `width` wide.
 std::vector<std::string> step_lines(const Overview& overview, double width, double size,
                                     int columns) {
   std::vector<std::string> lines;
-  for (std::vector<std::string>& step :
-       build_steps(overview, width / columns - kStepGap * size, size, columns == 1))
+  for (std::vector<std::string>& step : column_steps(overview, width, size, columns))
     for (std::string& line : step) lines.push_back(std::move(line));
   return lines;
 }
@@ -490,10 +501,10 @@ int step_columns(const Overview& overview, double width, double size, bool break
   int best = 1;
   std::size_t best_rows = std::numeric_limits<std::size_t>::max();
   for (int columns = 1; columns <= kMostStepColumns; ++columns) {
-    const double room = width / columns - kStepGap * size;
+    const double room = step_room(width, size, columns);
     std::size_t lines = 0;
     bool fits = true, whole = true;
-    for (const std::vector<std::string>& step : build_steps(overview, room, size, columns == 1)) {
+    for (const std::vector<std::string>& step : column_steps(overview, width, size, columns)) {
       fits = fits && text_width(step.front(), size) <= room;
       whole = whole && step.size() == 1;
       lines += step.size();
@@ -639,8 +650,8 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
   // kFlowTextMm.
   plan.text = kFlowTextMm;
   plan.columns = step_columns(overview, width, kFlowTextMm, true);
-  const std::vector<std::vector<std::string>> steps = build_steps(
-      overview, width / plan.columns - kStepGap * kFlowTextMm, kFlowTextMm, plan.columns == 1);
+  const std::vector<std::vector<std::string>> steps =
+      column_steps(overview, width, kFlowTextMm, plan.columns);
   count = static_cast<int>(steps.size());
   // The build order's heading on a page after the first.
   if (count > 0 && text_width(kStepsContinued, kHeadingScale * kFlowTextMm) > width)
