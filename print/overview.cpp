@@ -518,7 +518,7 @@ int step_columns(const Overview& overview, double width, double size, bool break
 }
 
 /// The header of an overview page, each line broken to fit the printable width: the title
-/// (kTitleMm) and, on the first page, how to read the labels (kTextMm).
+/// (kTitleMm) and, on the first page, how to read the labels and the folds (kTextMm).
 struct Header {
   std::vector<std::string> title, lines;
 
@@ -545,15 +545,21 @@ struct Header {
   }
 };
 
-/// The header of the first page of an overview of `pieces` pieces on `sheets` sheets.
-Header first_header(int pieces, int sheets, double width) {
+/// The header of the first page of an overview of `pieces` pieces on `sheets` sheets; with
+/// `folds`, its last line says which way the folds go.
+Header first_header(int pieces, int sheets, double width, bool folds) {
   const std::string title = std::string("Overview: ") + std::to_string(pieces) +
                             (pieces == 1 ? " piece on " : " pieces on ") + std::to_string(sheets) +
                             (sheets == 1 ? " sheet" : " sheets");
   Header h{wrap_words(title, width, kTitleMm), {}};
-  for (const char* line :
-       {"Cut out each piece along its solid lines; build in order P1,\u00a0P2,\u00a0P3,\u00a0...",
-        "An edge labelled 12\u2192P3 glues to edge 12 of piece P3."})
+  std::vector<const char*> lines = {
+      "Cut out each piece along its solid lines; build in order P1,\u00a0P2,\u00a0P3,\u00a0...",
+      "An edge labelled 12\u2192P3 glues to edge 12 of piece P3."};
+  if (folds)
+    lines.push_back(
+        "Fold dashed lines away from you (mountain folds), dash-dotted lines towards you (valley "
+        "folds).");
+  for (const char* line : lines)
     for (std::string& l : wrap_words(line, width, kTextMm)) h.lines.push_back(std::move(l));
   return h;
 }
@@ -595,6 +601,7 @@ struct OverviewPlan {
   double text = kTextMm;  ///< the captions'
   double step_size = kTextMm;
   int columns = 1;
+  bool folds = true;  ///< the first page's header says which way the folds go (first_header)
   /// The build order's lines, column by column (empty: a column's foot left blank).
   std::vector<std::string> steps;
   std::vector<Part> parts;  ///< one per overview page
@@ -610,18 +617,21 @@ namespace {
 /// kLeastFlowThumbMm large with their captions taller than the first page holds below its
 /// header, or fewer than kLeastSteps lines of the build order (or its heading wider than the
 /// printable area) on a page after the first. A step of the build order wider than a column
-/// goes on on the lines below it.
-std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overview& overview) {
+/// goes on on the lines below it. With `folds`, the first page's header says which way the
+/// folds go.
+std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overview& overview,
+                                          bool folds) {
   const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
   const Cells cells = cells_of(pages, overview, kTextMm);
   const int n = cells.count();
   const Header first = first_header(static_cast<int>(overview.page.size()),
-                                    static_cast<int>(cells.sheets.size()), width);
+                                    static_cast<int>(cells.sheets.size()), width, folds);
   // The pages after the first: their title with the most digits it may print.
   const Header next = next_header(998, 999, width);
   if (!first.fits(width) || !next.fits(width)) return std::nullopt;
   const double top = first.bottom(m), next_top = next.bottom(m);
   OverviewPlan plan;
+  plan.folds = folds;
   // One page: the build order as small as it must be to take at most 40 % of the page, the
   // sheets as large as the room above it holds them.
   double size = kTextMm, block = 0;
@@ -752,7 +762,9 @@ bool add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
     overview->page.assign(static_cast<std::size_t>(count), -1);
     for (int p = 0; p < count; ++p)
       if (sheet[p] >= 0) overview->page[p] = sheet[p] + static_cast<int>(added);
-    std::optional<OverviewPlan> plan = plan_overview(pages, *overview);
+    // On small paper the line on the folds goes first (each sheet's key shows the lines).
+    std::optional<OverviewPlan> plan = plan_overview(pages, *overview, true);
+    if (!plan) plan = plan_overview(pages, *overview, false);
     if (!plan) {  // the paper is too small for it
       pages.pages.erase(pages.pages.begin(),
                         pages.pages.begin() + static_cast<std::ptrdiff_t>(added));
@@ -786,9 +798,9 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
   const OverviewPlan::Part& part = plan.parts[which];
 
   // The title and how to read the labels; on the pages after the first, a title.
-  const Header header = which > 0
-                            ? next_header(which, static_cast<int>(plan.parts.size()), width)
-                            : first_header(count, static_cast<int>(cells.sheets.size()), width);
+  const Header header =
+      which > 0 ? next_header(which, static_cast<int>(plan.parts.size()), width)
+                : first_header(count, static_cast<int>(cells.sheets.size()), width, plan.folds);
   for (std::size_t i = 0; i < header.title.size(); ++i)
     out.text(Layer::Labels, {0.5 * pages.width, header.title_y(m, i)}, header.title[i], kTitleMm);
   for (std::size_t i = 0; i < header.lines.size(); ++i)

@@ -401,6 +401,45 @@ void add_layout(const PrintLayout& layout, Vec2 lo, Vec2 hi, Vec2 at, PageDrawin
   }
 }
 
+/// The key to the lines, centred in the top margin: a sample of each line beside its name
+/// ("cut", "mountain fold", "valley fold"), the samples in their layers' styles. Its text is the
+/// page line's size, smaller where the page is narrow, and it keeps clear of the tiles' overlap
+/// ticks; left out where the margin or the page is too small for it.
+void add_key(PageDrawing& d, const PageLayout& pages) {
+  struct Entry {
+    Layer layer;
+    const char* name;
+  };
+  static constexpr Entry kEntries[] = {
+      {Layer::Cut, "cut"}, {Layer::Mountain, "mountain fold"}, {Layer::Valley, "valley fold"}};
+  const double m = pages.margin;
+  if (m < 5) return;  // no room above the printable area
+  const double room = pages.width - 2 * (m + pages.overlap);
+  // A sample three text heights long, never under 8 mm (the valley's dash-dot is 3.8 mm a
+  // period); 0.6 of a text height before its name, 2.4 between entries.
+  auto sample = [](double size) { return std::max(3 * size, 8.0); };
+  auto width = [&](double size) {
+    double w = 2 * 2.4 * size;
+    for (const Entry& e : kEntries) w += sample(size) + 0.6 * size + text_width(e.name, size);
+    return w;
+  };
+  double size = std::clamp(0.4 * m, 1.5, 3.5);
+  for (int i = 0; i < 4 && width(size) > room; ++i) size = std::max(1.5, size * room / width(size));
+  const double total = width(size);
+  if (total > room) return;
+  double x = 0.5 * (pages.width - total);
+  const double y = 0.5 * m;
+  for (const Entry& e : kEntries) {
+    Shape line{e.layer, {{x, y}, {x + sample(size), y}}, false, {}, 0, 0};
+    line.key = true;
+    d.shapes.push_back(std::move(line));
+    x += sample(size) + 0.6 * size;
+    const double w = text_width(e.name, size);
+    d.shapes.push_back({Layer::Marks, {{x + 0.5 * w, y}}, false, e.name, size, 0});
+    x += w + 2.4 * size;
+  }
+}
+
 }  // namespace
 
 PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index,
@@ -438,6 +477,7 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
                              0.9 * pages.width / (0.6 * static_cast<double>(name.size())));
   d.shapes.push_back(
       {Layer::Marks, {{0.5 * pages.width, pages.height - 0.5 * m}}, false, name, fs, 0});
+  add_key(d, pages);
   return d;
 }
 

@@ -97,6 +97,9 @@ struct Shape {
   double angle_deg = 0;  ///< text baseline, degrees clockwise on the page (SVG rotate())
   /// Text or a leader line drawn white, over a dark colour (docs/print.md, "Labels").
   bool light = false;
+  /// A sample of its layer's line in the key of the page's top margin (docs/print.md, "The
+  /// key"): drawn in that layer's style but outside the printable area, unclipped.
+  bool key = false;
 };
 
 /// Everything on one page, culled to the page's printable area (writers clip to `clip_*`).
@@ -107,9 +110,10 @@ struct PageDrawing {
   std::vector<PageImage> images;  ///< the pieces' colour, under every layer but faces and tabs
 };
 
-/// The shapes of page `index` of a paginated layout, with tile overlap marks and page number
-/// ("page k of n"); the overview page's are draw_overview's (print/overview.h). With `colour`,
-/// the coloured pieces' images on it.
+/// The shapes of page `index` of a paginated layout, with tile overlap marks, page number
+/// ("page k of n") and, in the top margin where it has room, the key to the lines (cut,
+/// mountain fold, valley fold); the overview page's are draw_overview's (print/overview.h).
+/// With `colour`, the coloured pieces' images on it.
 PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index,
                       const PrintColour* colour = nullptr);
 

@@ -41,17 +41,23 @@ void draw(cairo_t* cr, const PageDrawing& d) {
       if (s.layer == layer) trace(cr, s), cairo_fill(cr);
   };
   auto stroke_layer = [&](Layer layer, unsigned rgb, double width,
-                          std::initializer_list<double> dash) {
+                          std::initializer_list<double> dash, bool key = false) {
     set_rgb(cr, rgb);
     cairo_set_line_width(cr, width);
     cairo_set_dash(cr, dash.size() ? dash.begin() : nullptr, static_cast<int>(dash.size()), 0);
     for (const Shape& s : d.shapes)
-      if (s.layer == layer && s.text.empty() && !s.light) trace(cr, s);
+      if (s.layer == layer && s.text.empty() && !s.light && s.key == key) trace(cr, s);
     cairo_stroke(cr);
     set_rgb(cr, 0xffffff);  // lines over a dark colour, as light text is
     for (const Shape& s : d.shapes)
-      if (s.layer == layer && s.text.empty() && s.light) trace(cr, s);
+      if (s.layer == layer && s.text.empty() && s.light && s.key == key) trace(cr, s);
     cairo_stroke(cr);
+  };
+  // The fold and cut lines, of the net (key false) or of the key in the margin (key true).
+  auto stroke_lines = [&](bool key) {
+    stroke_layer(Layer::Cut, 0x000000, 0.25, {}, key);
+    stroke_layer(Layer::Mountain, 0xc0392b, 0.2, {2, 1}, key);
+    stroke_layer(Layer::Valley, 0x1f5fbf, 0.2, {2, 0.7, 0.4, 0.7}, key);
   };
   auto text_layer = [&](Layer layer, unsigned rgb) {
     set_rgb(cr, rgb);
@@ -97,13 +103,14 @@ void draw(cairo_t* cr, const PageDrawing& d) {
     if (s.layer == Layer::Strips && !s.closed && s.text.empty()) trace(cr, s);
   cairo_stroke(cr);
   cairo_set_dash(cr, nullptr, 0, 0);
-  stroke_layer(Layer::Cut, 0x000000, 0.25, {});
-  stroke_layer(Layer::Mountain, 0xc0392b, 0.2, {2, 1});
-  stroke_layer(Layer::Valley, 0x1f5fbf, 0.2, {2, 0.7, 0.4, 0.7});
+  stroke_lines(false);
   stroke_layer(Layer::Leaders, 0x333333, 0.15, {});
   text_layer(Layer::Labels, 0x333333);
   text_layer(Layer::Strips, 0x333333);
-  cairo_restore(cr);  // marks live in the margins: unclipped
+  cairo_restore(cr);                             // marks and the key live in the margins: unclipped
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);  // as the lines they stand for
+  stroke_lines(true);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
   stroke_layer(Layer::Marks, 0x777777, 0.15, {1, 1});
   text_layer(Layer::Marks, 0x777777);
 }

@@ -1,5 +1,6 @@
 #include "print/svg.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -100,7 +101,7 @@ std::string write_svg(const PageDrawing& d,
       << (clipped ? " clip-path=\"url(#printable)\"" : "") << ">\n";
     std::string path;  // open polylines of a layer go into one path
     for (const Shape& s : d.shapes) {
-      if (s.layer != ls.layer) continue;
+      if (s.layer != ls.layer || s.key) continue;
       if (!s.text.empty()) {
         const Vec2 c = s.points[0];
         // The text's visual centre sits about 0.35 em above its baseline.
@@ -139,6 +140,22 @@ std::string write_svg(const PageDrawing& d,
       o << "</g>\n";
     }
   }
+  // The key's samples live in the margin: each in its layer's style, unclipped.
+  std::string key;
+  for (const Shape& s : d.shapes) {
+    if (!s.key) continue;
+    const auto ls = std::find_if(std::begin(kLayers), std::end(kLayers),
+                                 [&](const LayerStyle& l) { return l.layer == s.layer; });
+    key.append("<path d=\"");
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      key.append(i ? "L" : "M");
+      key.append(num(s.points[i].x));
+      key.push_back(' ');
+      key.append(num(s.points[i].y));
+    }
+    key.append("\" ").append(ls->style).append(ls->path_style).append("/>\n");
+  }
+  if (!key.empty()) o << "<g id=\"key\">\n" << key << "</g>\n";
   o << "</svg>\n";
   return o.str();
 }

@@ -7,12 +7,16 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "core/errors.h"
+#include "core/io/load.h"
 #include "print/pages.h"
 #include "print/svg.h"
 #include "tests/support/meshes.h"
+#include "tests/support/paths.h"
 
 namespace papernet {
 namespace {
@@ -289,6 +293,141 @@ TEST(Pdf, ThePageLineFitsNarrowPaper) {
   }
   EXPECT_TRUE(named) << text.out;
   EXPECT_GT(words, 0);
+}
+
+// Pixels of an RGB image (PPM, "P6") whose colour is within 40 of `rgb` in each channel.
+int pixels_near(const std::string& ppm, unsigned rgb) {
+  std::istringstream in(ppm);
+  std::string magic;
+  int w = 0, h = 0, most = 0;
+  in >> magic >> w >> h >> most;
+  in.get();
+  if (magic != "P6" || most != 255) return -1;
+  int n = 0;
+  for (int i = 0; i < w * h; ++i) {
+    const int r = in.get(), g = in.get(), b = in.get();
+    if (!in) return -1;
+    n += std::abs(r - int((rgb >> 16) & 255)) < 40 && std::abs(g - int((rgb >> 8) & 255)) < 40 &&
+         std::abs(b - int(rgb & 255)) < 40;
+  }
+  return n;
+}
+
+// Every page carries the key to its lines in its top margin: a sample of the cut, the mountain
+// fold and the valley fold, each drawn as the net's lines of its kind are, beside its name; read
+// from the drawing, the SVG, and the PDF's words and pixels. Tiled pages keep it clear of the
+// overlap ticks; paper or margins too small for it leave it out.
+TEST(Pdf, EveryPageHasTheKeyToItsLines) {
+  PrintOptions print;
+  print.size_mm = 250;
+  // A part of tests/data with folds of both kinds, 600 faces.
+  const Mesh mesh = load_mesh_file(test::test_data_dir() + "/trimesh_ADIS16480_600.obj").mesh;
+  PrintLayout layout = layout_net(mesh, test::bfs_net(mesh), print);
+  ASSERT_FALSE(layout.mountain.empty());
+  ASSERT_FALSE(layout.valley.empty());
+  const PageLayout pages = paginate(layout, {});  // A4, 10 mm margins, tiled
+  ASSERT_GT(pages.pages.size(), 1u);
+  const double m = pages.margin, ov = pages.overlap;
+  for (int k = 0; k < static_cast<int>(pages.pages.size()); ++k) {
+    SCOPED_TRACE("page " + std::to_string(k + 1));
+    const PageDrawing d = draw_page(layout, pages, k);
+    std::vector<const Shape*> lines, names;
+    for (const Shape& s : d.shapes) {
+      if (s.key) lines.push_back(&s);
+      if (s.layer == Layer::Marks && !s.text.empty() && s.points[0].y < m) names.push_back(&s);
+    }
+    ASSERT_EQ(lines.size(), 3u);
+    ASSERT_EQ(names.size(), 3u);
+    const char* expected[] = {"cut", "mountain fold", "valley fold"};
+    const Layer layers[] = {Layer::Cut, Layer::Mountain, Layer::Valley};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Shape& line = *lines[i];
+      const Shape& name = *names[i];
+      EXPECT_EQ(line.layer, layers[i]);
+      EXPECT_EQ(name.text, expected[i]);
+      ASSERT_EQ(line.points.size(), 2u);
+      const double left = line.points[0].x, right = line.points[1].x;
+      EXPECT_GE(right - left, 8 - 1e-9) << "a sample shows at least two periods of its dashes";
+      // In the top margin, clear of the overlap ticks (at m + ov and width - m - ov).
+      for (const Vec2 p : line.points) {
+        EXPECT_GT(p.y, 0);
+        EXPECT_LT(p.y + 0.5 * name.size, m);
+      }
+      const double name_left = name.points[0].x - 0.5 * text_width(name.text, name.size);
+      const double name_right = name.points[0].x + 0.5 * text_width(name.text, name.size);
+      EXPECT_GT(left, m + ov);
+      EXPECT_LT(name_right, pages.width - m - ov);
+      EXPECT_GT(name_left, right) << "the name follows its sample";
+      if (i + 1 < 3) {
+        EXPECT_LT(name_right, lines[i + 1]->points[0].x) << "apart from the next entry";
+      }
+    }
+    // The SVG draws the samples unclipped, each in its layer's style.
+    const std::string svg = write_page_svg(layout, d, k, static_cast<int>(pages.pages.size()));
+    const auto key_at = svg.find("<g id=\"key\">");
+    ASSERT_NE(key_at, std::string::npos);
+    const std::string key = svg.substr(key_at, svg.find("</g>", key_at) - key_at);
+    EXPECT_EQ(key.find("clip-path"), std::string::npos);
+    EXPECT_NE(key.find("stroke=\"#000000\" stroke-width=\"0.25\""), std::string::npos);
+    EXPECT_NE(key.find("stroke-dasharray=\"2 1\""), std::string::npos);
+    EXPECT_NE(key.find("stroke-dasharray=\"2 0.7 0.4 0.7\""), std::string::npos);
+  }
+
+  // The PDF: the names on every page above the printable area, the samples' red and blue there.
+  const std::string path = temp_path("key.pdf");
+  std::ofstream(path, std::ios::binary) << write_pdf(layout, pages);
+  const ToolRun text = run("pdftotext", "-bbox " + path + " -");
+  if (!text.present) GTEST_SKIP() << "pdftotext missing: install poppler-utils";
+  ASSERT_EQ(text.status, 0) << text.out;
+  const double points = 72 / 25.4;
+  int pages_read = 0;
+  for (std::size_t at = text.out.find("<page"); at != std::string::npos;
+       at = text.out.find("<page", at + 1)) {
+    const std::size_t end = text.out.find("</page>", at);
+    std::set<std::string> above;  // the words wholly within the top margin
+    for (std::size_t w = text.out.find("<word", at); w < end; w = text.out.find("<word", w + 1)) {
+      const auto attribute = [&](const std::string& name) {
+        return std::stod(text.out.substr(text.out.find(name + "=\"", w) + name.size() + 2));
+      };
+      const std::size_t open = text.out.find('>', w) + 1;
+      if (attribute("yMax") < m * points)
+        above.insert(text.out.substr(open, text.out.find('<', open) - open));
+    }
+    // (pdftotext reads the labels the page clips away too: only the key's words are looked for.)
+    for (const char* word : {"cut", "mountain", "valley", "fold"})
+      EXPECT_EQ(above.count(word), 1u) << "page " << pages_read + 1 << ": " << word;
+    ++pages_read;
+  }
+  EXPECT_EQ(pages_read, static_cast<int>(pages.pages.size()));
+  // The top margin of page 1 at 150 dpi: the mountain sample's red, the valley's blue.
+  const int margin_px = static_cast<int>(m / 25.4 * 150);
+  const ToolRun top = run("pdftoppm", "-r 150 -f 1 -l 1 -y 0 -H " + std::to_string(margin_px) +
+                                          " -W 1240 -x 0 " + path);
+  std::filesystem::remove(path);
+  if (!top.present) GTEST_SKIP() << "pdftoppm missing: install poppler-utils";
+  ASSERT_EQ(top.status, 0);
+  EXPECT_GT(pixels_near(top.out, 0xc0392b), 20);
+  EXPECT_GT(pixels_near(top.out, 0x1f5fbf), 20);
+
+  // No key where there is no room: 50 mm paper, or margins of 4 mm.
+  PageOptions narrow;
+  narrow.paper = parse_paper("50x50mm");
+  PageOptions thin;
+  thin.margin_mm = 4;
+  PrintOptions small_print;
+  small_print.size_mm = 100;
+  for (const PageOptions& o : {narrow, thin}) {
+    PrintLayout again = layout_net(mesh, test::bfs_net(mesh), small_print);
+    const PageLayout small = paginate(again, o);
+    ASSERT_FALSE(small.pages.empty());
+    for (int k = 0; k < std::min<int>(4, static_cast<int>(small.pages.size())); ++k)
+      for (const Shape& s : draw_page(again, small, k).shapes) {
+        EXPECT_FALSE(s.key);
+        if (s.layer == Layer::Marks && !s.text.empty()) {
+          EXPECT_EQ(s.text.rfind("page ", 0), 0u) << s.text;
+        }
+      }
+  }
 }
 
 }  // namespace
