@@ -159,6 +159,35 @@ std::string paper(const std::string& name, const json& value) {
   }
 }
 
+// The kit's name: UTF-8 (nlohmann's dump refuses anything else), no control character (C0,
+// DEL or C1), at most kMaxTitleChars characters once the spaces at its ends are dropped.
+std::string title(const std::string& name, const json& value) {
+  std::string s = text(name, value);
+  const auto first = s.find_first_not_of(' '), last = s.find_last_not_of(' ');
+  s = first == std::string::npos ? std::string() : s.substr(first, last - first + 1);
+  try {
+    (void)json(s).dump();
+  } catch (const json::type_error&) {
+    bad_value(name, value, "UTF-8 text");
+  }
+  std::size_t chars = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(s[i]);
+    const bool c1 = byte == 0xC2 && i + 1 < s.size() &&
+                    static_cast<unsigned char>(s[i + 1]) >= 0x80 &&
+                    static_cast<unsigned char>(s[i + 1]) <= 0x9F;
+    if (byte < 0x20 || byte == 0x7F || c1)
+      bad_value(name, value, "text without control characters");
+    chars += (byte & 0xC0) != 0x80;
+  }
+  if (chars > kMaxTitleChars)
+    throw InvalidOptionException("option_out_of_range", name,
+                                 "option '" + name + "': at most " +
+                                     std::to_string(kMaxTitleChars) + " characters (" +
+                                     std::to_string(chars) + " given)");
+  return s;
+}
+
 // Every option: its name, how the command line shows its value, what it does, and how it is
 // read. Lengths (`_mm`) take units on the command line.
 struct Spec {
@@ -270,6 +299,10 @@ constexpr Spec kOptions[] = {
      "(two views, each piece numbered) and the build order (unset: when there is more than one "
      "piece); left out on paper too small for it (warning overview_left_out)",
      [](JobOptions& o, const std::string& n, const json& v) { o.overview = boolean(n, v); }},
+    {"title", "TEXT",
+     "the kit's name, printed on every page beside its number (\"Duck \u00b7 page 2 of 5\"), as "
+     "the overview's title and as the PDF's title: at most 80 characters (unset: none)",
+     [](JobOptions& o, const std::string& n, const json& v) { o.title = title(n, v); }},
     {"components", "all|largest",
      "all: every connected part of the mesh its own piece; largest: only the largest part",
      [](JobOptions& o, const std::string& n, const json& v) {
@@ -536,6 +569,7 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"colour", o.colour ? "auto" : "none"},
               {"dpi", o.dpi},
               {"overview", opt(o.overview)},
+              {"title", o.title.empty() ? json(nullptr) : json(o.title)},
               {"components", o.components == Components::All ? "all" : "largest"},
               {"strict", o.strict},
               {"callback_url", opt(o.callback_url)}};

@@ -95,6 +95,10 @@ struct JobOptions {
   /// A first page with a map of the sheets, the pieces on each and the build order (layout fit
   /// only). Unset: with more than one piece.
   std::optional<bool> overview;
+  /// The kit's name, printed on every page beside its number, as the overview's title and as
+  /// the PDF's title: at most kMaxTitleChars characters of UTF-8, no control characters, spaces
+  /// at its ends dropped. Empty: none.
+  std::string title;
   /// Every connected part its own piece (all), or only the largest part (the result says what
   /// it dropped).
   Components components = Components::All;
@@ -116,6 +120,8 @@ struct CallbackUrl {
 /// Splits http://HOST[:PORT][/PATH][?QUERY] (at most 2048 bytes, no user, no fragment).
 /// \throw InvalidOptionException invalid_option_value naming callback_url.
 CallbackUrl parse_callback_url(std::string_view url);
+
+inline constexpr std::size_t kMaxTitleChars = 80;
 
 /// Limits a front end puts on options (the service's from its configuration).
 struct OptionsLimits {

@@ -915,6 +915,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
     pages = paginate(layout, page);
   }
   report(progress, "layout", 1);
+  pages.title = options.title;
   // Colour (docs/colour.md, "Printing"): rasterised page by page as the pages are drawn.
   std::optional<PrintColour> colour;
   if (options.colour && !outcome.net.colour.empty()) {
@@ -1026,7 +1027,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   const bool paged = has_paper(options);
   const bool svg_pages = paged && (request.svg_pages || (request.svg && pages.pages.size() == 1));
   std::optional<PdfWriter> pdf;
-  if (request.pdf) pdf.emplace(layout, pages.width, pages.height);
+  if (request.pdf) pdf.emplace(layout, pages.width, pages.height, pages.title);
   const int n = static_cast<int>(pages.pages.size());
   // With colour, page i + 1 is drawn (its images rasterised) on a thread of its own while page i
   // is written (cairo compresses its images; the writing is the longer: the Duck on A0 at 300 dpi

@@ -545,12 +545,13 @@ struct Header {
   }
 };
 
-/// The header of the first page of an overview of `pieces` pieces on `sheets` sheets; with
-/// `folds`, its last line says which way the folds go.
-Header first_header(int pieces, int sheets, double width, bool folds) {
-  const std::string title = std::string("Overview: ") + std::to_string(pieces) +
-                            (pieces == 1 ? " piece on " : " pieces on ") + std::to_string(sheets) +
-                            (sheets == 1 ? " sheet" : " sheets");
+/// The header of the first page of an overview of `pieces` pieces on `sheets` sheets, titled
+/// with the kit's `name` where it has one; with `folds`, its last line says which way the folds
+/// go.
+Header first_header(const std::string& name, int pieces, int sheets, double width, bool folds) {
+  const std::string title = (name.empty() ? std::string("Overview") : name) + ": " +
+                            std::to_string(pieces) + (pieces == 1 ? " piece on " : " pieces on ") +
+                            std::to_string(sheets) + (sheets == 1 ? " sheet" : " sheets");
   Header h{wrap_words(title, width, kTitleMm), {}};
   std::vector<const char*> lines = {
       "Cut out each piece along its solid lines; build in order P1,\u00a0P2,\u00a0P3,\u00a0...",
@@ -602,6 +603,9 @@ struct OverviewPlan {
   double step_size = kTextMm;
   int columns = 1;
   bool folds = true;  ///< the first page's header says which way the folds go (first_header)
+  /// The first page's title's name: the kit's (PageLayout::title), or empty ("Overview") where
+  /// a word of it is wider than the page.
+  std::string name;
   /// The build order's lines, column by column (empty: a column's foot left blank).
   std::vector<std::string> steps;
   std::vector<Part> parts;  ///< one per overview page
@@ -624,14 +628,21 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
   const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
   const Cells cells = cells_of(pages, overview, kTextMm);
   const int n = cells.count();
-  const Header first = first_header(static_cast<int>(overview.page.size()),
-                                    static_cast<int>(cells.sheets.size()), width, folds);
+  std::string name = pages.title;
+  Header first = first_header(name, static_cast<int>(overview.page.size()),
+                              static_cast<int>(cells.sheets.size()), width, folds);
+  if (!first.fits(width) && !name.empty()) {
+    name.clear();
+    first = first_header(name, static_cast<int>(overview.page.size()),
+                         static_cast<int>(cells.sheets.size()), width, folds);
+  }
   // The pages after the first: their title with the most digits it may print.
   const Header next = next_header(998, 999, width);
   if (!first.fits(width) || !next.fits(width)) return std::nullopt;
   const double top = first.bottom(m), next_top = next.bottom(m);
   OverviewPlan plan;
   plan.folds = folds;
+  plan.name = name;
   // One page: the build order as small as it must be to take at most 40 % of the page, the
   // sheets as large as the room above it holds them.
   double size = kTextMm, block = 0;
@@ -798,9 +809,10 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
   const OverviewPlan::Part& part = plan.parts[which];
 
   // The title and how to read the labels; on the pages after the first, a title.
-  const Header header =
-      which > 0 ? next_header(which, static_cast<int>(plan.parts.size()), width)
-                : first_header(count, static_cast<int>(cells.sheets.size()), width, plan.folds);
+  const Header header = which > 0
+                            ? next_header(which, static_cast<int>(plan.parts.size()), width)
+                            : first_header(plan.name, count, static_cast<int>(cells.sheets.size()),
+                                           width, plan.folds);
   for (std::size_t i = 0; i < header.title.size(); ++i)
     out.text(Layer::Labels, {0.5 * pages.width, header.title_y(m, i)}, header.title[i], kTitleMm);
   for (std::size_t i = 0; i < header.lines.size(); ++i)

@@ -465,8 +465,8 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
   if (!pages.fitted && page.row + 1 < pages.rows)
     mark({m - 0.8 * m, y1 - ov}, {x1 + 0.8 * m, y1 - ov});
   if (!pages.fitted && page.row > 0) mark({m - 0.8 * m, m + ov}, {x1 + 0.8 * m, m + ov});
-  std::string name =
-      "page " + std::to_string(index + 1) + " of " + std::to_string(pages.pages.size());
+  std::string name = (pages.title.empty() ? "" : pages.title + " \u00b7 ") + "page " +
+                     std::to_string(index + 1) + " of " + std::to_string(pages.pages.size());
   if (page.overview) name += ": overview";
   if (!pages.fitted && pages.pages.size() > 1)
     name +=

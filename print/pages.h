@@ -68,6 +68,9 @@ struct PageLayout {
   std::vector<Page> pages;  ///< row by row, left to right; empty tiles left out
   /// With an overview page (add_overview, layout fit): what it shows.
   std::shared_ptr<const Overview> overview;
+  /// The kit's name (the option `title`), printed on every page beside its number and as the
+  /// overview's title; empty: none.
+  std::string title;
 };
 
 /// Splits a layout onto pages, choosing orientation (page portrait or landscape, net turned or
@@ -111,9 +114,9 @@ struct PageDrawing {
 };
 
 /// The shapes of page `index` of a paginated layout, with tile overlap marks, page number
-/// ("page k of n") and, in the top margin where it has room, the key to the lines (cut,
-/// mountain fold, valley fold); the overview page's are draw_overview's (print/overview.h).
-/// With `colour`, the coloured pieces' images on it.
+/// ("page k of n", after the title where there is one: "Duck · page k of n") and, in the top margin
+/// where it has room, the key to the lines (cut, mountain fold, valley fold); the overview page's
+/// are draw_overview's (print/overview.h). With `colour`, the coloured pieces' images on it.
 PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int index,
                       const PrintColour* colour = nullptr);
 

@@ -123,7 +123,8 @@ struct PdfWriter::Cairo {
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr{nullptr, cairo_destroy};
 };
 
-PdfWriter::PdfWriter(const PrintLayout& layout, double width_mm, double height_mm)
+PdfWriter::PdfWriter(const PrintLayout& layout, double width_mm, double height_mm,
+                     const std::string& title)
     : cairo_(std::make_unique<Cairo>()) {
   cairo_surface_t* surface =
       cairo_pdf_surface_create_for_stream(append, &bytes_, width_mm * kPt, height_mm * kPt);
@@ -132,7 +133,8 @@ PdfWriter::PdfWriter(const PrintLayout& layout, double width_mm, double height_m
     throw IOException(std::string("cannot create PDF: ") +
                       cairo_status_to_string(cairo_surface_status(surface)));
   cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "papernet");
-  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, "papernet paper net");
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE,
+                                 title.empty() ? "papernet paper net" : title.c_str());
   // The counts the SVG carries as data-* attributes, for tools that read PDF metadata.
   const std::string subject = std::to_string(layout.faces.size()) + " faces, " +
                               std::to_string(layout.cut_edges) + " cut edges, " +
@@ -164,7 +166,7 @@ std::string PdfWriter::finish() {
 
 std::string write_pdf(const PrintLayout& layout, const PageLayout& pages,
                       const PrintColour* colour) {
-  PdfWriter pdf(layout, pages.width, pages.height);
+  PdfWriter pdf(layout, pages.width, pages.height, pages.title);
   for (int i = 0; i < static_cast<int>(pages.pages.size()); ++i)
     pdf.add_page(draw_page(layout, pages, i, colour));
   return pdf.finish();

@@ -22,7 +22,9 @@ class PdfWriter {
  public:
   /// Pages of `width_mm` x `height_mm`; the document's metadata counts `layout`'s parts.
   /// \throw IOException when cairo cannot create the document.
-  PdfWriter(const PrintLayout& layout, double width_mm, double height_mm);
+  /// With a `title` (the kit's name), the document's title is it; else "papernet paper net".
+  PdfWriter(const PrintLayout& layout, double width_mm, double height_mm,
+            const std::string& title = {});
   ~PdfWriter();
   PdfWriter(const PdfWriter&) = delete;
   PdfWriter& operator=(const PdfWriter&) = delete;

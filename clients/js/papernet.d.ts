@@ -51,6 +51,9 @@ export interface Options {
    *  views, each piece numbered where it shows) and the build order (default: when the print has
    *  more than one piece). */
   overview?: boolean;
+  /** The kit's name, printed on every page beside its number ("Duck · page 2 of 5"), as the
+   *  overview's title and as the PDF's title: at most 80 characters, no control characters. */
+  title?: string;
   /** "all" (default): every connected part its own piece; "largest": only the largest part. */
   components?: "all" | "largest";
   /** Refuse a mesh that needs repair instead of repairing it (default false). */

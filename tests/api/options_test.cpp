@@ -457,3 +457,42 @@ TEST(OptionsTest, OpenApiListsEveryOption) {
   EXPECT_EQ(query, options);
   EXPECT_EQ(schema, options);
 }
+
+// The kit's title: text of at most 80 characters (UTF-8, so 80 two-byte letters too), its end
+// spaces dropped, the same from a query, a JSON part and the command line; control characters,
+// bytes that are not UTF-8 and longer titles are refused naming the option.
+TEST(OptionsTest, TheTitleIsShortTextWithoutControlCharacters) {
+  EXPECT_EQ(parse_options_query({}).title, "");
+  EXPECT_TRUE(options_to_json(parse_options_query({}))["title"].is_null());
+  EXPECT_EQ(parse_options_query({{"title", "  Kitchen Duck "}}).title, "Kitchen Duck");
+  EXPECT_EQ(parse_options_json(R"({"title":"Ente \u00b7 Kit"})").title, "Ente \u00b7 Kit");
+  EXPECT_EQ(options_to_json(parse_options_query({{"title", "Duck"}}))["title"], "Duck");
+  JobOptions cli;
+  EXPECT_TRUE(apply_option_flag(cli, "--title", "Duck"));
+  EXPECT_EQ(cli.title, "Duck");
+  std::string e80;  // 80 letters of two bytes each
+  for (int i = 0; i < 80; ++i) e80 += "\u00e9";
+  EXPECT_EQ(parse_options_query({{"title", e80}}).title, e80);
+  std::string option;
+  EXPECT_EQ(error_code(
+                [&] {
+                  parse_options_query({{"title", e80 + "x"}});
+                },
+                &option),
+            "option_out_of_range");
+  EXPECT_EQ(option, "title");
+  for (const std::string& bad :
+       {std::string("Duck\nKit"), std::string("Duck\tKit"), std::string("Duck\x7f"),
+        std::string("Duck\xc2\x85"), std::string("Duck\xff"), std::string("Duck\xc3")}) {
+    option.clear();
+    EXPECT_EQ(error_code(
+                  [&] {
+                    parse_options_query({{"title", bad}});
+                  },
+                  &option),
+              "invalid_option_value")
+        << bad;
+    EXPECT_EQ(option, "title");
+  }
+  EXPECT_EQ(error_code([] { parse_options_json(R"({"title":12})"); }), "invalid_option_value");
+}

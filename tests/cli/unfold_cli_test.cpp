@@ -379,6 +379,45 @@ TEST(UnfoldCli, APrintWithoutLabelsSaysSoInItsSummary) {
   EXPECT_NE(said.find(" cut edges without glue, smallest label "), std::string::npos) << said;
 }
 
+// `--title` names the kit: the PDF's title, and every page's line ("Kitchen Duck \u00b7 page k of
+// n"), read back from the PDF by poppler.
+TEST(UnfoldCli, TheTitleNamesThePdfAndEveryPage) {
+  const ScratchDir scratch("papernet_unfold_cli");
+  const std::string pdf = scratch / "kit.pdf";
+  std::string said;
+  ASSERT_EQ(
+      papernet("unfold " + test_data_dir() + "/sample.obj --title 'Kitchen Duck' -o " + pdf, &said),
+      0)
+      << said;
+  if (std::system("command -v pdfinfo >/dev/null 2>&1 && command -v pdftotext >/dev/null 2>&1"))
+    GTEST_SKIP() << "pdfinfo or pdftotext missing: install poppler-utils";
+  std::string info, text;
+  ASSERT_EQ(run_command("pdfinfo " + pdf, &info), 0) << info;
+  EXPECT_NE(info.find("Title:           Kitchen Duck\n"), std::string::npos) << info;
+  const std::smatch pages = [&] {
+    std::smatch m;
+    std::regex_search(info, m, std::regex("Pages: +(\\d+)"));
+    return m;
+  }();
+  ASSERT_FALSE(pages.empty()) << info;
+  const int n = std::stoi(pages[1]);
+  EXPECT_GT(n, 1);
+  ASSERT_EQ(run_command("pdftotext " + pdf + " -", &text), 0);
+  for (int k = 1; k <= n; ++k) {
+    EXPECT_NE(
+        text.find("Kitchen Duck \u00b7 page " + std::to_string(k) + " of " + std::to_string(n)),
+        std::string::npos)
+        << "page " << k;
+  }
+  // Refused with the option named, as any bad option (exit 1): a title of 81 characters.
+  ASSERT_EQ(papernet("unfold " + test_data_dir() + "/sample.obj --title " + std::string(81, 'x') +
+                         " -o " + pdf,
+                     &said),
+            1)
+      << said;
+  EXPECT_NE(said.find("--title: at most 80 characters (81 given)"), std::string::npos) << said;
+}
+
 // With no overlap-free net in one piece within the time limit (Tabu Unfolding given a millisecond
 // for a CAD part of 1,466 faces), the command still writes a net, in pieces grown from single
 // faces: exit 0, the warning on stderr, grown=1 in the summary line.

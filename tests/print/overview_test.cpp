@@ -13,6 +13,7 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "print/overview.h"
@@ -206,6 +207,40 @@ TEST(Overview, SmallPaperHoldsTheOverviewWithinItsMargins) {
       ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
       check_overview(p, paper, sheets, pieces);
     }
+}
+
+// A kit with a title names every page with it ("Duck \u00b7 page 2 of 4") and titles the
+// overview with it; a title with a word wider than the page leaves the overview its own title,
+// the page lines still naming the kit within the page's width.
+TEST(Overview, TheKitsTitleNamesTheOverviewAndEveryPage) {
+  const std::string long_word(80, 'W');
+  for (const auto& [title, paper, heading] :
+       {std::tuple{std::string("Duck"), Sheet{}, std::string("Duck: 12 pieces on 3 sheets")},
+        std::tuple{long_word, Sheet{148, 210, 10},
+                   std::string("Overview: 12 pieces on 3 sheets")}}) {
+    SCOPED_TRACE(title);
+    Print p = print_of(3, 12, 2, paper);
+    p.pages.title = title;
+    ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
+    check_overview(p, paper, 3, 12);
+    const int n = static_cast<int>(p.pages.pages.size());
+    ASSERT_EQ(n, 4);
+    for (int k = 0; k < n; ++k) {
+      const std::vector<Text> all = texts(draw_page(p.layout, p.pages, k));
+      const std::string line =
+          title + " \u00b7 page " + std::to_string(k + 1) + " of 4" + (k == 0 ? ": overview" : "");
+      const auto found =
+          std::find_if(all.begin(), all.end(), [&](const Text& t) { return t.text == line; });
+      ASSERT_NE(found, all.end()) << line;
+      EXPECT_GE(found->x0, 0);
+      EXPECT_LE(found->x1, paper.width);
+      if (k == 0) {
+        EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const Text& t) {
+          return t.text == heading;
+        })) << heading;
+      }
+    }
+  }
 }
 
 // On paper far larger than A3 (3 x 3 m, a plotter's) the thumbnails stay at most 250 mm long,

@@ -13,7 +13,7 @@ const keyStore = "papernet.apiKey";
 const client = new PapernetClient("", { apiKey: sessionStorage.getItem(keyStore) || undefined });
 const ui = {
   drop: $("drop"), file: $("file"), dropText: $("drop-text"), strategy: $("strategy"), size: $("size"),
-  paper: $("paper"), prefer: $("prefer"), detail: $("detail"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
+  paper: $("paper"), title: $("title"), prefer: $("prefer"), detail: $("detail"), components: $("components"), repairs: $("repairs"), timeLimit: $("time-limit"), start: $("start"), cancel: $("cancel"), progress: $("progress"), status: $("status"),
   model: $("model"), net: $("net"), fold: $("fold"), foldValue: $("fold-value"),
   sheet: $("sheet"), keyBox: $("key-box"), key: $("api-key"),
   downloads: { "net.svg": $("dl-svg"), "net.pdf": $("dl-pdf"), "mesh.glb": $("dl-glb"), "net.json": $("dl-json") },
@@ -274,6 +274,13 @@ function chooseFiles(list) {
     : "No mesh among these files: choose a GLB / glTF / OBJ / STL / PLY / OFF";
   ui.start.disabled = !mesh;
   if (mesh) setStatus(`Ready to unfold ${mesh.name}.`);
+  ui.title.placeholder = mesh ? kitTitle(mesh.name) : "";
+}
+
+// The kit's name printed on its sheets: the file's name without its extension, at most 80
+// characters (the service's limit, counted in code points).
+function kitTitle(fileName) {
+  return Array.from(fileName.replace(/\.[^.]*$/, "").trim()).slice(0, 80).join("");
 }
 ui.file.addEventListener("change", () => chooseFiles(ui.file.files));
 for (const type of ["dragenter", "dragover"]) {
@@ -361,6 +368,8 @@ async function run() {
   const buffers = files.filter((f) => f !== mesh).map((f) => ({ name: f.name, data: f }));
   const options = { strategy: ui.strategy.value, paper: ui.paper.value, prefer: ui.prefer.value, components: ui.components.value };
   if (Number(ui.size.value) > 0) options.size_mm = Number(ui.size.value);
+  const title = Array.from(ui.title.value.trim()).slice(0, 80).join("") || kitTitle(mesh.name);
+  if (title) options.title = title;
   if (Number(ui.timeLimit.value) > 0) options.time_limit = Number(ui.timeLimit.value);
   const detail = ui.detail.value.trim().toLowerCase();
   if (detail === "full" || detail === "auto") options.detail = detail;

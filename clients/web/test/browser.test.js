@@ -294,6 +294,11 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.selectOption("#sheet", "2");
   await page.waitForFunction((n) => document.querySelector("#net svg")?.textContent.includes(`page 2 of ${n}`), sheets - 1);
   assert.ok((await page.locator("#net svg path").count()) > 0, "sheet 2 has paths");
+  // Named after the file (the title left empty), with the key to its lines.
+  const sheetText = await page.locator("#net svg").textContent();
+  const kit = sampleName.replace(/\.[^.]*$/, "");
+  assert.ok(sheetText.includes(`${kit} \u00b7 page 2 of ${sheets - 1}`), `sheet 2 is named ${kit}`);
+  assert.ok(["cut", "mountain fold", "valley fold"].every((k) => sheetText.includes(k)), "sheet 2 has the key to its lines");
 
   mkdirSync(dirname(screenshot), { recursive: true });
   await page.screenshot({ path: screenshot, fullPage: true });
