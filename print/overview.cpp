@@ -29,6 +29,7 @@ constexpr double kGapMm = 6;         // between thumbnails
 constexpr double kLinePitch = 1.5;   // line spacing, in text heights
 constexpr double kTitlePitch = 1.2;  // the title's, when it takes more than a line
 constexpr double kStepGap = 4;       // between columns of the build order, in text heights
+constexpr double kStepIndent = 1.5;  // of a step's lines after its first, in text heights
 constexpr double kViewDpi = 150;     // the views of the model (the overview is on plain paper)
 // The longest side of a thumbnail (and so of the views of the model), mm: on paper far larger
 // than A3 (a plotter's) the overview's thumbnails stay this size, where they grew with the page
@@ -39,15 +40,17 @@ bool holds(const Page& page, Vec2 p) {
   return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
 }
 
-/// `head` then the names of `pieces`, broken into lines no wider than `width` at `size`.
+/// `head` then the names of `pieces`, broken into lines no wider than `width` at `size`, the
+/// lines after the first `indent` mm narrower.
 std::vector<std::string> wrap(const std::string& head, const std::vector<int>& pieces, double width,
-                              double size) {
+                              double size, double indent = 0) {
   std::vector<std::string> lines{head};
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const std::string name = piece_name(pieces[i]) + (i + 1 < pieces.size() ? "," : "");
     std::string& line = lines.back();
     const std::string longer = line + " " + name;
-    if (line.size() > head.size() && text_width(longer, size) > width)
+    const double room = lines.size() > 1 ? width - indent : width;
+    if (line.size() > head.size() && text_width(longer, size) > room)
       lines.push_back(name);
     else
       line = longer;
@@ -193,6 +196,12 @@ struct Writer {
   PageDrawing& d;
   void text(Layer layer, Vec2 centre, std::string s, double size) {
     d.shapes.push_back({layer, {centre}, false, std::move(s), size, 0});
+  }
+  /// Text starting at `start` (the middle of its left end).
+  void text_from(Layer layer, Vec2 start, std::string s, double size) {
+    Shape shape{layer, {start}, false, std::move(s), size, 0};
+    shape.start = true;
+    d.shapes.push_back(std::move(shape));
   }
   void line(Layer layer, std::vector<Vec2> points) {
     d.shapes.push_back({layer, std::move(points), false, {}, 0, 0});
@@ -409,10 +418,11 @@ std::vector<std::string> wrap_words(const std::string& text, double width, doubl
   return lines;
 }
 
-/// The build order's steps, each as lines no wider than `width` at `size`: "P3 glues to P1, P2"
-/// (the pieces before it that it shares an edge with), broken after a comma onto more lines where
-/// it is wider ("P3 glues to P1," at least on its first; with `at_spaces`, at every space where
-/// even that is wider), "P1: start here", "P7: start a new part".
+/// The build order's steps, each as lines no wider than `width` at `size` (the lines after a
+/// step's first kStepIndent text heights narrower, to be indented): "P3 glues to P1, P2" (the
+/// pieces before it that it shares an edge with), broken after a comma onto more lines where it
+/// is wider ("P3 glues to P1," at least on its first; with `at_spaces`, at every space where even
+/// that is wider), "P1: start here", "P7: start a new part".
 std::vector<std::vector<std::string>> build_steps(const Overview& overview, double width,
                                                   double size, bool at_spaces) {
   std::vector<std::vector<std::string>> steps;
@@ -421,15 +431,17 @@ std::vector<std::vector<std::string>> build_steps(const Overview& overview, doub
     std::vector<int> earlier;
     for (const int q : overview.graph.joins[p])
       if (q < p) earlier.push_back(q);
-    std::vector<std::string> step = p == 0 ? std::vector{piece_name(p) + ": start here"}
-                                    : earlier.empty()
-                                        ? std::vector{piece_name(p) + ": start a new part"}
-                                        : wrap(piece_name(p) + " glues to", earlier, width, size);
-    // On paper too narrow for its first line, at every space.
+    std::vector<std::string> step =
+        p == 0 ? std::vector{piece_name(p) + ": start here"}
+        : earlier.empty()
+            ? std::vector{piece_name(p) + ": start a new part"}
+            : wrap(piece_name(p) + " glues to", earlier, width, size, kStepIndent * size);
+    // On paper too narrow for its first line, at every space (every line as narrow as those
+    // indented).
     if (at_spaces && text_width(step.front(), size) > width) {
       std::string text;
       for (const std::string& line : step) text += (text.empty() ? "" : " ") + line;
-      step = wrap_words(text, width, size);
+      step = wrap_words(text, width - kStepIndent * size, size);
     }
     steps.push_back(std::move(step));
   }
@@ -452,12 +464,18 @@ std::vector<std::vector<std::string>> column_steps(const Overview& overview, dou
   return build_steps(overview, step_room(width, size, columns), size, columns == 1);
 }
 
+/// A line of the build order: its text (empty: a column's foot left blank), and whether it goes
+/// on with a step begun on the line above (then indented by kStepIndent text heights).
+struct StepLine {
+  std::string text;
+  bool continued = false;
+};
+
 /// The build order's lines at `size` in `columns` columns on a page `width` wide.
-std::vector<std::string> step_lines(const Overview& overview, double width, double size,
-                                    int columns) {
-  std::vector<std::string> lines;
+std::vector<StepLine> step_lines(const Overview& overview, double width, double size, int columns) {
+  std::vector<StepLine> lines;
   for (std::vector<std::string>& step : column_steps(overview, width, size, columns))
-    for (std::string& line : step) lines.push_back(std::move(line));
+    for (std::size_t i = 0; i < step.size(); ++i) lines.push_back({std::move(step[i]), i > 0});
   return lines;
 }
 
@@ -470,7 +488,7 @@ struct StepFlow {
 /// appending their lines to `lines` when given. A step that a column holds whole is never split
 /// between two: it goes on to the next column, the rest of its own left blank (empty lines).
 StepFlow flow_steps(const std::vector<std::vector<std::string>>& steps, StepFlow at, int columns,
-                    int rows, std::vector<std::string>* lines) {
+                    int rows, std::vector<StepLine>* lines) {
   const auto whole = static_cast<std::size_t>(rows);
   for (int c = 0; c < columns && at.step < steps.size(); ++c) {
     std::size_t left = whole;
@@ -479,16 +497,14 @@ StepFlow flow_steps(const std::vector<std::vector<std::string>>& steps, StepFlow
       const std::size_t rest = step.size() - at.line;
       if (rest > left && at.line == 0 && step.size() <= whole && left < whole) break;
       const std::size_t take = std::min(rest, left);
-      if (lines) {
-        const auto from = step.begin() + static_cast<std::ptrdiff_t>(at.line);
-        lines->insert(lines->end(), from, from + static_cast<std::ptrdiff_t>(take));
-      }
+      if (lines)
+        for (std::size_t i = at.line; i < at.line + take; ++i) lines->push_back({step[i], i > 0});
       left -= take;
       at.line += take;
       if (at.line == step.size()) at = {at.step + 1, 0};
     }
     if (lines && c + 1 < columns && at.step < steps.size())
-      lines->insert(lines->end(), left, std::string());
+      lines->insert(lines->end(), left, StepLine{});
   }
   return at;
 }
@@ -606,8 +622,8 @@ struct OverviewPlan {
   /// The first page's title's name: the kit's (PageLayout::title), or empty ("Overview") where
   /// a word of it is wider than the page.
   std::string name;
-  /// The build order's lines, column by column (empty: a column's foot left blank).
-  std::vector<std::string> steps;
+  /// The build order's lines, column by column.
+  std::vector<StepLine> steps;
   std::vector<Part> parts;  ///< one per overview page
 };
 
@@ -823,18 +839,30 @@ PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, in
     draw_cells(layout, pages, overview, cells, plan.grid, part.first_cell, part.last_cell,
                part.grid_top, out);
 
-  // The build order, in columns, line by line down each column.
+  // The build order, in columns, line by line down each column: each column's lines aligned
+  // at their left, a step's lines after its first indented, the column's widest line centred.
   if (part.last_step > part.first_step) {
     const double size = plan.step_size, bottom = part.steps_top;
-    const std::vector<std::string>& steps = plan.steps;
+    const std::vector<StepLine>& steps = plan.steps;
     out.text(Layer::Labels, {0.5 * pages.width, bottom + 0.5 * kLinePitch * size + 1},
              part.first_step > 0 ? kStepsContinued : "Build order", kHeadingScale * size);
-    const double column_width = width / plan.columns;
-    for (int i = part.first_step; i < part.last_step; ++i) {
-      if (steps[i].empty()) continue;  // a column's foot left blank
-      const int c = (i - part.first_step) / part.rows, r = (i - part.first_step) % part.rows;
-      out.text(Layer::Labels, {m + (c + 0.5) * column_width, bottom + (r + 2) * kLinePitch * size},
-               steps[i], size);
+    const double column_width = width / plan.columns, indent = kStepIndent * size;
+    const auto line_width = [&](const StepLine& l) {
+      return text_width(l.text, size) + (l.continued ? indent : 0);
+    };
+    for (int begin = part.first_step; begin < part.last_step; begin += part.rows) {
+      const int end = std::min(part.last_step, begin + part.rows),
+                c = (begin - part.first_step) / part.rows;
+      double widest = 0;
+      for (int i = begin; i < end; ++i) widest = std::max(widest, line_width(steps[i]));
+      const double left = m + (c + 0.5) * column_width - 0.5 * widest;
+      for (int i = begin; i < end; ++i) {
+        if (steps[i].text.empty()) continue;  // a column's foot left blank
+        out.text_from(Layer::Labels,
+                      {left + (steps[i].continued ? indent : 0),
+                       bottom + (i - begin + 2) * kLinePitch * size},
+                      steps[i].text, size);
+      }
     }
   }
   return d;

@@ -103,6 +103,9 @@ struct Shape {
   /// A sample of its layer's line in the key of the page's top margin (docs/print.md, "The
   /// key"): drawn in that layer's style but outside the printable area, unclipped.
   bool key = false;
+  /// Text that starts at `points[0]` (the middle of its left end), where other text is centred
+  /// on it: the build order's lines, aligned in their columns.
+  bool start = false;
 };
 
 /// Everything on one page, culled to the page's printable area (writers clip to `clip_*`).

@@ -71,7 +71,7 @@ void draw(cairo_t* cr, const PageDrawing& d) {
       cairo_set_font_size(cr, s.size);
       cairo_text_extents_t ext;
       cairo_text_extents(cr, s.text.c_str(), &ext);
-      cairo_move_to(cr, -0.5 * ext.x_advance, 0.35 * s.size);
+      cairo_move_to(cr, s.start ? 0 : -0.5 * ext.x_advance, 0.35 * s.size);
       cairo_show_text(cr, s.text.c_str());
       cairo_restore(cr);
     }
@@ -107,8 +107,10 @@ void draw(cairo_t* cr, const PageDrawing& d) {
   stroke_layer(Layer::Leaders, 0x333333, 0.15, {});
   text_layer(Layer::Labels, 0x333333);
   text_layer(Layer::Strips, 0x333333);
-  cairo_restore(cr);                             // marks and the key live in the margins: unclipped
-  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);  // as the lines they stand for
+  // Marks and the key live in the margins: unclipped. The key's samples are capped as the lines
+  // they stand for.
+  cairo_restore(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   stroke_lines(true);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
   stroke_layer(Layer::Marks, 0x777777, 0.15, {1, 1});

@@ -107,8 +107,9 @@ std::string write_svg(const PageDrawing& d,
         // The text's visual centre sits about 0.35 em above its baseline.
         o << "<text x=\"" << num(c.x) << "\" y=\"" << num(c.y + 0.35 * s.size) << "\" font-size=\""
           << num(s.size) << (s.light ? "\" fill=\"#ffffff" : "")
-          << "\" stroke=\"none\" transform=\"rotate(" << num(s.angle_deg) << ' ' << num(c.x) << ' '
-          << num(c.y) << ")\"" << ls.text_style << ">" << xml_escape(s.text) << "</text>\n";
+          << (s.start ? "\" text-anchor=\"start" : "") << "\" stroke=\"none\" transform=\"rotate("
+          << num(s.angle_deg) << ' ' << num(c.x) << ' ' << num(c.y) << ")\"" << ls.text_style << ">"
+          << xml_escape(s.text) << "</text>\n";
       } else if (s.closed) {
         o << "<polygon points=\"";
         for (std::size_t i = 0; i < s.points.size(); ++i)

@@ -744,23 +744,18 @@ TEST(AssemblyAids, NoTextOnTheOverviewCoversAnother) {
   const Printed printed{read_net_json(out.documents.net_json), out.documents.svg_pages, {}};
   ASSERT_TRUE(printed.doc.print);
   ASSERT_EQ(printed.doc.print->overview_page, 0);
-  const std::string g = svg_group(printed.pages[0], "labels");
-  static const std::regex text(
-      "<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" font-size=\"([0-9.]+)\"[^>]*>([^<]+)</text>");
   struct Box {
     double x0, y0, x1, y1;
     std::string text;
   };
   std::vector<Box> boxes;
   std::size_t numbers = 0;
-  for (auto it = std::sregex_iterator(g.begin(), g.end(), text); it != std::sregex_iterator();
-       ++it) {
-    const double x = std::stod((*it)[1]), size = std::stod((*it)[3]);
-    const double y = std::stod((*it)[2]) - 0.35 * size;  // the text's visual centre
-    const std::string t = (*it)[4];
-    numbers += std::regex_match(t, std::regex("P[0-9]+"));
-    const double half_w = 0.25 * size * static_cast<double>(t.size());
-    boxes.push_back({x - half_w, y - 0.35 * size, x + half_w, y + 0.35 * size, t});
+  for (const SvgText& t : svg_texts(svg_group(printed.pages[0], "labels"))) {
+    const double y = t.y - 0.35 * t.size;  // the text's visual centre
+    numbers += std::regex_match(t.text, std::regex("P[0-9]+"));
+    const double half_w = 0.25 * t.size * static_cast<double>(t.text.size());
+    const double x0 = t.start ? t.x : t.x - half_w;  // the build order's lines start at x
+    boxes.push_back({x0, y - 0.35 * t.size, x0 + 2 * half_w, y + 0.35 * t.size, t.text});
   }
   std::size_t on_thumbnails = 0;
   for (const std::string& t : overview_texts(printed.pages[0]))

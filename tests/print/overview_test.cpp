@@ -73,16 +73,18 @@ Print print_of(int sheets, int pieces, int joins, Sheet paper = {}) {
 struct Text {
   double x0, y0, x1, y1;
   std::string text;
+  double size = 0;
 };
 
-/// The texts of a drawing with their boxes (0.6 of the size a character wide, 0.7 high).
+/// The texts of a drawing with their boxes (0.6 of the size a character wide, 0.7 high): centred
+/// on their point, or starting at it.
 std::vector<Text> texts(const PageDrawing& d) {
   std::vector<Text> out;
   for (const Shape& s : d.shapes) {
     if (s.text.empty()) continue;
-    const double w = 0.5 * 0.6 * s.size * label_chars(s.text), h = 0.35 * s.size;
-    out.push_back(
-        {s.points[0].x - w, s.points[0].y - h, s.points[0].x + w, s.points[0].y + h, s.text});
+    const double w = 0.6 * s.size * label_chars(s.text), h = 0.35 * s.size;
+    const double x0 = s.start ? s.points[0].x : s.points[0].x - 0.5 * w;
+    out.push_back({x0, s.points[0].y - h, x0 + w, s.points[0].y + h, s.text, s.size});
   }
   return out;
 }
@@ -159,7 +161,9 @@ TEST(Overview, ManySheetsAndPiecesGoOnOverMorePagesListingEachOnce) {
 // steps broken after a comma onto more lines, rather than one column as wide as its longest step
 // (the Menger sponge's 448 pieces on 72 sheets at the defaults: 12 overview pages, 7 of them a
 // single column of the build order; 9 now, in two columns), and no step split between two
-// columns where one holds it whole. check_overview reads each step once, every text apart.
+// columns where one holds it whole. A column's steps start at one left edge, the lines that go
+// on with a step indented from it (1.5 text heights), so that a broken step reads as one.
+// check_overview reads each step once, every text apart.
 TEST(Overview, TheBuildOrderOfManyPiecesTakesSeveralColumns) {
   Print p = print_of(72, 448, 8);
   ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
@@ -175,11 +179,20 @@ TEST(Overview, TheBuildOrderOfManyPiecesTakesSeveralColumns) {
     for (const Text& t : all)
       if (t.text.rfind("Build order", 0) == 0) below = t.y1;
     if (below < 0) continue;
-    std::map<long, const Text*> columns;  // by centre, to a tenth of a millimetre: the top line
+    // The columns: the left edges of the steps' first lines (to a hundredth of a millimetre),
+    // each with its top line; every line starts at one, or 1.5 text heights right of one.
+    std::map<long, const Text*> columns;
+    for (const Text& t : all)
+      if (t.y0 >= below && std::regex_match(t.text, head)) columns[std::lround(100 * t.x0)] = &t;
     for (const Text& t : all) {
       if (t.y0 < below) continue;
-      const Text*& top = columns[std::lround(5 * (t.x0 + t.x1))];
-      if (top == nullptr || t.y0 < top->y0) top = &t;
+      const bool first = std::regex_match(t.text, head);
+      const long edge = std::lround(100 * (first ? t.x0 : t.x0 - 1.5 * t.size));
+      ASSERT_EQ(columns.count(edge), 1u)
+          << "\"" << t.text << "\" on overview page " << k + 1 << " starts at no column's edge"
+          << (first ? "" : " less the indent");
+      const Text*& top = columns[edge];
+      if (t.y0 < top->y0) top = &t;
       broken += std::regex_match(t.text, step);
     }
     if (k + 1 < overview_pages) {

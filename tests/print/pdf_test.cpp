@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -40,6 +41,13 @@ ToolRun run(const std::string& tool, const std::string& args) {
 
 std::string temp_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("papernet_pdf_test_" + name)).string();
+}
+
+/// Occurrences of `what` in `text`.
+int count_of(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
 }
 
 /// Pages needed for `content` on printable `room` with `overlap`, computed independently of
@@ -428,6 +436,47 @@ TEST(Pdf, EveryPageHasTheKeyToItsLines) {
         }
       }
   }
+}
+
+// Text that starts at its point (the build order's lines) is drawn from there in the PDF and the
+// SVG, where other text is centred on it: two lines of different lengths starting at x = 30 mm
+// begin at the same place in the PDF (pdftotext's boxes), and centred ones do not.
+TEST(Pdf, TextThatStartsAtItsPointIsDrawnFromThere) {
+  PageDrawing d{210, 297, {10, 10}, {200, 287}, {}, {}};
+  const char* lines[] = {"P3 glues to P1, P2", "P4 glues to P1, P2, P3, P17, P21"};
+  for (int i = 0; i < 2; ++i) {
+    Shape start{Layer::Labels, {{30, 50.0 + 10 * i}}, false, lines[i], 3, 0};
+    start.start = true;
+    d.shapes.push_back(start);
+    d.shapes.push_back({Layer::Labels, {{105, 100.0 + 10 * i}}, false, lines[i], 3, 0});
+  }
+  const std::string svg = write_svg(d, {});
+  EXPECT_EQ(count_of(svg, "text-anchor=\"start\""), 2);
+  PrintLayout layout;
+  PdfWriter writer(layout, 210, 297);
+  writer.add_page(d);
+  const std::string path = temp_path("start.pdf");
+  std::ofstream(path, std::ios::binary) << writer.finish();
+  const ToolRun text = run("pdftotext", "-bbox " + path + " -");
+  std::filesystem::remove(path);
+  if (!text.present) GTEST_SKIP() << "pdftotext missing: install poppler-utils";
+  ASSERT_EQ(text.status, 0) << text.out;
+  // The left end of each line's first word ("P3", "P4"), by the line's height on the page.
+  std::map<long, double> left;  // yMin in points -> xMin in mm
+  for (std::size_t at = text.out.find("<word"); at != std::string::npos;
+       at = text.out.find("<word", at + 1)) {
+    const auto attribute = [&](const std::string& name) {
+      return std::stod(text.out.substr(text.out.find(name + "=\"", at) + name.size() + 2));
+    };
+    const long y = std::lround(attribute("yMin"));
+    if (!left.count(y)) left[y] = attribute("xMin") * 25.4 / 72;
+  }
+  ASSERT_EQ(left.size(), 4u) << text.out;
+  std::vector<double> x;
+  for (const auto& [y, at] : left) x.push_back(at);
+  EXPECT_NEAR(x[0], 30, 0.5);  // the lines that start at 30 mm
+  EXPECT_NEAR(x[1], 30, 0.5);
+  EXPECT_GT(x[2] - x[3], 5) << "centred lines of different lengths start apart";
 }
 
 }  // namespace

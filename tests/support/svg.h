@@ -34,20 +34,23 @@ inline std::vector<std::vector<Vec2>> svg_polygons(const std::string& svg_text) 
   return out;
 }
 
-/// A <text> of SVG text: its x and y as written (the middle of its baseline), size and text.
+/// A <text> of SVG text: its x and y as written (the middle of its baseline, or with `start`,
+/// text-anchor="start", its left end), size and text.
 struct SvgText {
   double x = 0, y = 0, size = 0;
   std::string text;
+  bool start = false;
 };
 
 /// The <text> elements of SVG text, in order.
 inline std::vector<SvgText> svg_texts(const std::string& svg_text) {
   static const std::regex text(
-      "<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" font-size=\"([0-9.]+)\"[^>]*>([^<]*)</text>");
+      "<text x=\"([-0-9.]+)\" y=\"([-0-9.]+)\" font-size=\"([0-9.]+)\"([^>]*)>([^<]*)</text>");
   std::vector<SvgText> out;
   for (auto it = std::sregex_iterator(svg_text.begin(), svg_text.end(), text);
        it != std::sregex_iterator(); ++it)
-    out.push_back({std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]), (*it)[4].str()});
+    out.push_back({std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]), (*it)[5].str(),
+                   (*it)[4].str().find("text-anchor=\"start\"") != std::string::npos});
   return out;
 }
 
