@@ -13,7 +13,6 @@
 #include <regex>
 #include <set>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "print/overview.h"
@@ -227,10 +226,15 @@ TEST(Overview, SmallPaperHoldsTheOverviewWithinItsMargins) {
 // the page lines still naming the kit within the page's width.
 TEST(Overview, TheKitsTitleNamesTheOverviewAndEveryPage) {
   const std::string long_word(80, 'W');
-  for (const auto& [title, paper, heading] :
-       {std::tuple{std::string("Duck"), Sheet{}, std::string("Duck: 12 pieces on 3 sheets")},
-        std::tuple{long_word, Sheet{148, 210, 10},
-                   std::string("Overview: 12 pieces on 3 sheets")}}) {
+  struct Case {
+    std::string title;
+    Sheet paper;
+    std::string heading;  // the overview's title
+  };
+  for (const Case& c : {Case{"Duck", Sheet{}, "Duck: 12 pieces on 3 sheets"},
+                        Case{long_word, Sheet{148, 210, 10}, "Overview: 12 pieces on 3 sheets"}}) {
+    const std::string &title = c.title, &heading = c.heading;
+    const Sheet paper = c.paper;
     SCOPED_TRACE(title);
     Print p = print_of(3, 12, 2, paper);
     p.pages.title = title;
