@@ -644,13 +644,15 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
   const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
   const Cells cells = cells_of(pages, overview, kTextMm);
   const int n = cells.count();
+  const auto header = [&](const std::string& name) {
+    return first_header(name, static_cast<int>(overview.page.size()),
+                        static_cast<int>(cells.sheets.size()), width, folds);
+  };
   std::string name = pages.title;
-  Header first = first_header(name, static_cast<int>(overview.page.size()),
-                              static_cast<int>(cells.sheets.size()), width, folds);
+  Header first = header(name);
   if (!first.fits(width) && !name.empty()) {
     name.clear();
-    first = first_header(name, static_cast<int>(overview.page.size()),
-                         static_cast<int>(cells.sheets.size()), width, folds);
+    first = header(name);
   }
   // The pages after the first: their title with the most digits it may print.
   const Header next = next_header(998, 999, width);

@@ -20,6 +20,18 @@ std::string num(double v) {
   return s == "-0" ? "0" : s;
 }
 
+/// A polyline as SVG path data: "Mx yLx yLx y".
+std::string path_data(const std::vector<Vec2>& points) {
+  std::string out;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out.append(i ? "L" : "M");
+    out.append(num(points[i].x));
+    out.push_back(' ');
+    out.append(num(points[i].y));
+  }
+  return out;
+}
+
 struct LayerStyle {
   Layer layer;
   const char* id;
@@ -116,17 +128,10 @@ std::string write_svg(const PageDrawing& d,
           o << (i ? " " : "") << num(s.points[i].x) << ',' << num(s.points[i].y);
         o << "\"/>\n";
       } else if (s.light) {  // a line over a dark colour, as light text is
-        o << "<path d=\"";
-        for (std::size_t i = 0; i < s.points.size(); ++i)
-          o << (i ? "L" : "M") << num(s.points[i].x) << ' ' << num(s.points[i].y);
-        o << "\" stroke=\"#ffffff\"" << ls.path_style << "/>\n";
+        o << "<path d=\"" << path_data(s.points) << "\" stroke=\"#ffffff\"" << ls.path_style
+          << "/>\n";
       } else {
-        for (std::size_t i = 0; i < s.points.size(); ++i) {
-          path.append(i ? "L" : "M");
-          path.append(num(s.points[i].x));
-          path.push_back(' ');
-          path.append(num(s.points[i].y));
-        }
+        path.append(path_data(s.points));
       }
     }
     if (!path.empty()) o << "<path d=\"" << path << '"' << ls.path_style << "/>\n";
@@ -147,14 +152,12 @@ std::string write_svg(const PageDrawing& d,
     if (!s.key) continue;
     const auto ls = std::find_if(std::begin(kLayers), std::end(kLayers),
                                  [&](const LayerStyle& l) { return l.layer == s.layer; });
-    key.append("<path d=\"");
-    for (std::size_t i = 0; i < s.points.size(); ++i) {
-      key.append(i ? "L" : "M");
-      key.append(num(s.points[i].x));
-      key.push_back(' ');
-      key.append(num(s.points[i].y));
-    }
-    key.append("\" ").append(ls->style).append(ls->path_style).append("/>\n");
+    key.append("<path d=\"")
+        .append(path_data(s.points))
+        .append("\" ")
+        .append(ls->style)
+        .append(ls->path_style)
+        .append("/>\n");
   }
   if (!key.empty()) o << "<g id=\"key\">\n" << key << "</g>\n";
   o << "</svg>\n";
