@@ -471,10 +471,11 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
   if (!pages.fitted && pages.pages.size() > 1)
     name +=
         " (row " + std::to_string(page.row + 1) + ", column " + std::to_string(page.col + 1) + ")";
-  // Smaller on paper too narrow for the line (a character of sans-serif is at most about 0.6 of
-  // its size wide): 50 mm paper's "page 30 of 560 (row 3, column 8)" ran past both edges.
-  const double fs = std::min(std::clamp(0.4 * m, 1.5, 3.5),
-                             0.9 * pages.width / (0.6 * static_cast<double>(name.size())));
+  // Smaller on paper too narrow for the line (text_width: a character of sans-serif is at most
+  // about 0.6 of its size wide): 50 mm paper's "page 30 of 560 (row 3, column 8)" ran past both
+  // edges.
+  const double fs =
+      std::min(std::clamp(0.4 * m, 1.5, 3.5), 0.9 * pages.width / text_width(name, 1));
   d.shapes.push_back(
       {Layer::Marks, {{0.5 * pages.width, pages.height - 0.5 * m}}, false, name, fs, 0});
   add_key(d, pages);
