@@ -163,6 +163,7 @@ nlohmann::json print_to_json(const NetPrint& print) {
            {"pages", print.pages},
            {"layout", print.layout},
            {"placements", std::move(placements)}};
+  if (!print.title.empty()) out["title"] = print.title;
   if (!print.tiles.empty()) {
     json tiles = json::array();
     for (const PageWindow& t : print.tiles)
@@ -186,6 +187,7 @@ NetPrint print_from_json(const nlohmann::json& j, std::size_t pieces) {
   print.mm_per_unit = field(j, "mm_per_unit", "print").get<double>();
   print.pages = field(j, "pages", "print").get<int>();
   print.layout = field(j, "layout", "print").get<std::string>();
+  if (j.contains("title")) print.title = j["title"].get<std::string>();
   for (const auto& p : field(j, "placements", "print")) {
     PiecePlacement placed;
     placed.piece = field(p, "piece", "a placement").get<int>();

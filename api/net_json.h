@@ -58,6 +58,7 @@ struct NetPrint {
   double mm_per_unit = 1;                        ///< the print's scale
   int pages = 0;
   std::string layout;                      ///< "fit" or "tile"
+  std::string title;                       ///< the option `title`; written when there is one
   std::vector<PiecePlacement> placements;  ///< one per piece of `pieces`
   std::vector<PageWindow> tiles;           ///< layout tile: what each page shows of the grid
   /// The overview page (0-based; docs/print.md "The overview page"), -1 without one; written

@@ -119,6 +119,7 @@ void describe_print(NetDocument& doc, const FitPieces& pieces, const PrintLayout
   print.mm_per_unit = layout.scale;
   print.pages = static_cast<int>(pages.pages.size());
   print.layout = std::string(page_layout_name(fit ? PageLayoutMode::Fit : PageLayoutMode::Tile));
+  print.title = pages.title;
   PiecePlacements placed = place_pieces(doc.net, doc.piece, layout, pages);
   print.placements = std::move(placed.pieces);
   print.tiles = std::move(placed.tiles);

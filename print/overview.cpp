@@ -815,7 +815,7 @@ bool add_overview(PageLayout& pages, const PrintLayout& layout, const std::vecto
 
 PageDrawing draw_overview(const PrintLayout& layout, const PageLayout& pages, int index) {
   const double m = pages.margin, width = pages.width - 2 * m;
-  PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}, {}};
+  PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}, {}, {}};
   Writer out{d};
   const Overview& overview = *pages.overview;
   const OverviewPlan& plan = *overview.plan;

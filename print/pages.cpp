@@ -446,7 +446,7 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
                       const PrintColour* colour) {
   const Page& page = pages.pages.at(static_cast<std::size_t>(index));
   const double m = pages.margin;
-  PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}, {}};
+  PageDrawing d{pages.width, pages.height, {m, m}, {pages.width - m, pages.height - m}, {}, {}, {}};
   if (page.overview && pages.overview)
     d = draw_overview(layout, pages, index);
   else
@@ -478,13 +478,14 @@ PageDrawing draw_page(const PrintLayout& layout, const PageLayout& pages, int in
       std::min(std::clamp(0.4 * m, 1.5, 3.5), 0.9 * pages.width / text_width(name, 1));
   d.shapes.push_back(
       {Layer::Marks, {{0.5 * pages.width, pages.height - 0.5 * m}}, false, name, fs, 0});
+  d.title = std::move(name);
   add_key(d, pages);
   return d;
 }
 
 PageDrawing draw_unpaged(const PrintLayout& layout, double margin_mm, const PrintColour* colour) {
   const double m = std::max(0.0, margin_mm);
-  PageDrawing d{layout.size.x + 2 * m, layout.size.y + 2 * m, {0, 0}, {}, {}, {}};
+  PageDrawing d{layout.size.x + 2 * m, layout.size.y + 2 * m, {0, 0}, {}, {}, {}, {}};
   d.clip_hi = {d.width, d.height};
   const Vec2 lo{-m, -m}, hi{layout.size.x + m, layout.size.y + m};
   add_layout(layout, lo, hi, {0, 0}, d);

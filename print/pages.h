@@ -114,6 +114,7 @@ struct PageDrawing {
   Vec2 clip_lo, clip_hi;
   std::vector<Shape> shapes;
   std::vector<PageImage> images;  ///< the pieces' colour, under every layer but faces and tabs
+  std::string title;  ///< the SVG's <title>: the page's line ("Duck · page 2 of 5"); empty: none
 };
 
 /// The shapes of page `index` of a paginated layout, with tile overlap marks, page number

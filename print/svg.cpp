@@ -100,6 +100,7 @@ std::string write_svg(const PageDrawing& d,
     << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << num(d.width)
     << "mm\" height=\"" << num(d.height) << "mm\" viewBox=\"0 0 " << num(d.width) << ' '
     << num(d.height) << "\">\n";
+  if (!d.title.empty()) o << "<title>" << xml_escape(d.title) << "</title>\n";
   o << "<metadata><papernet xmlns=\"https://papernet.invalid/ns/1\"";
   for (const auto& [k, v] : metadata)
     o << " data-" << xml_escape(k) << "=\"" << xml_escape(v) << '"';

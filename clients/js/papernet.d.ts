@@ -207,6 +207,8 @@ export interface NetPrint {
   mm_per_unit: number;
   pages: number;
   layout: "fit" | "tile";
+  /** The option `title` (the kit's name every page prints), when it was given. */
+  title?: string;
   /** One per piece: `transform` [a, b, c, d, e, f] maps a net point (u, v) of the piece to
    *  (a·u + c·v + e, b·u + d·v + f) mm from the top-left corner of page `page` (0-based; -1 when
    *  tiled: then into the tile grid's frame, see `tiles`). */

@@ -219,6 +219,19 @@ TEST(NetJson, PrintIsWrittenPerDesignAndRoundTrips) {
   fit.print->tiles.clear();
   EXPECT_FALSE(net_to_json(fit)["print"].contains("tiles"));
   EXPECT_FALSE(net_to_json(fit)["print"].contains("overview_page"));
+  EXPECT_FALSE(net_to_json(fit)["print"].contains("title")) << "no title given, none written";
+}
+
+// The kit's title (the option title) round-trips; one that is not text is refused.
+TEST(NetJson, TheKitsTitleRoundTrips) {
+  NetDocument doc = printed_cube();
+  doc.print->title = "Kitchen Duck \u00b7 1";
+  const nlohmann::json j = net_to_json(doc);
+  EXPECT_EQ(j["print"]["title"], "Kitchen Duck \u00b7 1");
+  EXPECT_EQ(read_net_json(j.dump()).print->title, "Kitchen Duck \u00b7 1");
+  nlohmann::json bad = j;
+  bad["print"]["title"] = 3;
+  EXPECT_THROW(read_net_json(bad.dump()), IOException);
 }
 
 // An overview of one page or more: overview_page and overview_pages, written together; an old

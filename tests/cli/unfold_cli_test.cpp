@@ -383,12 +383,24 @@ TEST(UnfoldCli, APrintWithoutLabelsSaysSoInItsSummary) {
 // n"), read back from the PDF by poppler.
 TEST(UnfoldCli, TheTitleNamesThePdfAndEveryPage) {
   const ScratchDir scratch("papernet_unfold_cli");
-  const std::string pdf = scratch / "kit.pdf";
+  const std::string pdf = scratch / "kit.pdf", json = scratch / "kit.json";
   std::string said;
-  ASSERT_EQ(
-      papernet("unfold " + test_data_dir() + "/sample.obj --title 'Kitchen Duck' -o " + pdf, &said),
-      0)
+  ASSERT_EQ(papernet("unfold " + test_data_dir() + "/sample.obj --title 'Kitchen Duck' -o " + pdf +
+                         " -o " + json + " -o " + (scratch / "kit.svg"),
+                     &said),
+            0)
       << said;
+  // The net JSON says it, for a storefront drawing its own sheets; each SVG page's <title> is
+  // its line (what a browser's tab shows of the page).
+  const auto net = nlohmann::json::parse(read_file(json));
+  EXPECT_EQ(net["print"]["title"], "Kitchen Duck");
+  const int svgs = net["print"]["pages"].get<int>();
+  for (int k = 1; k <= svgs; ++k)
+    EXPECT_NE(read_file(scratch / ("kit-" + std::to_string(k) + ".svg"))
+                  .find("<title>Kitchen Duck \u00b7 page " + std::to_string(k) + " of " +
+                        std::to_string(svgs)),
+              std::string::npos)
+        << "page " << k;
   if (std::system("command -v pdfinfo >/dev/null 2>&1 && command -v pdftotext >/dev/null 2>&1"))
     GTEST_SKIP() << "pdfinfo or pdftotext missing: install poppler-utils";
   std::string info, text;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "print/overview.h"
+#include "print/svg.h"
 
 namespace papernet::test {
 namespace {
@@ -251,6 +252,10 @@ TEST(Overview, TheKitsTitleNamesTheOverviewAndEveryPage) {
       ASSERT_NE(found, all.end()) << line;
       EXPECT_GE(found->x0, 0);
       EXPECT_LE(found->x1, paper.width);
+      EXPECT_NE(write_page_svg(p.layout, draw_page(p.layout, p.pages, k), k, n)
+                    .find("<title>" + line + "</title>"),
+                std::string::npos)
+          << line;
       if (k == 0) {
         EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const Text& t) {
           return t.text == heading;

@@ -442,7 +442,7 @@ TEST(Pdf, EveryPageHasTheKeyToItsLines) {
 // SVG, where other text is centred on it: two lines of different lengths starting at x = 30 mm
 // begin at the same place in the PDF (pdftotext's boxes), and centred ones do not.
 TEST(Pdf, TextThatStartsAtItsPointIsDrawnFromThere) {
-  PageDrawing d{210, 297, {10, 10}, {200, 287}, {}, {}};
+  PageDrawing d{210, 297, {10, 10}, {200, 287}, {}, {}, {}};
   const char* lines[] = {"P3 glues to P1, P2", "P4 glues to P1, P2, P3, P17, P21"};
   for (int i = 0; i < 2; ++i) {
     Shape start{Layer::Labels, {{30, 50.0 + 10 * i}}, false, lines[i], 3, 0};
