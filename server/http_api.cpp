@@ -270,7 +270,8 @@ bool answer_cors(const ServerConfig& config, const std::string& allowed,
   if (!origin.empty()) {
     res.set_header("Access-Control-Allow-Origin", origin);
     res.set_header("Access-Control-Expose-Headers",
-                   "Location, Retry-After, X-Papernet-Level, Allow, Idempotent-Replayed");
+                   "Location, Retry-After, X-Papernet-Level, Allow, Idempotent-Replayed, "
+                   "Content-Disposition");
   }
   if (req.method != "OPTIONS" || !req.has_header("Origin") ||
       !req.has_header("Access-Control-Request-Method"))
@@ -422,12 +423,16 @@ struct Api {
       if (!file) throw ApiError("not_found", "job " + r.id + " has no " + name);
       res.set_header("X-Papernet-Level", r.result_kind + "; faces=" + std::to_string(r.faces) +
                                              "; input-faces=" + std::to_string(r.input_faces));
+      res.set_header("Content-Disposition",
+                     content_disposition(r.options, name, file->content_type));
       res.set_content(std::move(file->data), file->content_type);
       return;
     }
     if (auto file = service.intermediate(r.id, name)) {
       res.set_header("X-Papernet-Level", "intermediate; faces=" + std::to_string(file->faces) +
                                              "; input-faces=" + std::to_string(file->input_faces));
+      res.set_header("Content-Disposition",
+                     content_disposition(r.options, name, file->file.content_type));
       res.set_content(std::move(file->file.data), file->file.content_type);
       return;
     }

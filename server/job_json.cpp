@@ -1,9 +1,11 @@
 #include "server/job_json.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <string_view>
 
 #include "server/problem.h"
 
@@ -27,6 +29,51 @@ std::string page_file_name(std::size_t number) {
   name += std::to_string(number);
   name += ".svg";
   return name;
+}
+
+std::string content_disposition(const json& options, const std::string& file,
+                                const std::string& content_type) {
+  std::string name = file;
+  if (file.rfind("texture-", 0) == 0)
+    name += content_type == "image/png" ? ".png" : content_type == "image/jpeg" ? ".jpg" : "";
+  const auto title = options.find("title");
+  if (title != options.end() && title->is_string() && !title->get<std::string>().empty()) {
+    // The title (validated: UTF-8 without control characters) with the characters no file
+    // system takes in a name made "_", and no leading dot (a hidden file).
+    std::string kit;
+    for (const char c : title->get<std::string>())
+      kit.push_back(std::string_view("/\\:*?\"<>|").find(c) == std::string_view::npos ? c : '_');
+    if (kit[0] == '.') kit[0] = '_';
+    const std::size_t dot = file.rfind('.');
+    if (file.rfind("page-", 0) == 0)
+      name = kit + " - page " + file.substr(5, dot - 5) + file.substr(dot);
+    else if (file.rfind("texture-", 0) == 0)
+      name = kit + " - " + name;
+    else
+      name = kit + file.substr(dot);
+  }
+  std::string ascii, encoded;
+  bool plain = true;
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    if (c >= 0x80) {
+      plain = false;
+      if ((c & 0xC0) != 0x80) ascii.push_back('_');  // one per letter, not per byte
+    } else {
+      ascii.push_back(static_cast<char>(c));
+    }
+    if ((c < 0x80 && std::isalnum(c)) ||
+        std::string_view("!#$&+-.^_`|~").find(static_cast<char>(c)) != std::string_view::npos) {
+      encoded.push_back(static_cast<char>(c));
+    } else {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      encoded += hex;
+    }
+  }
+  std::string out = "inline; filename=\"" + ascii + "\"";
+  if (!plain) out += "; filename*=UTF-8''" + encoded;
+  return out;
 }
 
 namespace {

@@ -48,7 +48,7 @@ show curl -fsS "$url/readyz"; echo
 #    202 Accepted, the job as JSON and its address in Location.
 show curl -sS -D headers.txt -o job.json -w '%{http_code}\n' \
   -H 'Content-Type: model/obj' --data-binary "@$mesh" \
-  "$url/v1/jobs?strategy=TU&size_mm=120&paper=A4" | tee code.txt
+  "$url/v1/jobs?strategy=TU&size_mm=120&paper=A4&title=Kitchen%20Duck" | tee code.txt
 [ "$(cat code.txt)" = 202 ] || fail "submit answered $(cat code.txt): $(cat job.json)"
 id=$(sed -n 's/.*"id":"\([0-9a-f]\{32\}\)".*/\1/p' job.json)
 [ -n "$id" ] || fail "no job id in $(cat job.json)"
@@ -82,6 +82,11 @@ grep -q '<svg' net.svg || fail "net.svg is no SVG"
 [ "$(head -c 5 net.pdf)" = "%PDF-" ] || fail "net.pdf is no PDF"
 [ "$(head -c 4 mesh.glb)" = "glTF" ] || fail "mesh.glb is no GLB"
 ls -l net.json net.svg net.pdf mesh.glb
+# Saved under the name the server gives (Content-Disposition: the kit's title, a page's number
+# and .svg, which the page's URL lacks):
+show curl -fsS -OJ "$url/v1/jobs/$id/pages/1"
+[ -f "Kitchen Duck - page 1.svg" ] || fail "pages/1 was not saved as 'Kitchen Duck - page 1.svg': $(ls)"
+grep -q '<title>Kitchen Duck · page 1 of ' "Kitchen Duck - page 1.svg" || fail "page 1 has no title"
 
 # 4. Errors are problem documents with a stable code.
 show curl -sS -o problem.json -w '%{http_code}\n' -H 'Content-Type: model/obj' \

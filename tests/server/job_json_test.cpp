@@ -101,3 +101,38 @@ TEST(JobJsonTest, FinishedJobsShowResultOrError) {
   EXPECT_EQ(doc["error"]["status"], 422);
   EXPECT_TRUE(doc["result"].is_null());
 }
+
+// A result file saved from a browser or by `curl -OJ` is named after the kit's title where the
+// job has one, else after the file; a page gets its extension, which its URL lacks.
+TEST(JobJsonTest, ResultFilesAreNamedAfterTheKit) {
+  const nlohmann::json untitled = {{"title", nullptr}, {"paper", "A4"}},
+                       duck = {{"title", "Kitchen Duck"}};
+  struct Case {
+    nlohmann::json options;
+    std::string file, content_type, disposition;
+  };
+  const Case cases[] = {
+      {untitled, "net.pdf", "application/pdf", "inline; filename=\"net.pdf\""},
+      {untitled, page_file_name(2), "image/svg+xml", "inline; filename=\"page-2.svg\""},
+      {untitled, texture_file_name(0), "image/png", "inline; filename=\"texture-0.png\""},
+      {duck, "net.pdf", "application/pdf", "inline; filename=\"Kitchen Duck.pdf\""},
+      {duck, "mesh.glb", "model/gltf-binary", "inline; filename=\"Kitchen Duck.glb\""},
+      {duck, page_file_name(12), "image/svg+xml",
+       "inline; filename=\"Kitchen Duck - page 12.svg\""},
+      {duck, texture_file_name(1), "image/jpeg",
+       "inline; filename=\"Kitchen Duck - texture-1.jpg\""},
+      // Characters no file system takes in a name, a quote among them, and a leading dot: "_".
+      {{{"title", ".a/b\\c:\"d\"?"}},
+       "net.svg",
+       "image/svg+xml",
+       "inline; filename=\"_a_b_c__d__.svg\""},
+      // Outside ASCII: "_" per letter in filename, the UTF-8 bytes in filename*.
+      {{{"title", "Ente f\u00fcr L\u00fcneburg"}},
+       "net.pdf",
+       "application/pdf",
+       "inline; filename=\"Ente f_r L_neburg.pdf\"; "
+       "filename*=UTF-8''Ente%20f%C3%BCr%20L%C3%BCneburg.pdf"},
+  };
+  for (const Case& c : cases)
+    EXPECT_EQ(content_disposition(c.options, c.file, c.content_type), c.disposition) << c.file;
+}

@@ -303,12 +303,13 @@ TEST_P(ServeTest, ServesTheTexturesBesideTheNet) {
 // whole net stays at net.svg.
 TEST_P(ServeTest, ServesEachPrintedPageOnItsOwn) {
   Server s({"--workers", "1"});
-  const std::string id =
-      submit(s, test_mesh("testplate.glb"), "model/gltf-binary", "?strategy=TU&detail=full");
+  const std::string id = submit(s, test_mesh("testplate.glb"), "model/gltf-binary",
+                                "?strategy=TU&detail=full&title=Test%20plate");
   const json job = wait_final(s, id);
   ASSERT_EQ(job["status"], "succeeded") << job.dump();
   auto c = s.client();
   auto net = c.Get("/v1/jobs/" + id + "/net.json");
+  EXPECT_EQ(net->get_header_value("Content-Disposition"), "inline; filename=\"Test plate.json\"");
   ASSERT_EQ(net->status, 200);
   const json doc = json::parse(net->body);
   ASSERT_TRUE(doc.contains("print")) << net->body.substr(0, 200);
@@ -322,6 +323,9 @@ TEST_P(ServeTest, ServesEachPrintedPageOnItsOwn) {
     auto page = c.Get(path);
     ASSERT_EQ(page->status, 200) << path;
     EXPECT_EQ(page->get_header_value("Content-Type"), "image/svg+xml");
+    // Saved from a browser or by curl -OJ, the page is named, with its extension.
+    EXPECT_EQ(page->get_header_value("Content-Disposition"),
+              "inline; filename=\"Test plate - page " + std::to_string(k) + ".svg\"");
     EXPECT_NE(page->body.find("page " + std::to_string(k) + " of " + std::to_string(n)),
               std::string::npos)
         << path;
@@ -765,7 +769,7 @@ TEST_P(ServeTest, CorsForConfiguredOriginsOnEveryBrowserRoute) {
   EXPECT_EQ(posted->get_header_value("Access-Control-Allow-Origin"), "https://shop.example");
   EXPECT_EQ(posted->get_header_value("Vary"), "Origin");
   const std::string exposed = posted->get_header_value("Access-Control-Expose-Headers");
-  for (const char* h : {"Location", "Retry-After", "X-Papernet-Level"})
+  for (const char* h : {"Location", "Retry-After", "X-Papernet-Level", "Content-Disposition"})
     EXPECT_NE(exposed.find(h), std::string::npos) << exposed;
   const std::string id = body(posted)["id"];
 
