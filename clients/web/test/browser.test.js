@@ -286,6 +286,11 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
     assert.equal(res.status(), 200, href);
     assert.ok((await res.body()).toString("latin1").trimStart().startsWith(magic), `${href} starts with ${magic}`);
   }
+  // Saved, the PDF is named after the kit (the server's Content-Disposition: the title left
+  // empty, the demo sends the file's name), not net.pdf.
+  const kit = sampleName.replace(/\.[^.]*$/, "");
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click("#dl-pdf")]);
+  assert.equal(download.suggestedFilename(), `${kit}.pdf`);
 
   // The status says the detail printed; the sheets, one by one, as the printer prints them.
   assert.match(await page.textContent("#status"), / · detail full · /);
@@ -296,7 +301,6 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   assert.ok((await page.locator("#net svg path").count()) > 0, "sheet 2 has paths");
   // Named after the file (the title left empty), with the key to its lines.
   const sheetText = await page.locator("#net svg").textContent();
-  const kit = sampleName.replace(/\.[^.]*$/, "");
   assert.ok(sheetText.includes(`${kit} \u00b7 page 2 of ${sheets - 1}`), `sheet 2 is named ${kit}`);
   assert.ok(["cut", "mountain fold", "valley fold"].every((k) => sheetText.includes(k)), "sheet 2 has the key to its lines");
 
