@@ -252,6 +252,8 @@ export interface RequestOptions {
 
 export const FINAL_STATUSES: readonly JobStatus[];
 export const RESULT_FILES: readonly ResultFile[];
+/** The name the server gives a result file (its Content-Disposition), or null. */
+export function fileNameOf(response: Response): string | null;
 export function isFinal(status: string): boolean;
 /** The share of a job done, 0 to 1 (progress.fraction; 1 once final). */
 export function progressFraction(job: Job): number;
@@ -294,7 +296,9 @@ export class PapernetClient {
   ): Promise<Job>;
   /** Events, falling back to polling; resolves to the final job. */
   wait(id: string, init?: { interval?: number; onProgress?: (job: Job) => void; signal?: AbortSignal }): Promise<Job>;
-  result(id: string, name: ResultFile, init?: RequestOptions): Promise<Response>;
+  /** A result file: one of RESULT_FILES, a printed page (pages/k, k from 1) or a texture
+   *  (textures/k, k from 0). */
+  result(id: string, name: ResultFile | `pages/${number}` | `textures/${number}`, init?: RequestOptions): Promise<Response>;
   netJson(id: string, init?: RequestOptions): Promise<NetDocument>;
   netSvg(id: string, init?: RequestOptions): Promise<string>;
   netPdf(id: string, init?: RequestOptions): Promise<Uint8Array>;

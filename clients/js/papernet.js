@@ -41,6 +41,24 @@ export function progressFraction(job) {
 }
 
 /** The mesh format a file name implies ("duck.GLB" -> "glb"), or undefined. */
+/**
+ * The name the server gives a result file (its Content-Disposition: "Kitchen Duck.pdf" for a kit
+ * titled so, "page-2.svg" for a page), for saving it; null when the response names none.
+ */
+export function fileNameOf(response) {
+  const disposition = response.headers.get("Content-Disposition") ?? "";
+  const utf8 = /filename\*=UTF-8''([^;\s]+)/i.exec(disposition);
+  if (utf8) {
+    try {
+      return decodeURIComponent(utf8[1]);
+    } catch {
+      // a malformed escape: the plain name below
+    }
+  }
+  const plain = /filename="([^"]*)"/i.exec(disposition);
+  return plain ? plain[1] : null;
+}
+
 export function formatOfFileName(name) {
   const m = /\.([A-Za-z0-9]+)$/.exec(name ?? "");
   const ext = m ? m[1].toLowerCase() : "";
@@ -351,9 +369,15 @@ export class PapernetClient {
     return this.poll(id, { onProgress, signal, interval });
   }
 
-  /** A result file as a Response (status checked); `name` is one of RESULT_FILES. */
+  /**
+   * A result file as a Response (status checked): `name` is one of RESULT_FILES, or `pages/k`
+   * (a printed page, k from 1) or `textures/k` (k from 0). fileNameOf(response) is the name
+   * the server gives it.
+   */
   async result(id, name, { signal } = {}) {
-    if (!RESULT_FILES.includes(name)) throw new TypeError(`unknown result file ${name}`);
+    if (!RESULT_FILES.includes(name) && !/^(pages\/[1-9]|textures\/(0|[1-9]))[0-9]*$/.test(name)) {
+      throw new TypeError(`unknown result file ${name}`);
+    }
     return this._request(`/v1/jobs/${encodeURIComponent(id)}/${name}`, { signal });
   }
 

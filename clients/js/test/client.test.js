@@ -1,7 +1,7 @@
 // The JS client against a real `papernet serve` (see server.js), with the repository's meshes.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { PapernetClient, PapernetError, isFinal, parseSse, parseLevel, progressFraction } from "../papernet.js";
+import { PapernetClient, PapernetError, fileNameOf, isFinal, parseSse, parseLevel, progressFraction } from "../papernet.js";
 import { startServer, sample } from "./server.js";
 
 let server;
@@ -78,6 +78,13 @@ test("raw OBJ upload: SSE progress to the end, then every result file", async ()
   assert.ok(page.includes(`page ${pages} of ${pages}`));
   net.print.placements.forEach((p) => assert.ok(p.page >= 0 && p.page < pages));
   await assert.rejects(client.page(job.id, pages + 1), (e) => e.code === "not_found" && e.status === 404);
+  // A page as a file to save, under the name the server gives it (no title: page-k.svg).
+  const pageFile = await client.result(job.id, `pages/${pages}`);
+  assert.equal(await pageFile.text(), page);
+  assert.equal(fileNameOf(pageFile), `page-${pages}.svg`);
+  assert.equal(fileNameOf(await client.result(job.id, "net.pdf")), "net.pdf");
+  await assert.rejects(client.result(job.id, "pages/0"), TypeError);
+  await assert.rejects(client.result(job.id, "../net.pdf"), TypeError);
   const pdf = await client.netPdf(job.id);
   assert.equal(new TextDecoder().decode(pdf.slice(0, 5)), "%PDF-");
   const glb = await client.meshGlb(job.id);
@@ -87,7 +94,7 @@ test("raw OBJ upload: SSE progress to the end, then every result file", async ()
 test("GLB upload followed by polling", async () => {
   const job = await client.submit(sample("Box_Draco.glb"), {
     filename: "Box_Draco.glb",
-    options: { strategy: "TU", paper: "Letter", tabs: false },
+    options: { strategy: "TU", paper: "Letter", tabs: false, title: "Ente f\u00fcr L\u00fcneburg" },
   });
   const progress = [];
   const done = await client.poll(job.id, { interval: 100, timeout: 60000, onProgress: (j) => progress.push(j) });
@@ -97,6 +104,9 @@ test("GLB upload followed by polling", async () => {
   assert.ok(progress.length >= 1);
   assert.equal(done.input.format, "glb");
   checkNet(await client.netJson(job.id));
+  // Saved under the kit's title, letters outside ASCII and all (RFC 6266's filename*).
+  assert.equal(fileNameOf(await client.result(job.id, "net.pdf")), "Ente f\u00fcr L\u00fcneburg.pdf");
+  assert.equal(fileNameOf(await client.result(job.id, "pages/1")), "Ente f\u00fcr L\u00fcneburg - page 1.svg");
 });
 
 /** Splits a GLB into a .gltf JSON naming an external buffer file, and that file's bytes. */

@@ -1,7 +1,7 @@
 // The demo page: upload a mesh, follow the job, show the model folding from its net.
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
-import { PapernetClient, PapernetError, isFinal, formatOfFileName, progressFraction } from "../../js/papernet.js";
+import { PapernetClient, PapernetError, fileNameOf, isFinal, formatOfFileName, progressFraction } from "../../js/papernet.js";
 import { prepareFold, foldPositions } from "./fold.js";
 import { sceneFrame, cornerUvs, cornerColors, faceGroups } from "./colour.js";
 
@@ -339,7 +339,17 @@ function offerSheets(id, pages) {
   ui.sheet.onchange = async () => {
     const k = Number(ui.sheet.value);
     showSvg(k === 0 ? await client.netSvg(id) : await client.page(id, k));
+    linkSvg(id, k);
   };
+}
+
+// The SVG link saves what is shown: the whole net, or sheet k alone (pages/k), as a cutting
+// machine or a printer takes one sheet at a time.
+function linkSvg(id, k) {
+  const a = ui.downloads["net.svg"];
+  a.dataset.file = k === 0 ? "net.svg" : `pages/${k}`;
+  a.href = client.url(`/v1/jobs/${id}/${a.dataset.file}`);
+  a.textContent = k === 0 ? "SVG" : `SVG (sheet ${k})`;
 }
 
 // The job whose final result is shown: an intermediate fetched before it ended and parsed after
@@ -358,7 +368,9 @@ async function showResult(id, final, format) {
   for (const [name, a] of Object.entries(ui.downloads)) {
     a.href = client.url(`/v1/jobs/${id}/${name}`);
     a.dataset.job = id;
+    a.dataset.file = name;
   }
+  linkSvg(id, 0);
   document.body.dataset.level = doc.level?.kind ?? doc.result;
 }
 
@@ -468,17 +480,18 @@ ui.key.addEventListener("change", () => {
   else sessionStorage.removeItem(keyStore);
   setStatus(files.length ? "Ready to unfold." : "Choose a mesh.");
 });
-// A link cannot send the key: with one, a download is fetched (with the header) and saved.
+// A link cannot send the key: with one, a download is fetched (with the header) and saved under
+// the name the server gives it (the kit's title), as a plain link's would be.
 for (const [name, a] of Object.entries(ui.downloads)) {
   a.addEventListener("click", async (e) => {
     if (!client.apiKey || !a.dataset.job) return; // an open server: the plain link
     e.preventDefault();
     try {
-      const res = await client.result(a.dataset.job, name);
+      const res = await client.result(a.dataset.job, a.dataset.file ?? name);
       const url = URL.createObjectURL(await res.blob());
       const save = document.createElement("a");
       save.href = url;
-      save.download = name;
+      save.download = fileNameOf(res) ?? name;
       save.click();
       setTimeout(() => URL.revokeObjectURL(url), 60000);
     } catch (err) {

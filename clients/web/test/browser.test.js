@@ -299,6 +299,10 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   await page.selectOption("#sheet", "2");
   await page.waitForFunction((n) => document.querySelector("#net svg")?.textContent.includes(`page 2 of ${n}`), sheets - 1);
   assert.ok((await page.locator("#net svg path").count()) > 0, "sheet 2 has paths");
+  // The SVG link now saves that sheet alone, named after the kit and the page.
+  await page.waitForFunction(() => document.querySelector("#dl-svg").textContent === "SVG (sheet 2)");
+  const [sheetFile] = await Promise.all([page.waitForEvent("download"), page.click("#dl-svg")]);
+  assert.equal(sheetFile.suggestedFilename(), `${kit} - page 2.svg`);
   // Named after the file (the title left empty), with the key to its lines.
   const sheetText = await page.locator("#net svg").textContent();
   assert.ok(sheetText.includes(`${kit} \u00b7 page 2 of ${sheets - 1}`), `sheet 2 is named ${kit}`);

@@ -90,10 +90,17 @@ test("the demo asks for the API key, keeps it and sends it with every request", 
   assert.ok(sent.length > 2 && sent.every((r) => r.auth === `Bearer ${secret}`), JSON.stringify(sent));
   assert.equal(await page.evaluate(() => sessionStorage.getItem("papernet.apiKey")), secret);
 
-  // A download is fetched with the key (a plain link could not send it).
+  // A download is fetched with the key (a plain link could not send it), and saved under the
+  // name the server gives it: the kit's title, which the demo takes from the file's name.
   const [download] = await Promise.all([page.waitForEvent("download"), page.click("#dl-svg")]);
-  assert.equal(download.suggestedFilename(), "net.svg");
+  assert.equal(download.suggestedFilename(), "sample.svg");
   assert.match(readFileSync(await download.path(), "utf8").trimStart(), /^<(\?xml|svg)/);
+  // With a sheet shown, the SVG link saves that sheet alone.
+  await page.selectOption("#sheet", "2");
+  await page.waitForFunction(() => document.querySelector("#dl-svg").textContent === "SVG (sheet 2)");
+  const [sheet] = await Promise.all([page.waitForEvent("download"), page.click("#dl-svg")]);
+  assert.equal(sheet.suggestedFilename(), "sample - page 2.svg");
+  assert.match(readFileSync(await sheet.path(), "utf8"), /sample \u00b7 page 2 of \d+/);
   await page.screenshot({ path: screenshot, fullPage: true });
   console.log(`screenshot: ${screenshot}`);
 
