@@ -594,6 +594,10 @@ Header next_header(int which, int parts, double width) {
 constexpr double kLeastThumbMm = 25;
 constexpr double kFlowCellMm = 32;
 constexpr double kFlowTextMm = 2.5;
+// The sizes an overview of several pages tries, thumbnails (mm wide) and text (mm high): the
+// first unless a later one takes fewer pages.
+constexpr std::array<std::pair<double, double>, 3> kFlowSizes{
+    {{kFlowCellMm, kFlowTextMm}, {kFlowCellMm, kSmallestMm}, {kLeastThumbMm, kSmallestMm}}};
 // The least size of a thumbnail on an overview of several pages (its longer side), mm: below
 // it the overview is left out (its pieces' numbers would not fit it).
 constexpr double kLeastFlowThumbMm = 20;
@@ -629,16 +633,87 @@ struct OverviewPlan {
 
 namespace {
 
+/// The overview over several pages: rows of thumbnails `cell` mm wide (or narrower, to fit a
+/// page) while they fit, then the build order's lines, continued on as many pages as they need,
+/// all its text `text` mm high; none where the paper is too small for it (plan_overview). `plan`
+/// holds the first page's header.
+std::optional<OverviewPlan> plan_flow(const PageLayout& pages, const Overview& overview,
+                                      OverviewPlan plan, double top, double next_top, double cell,
+                                      double text) {
+  const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
+  plan.text = text;
+  plan.columns = step_columns(overview, width, text, true);
+  const std::vector<std::vector<std::string>> steps =
+      column_steps(overview, width, text, plan.columns);
+  const int count = static_cast<int>(steps.size());
+  // The build order's heading on a page after the first.
+  if (count > 0 && text_width(kStepsContinued, kHeadingScale * text) > width) return std::nullopt;
+  const double pitch = kLinePitch * text;
+  // Lines of the build order a page after the first holds: its title, a line of space.
+  const auto lines_below = [&](double y) { return static_cast<int>((bottom - y) / pitch) - 2; };
+  if (count > 0 && lines_below(next_top) < kLeastSteps) return std::nullopt;
+  const Cells small = cells_of(pages, overview, text);
+  const int n = small.count();
+  OverviewPlan::Part part;
+  part.grid_top = top;
+  double y = top;
+  if (n > 0) {
+    const int cols = std::clamp(static_cast<int>((width + kGapMm) / (cell + kGapMm)), 1, n);
+    Grid g = grid_of(small, width, cols, 0);
+    // A row fits any page, the first (below its longer header) included.
+    g.scale =
+        std::min({g.cell_w / small.sw, (bottom - top - g.caption) / small.sh, most_scale(small)});
+    if (!(g.scale * std::max(small.sw, small.sh) >= kLeastFlowThumbMm)) return std::nullopt;
+    g.cell_h = small.sh * g.scale + g.caption;
+    plan.grid = g;
+    for (int first_cell = 0; first_cell < n; first_cell += cols) {
+      if (y + g.cell_h > bottom && part.last_cell > part.first_cell) {
+        plan.parts.push_back(part);
+        part = {first_cell, first_cell, next_top, 0, 0, 0, 0};
+        y = next_top;
+      }
+      part.last_cell = std::min(n, first_cell + cols);
+      y += g.cell_h + kGapMm;
+    }
+  }
+  plan.step_size = text;
+  for (StepFlow at; at.step < steps.size();) {
+    int room = lines_below(y);
+    const int first = static_cast<int>(plan.steps.size());
+    if (room < kLeastSteps) {
+      plan.parts.push_back(part);
+      part = {n, n, next_top, first, first, 0, 0};
+      y = next_top;
+      room = lines_below(y);
+    }
+    // The page's rows, or on the last page the fewest that hold the rest.
+    int rows = room;
+    for (int r = 1; r < room; ++r)
+      if (flow_steps(steps, at, plan.columns, r, nullptr).step == steps.size()) {
+        rows = r;
+        break;
+      }
+    at = flow_steps(steps, at, plan.columns, rows, &plan.steps);
+    part.first_step = first;
+    part.last_step = static_cast<int>(plan.steps.size());
+    part.rows = rows;
+    part.steps_top = y;
+    y = bottom;  // the page is full, or the build order ends here
+  }
+  plan.parts.push_back(part);
+  return plan;
+}
+
 /// The overview's pages for `pages` (its overview pages first): everything on one page where
 /// the thumbnails print at least kLeastThumbMm wide and the build order takes at most 40 % of it
 /// at 2 mm or more; else the grid at kFlowCellMm a thumbnail and then the build order, their
-/// text kFlowTextMm high, each continued on as many pages as it needs. None where the paper is
-/// too small for it: its header's words wider than the printable area, a row of thumbnails
-/// kLeastFlowThumbMm large with their captions taller than the first page holds below its
-/// header, or fewer than kLeastSteps lines of the build order (or its heading wider than the
-/// printable area) on a page after the first. A step of the build order wider than a column
-/// goes on on the lines below it. With `folds`, the first page's header says which way the
-/// folds go.
+/// text kFlowTextMm high, each continued on as many pages as it needs (plan_flow), or smaller
+/// (kFlowSizes) where that takes fewer pages. None where the paper is too small for it: its
+/// header's words wider than the printable area, a row of thumbnails kLeastFlowThumbMm large with
+/// their captions taller than the first page holds below its header, or fewer than kLeastSteps
+/// lines of the build order (or its heading wider than the printable area) on a page after the
+/// first. A step of the build order wider than a column goes on on the lines below it. With
+/// `folds`, the first page's header says which way the folds go.
 std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overview& overview,
                                           bool folds) {
   const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
@@ -685,69 +760,14 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
     plan.parts.push_back({0, n, top, 0, count, rows, foot});
     return plan;
   }
-  // Several pages: rows of thumbnails while they fit, then the build order's lines, in text of
-  // kFlowTextMm.
-  plan.text = kFlowTextMm;
-  plan.columns = step_columns(overview, width, kFlowTextMm, true);
-  const std::vector<std::vector<std::string>> steps =
-      column_steps(overview, width, kFlowTextMm, plan.columns);
-  count = static_cast<int>(steps.size());
-  // The build order's heading on a page after the first.
-  if (count > 0 && text_width(kStepsContinued, kHeadingScale * kFlowTextMm) > width)
-    return std::nullopt;
-  const double pitch = kLinePitch * kFlowTextMm;
-  // Lines of the build order a page after the first holds: its title, a line of space.
-  const auto lines_below = [&](double y) { return static_cast<int>((bottom - y) / pitch) - 2; };
-  if (count > 0 && lines_below(next_top) < kLeastSteps) return std::nullopt;
-  const Cells small = cells_of(pages, overview, kFlowTextMm);
-  OverviewPlan::Part part;
-  part.grid_top = top;
-  double y = top;
-  if (n > 0) {
-    const int cols = std::clamp(static_cast<int>((width + kGapMm) / (kFlowCellMm + kGapMm)), 1, n);
-    Grid g = grid_of(small, width, cols, 0);
-    // A row fits any page, the first (below its longer header) included.
-    g.scale =
-        std::min({g.cell_w / small.sw, (bottom - top - g.caption) / small.sh, most_scale(small)});
-    if (!(g.scale * std::max(small.sw, small.sh) >= kLeastFlowThumbMm)) return std::nullopt;
-    g.cell_h = small.sh * g.scale + g.caption;
-    plan.grid = g;
-    for (int first_cell = 0; first_cell < n; first_cell += cols) {
-      if (y + g.cell_h > bottom && part.last_cell > part.first_cell) {
-        plan.parts.push_back(part);
-        part = {first_cell, first_cell, next_top, 0, 0, 0, 0};
-        y = next_top;
-      }
-      part.last_cell = std::min(n, first_cell + cols);
-      y += g.cell_h + kGapMm;
-    }
+  // Several pages: the fewest, the text and then the thumbnails smaller where that saves one
+  // (a last page of a few lines of the build order).
+  std::optional<OverviewPlan> fewest;
+  for (const auto& [cell, text] : kFlowSizes) {
+    std::optional<OverviewPlan> flow = plan_flow(pages, overview, plan, top, next_top, cell, text);
+    if (flow && (!fewest || flow->parts.size() < fewest->parts.size())) fewest = std::move(flow);
   }
-  plan.step_size = kFlowTextMm;
-  for (StepFlow at; at.step < steps.size();) {
-    int room = lines_below(y);
-    const int first = static_cast<int>(plan.steps.size());
-    if (room < kLeastSteps) {
-      plan.parts.push_back(part);
-      part = {n, n, next_top, first, first, 0, 0};
-      y = next_top;
-      room = lines_below(y);
-    }
-    // The page's rows, or on the last page the fewest that hold the rest.
-    int rows = room;
-    for (int r = 1; r < room; ++r)
-      if (flow_steps(steps, at, plan.columns, r, nullptr).step == steps.size()) {
-        rows = r;
-        break;
-      }
-    at = flow_steps(steps, at, plan.columns, rows, &plan.steps);
-    part.first_step = first;
-    part.last_step = static_cast<int>(plan.steps.size());
-    part.rows = rows;
-    part.steps_top = y;
-    y = bottom;  // the page is full, or the build order ends here
-  }
-  plan.parts.push_back(part);
-  return plan;
+  return fewest;
 }
 
 }  // namespace

@@ -157,6 +157,22 @@ TEST(Overview, ManySheetsAndPiecesGoOnOverMorePagesListingEachOnce) {
   }
 }
 
+// An overview of several pages whose last page would hold a few lines of the build order alone
+// prints smaller, on a page fewer: 30 pieces on 11 sheets of A5 (as the Duck prints there) took
+// three pages at 32 mm thumbnails and 2.5 mm text, the third for 14 lines; now two, at 2 mm.
+TEST(Overview, PrintsSmallerWhereThatSavesAPage) {
+  const Sheet a5{148, 210, 10};
+  Print p = print_of(11, 30, 3, a5);
+  ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
+  check_overview(p, a5, 11, 30);
+  ASSERT_EQ(overview_pages_of(p.pages), 2);
+  for (int k = 0; k < 2; ++k)
+    for (const Text& t : texts(draw_overview(p.layout, p.pages, k)))
+      if (t.text.rfind("P30 glues to", 0) == 0) {
+        EXPECT_DOUBLE_EQ(t.size, 2) << t.text;
+      }
+}
+
 // On an overview of several pages the build order of many pieces takes several columns, its long
 // steps broken after a comma onto more lines, rather than one column as wide as its longest step
 // (the Menger sponge's 448 pieces on 72 sheets at the defaults: 12 overview pages, 7 of them a
