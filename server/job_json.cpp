@@ -54,17 +54,17 @@ std::string content_disposition(const json& options, const std::string& file,
   }
   std::string ascii, encoded;
   bool plain = true;
-  for (std::size_t i = 0; i < name.size(); ++i) {
-    const auto c = static_cast<unsigned char>(name[i]);
+  for (const char ch : name) {
+    const auto c = static_cast<unsigned char>(ch);
     if (c >= 0x80) {
       plain = false;
       if ((c & 0xC0) != 0x80) ascii.push_back('_');  // one per letter, not per byte
     } else {
-      ascii.push_back(static_cast<char>(c));
+      ascii.push_back(ch);
     }
     if ((c < 0x80 && std::isalnum(c)) ||
-        std::string_view("!#$&+-.^_`|~").find(static_cast<char>(c)) != std::string_view::npos) {
-      encoded.push_back(static_cast<char>(c));
+        std::string_view("!#$&+-.^_`|~").find(ch) != std::string_view::npos) {
+      encoded.push_back(ch);
     } else {
       char hex[4];
       std::snprintf(hex, sizeof hex, "%%%02X", c);
