@@ -1013,7 +1013,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
                                 dpi(asked))});
       }
     }
-    docs.svg_pages = {write_net_svg(*unpaged, page.margin_mm, drawn)};
+    docs.svg_pages = {write_net_svg(*unpaged, page.margin_mm, drawn, options.title)};
     if (colour) colour->dpi = options.dpi;  // the PDF's pages are paced on their own
   }
   report(progress, "write", 0);
@@ -1077,7 +1077,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
             triangle_seconds(), by_time);
         if (colour->dpi == 0) drawn = nullptr;
       }
-      docs.svg = write_net_svg(layout, page.margin_mm, drawn);
+      docs.svg = write_net_svg(layout, page.margin_mm, drawn, options.title);
     }
   }
   if (!request.svg_pages && paged) docs.svg_pages.clear();

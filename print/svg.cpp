@@ -180,8 +180,11 @@ std::vector<std::pair<std::string, std::string>> layout_metadata(const PrintLayo
           {"pages", std::to_string(pages)}};
 }
 
-std::string write_net_svg(const PrintLayout& layout, double margin_mm, const PrintColour* colour) {
-  return write_svg(draw_unpaged(layout, margin_mm, colour), layout_metadata(layout, 1));
+std::string write_net_svg(const PrintLayout& layout, double margin_mm, const PrintColour* colour,
+                          const std::string& title) {
+  PageDrawing drawing = draw_unpaged(layout, margin_mm, colour);
+  drawing.title = title;
+  return write_svg(drawing, layout_metadata(layout, 1));
 }
 
 std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLayout& pages,

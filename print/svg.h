@@ -26,9 +26,10 @@ std::vector<std::pair<std::string, std::string>> layout_metadata(const PrintLayo
                                                                  int pages);
 
 /// The net as one SVG sized to itself (no paper), with a margin; with `colour`, each coloured
-/// piece's image (PNG) in a group `colour` over the faces and tabs.
+/// piece's image (PNG) in a group `colour` over the faces and tabs; with a `title` (the kit's
+/// name), that is its <title>.
 std::string write_net_svg(const PrintLayout& layout, double margin_mm = 5,
-                          const PrintColour* colour = nullptr);
+                          const PrintColour* colour = nullptr, const std::string& title = {});
 
 /// One SVG per page of a paginated layout (colour as write_net_svg).
 std::vector<std::string> write_page_svgs(const PrintLayout& layout, const PageLayout& pages,

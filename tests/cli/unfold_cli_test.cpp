@@ -401,6 +401,14 @@ TEST(UnfoldCli, TheTitleNamesThePdfAndEveryPage) {
                         std::to_string(svgs)),
               std::string::npos)
         << "page " << k;
+  // Without paper, the one drawing's <title> is the title.
+  const std::string whole = scratch / "whole.svg";
+  ASSERT_EQ(papernet("unfold " + test_data_dir() +
+                         "/sample.obj --title 'Kitchen Duck' --paper none -o " + whole,
+                     &said),
+            0)
+      << said;
+  EXPECT_NE(read_file(whole).find("<title>Kitchen Duck</title>"), std::string::npos);
   if (std::system("command -v pdfinfo >/dev/null 2>&1 && command -v pdftotext >/dev/null 2>&1"))
     GTEST_SKIP() << "pdfinfo or pdftotext missing: install poppler-utils";
   std::string info, text;

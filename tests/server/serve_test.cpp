@@ -339,6 +339,7 @@ TEST_P(ServeTest, ServesEachPrintedPageOnItsOwn) {
   auto svg = c.Get("/v1/jobs/" + id + "/net.svg");
   ASSERT_EQ(svg->status, 200);
   EXPECT_NE(svg->body.find("<svg"), std::string::npos);
+  EXPECT_NE(svg->body.find("<title>Test plate</title>"), std::string::npos) << "the whole net's";
 }
 
 namespace {
