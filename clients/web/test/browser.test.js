@@ -304,7 +304,9 @@ test(`the demo page unfolds ${sampleName} and folds the net`, async () => {
   const [sheetFile] = await Promise.all([page.waitForEvent("download"), page.click("#dl-svg")]);
   assert.equal(sheetFile.suggestedFilename(), `${kit} - page 2.svg`);
   // Named after the file (the title left empty), with the key to its lines.
-  const sheetText = await page.locator("#net svg").textContent();
+  // The drawn text (not the SVG's <title>, which says the same line).
+  const sheetText = (await page.locator("#net svg text").allTextContents()).join("\n");
+  assert.equal(await page.locator("#net svg > title").textContent(), `${kit} \u00b7 page 2 of ${sheets - 1}`);
   assert.ok(sheetText.includes(`${kit} \u00b7 page 2 of ${sheets - 1}`), `sheet 2 is named ${kit}`);
   assert.ok(["cut", "mountain fold", "valley fold"].every((k) => sheetText.includes(k)), "sheet 2 has the key to its lines");
 
