@@ -594,8 +594,8 @@ Header next_header(int which, int parts, double width) {
 constexpr double kLeastThumbMm = 25;
 constexpr double kFlowCellMm = 32;
 constexpr double kFlowTextMm = 2.5;
-// The sizes an overview of several pages tries, thumbnails (mm wide) and text (mm high): the
-// first unless a later one takes fewer pages.
+// The sizes an overview of several pages tries, thumbnails (the least width that sets how many
+// to a row, mm) and text (mm high): the first unless a later one takes fewer pages.
 constexpr std::array<std::pair<double, double>, 3> kFlowSizes{
     {{kFlowCellMm, kFlowTextMm}, {kFlowCellMm, kSmallestMm}, {kLeastThumbMm, kSmallestMm}}};
 // The least size of a thumbnail on an overview of several pages (its longer side), mm: below
@@ -633,10 +633,11 @@ struct OverviewPlan {
 
 namespace {
 
-/// The overview over several pages: rows of thumbnails `cell` mm wide (or narrower, to fit a
-/// page) while they fit, then the build order's lines, continued on as many pages as they need,
-/// all its text `text` mm high; none where the paper is too small for it (plan_overview). `plan`
-/// holds the first page's header.
+/// The overview over several pages: rows of as many thumbnails as the width holds `cell` mm
+/// wide (each as wide as the row then allows, less where a page is too low for it), while they
+/// fit, then the build order's lines, continued on as many pages as they need, all its text
+/// `text` mm high; none where the paper is too small for it (plan_overview). `plan` holds the
+/// first page's header.
 std::optional<OverviewPlan> plan_flow(const PageLayout& pages, const Overview& overview,
                                       OverviewPlan plan, double top, double next_top, double cell,
                                       double text) {
