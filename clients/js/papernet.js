@@ -40,7 +40,6 @@ export function progressFraction(job) {
   return job.progress?.fraction ?? 0;
 }
 
-/** The mesh format a file name implies ("duck.GLB" -> "glb"), or undefined. */
 /**
  * The name the server gives a result file (its Content-Disposition: "Kitchen Duck.pdf" for a kit
  * titled so, "page-2.svg" for a page), for saving it; null when the response names none.
@@ -59,6 +58,7 @@ export function fileNameOf(response) {
   return plain ? plain[1] : null;
 }
 
+/** The mesh format a file name implies ("duck.GLB" -> "glb"), or undefined. */
 export function formatOfFileName(name) {
   const m = /\.([A-Za-z0-9]+)$/.exec(name ?? "");
   const ext = m ? m[1].toLowerCase() : "";
@@ -375,7 +375,7 @@ export class PapernetClient {
    * the server gives it.
    */
   async result(id, name, { signal } = {}) {
-    if (!RESULT_FILES.includes(name) && !/^(pages\/[1-9]|textures\/(0|[1-9]))[0-9]*$/.test(name)) {
+    if (!RESULT_FILES.includes(name) && !/^(pages\/[1-9][0-9]*|textures\/(0|[1-9][0-9]*))$/.test(name)) {
       throw new TypeError(`unknown result file ${name}`);
     }
     return this._request(`/v1/jobs/${encodeURIComponent(id)}/${name}`, { signal });
