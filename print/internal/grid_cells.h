@@ -1,6 +1,6 @@
 #pragma once
 // The cells of a uniform grid that a shape's bounding box covers: the hash grids of the print
-// (labels and cut lines in print/layout.cpp, faces and tabs in print/tabs.cpp) share them.
+// (labels and cut lines in print/label_room.cpp, faces and tabs in print/tabs.cpp) share them.
 
 #include <cmath>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Where each piece's number prints (print/layout.cpp, layout_net's last step).
+// Where each piece's number prints (print/labels.cpp, place_labels's last step).
 
 #include <array>
 #include <vector>
