@@ -6,6 +6,14 @@
 #include <string>
 
 namespace papernet::engine_detail {
+
+void report(Progress& progress, const char* phase, double done) {
+  ProgressInfo info;
+  info.phase = phase;
+  info.phase_fraction = done;
+  progress.report(info);
+}
+
 namespace {
 
 // The stages' shares of a run, from their time shares at the defaults (A4, 200 mm, tabs auto,

@@ -52,7 +52,7 @@ struct PrintOptions {
   /// Clock limit of the labels' placement in seconds (not counting the layout before it); <= 0
   /// or not finite: none. A label not yet moved where it prints at the legible size when it runs
   /// out keeps the size that fits its face. The fit search sets it for the chosen print's labels
-  /// from what is left of its time (engine/documents.cpp).
+  /// from what is left of its time (engine/fit_search.cpp).
   double label_seconds = 0;
 
   /// \throw InvalidOptionException naming the bad option (by its JobOptions name).
@@ -154,7 +154,7 @@ std::string piece_name(int piece);
 /// and side but get no size or place, and there are no leaders or piece numbers; the faces, tabs
 /// and glue strips are those of the same layout with its labels placed. For a layout that is
 /// only weighed, not printed (the fit search's tries, when labels do not count:
-/// engine/documents.cpp), which then skips most of its work on a dense net.
+/// engine/fit_search.cpp), which then skips most of its work on a dense net.
 enum class LabelPass { Placed, Unplaced };
 
 /// Lays out a net for printing. With `piece` (each face's piece, numbered in build order:

@@ -10,6 +10,9 @@
 
 namespace papernet::engine_detail {
 
+/// Reports `phase` with `done` of it (ProgressInfo::phase_fraction) to `progress`.
+void report(Progress& progress, const char* phase, double done);
+
 /// The stages of a run, in order; each has a share of the fraction (run_progress.cpp).
 enum class Stage { Prepare, Unfold, Tabs, Print };
 
