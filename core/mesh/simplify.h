@@ -21,13 +21,15 @@ struct SimplifyTarget {
   double short_edge = 0;
   double short_edges_allowed = 0;
   double max_distance = 0;
-  /// When those steps find no collapse left, tunnels whose loop around (shortest_tunnel_loop,
-  /// core/mesh/tunnels.h) is at most this long are plugged, and the steps go on, unless that
-  /// took the surface farther than `max_distance`. 0: none is plugged. When neither plugs nor
-  /// flips (`thin_face`) help, the short edges themselves are collapsed, shortest first, into
-  /// their middle or an end, where that keeps the surface within `max_distance` and leaves no
-  /// face lower than the lower of `thin_face` and the lowest face around the edge, and the
-  /// steps go on.
+  /// Tunnels whose loop around (shortest_tunnel_loop, core/mesh/tunnels.h) is at most this long
+  /// are plugged (0: none). Before the collapse to `faces`, when that moved the surface farther
+  /// than `max_distance`: the most collapsed mesh within it is plugged and collapsed to `faces`
+  /// instead, kept when it moves the surface less. And when the steps find no collapse left,
+  /// unless plugging takes the surface farther than `max_distance`, and the steps go on. When
+  /// neither plugs nor flips (`thin_face`) help, the short edges themselves are collapsed,
+  /// shortest first, into their middle or an end, where that keeps the surface within
+  /// `max_distance` and leaves no face lower than the lower of `thin_face` and the lowest face
+  /// around the edge, and the steps go on.
   double max_tunnel_loop = 0;
   /// Faces lower than this over their longest edge have edges flipped (thicken_thin_faces,
   /// core/mesh/thin_faces.h), the flips of one round moving the surface at most a quarter of
