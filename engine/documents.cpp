@@ -12,7 +12,6 @@
 
 #include "core/io/write_mesh.h"
 #include "core/mesh/mesh.h"
-#include "core/unfold/net_check.h"
 #include "core/unfold/net_metrics.h"
 #include "engine/internal/fit_search.h"
 #include "engine/internal/run_progress.h"
@@ -21,7 +20,6 @@
 #include "print/build_order.h"
 #include "print/colour.h"
 #include "print/fit.h"
-#include "print/nest.h"
 #include "print/overview.h"
 #include "print/pages.h"
 #include "print/pdf.h"
