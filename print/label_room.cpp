@@ -16,11 +16,8 @@ constexpr double kCell = 4;
 /// Calls f with the key of each cell of the grid that the box around `poly` covers.
 template <class F>
 void for_cells(std::span<const Vec2> poly, F&& f) {
-  cells_of(poly, kCell).for_each([&](std::int64_t x, std::int64_t y) { f(cell_key(x, y)); });
+  for_each_cell_key(poly, kCell, f);
 }
-
-/// The key of the cell that `p` falls in.
-std::uint64_t key_of(Vec2 p) { return cell_key(cell_of(p.x, kCell), cell_of(p.y, kCell)); }
 
 /// True when no cut line lies between a label moved beside its edge and the edge: the line from
 /// its centre to the edge's nearest point (stopped 0.05 mm short of the edge) meets none. A label
@@ -152,7 +149,7 @@ PaperGrid::PaperGrid(const std::vector<std::array<Vec2, 3>>& faces,
 }
 
 bool PaperGrid::on_piece(Vec2 p, int face) const {
-  const auto it = cells_.find(key_of(p));
+  const auto it = cells_.find(cell_key_of(p, kCell));
   if (it == cells_.end()) return false;
   for (const int f : it->second.faces) {
     if (!piece_.empty() && piece_[f] != piece_[face]) continue;

@@ -206,10 +206,7 @@ constexpr double kCrowdedMm = 6;
 std::vector<char> faces_near_small_labels(const std::vector<std::array<Vec2, 3>>& faces,
                                           const std::vector<Label>& labels) {
   std::vector<char> near(faces.size(), 0);
-  const auto cell = [](Vec2 p) {
-    return print_detail::cell_key(print_detail::cell_of(p.x, kCrowdedMm),
-                                  print_detail::cell_of(p.y, kCrowdedMm));
-  };
+  const auto cell = [](Vec2 p) { return cell_key_of(p, kCrowdedMm); };
   std::unordered_map<std::uint64_t, std::vector<Vec2>> small;
   for (const Label& l : labels)
     if (!l.text.empty() && l.size < kLegibleLabelMm) small[cell(l.at)].push_back(l.at);

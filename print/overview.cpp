@@ -67,9 +67,7 @@ constexpr double kCellMm = 4;
 /// Calls `f` with the key of each cell of the bounding box of `points`.
 template <class F>
 void for_cells(std::span<const Vec2> points, F&& f) {
-  print_detail::cells_of(points, kCellMm).for_each([&](std::int64_t x, std::int64_t y) {
-    f(print_detail::cell_key(x, y));
-  });
+  print_detail::for_each_cell_key(points, kCellMm, f);
 }
 
 /// The cut lines drawn on a thumbnail, on a grid of cells.

@@ -40,4 +40,15 @@ inline CellRange cells_of(std::span<const Vec2> points, double cell) {
           cell_of(b.hi.y, cell)};
 }
 
+/// The key of the cell, of side `cell`, that `p` falls in.
+inline std::uint64_t cell_key_of(Vec2 p, double cell) {
+  return cell_key(cell_of(p.x, cell), cell_of(p.y, cell));
+}
+
+/// Calls f(key) with the key of each cell, of side `cell`, of the bounding box of `points`.
+template <class F>
+void for_each_cell_key(std::span<const Vec2> points, double cell, F&& f) {
+  cells_of(points, cell).for_each([&](std::int64_t x, std::int64_t y) { f(cell_key(x, y)); });
+}
+
 }  // namespace papernet::print_detail
