@@ -1,7 +1,7 @@
 #pragma once
 // Boxes of text on a page and the places around a point where one fits: the overview's piece
-// numbers (print/overview.cpp) and the numbers on its views of the model (print/model_view.cpp)
-// share them.
+// numbers (print/overview_sheets.cpp) and the numbers on its views of the model
+// (print/model_view.cpp) share them.
 
 #include <array>
 #include <cmath>
