@@ -4,7 +4,9 @@
 // (print/overview_sheets.cpp), and the build order's steps flowed into columns
 // (print/overview_steps.cpp).
 
+#include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/vec.h"
@@ -19,7 +21,7 @@ inline constexpr double kGapMm = 6;         // between thumbnails
 inline constexpr double kLinePitch = 1.5;   // line spacing, in text heights
 inline constexpr double kStepIndent = 1.5;  // of a step's lines after its first, in text heights
 
-/// True when `p` lies on `page`'s printable area (its sides included).
+/// True when `p` lies in the window of the layout that `page` prints (its sides included).
 inline bool holds(const Page& page, Vec2 p) {
   return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
 }
@@ -73,7 +75,7 @@ struct Grid {
 /// The grid of `cells` in `cols` columns across `width` mm, its thumbnails at `scale`.
 Grid grid_of(const Cells& cells, double width, int cols, double scale);
 
-/// The largest scale of a thumbnail: kMostThumbMm on its longer side.
+/// The largest scale of a thumbnail: its longer side kMostThumbMm (print/overview_sheets.cpp).
 double most_scale(const Cells& cells);
 
 /// The grid that shows every cell in `room` (mm high) with the largest thumbnails.
