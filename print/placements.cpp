@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "print/internal/page_window.h"
+
 namespace papernet {
 namespace {
+
+using print_detail::holds;
 
 double area(const std::array<Vec2, 3>& t) { return 0.5 * cross(t[1] - t[0], t[2] - t[0]); }
 
@@ -18,10 +22,6 @@ std::array<double, 6> affine(const std::array<Vec2, 3>& from, const std::array<V
   const double b = (q1.y * p2.y - q2.y * p1.y) / det, d = (q2.y * p1.x - q1.y * p2.x) / det;
   return {
       a, b, c, d, to[0].x - a * from[0].x - c * from[0].y, to[0].y - b * from[0].x - d * from[0].y};
-}
-
-bool holds(const Page& page, Vec2 p) {
-  return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
 }
 
 }  // namespace

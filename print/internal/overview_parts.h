@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "print/internal/page_window.h"
 #include "print/layout.h"
 #include "print/overview.h"
 #include "print/pages.h"
@@ -20,11 +21,6 @@ inline constexpr double kTextMm = 3;        // captions and the build order
 inline constexpr double kGapMm = 6;         // between thumbnails
 inline constexpr double kLinePitch = 1.5;   // line spacing, in text heights
 inline constexpr double kStepIndent = 1.5;  // of a step's lines after its first, in text heights
-
-/// True when `p` lies in the window of the layout that `page` prints (its sides included).
-inline bool holds(const Page& page, Vec2 p) {
-  return p.x >= page.lo.x && p.x <= page.hi.x && p.y >= page.lo.y && p.y <= page.hi.y;
-}
 
 /// The shapes of an overview page as they are added: text and lines.
 struct Writer {
