@@ -384,6 +384,38 @@ NetRepair small_labels_warning(const LabelSizes& labels, DetailMode detail) {
   return NetRepair{"small_labels", labels.illegible, std::move(message)};
 }
 
+}  // namespace
+
+FitSearchOptions fit_search_options(const JobOptions& options, const Mesh& mesh) {
+  FitSearchOptions search;
+  search.print = print_options(options);
+  search.page = page_options(options);
+  search.page.validate();
+  search.tabs = tab_clearance_options(mesh, search.print);
+  search.scale = print_scale(mesh, search.print);
+  search.gap = piece_gap_mm(options) / search.scale;
+  const Vec3 extent = bounding_box(mesh).size();
+  search.model_mm = search.scale * std::max({extent.x, extent.y, extent.z});
+  search.labels_count = options.detail.mode == DetailMode::Auto;
+  // Tabs stick out by up to their height on each side; then the paper to cut along, and 3 mm to
+  // spare for the nesting grid's cells (print/nest.h). A face too large for that prints alone,
+  // its tabs on the faces beside it where they can (print/fit.h, FitRoom).
+  const PageOptions& page = search.page;
+  const double nest_room = kCutSpacingMm + 3;
+  const double tab_room = 2 * std::max(0.0, options.tab_height_mm);
+  const Vec2 alone{page.paper.width - 2 * page.margin_mm - nest_room,
+                   page.paper.height - 2 * page.margin_mm - nest_room};
+  const Vec2 room{alone.x - tab_room, alone.y - tab_room};
+  if (!(room.x > 0 && room.y > 0))
+    throw InvalidOptionException("option_out_of_range", "margin_mm",
+                                 "the margins and tabs leave no room on the paper");
+  search.room = {room, alone};
+  search.may_tile = !options.layout.has_value();
+  return search;
+}
+
+namespace {
+
 // The print's documents (docs/print.md), `outcome.print` and their progress; with paper, the
 // net document as printed (describe_print), within `seconds` where it can. A fit layout tries
 // the ways of kFitWays in turn, `search_threads` at a time, while half of them last (at least
@@ -407,31 +439,8 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   std::optional<FitPrint> chosen;
   std::string layout_note;
   if (fit) {
-    page.validate();
-    // Tabs stick out by up to their height on each side; then the paper to cut along, and 3 mm
-    // to spare for the nesting grid's cells (print/nest.h). A face too large for that prints
-    // alone, its tabs on the faces beside it where they can (print/fit.h, FitRoom).
-    const double nest_room = kCutSpacingMm + 3;
-    const double tab_room = 2 * std::max(0.0, options.tab_height_mm);
-    const Vec2 alone{page.paper.width - 2 * page.margin_mm - nest_room,
-                     page.paper.height - 2 * page.margin_mm - nest_room};
-    const Vec2 room{alone.x - tab_room, alone.y - tab_room};
-    if (!(room.x > 0 && room.y > 0))
-      throw InvalidOptionException("option_out_of_range", "margin_mm",
-                                   "the margins and tabs leave no room on the paper");
-    const Vec3 extent = bounding_box(mesh).size();
-    const double model_mm = scale * std::max({extent.x, extent.y, extent.z});
-    FitSearchOptions search;
-    search.print = print;
-    search.page = page;
-    search.tabs = tab_clearance_options(mesh, print);
-    search.scale = scale;
-    search.gap = gap;
-    search.model_mm = model_mm;
-    search.labels_count = options.detail.mode == DetailMode::Auto;
-    search.room = {room, alone};
+    FitSearchOptions search = fit_search_options(options, mesh);
     search.seconds = search_seconds;
-    search.may_tile = !options.layout.has_value();
     search.threads = search_threads;
     FitChoice choice = search_fit(outcome.net, mesh, search, progress);
     chosen = std::move(choice.print);

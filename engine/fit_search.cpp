@@ -9,6 +9,7 @@
 #include <iterator>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -108,7 +109,8 @@ class FitSearch {
         room_(options.room),
         seconds_(options.seconds),
         may_tile_(options.may_tile),
-        threads_(std::max(1, options.threads)) {}
+        threads_(std::max(1, options.threads)),
+        tendril_cuts_(options.tendril_cuts) {}
 
   // The cheapest print; none when a face is too large for the paper and the layout was not
   // asked for (tiled_because() says why).
@@ -146,6 +148,7 @@ class FitSearch {
       if (other.cost(label_price_, print_.prefer) < chosen.cost(label_price_, print_.prefer))
         chosen = std::move(other);
     }
+    if (trim(chosen)) merge(chosen, progress);
     // Its labels, where the tries (and the merge's) left them out: the same faces, tabs, strips
     // and sheets. They are moved where they print legibly while the search's time lasts after
     // the layout (as long as a try) that places them.
@@ -238,6 +241,46 @@ class FitSearch {
                    tabs, budget, keep, &reports, threads_);
     } catch (const OutOfTime&) {
     }
+  }
+
+  // Tendrils cut off where that saves a sheet (docs/print.md, "Tendrils cut off to save a
+  // sheet"): saving sheets, the chosen print's pieces cut tendril_cuts_ times where that most
+  // shrinks their hulls (print/fit.h, cut_tendrils) and laid out, kept when they print on fewer
+  // sheets at a lower cost; then each cut glued back, the last first, where the print costs less
+  // without it. Within the search's time, at the pace of its layouts. Whether it was kept.
+  bool trim(FitPrint& chosen) {
+    const std::size_t sheets = chosen.pages.pages.size();
+    if (print_.prefer != FitGoal::Sheets || sheets <= 1 || tendril_cuts_ <= 0) return false;
+    const auto lay_out = [&](const FitPieces& pieces) -> std::optional<FitPrint> {
+      if (elapsed() + one_more() > seconds_) return std::nullopt;
+      try {
+        return lay_out_fit(mesh_, pieces, print_, gap_, page_, room_.alone, LabelPass::Unplaced);
+      } catch (const InvalidOptionException& e) {
+        if (e.code() != "face_too_large") throw;
+        return std::nullopt;  // a piece with its tabs fits no sheet
+      }
+    };
+    // Labels only add to a print's cost (those under the legible size), as in the merge.
+    const auto cost = [&](const FitPrint& print) { return print.cost(0, print_.prefer); };
+    FitPieces pieces = chosen.pieces;
+    const std::vector<TendrilCut> cuts = cut_tendrils(pieces, tendril_cuts_);
+    if (cuts.empty()) return false;
+    std::optional<FitPrint> best = lay_out(pieces);
+    if (!best || best->pages.pages.size() >= sheets || !(cost(*best) < cost(chosen))) return false;
+    for (auto it = cuts.rbegin(); it != cuts.rend(); ++it) {
+      FitPieces fewer = best->pieces;
+      undo_tendril_cut(fewer, *it);
+      std::optional<FitPrint> print = lay_out(fewer);
+      if (print && cost(*print) < cost(*best)) best = std::move(print);
+    }
+    if (tries_ == LabelPass::Placed) {
+      if (elapsed() + one_more() > seconds_) return false;
+      lay_out_pages(mesh_, *best, print_, gap_, page_, room_.alone, LabelPass::Placed);
+      if (!(best->cost(label_price_, print_.prefer) < chosen.cost(label_price_, print_.prefer)))
+        return false;
+    }
+    chosen = std::move(*best);
+    return true;
   }
 
   struct Tried {
@@ -411,6 +454,7 @@ class FitSearch {
   const double seconds_;
   const bool may_tile_;
   const int threads_;
+  const int tendril_cuts_;
   const std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 
   std::mutex mutex_;  // guards what follows

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "api/net_json.h"
+#include "api/options.h"
 #include "core/mesh/mesh.h"
 #include "core/progress.h"
 #include "core/tabs/tab_clearance_options.h"
@@ -20,6 +21,11 @@ namespace papernet::engine_detail {
 
 /// Paper left between nested pieces (with their tabs) on a sheet, to cut along.
 constexpr double kCutSpacingMm = 2;
+
+/// Tendrils cut off the chosen print's pieces to save a sheet, at most: a sheet is worth 20
+/// pieces (kPiecesPerSheet), but more pieces are more to cut out and glue, and 5 save most of
+/// the sheets that 10 do (docs/print.md, "Tendrils cut off to save a sheet").
+constexpr int kTendrilCuts = 5;
 
 /// The net cut into pieces, numbered in build order, laid out and nested onto sheets.
 struct FitPrint {
@@ -56,7 +62,15 @@ struct FitSearchOptions {
   /// not asked for).
   bool may_tile = false;
   int threads = 1;  ///< ways laid out at a time
+  /// Tendrils cut off the chosen print's pieces to save a sheet, at most (docs/print.md,
+  /// "Tendrils cut off to save a sheet"; 0: none).
+  int tendril_cuts = kTendrilCuts;
 };
+
+/// The search's options for printing `mesh` with `options` on paper, but its time and threads
+/// (FitSearchOptions::seconds, threads).
+/// \throw InvalidOptionException for paper that the margins and tabs leave no room on.
+FitSearchOptions fit_search_options(const JobOptions& options, const Mesh& mesh);
 
 /// The search's choice: the cheapest print, or none when a face is too large for the paper and
 /// the print may tile (`tiled_because` says why).

@@ -14,6 +14,7 @@
 #include "core/io/write_mesh.h"
 #include "core/unfold/net_check.h"
 #include "core/unfold/net_metrics.h"
+#include "engine/internal/fit_search.h"
 #include "engine/internal/steps.h"
 #include "engine/pipeline.h"
 #include "print/fit.h"
@@ -359,6 +360,43 @@ TEST(FitSearch, AMergedPieceMayFillTheRoomKeptForTabsWhenItsTabsFitTheSheet) {
   EXPECT_TRUE(check.ok()) << check.summary();
   std::printf("Duck.glb at the defaults: %zu sheets, %d pieces, %d larger than the room for tabs\n",
               out.documents.svg_pages.size(), out.print->pieces, beyond);
+}
+
+// Tendrils cut off the chosen print's pieces save a sheet where the search's ways and the merge
+// leave one (docs/print.md, "Tendrils cut off to save a sheet"): ADIS16480 at the defaults prints
+// on 5 sheets with them, 6 without (21 and 20 pieces). The same search but for the cuts, each
+// with time to spare (a search bounded by its clock tries fewer ways on a slower machine); both
+// prints pass the net checker. Release only (SANITIZE_SKIP in the Makefile): the merge's whole
+// budget, twice.
+TEST(FitSearch, TendrilsCutOffSaveASheet) {
+  JobOptions options;  // detail auto, A4, 200 mm
+  options.colour = false;
+  PipelineProgress quiet;
+  const UnfoldOutcome unfolded =
+      run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {}, {}, quiet);
+  const Mesh& mesh = unfolded.net.mesh;
+  engine_detail::FitSearchOptions search = engine_detail::fit_search_options(options, mesh);
+  search.seconds = 600;
+  search.threads = engine_detail::kFitSearchThreads;
+  Progress none;
+  search.tendril_cuts = 0;
+  const engine_detail::FitChoice whole =
+      engine_detail::search_fit(unfolded.net, mesh, search, none);
+  search.tendril_cuts = engine_detail::kTendrilCuts;
+  const engine_detail::FitChoice cut = engine_detail::search_fit(unfolded.net, mesh, search, none);
+  ASSERT_TRUE(whole.print && cut.print);
+  const std::size_t sheets = whole.print->pages.pages.size(), fewer = cut.print->pages.pages.size();
+  EXPECT_LT(fewer, sheets);
+  // At most kTendrilCuts pieces more (the merge after the cuts may glue some back otherwise).
+  EXPECT_LE(cut.print->pieces.pieces, whole.print->pieces.pieces + engine_detail::kTendrilCuts);
+  EXPECT_LT(cut.print->cost(0, FitGoal::Sheets), whole.print->cost(0, FitGoal::Sheets));
+  for (const engine_detail::FitChoice* c : {&whole, &cut}) {
+    const NetCheckReport check = check_pieces(mesh, c->print->pieces.net, c->print->pieces.piece);
+    EXPECT_TRUE(check.ok()) << check.summary();
+  }
+  std::printf(
+      "ADIS16480 at the defaults: %zu sheets with %d pieces; tendrils cut off, %zu with %d\n",
+      sheets, whole.print->pieces.pieces, fewer, cut.print->pieces.pieces);
 }
 
 }  // namespace
