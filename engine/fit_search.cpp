@@ -148,7 +148,7 @@ class FitSearch {
       if (other.cost(label_price_, print_.prefer) < chosen.cost(label_price_, print_.prefer))
         chosen = std::move(other);
     }
-    if (trim(chosen)) merge(chosen, progress);
+    if (trim(chosen, progress)) merge(chosen, progress);
     // Its labels, where the tries (and the merge's) left them out: the same faces, tabs, strips
     // and sheets. They are moved where they print legibly while the search's time lasts after
     // the layout (as long as a try) that places them.
@@ -247,11 +247,13 @@ class FitSearch {
   // sheet"): saving sheets, the chosen print's pieces cut tendril_cuts_ times where that most
   // shrinks their hulls (print/fit.h, cut_tendrils) and laid out, kept when they print on fewer
   // sheets at a lower cost; then each cut glued back, the last first, where the print costs less
-  // without it. Within the search's time, at the pace of its layouts. Whether it was kept.
-  bool trim(FitPrint& chosen) {
+  // without it. Within the search's time, at the pace of its layouts, until the job is
+  // cancelled. Whether it was kept.
+  bool trim(FitPrint& chosen, Progress& progress) {
     const std::size_t sheets = chosen.pages.pages.size();
     if (print_.prefer != FitGoal::Sheets || sheets <= 1 || tendril_cuts_ <= 0) return false;
     const auto lay_out = [&](const FitPieces& pieces) -> std::optional<FitPrint> {
+      if (progress.cancelled()) throw CancelledException();
       if (elapsed() + one_more() > seconds_) return std::nullopt;
       try {
         return lay_out_fit(mesh_, pieces, print_, gap_, page_, room_.alone, LabelPass::Unplaced);
