@@ -91,13 +91,13 @@ bool hull_fits_turned(const std::vector<Vec2>& hull, Vec2 room) {
   return false;
 }
 
-namespace {
-
 double hull_area(const std::vector<Vec2>& hull) {
   double a = 0;
   for (std::size_t i = 0; i < hull.size(); ++i) a += cross(hull[i], hull[(i + 1) % hull.size()]);
   return 0.5 * std::abs(a);
 }
+
+namespace {
 
 std::string mm(double v) {
   char buf[32];

@@ -150,15 +150,15 @@ struct TendrilCut {
 /// `count` times, the unfold-tree link of `pieces` whose cut most shrinks the convex hull of its
 /// piece (the piece's hull area less those of the two pieces the cut makes) is cut, a new piece
 /// with its own 2D frame unchanged; fewer when no cut shrinks a hull. The pieces are numbered
-/// anew by their trees (number_pieces_by_tree). Returns the cuts made, in order.
+/// anew by their trees (a piece for each root, in the roots' order by face). Returns the cuts
+/// made, in order.
 std::vector<TendrilCut> cut_tendrils(FitPieces& pieces, int count);
 
 /// `cut` undone: its face hangs from its parent again, and the pieces are numbered anew.
 void undo_tendril_cut(FitPieces& pieces, const TendrilCut& cut);
 
-/// Each face's piece from the trees of `pieces.net` (a piece for each root, in the roots' order
-/// by face), and the count of pieces.
-void number_pieces_by_tree(FitPieces& pieces);
+/// The area of the convex polygon `hull` (convex_hull's).
+double hull_area(const std::vector<Vec2>& hull);
 
 /// True when the convex polygon `hull` (counter-clockwise) fits a `room` box turned along one of
 /// its edges, either way round.

@@ -1,6 +1,5 @@
 // Tendrils of sprawling pieces cut off, to nest onto fewer sheets (print/fit.h, cut_tendrils).
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -9,14 +8,6 @@
 
 namespace papernet {
 namespace {
-
-// Area of a convex polygon (convex_hull's, counter-clockwise).
-double hull_area(const std::vector<Vec2>& hull) {
-  double twice = 0;
-  for (std::size_t i = 0; i < hull.size(); ++i)
-    twice += cross(hull[i], hull[(i + 1) % hull.size()]);
-  return 0.5 * std::abs(twice);
-}
 
 // The link whose cut most shrinks its piece's hull (the two pieces' hulls against the piece's):
 // {face, gain}, face -1 when no cut shrinks it. Each face's subtree hull bottom-up from the
@@ -76,28 +67,8 @@ BestCut best_cut(const FitPieces& pieces) {
   return best;
 }
 
-}  // namespace
-
-std::vector<TendrilCut> cut_tendrils(FitPieces& pieces, int count) {
-  std::vector<TendrilCut> cuts;
-  for (int k = 0; k < count; ++k) {
-    const BestCut cut = best_cut(pieces);
-    if (cut.face < 0) break;
-    const auto f = static_cast<std::size_t>(cut.face);
-    cuts.push_back({cut.face, pieces.net.parent[f]});
-    pieces.net.parent[f] = -1;
-    ++pieces.cut_links;
-    number_pieces_by_tree(pieces);
-  }
-  return cuts;
-}
-
-void undo_tendril_cut(FitPieces& pieces, const TendrilCut& cut) {
-  pieces.net.parent[static_cast<std::size_t>(cut.face)] = cut.parent;
-  --pieces.cut_links;
-  number_pieces_by_tree(pieces);
-}
-
+// Each face's piece from the trees of `pieces.net`: a piece for each root, in the roots' order
+// by face, and the count of pieces.
 void number_pieces_by_tree(FitPieces& pieces) {
   const std::vector<int>& parent = pieces.net.parent;
   const std::size_t n = parent.size();
@@ -118,6 +89,28 @@ void number_pieces_by_tree(FitPieces& pieces) {
       pieces.piece[static_cast<std::size_t>(c)] = pieces.piece[static_cast<std::size_t>(order[i])];
       order.push_back(c);
     }
+}
+
+}  // namespace
+
+std::vector<TendrilCut> cut_tendrils(FitPieces& pieces, int count) {
+  std::vector<TendrilCut> cuts;
+  for (int k = 0; k < count; ++k) {
+    const BestCut cut = best_cut(pieces);
+    if (cut.face < 0) break;
+    const auto f = static_cast<std::size_t>(cut.face);
+    cuts.push_back({cut.face, pieces.net.parent[f]});
+    pieces.net.parent[f] = -1;
+    ++pieces.cut_links;
+    number_pieces_by_tree(pieces);
+  }
+  return cuts;
+}
+
+void undo_tendril_cut(FitPieces& pieces, const TendrilCut& cut) {
+  pieces.net.parent[static_cast<std::size_t>(cut.face)] = cut.parent;
+  --pieces.cut_links;
+  number_pieces_by_tree(pieces);
 }
 
 }  // namespace papernet

@@ -14,6 +14,7 @@
 #include "print/fit.h"
 #include "print/layout.h"
 #include "tests/support/meshes.h"
+#include "tests/support/polygons.h"
 
 namespace papernet {
 namespace {
@@ -22,11 +23,7 @@ namespace {
 double hull_area_of(const Net& net, const std::vector<int>& faces) {
   std::vector<Vec2> points;
   for (int f : faces) points.insert(points.end(), net.points[f].begin(), net.points[f].end());
-  const std::vector<Vec2> hull = convex_hull(points);
-  double twice = 0;
-  for (std::size_t i = 0; i < hull.size(); ++i)
-    twice += cross(hull[i], hull[(i + 1) % hull.size()]);
-  return 0.5 * std::abs(twice);
+  return std::abs(test::signed_area(convex_hull(points)));
 }
 
 // The faces of `face`'s subtree in `net` (its own piece: links end at roots).
