@@ -108,6 +108,14 @@ constexpr std::array<std::pair<double, double>, 3> kFlowSizes{
 // The least size of a thumbnail on an overview of several pages (its longer side), mm: below
 // it the overview is left out (its pieces' numbers would not fit it).
 constexpr double kLeastFlowThumbMm = 20;
+// The narrowest column of thumbnails and the most rows to a page the small paper's overview
+// tries (plan_overview).
+constexpr double kLeastSmallThumbMm = 15;
+constexpr int kMostSmallRows = 4;
+// The least area of such a thumbnail for each piece on its sheet, mm² (about a 12 mm square,
+// where a piece's number "P12" prints 4 mm high): on A5 the Duck's 30 pieces, up to 5 on a
+// sheet, would take one page with thumbnails 17 mm wide, their numbers over each other.
+constexpr double kThumbMm2PerPiece = 150;
 // The build order's heading where it goes on from a page before, and its size in the lines'.
 constexpr const char* kStepsContinued = "Build order, continued";
 constexpr double kHeadingScale = 1.3;
@@ -140,14 +148,21 @@ struct OverviewPlan {
 
 namespace {
 
-/// The overview over several pages: rows of as many thumbnails as the width holds `cell` mm
-/// wide (each as wide as the row then allows, less where a page is too low for it), while they
-/// fit, then the build order's lines, continued on as many pages as they need, all its text
-/// `text` mm high; none where the paper is too small for it (plan_overview). `plan` holds the
-/// first page's header.
+/// The shape of an overview of several pages: its thumbnails in rows of `cols` (each as wide as
+/// a column, less where a page is too low for it), `rows` rows to a page after the first (0: as
+/// many as fit), its text `text` mm high.
+struct FlowSize {
+  int cols = 1, rows = 0;
+  double text = kFlowTextMm;
+};
+
+/// The overview over several pages: rows of thumbnails shaped by `size` while they fit, then
+/// the build order's lines, continued on as many pages as they need; none where the paper is too
+/// small for it (plan_overview). `plan` holds the first page's header.
 std::optional<OverviewPlan> plan_flow(const PageLayout& pages, const Overview& overview,
-                                      OverviewPlan plan, double top, double next_top, double cell,
-                                      double text) {
+                                      OverviewPlan plan, double top, double next_top,
+                                      FlowSize size) {
+  const double text = size.text;
   const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
   plan.text = text;
   plan.columns = step_columns(overview, width, text, true);
@@ -166,12 +181,23 @@ std::optional<OverviewPlan> plan_flow(const PageLayout& pages, const Overview& o
   part.grid_top = top;
   double y = top;
   if (n > 0) {
-    const int cols = std::clamp(static_cast<int>((width + kGapMm) / (cell + kGapMm)), 1, n);
-    Grid g = grid_of(small, width, cols, 0);
+    Grid g = grid_of(small, width, std::clamp(size.cols, 1, n), 0);
+    const int cols = g.cols;
     // A row fits any page, the first (below its longer header) included.
     g.scale =
         std::min({g.cell_w / small.sw, (bottom - top - g.caption) / small.sh, most_scale(small)});
+    if (size.rows > 0)
+      g.scale = std::min(
+          g.scale, ((bottom - next_top + kGapMm) / size.rows - kGapMm - g.caption) / small.sh);
     if (!(g.scale * std::max(small.sw, small.sh) >= kLeastFlowThumbMm)) return std::nullopt;
+    // Thumbnails smaller than a column holds leave each piece's number room.
+    if (size.rows > 0) {
+      std::size_t crowded = 1;
+      for (const std::vector<int>& on : small.on_sheet) crowded = std::max(crowded, on.size());
+      if (g.scale * g.scale * small.sw * small.sh <
+          kThumbMm2PerPiece * static_cast<double>(crowded))
+        return std::nullopt;
+    }
     g.cell_h = small.sh * g.scale + g.caption;
     plan.grid = g;
     for (int first_cell = 0; first_cell < n; first_cell += cols) {
@@ -216,7 +242,8 @@ std::optional<OverviewPlan> plan_flow(const PageLayout& pages, const Overview& o
 /// the thumbnails print at least kLeastThumbMm wide and the build order takes at most 40 % of it
 /// at 2 mm or more; else the grid at kFlowCellMm a thumbnail and then the build order, their
 /// text kFlowTextMm high, each continued on as many pages as it needs (plan_flow), or smaller
-/// (kFlowSizes) where that takes fewer pages. None where the paper is too small for it: its
+/// (kFlowSizes; then rows of thumbnails to a page, each leaving kThumbMm2PerPiece to a piece)
+/// where that takes fewer pages. None where the paper is too small for it: its
 /// header's words wider than the printable area, a row of thumbnails kLeastFlowThumbMm large with
 /// their captions taller than the first page holds below its header, or fewer than kLeastSteps
 /// lines of the build order (or its heading wider than the printable area) on a page after the
@@ -269,10 +296,19 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
     return plan;
   }
   // Several pages: the fewest, the text and then the thumbnails smaller where that saves one
-  // (a last page of a few lines of the build order).
+  // (a last page of a few lines of the build order); then, for paper that holds a row of them
+  // to a page, smaller thumbnails, more to a row or to a page, where that saves one (on 90 x 130
+  // mm, 13 sheets took 7 pages of thumbnails, two to a page).
+  std::vector<FlowSize> sizes;
+  const auto columns_of = [&](double cell) {
+    return std::max(1, static_cast<int>((width + kGapMm) / (cell + kGapMm)));
+  };
+  for (const auto& [cell, text] : kFlowSizes) sizes.push_back({columns_of(cell), 0, text});
+  for (int cols = 1; cols <= std::min(n, columns_of(kLeastSmallThumbMm)); ++cols)
+    for (int rows = 1; rows <= kMostSmallRows; ++rows) sizes.push_back({cols, rows, kSmallestMm});
   std::optional<OverviewPlan> fewest;
-  for (const auto& [cell, text] : kFlowSizes) {
-    std::optional<OverviewPlan> flow = plan_flow(pages, overview, plan, top, next_top, cell, text);
+  for (const FlowSize& size : sizes) {
+    std::optional<OverviewPlan> flow = plan_flow(pages, overview, plan, top, next_top, size);
     if (flow && (!fewest || flow->parts.size() < fewest->parts.size())) fewest = std::move(flow);
   }
   return fewest;

@@ -173,6 +173,32 @@ TEST(Overview, PrintsSmallerWhereThatSavesAPage) {
       }
 }
 
+// On small paper, where a column of thumbnails holds one to a page, the overview prints them
+// smaller, several rows to a page, where that takes fewer pages and leaves each piece's number
+// room: 30 pieces on 13 sheets of 90 x 130 mm (as sample.obj prints there) took 8 overview
+// pages, thumbnails two to a page; now 4 or more to a page after the first.
+TEST(Overview, SmallPaperTakesSeveralRowsOfThumbnailsToAPage) {
+  const Sheet card{90, 130, 10};
+  Print p = print_of(13, 30, 3, card);
+  ASSERT_TRUE(add_overview(p.pages, p.layout, p.piece, p.graph));
+  check_overview(p, card, 13, 30);
+  const int overview_pages = overview_pages_of(p.pages);
+  static const std::regex caption("^page \\d+:.*$");
+  int most = 0;  // thumbnails on a page after the first
+  for (int k = 1; k < overview_pages; ++k) {
+    int on_page = 0;
+    for (const Text& t : texts(draw_overview(p.layout, p.pages, k)))
+      on_page += std::regex_match(t.text, caption);
+    most = std::max(most, on_page);
+  }
+  EXPECT_GE(most, 4);
+  EXPECT_LE(overview_pages, 5);
+  std::printf(
+      "30 pieces on 13 sheets of 90 x 130 mm: %d overview pages, at most %d thumbnails "
+      "to a page after the first\n",
+      overview_pages, most);
+}
+
 // On an overview of several pages the build order of many pieces takes several columns, its long
 // steps broken after a comma onto more lines, rather than one column as wide as its longest step
 // (the Menger sponge's 448 pieces on 72 sheets at the defaults: 12 overview pages, 7 of them a
