@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "core/ascii.h"
 #include "core/io/json_text.h"
 
 namespace papernet {
@@ -49,11 +50,6 @@ std::string upper(std::string s) {
   return s;
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-
 [[noreturn]] void bad_value(const std::string& name, const json& value, const std::string& want) {
   std::string shown = value.is_string() ? value.get<std::string>() : json_text(value);
   if (shown.size() > kMaxShownValue) shown = shown.substr(0, kMaxShownValue) + "...";
@@ -86,7 +82,7 @@ std::uint64_t whole(const std::string& name, const json& value) {
 }
 
 std::optional<bool> boolean_word(std::string s) {
-  s = lower(std::move(s));
+  s = ascii_lower(std::move(s));
   if (s == "true" || s == "1" || s == "yes" || s == "on") return true;
   if (s == "false" || s == "0" || s == "no" || s == "off") return false;
   return std::nullopt;
@@ -118,7 +114,7 @@ Strategy strategy(const std::string& name, const json& value) {
 TabMode tab_mode(const std::string& name, const json& value) {
   if (value.is_boolean()) return value.get<bool>() ? TabMode::Auto : TabMode::None;
   if (value.is_string()) {
-    const std::string s = lower(value.get<std::string>());
+    const std::string s = ascii_lower(value.get<std::string>());
     if (s == "auto") return TabMode::Auto;
     if (s == "strips") return TabMode::Strips;
     if (s == "none") return TabMode::None;
@@ -128,7 +124,7 @@ TabMode tab_mode(const std::string& name, const json& value) {
 }
 
 FitGoal fit_goal(const std::string& name, const json& value) {
-  const std::string s = lower(text(name, value));
+  const std::string s = ascii_lower(text(name, value));
   if (s == "sheets") return FitGoal::Sheets;
   if (s == "pieces") return FitGoal::Pieces;
   bad_value(name, value, "sheets or pieces");
@@ -136,7 +132,7 @@ FitGoal fit_goal(const std::string& name, const json& value) {
 
 Detail detail(const std::string& name, const json& value) {
   if (value.is_string()) {
-    const std::string s = lower(value.get<std::string>());
+    const std::string s = ascii_lower(value.get<std::string>());
     if (s == "auto") return {DetailMode::Auto, 0};
     if (s == "full") return {DetailMode::Full, 0};
   }
@@ -151,7 +147,7 @@ Detail detail(const std::string& name, const json& value) {
 
 std::string paper(const std::string& name, const json& value) {
   const std::string s = text(name, value);
-  if (lower(s) == "none") return "none";
+  if (ascii_lower(s) == "none") return "none";
   try {
     return parse_paper(s).name;
   } catch (const InvalidOptionException&) {
@@ -242,7 +238,7 @@ constexpr Spec kOptions[] = {
      "tiled across pages to tape together (unset: fit, or tile when a face is larger than a "
      "sheet)",
      [](JobOptions& o, const std::string& n, const json& v) {
-       const std::string s = lower(text(n, v));
+       const std::string s = ascii_lower(text(n, v));
        if (s == "fit")
          o.layout = PageLayoutMode::Fit;
        else if (s == "tile")
@@ -282,7 +278,8 @@ constexpr Spec kOptions[] = {
      "auto: the model's textures, material and vertex colours printed on the pieces and their "
      "tabs; none: line art only",
      [](JobOptions& o, const std::string& n, const json& v) {
-       const std::string s = v.is_boolean() ? (v.get<bool>() ? "auto" : "none") : lower(text(n, v));
+       const std::string s =
+           v.is_boolean() ? (v.get<bool>() ? "auto" : "none") : ascii_lower(text(n, v));
        if (s == "auto")
          o.colour = true;
        else if (s == "none")
@@ -306,7 +303,7 @@ constexpr Spec kOptions[] = {
     {"components", "all|largest",
      "all: every connected part of the mesh its own piece; largest: only the largest part",
      [](JobOptions& o, const std::string& n, const json& v) {
-       const std::string s = lower(text(n, v));
+       const std::string s = ascii_lower(text(n, v));
        if (s == "all")
          o.components = Components::All;
        else if (s == "largest")
@@ -573,65 +570,6 @@ nlohmann::json options_to_json(const JobOptions& o) {
               {"components", o.components == Components::All ? "all" : "largest"},
               {"strict", o.strict},
               {"callback_url", opt(o.callback_url)}};
-}
-
-CallbackUrl parse_callback_url(std::string_view url) {
-  const std::string name = "callback_url";
-  auto refuse = [&](const std::string& why) -> CallbackUrl {
-    throw InvalidOptionException("invalid_option_value", name, "option 'callback_url': " + why);
-  };
-  constexpr std::string_view kScheme = "http://";
-  if (url.size() > 2048) return refuse("longer than 2048 bytes");
-  for (const char c : url)
-    if (static_cast<unsigned char>(c) <= 0x20 || static_cast<unsigned char>(c) >= 0x7f)
-      return refuse("has a space, a control character or a byte outside ASCII (percent-encode it)");
-  if (lower(std::string(url.substr(0, 8))) == "https://")
-    return refuse(
-        "https is not supported (the service has no TLS client); use http:// to a "
-        "receiver on a private network or behind a proxy you trust");
-  if (lower(std::string(url.substr(0, kScheme.size()))) != kScheme)
-    return refuse("is not an http:// URL");
-  std::string_view rest = url.substr(kScheme.size());
-  if (rest.find('#') != std::string_view::npos) return refuse("has a fragment (#)");
-  const std::size_t end = std::min(rest.find('/'), rest.find('?'));
-  std::string_view authority = rest.substr(0, end);
-  CallbackUrl out;
-  if (end != std::string_view::npos) {
-    out.target = std::string(rest.substr(end));
-    if (out.target[0] == '?') out.target.insert(0, "/");
-  }
-  if (authority.find('@') != std::string_view::npos) return refuse("has a user name");
-  std::string_view port;
-  if (!authority.empty() && authority[0] == '[') {
-    const std::size_t close = authority.find(']');
-    if (close == std::string_view::npos) return refuse("has an unclosed [");
-    out.host = std::string(authority.substr(1, close - 1));
-    const std::string_view after = authority.substr(close + 1);
-    if (!after.empty() && after[0] != ':') return refuse("has text after ]");
-    if (!after.empty()) port = after.substr(1);
-    if (out.host.empty() ||
-        out.host.find_first_not_of("0123456789abcdefABCDEF:.") != std::string::npos)
-      return refuse("has no IPv6 address between [ and ]");
-  } else {
-    const std::size_t colon = authority.find(':');
-    out.host = std::string(authority.substr(0, colon));
-    if (colon != std::string_view::npos) port = authority.substr(colon + 1);
-    if (out.host.empty() || out.host.size() > 253 ||
-        out.host.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
-                                   ".-") != std::string::npos)
-      return refuse("has no host name");
-  }
-  out.host = lower(out.host);
-  if (authority.find(':') != std::string_view::npos && port.empty() && authority[0] != '[')
-    return refuse("has an empty port");
-  if (!port.empty()) {
-    int p = 0;
-    const auto [at, ec] = std::from_chars(port.data(), port.data() + port.size(), p);
-    if (ec != std::errc() || at != port.data() + port.size() || p < 1 || p > 65535)
-      return refuse("has a port that is not 1..65535");
-    out.port = p;
-  }
-  return out;
 }
 
 PrintOptions print_options(const JobOptions& o) {

@@ -10,18 +10,13 @@
 #include <cstring>
 #include <numbers>
 
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "print/overview.h"
 
 namespace papernet {
 
 namespace {
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
 
 /// Parses a leading number; returns the rest of the string in `rest`.
 bool leading_number(std::string_view s, double& value, std::string_view& rest) {
@@ -54,9 +49,9 @@ std::string paper_names() {
 }
 
 Paper parse_paper(std::string_view text) {
-  const std::string t = lower(text);
+  const std::string t = ascii_lower(text);
   for (const Paper& p : named_papers())
-    if (t == lower(p.name)) return p;
+    if (t == ascii_lower(p.name)) return p;
   double w = 0, h = 0;
   std::string_view rest;
   const std::string_view s = t;
@@ -70,7 +65,7 @@ Paper parse_paper(std::string_view text) {
 }
 
 double parse_length_mm(std::string_view text) {
-  const std::string t = lower(text);
+  const std::string t = ascii_lower(text);
   double v = 0;
   std::string_view unit;
   if (leading_number(t, v, unit) && v > 0) {

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/ascii.h"
+
 namespace papernet::server {
 namespace {
 
@@ -26,11 +28,6 @@ double number(const std::string& where, const std::string& name, const std::stri
     throw ApiKeyFileError(where + ": " + name + "='" + v + "' is not a number between 0 and " +
                           std::to_string(max));
   return out;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
 }
 
 }  // namespace
@@ -87,7 +84,7 @@ std::map<std::string, ApiKey> parse_api_keys(const std::string& text, const std:
       throw ApiKeyFileError(where + ": expected TENANT SHA256HEX [name=value ...]");
     if (tenant.size() > 64)
       throw ApiKeyFileError(where + ": a tenant name is at most 64 characters");
-    digest = lower(digest);
+    digest = ascii_lower(digest);
     if (!is_hex64(digest))
       throw ApiKeyFileError(where + ": '" + digest.substr(0, 80) +
                             "' is not a SHA-256 in hex (64 hex digits; sha256sum prints it)");

@@ -5,17 +5,11 @@
 #include <algorithm>
 #include <cctype>
 
+#include "core/ascii.h"
 #include "server/problem.h"
 
 namespace papernet::server {
 namespace {
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return out;
-}
 
 // A .gltf's buffers are named by relative URIs; a name is only a key into the upload, never a
 // path on the server, but names that look like paths are refused to keep that obvious.
@@ -28,7 +22,7 @@ bool plain_file_name(std::string_view name) {
 }
 
 MeshFormat format_parameter(const std::string& value) {
-  const MeshFormat f = format_from_extension("x." + lower(value));
+  const MeshFormat f = format_from_extension("x." + ascii_lower(value));
   if (f == MeshFormat::Unknown)
     throw ApiError("unsupported_format",
                    "format '" + value + "' is not one of glb, gltf, drc, obj, off, ply, stl");
@@ -38,7 +32,7 @@ MeshFormat format_parameter(const std::string& value) {
 }  // namespace
 
 MeshFormat format_from_media_type(std::string_view media_type) {
-  std::string type = lower(media_type.substr(0, media_type.find(';')));
+  std::string type = ascii_lower(media_type.substr(0, media_type.find(';')));
   type.erase(
       std::remove_if(type.begin(), type.end(), [](unsigned char c) { return std::isspace(c); }),
       type.end());
