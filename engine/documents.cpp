@@ -13,6 +13,7 @@
 #include "core/io/write_mesh.h"
 #include "core/mesh/mesh.h"
 #include "core/unfold/net_metrics.h"
+#include "engine/internal/colour_pace.h"
 #include "engine/internal/fit_search.h"
 #include "engine/internal/run_progress.h"
 #include "engine/internal/steps.h"
@@ -34,10 +35,6 @@ double piece_gap_mm(const JobOptions& options) { return 2 * options.tab_height_m
 
 // The colour resolution of the whole net's SVG beside paged prints (a preview), dots per inch.
 constexpr double kPreviewDpi = 96;
-
-// The most pixels the colour of one drawing of the whole net may hold (its images are held at
-// once until written): an A0 sheet's printable area at 300 dpi, as many as the largest page's.
-constexpr double kMostDrawingPixels = 140e6;
 
 // The seconds a page's colour takes per pixel of its printable area until the pages' own are
 // measured (ColourPace), times the machine's slowness, for pages written into one document:
@@ -202,170 +199,6 @@ NetDocument assemble(const std::vector<Piece>& pieces, const Prepared& input,
 }
 
 namespace {
-
-// Paces the drawing of coloured pages against the print's deadline (docs/colour.md, "Time
-// limit"). A page's cost is taken to be its pixels (rasterising them and cairo's zlib compression
-// of them): its printable area at the resolution drawn (an overview page's views are drawn before,
-// at their own resolution: none). Before each page is drawn the seconds per pixel are measured
-// over the pages drawn since the last change, or, before any, taken from the machine (a prior:
-// one A0 page at 300 dpi takes 4 s, which alone overran a short limit); when the pages left would
-// take longer than the time left, the resolution drops so that they fit, to at least
-// kMinColourDpi. It never rises again: the pages of a kit differ at most from sharp to less
-// sharp, once or a few times. When the pages left would take longer even at kMinColourDpi
-// (hundreds of pages of a net tiled on small paper, each painting its faces' many small
-// triangles: a cost per triangle, not per pixel), they print without colour.
-class ColourPace {
- public:
-  // `seconds_per_pixel`: the prior for a page drawn and written once, used until a page with
-  // colour has been drawn; `writes`: the documents each page is written into (the PDF, the SVG
-  // pages), each compressing its images (in the SVG as PNG) about as long as the other.
-  ColourPace(std::chrono::steady_clock::time_point deadline, double dpi, const PageLayout& pages,
-             double seconds_per_pixel, int writes)
-      : deadline_(deadline),
-        asked_(dpi),
-        dpi_(dpi),
-        drawn_share_(kDrawnShare / (kDrawnShare + writes * (1 - kDrawnShare))),
-        per_pixel_(seconds_per_pixel * (kDrawnShare + writes * (1 - kDrawnShare))) {
-    const double m = pages.margin;
-    const double area = std::max(0.0, pages.width - 2 * m) * std::max(0.0, pages.height - 2 * m);
-    for (const Page& page : pages.pages) areas_.push_back(page.overview ? 0 : area);
-    drawn_dpi_.assign(areas_.size(), 0);
-  }
-
-  // The resolution to draw page `page` at, the pages before it drawn and all but the last of them
-  // written; 0: no colour, on this page and the rest.
-  double next_dpi(int page) {
-    const auto now = std::chrono::steady_clock::now();
-    const auto at = static_cast<std::size_t>(page);
-    // Pixels done by now: the pages before the last drawn whole, the last drawn a share (its
-    // drawing, without the writing that runs beside the next page's drawing).
-    const double last = at > 0 ? pixels(at - 1, drawn_dpi_[at - 1]) : 0;
-    const double done = drawn_ + drawn_share_ * last;
-    drawn_ += last;
-    const double pending = (1 - drawn_share_) * last;
-    // Measured since the last change, unless an overview page was drawn or written meanwhile
-    // (its cost is not its pixels): then from now.
-    const auto overview = [&](std::size_t k) { return k < at && areas_[at - 1 - k] == 0; };
-    if (overview(0) || overview(1)) {
-      since_ = now;
-      done_since_ = done;
-    } else if (dpi_ > 0 && done > done_since_) {
-      per_pixel_ = std::chrono::duration<double>(now - since_).count() / (done - done_since_);
-      ++measured_;
-    }
-    // An overview page (its views drawn already): the choice waits for the first sheet.
-    if (areas_[at] == 0) return drawn_dpi_[at] = dpi_;
-    double rest = 0;  // the area of the pages left, mm²
-    for (std::size_t k = at; k < areas_.size(); ++k) rest += areas_[k];
-    const double time_left = std::chrono::duration<double>(deadline_ - now).count();
-    const auto needed = [&](double dpi) { return per_pixel_ * (pending + rest * squared(dpi)); };
-    if (dpi_ == 0 || rest == 0 || needed(dpi_) <= time_left) return drawn_dpi_[at] = dpi_;
-    if (dpi_ > kMinColourDpi) {
-      const double room = std::max(time_left / per_pixel_ - pending, 0.0) / rest;
-      const double dpi = std::max(kMinColourDpi, std::floor(25.4 * std::sqrt(room)));
-      if (dpi < dpi_) {
-        if (first_lowered_ < 0) first_lowered_ = page;
-        dpi_ = dpi;
-        since_ = now;
-        done_since_ = done;
-        measured_ = 0;
-      }
-      return drawn_dpi_[at] = dpi_;
-    }
-    // At the lowest resolution already, measured there: the rest in line art when they would end
-    // more than the second a job may overrun its limit past it (a job late already, its few pages
-    // in colour, keeps them: the Duck given 0.3 s), from the page where the time left no longer
-    // holds the rest in line art (about a twentieth of a page in colour each: the milk truck's 777
-    // pages tiled on 50 mm paper took 2.4 s in all without colour, 41.1 s at 50 dpi).
-    const double at_least = needed(dpi_);
-    if (measured_ < kPagesMeasured || at_least - std::max(time_left, 0.0) <= kColourOverrun ||
-        time_left > kLineArtShare * at_least)
-      return drawn_dpi_[at] = dpi_;
-    first_without_ = page;
-    return drawn_dpi_[at] = dpi_ = 0;
-  }
-
-  // The seconds a pixel takes drawn and written once: as measured over the pages, else the prior.
-  double seconds_per_pixel_written_once() const { return per_pixel_ * drawn_share_ / kDrawnShare; }
-
-  // The warnings for pages drawn at a lower resolution than asked, and for pages drawn without
-  // colour, of `pages`.
-  std::vector<NetRepair> warnings(int pages) const {
-    std::vector<NetRepair> out;
-    const auto dpi = [](double d) { return std::to_string(static_cast<long>(d)) + " dpi"; };
-    const int lowered_end = first_without_ >= 0 ? first_without_ : pages;
-    if (first_lowered_ >= 0 && first_lowered_ < lowered_end)
-      out.push_back(
-          {"colour_resolution_lowered", static_cast<std::size_t>(lowered_end - first_lowered_),
-           "pages " + std::to_string(first_lowered_ + 1) + " to " + std::to_string(lowered_end) +
-               " print their colour at a lower resolution than " + dpi(asked_) + " (down to " +
-               dpi(first_without_ >= 0 ? kMinColourDpi : dpi_) +
-               "), so that the job ends within its time limit; a longer time limit "
-               "prints every page at " +
-               dpi(asked_)});
-    if (first_without_ >= 0)
-      out.push_back(
-          {"colour_left_out", static_cast<std::size_t>(pages - first_without_),
-           "pages " + std::to_string(first_without_ + 1) + " to " + std::to_string(pages) +
-               " print without their colour (line art only): even at " + dpi(kMinColourDpi) +
-               " they would not have been drawn within the job's time limit; a longer "
-               "time limit prints them in colour"});
-    return out;
-  }
-
- private:
-  // Pages measured at the lowest resolution before their pace may leave the colour out, and the
-  // seconds past the deadline their colour may take.
-  static constexpr int kPagesMeasured = 2;
-  static constexpr double kColourOverrun = 1;
-  static constexpr double kLineArtShare = 0.05;  // of a page's time in colour, without it
-  // A page's share of its cost that is its drawing (its colour rasterised) rather than its
-  // writing into one document (compressed into the PDF), which runs beside the next page's
-  // drawing: the Duck on A0 paper at 300 dpi, 2.5 s and 4 s (the SVG's PNG 3.7 s).
-  static constexpr double kDrawnShare = 0.4;
-
-  static double squared(double dpi) { return (dpi / 25.4) * (dpi / 25.4); }
-  double pixels(std::size_t page, double dpi) const { return areas_[page] * squared(dpi); }
-
-  std::chrono::steady_clock::time_point deadline_;
-  double asked_, dpi_;
-  double drawn_share_;             // of a page's cost, with its writes
-  double per_pixel_;               // seconds
-  std::vector<double> areas_;      // of each page that its colour may cover, mm²
-  std::vector<double> drawn_dpi_;  // each page's resolution, once chosen
-  double drawn_ = 0;               // pixels of the pages drawn so far
-  std::chrono::steady_clock::time_point since_ = std::chrono::steady_clock::now();
-  double done_since_ = 0;  // pixels done when the resolution last changed
-  int measured_ = 0;       // pages measured at the resolution
-  int first_lowered_ = -1;
-  int first_without_ = -1;
-};
-
-// The resolution of the colour of one drawing of the whole net, whose images hold `pixels(d)`
-// pixels at d dpi: `asked`, lowered to the highest whole dpi whose pixels `seconds` draw (and
-// write once) at `per_pixel` seconds a pixel (0: no bound) after `fixed` seconds whatever the
-// resolution, and at most kMostDrawingPixels; 0 (line art) when that is below kMinColourDpi.
-// `by_time`: whether the time lowered it below what the pixels allow.
-double drawing_dpi(double asked, const std::function<double(double)>& pixels, double seconds,
-                   double per_pixel, double fixed, bool& by_time) {
-  // The highest dpi from kMinColourDpi to `asked` whose pixels are at most `most` (0: none).
-  const auto highest = [&](double most) {
-    if (pixels(asked) <= most) return asked;
-    if (pixels(kMinColourDpi) > most) return 0.0;
-    double lo = kMinColourDpi, hi = asked;  // pixels(lo) <= most < pixels(hi)
-    while (hi - lo > 1) {
-      const double mid = std::floor(0.5 * (lo + hi));
-      (pixels(mid) <= most ? lo : hi) = mid;
-    }
-    return lo;
-  };
-  by_time = false;
-  const double by_pixels = highest(kMostDrawingPixels);
-  if (by_pixels == 0 || !(per_pixel > 0) || !std::isfinite(seconds)) return by_pixels;
-  const double in_time = highest(std::max(seconds - fixed, 0.0) / per_pixel);
-  by_time = in_time < by_pixels;
-  return in_time;
-}
 
 // The warning that `labels.illegible` labels print under the legible size (docs/print.md,
 // "Labels"): what is left after moving them onto tabs, over folds and away on their piece.
