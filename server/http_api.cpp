@@ -15,6 +15,7 @@
 #include "server/api_keys.h"
 #include "server/event_streams.h"
 #include "server/http_server.h"
+#include "server/internal/methods_cors.h"
 #include "server/job_json.h"
 #include "server/job_store.h"
 #include "server/problem.h"
@@ -223,73 +224,6 @@ bool refuse_unexpected_body(const httplib::Request& req) {
   if (req.method == "POST" && req.path == "/v1/jobs") return false;
   if (req.has_header("Transfer-Encoding") || req.has_header("Content-Encoding")) return true;
   return req.get_header_value<std::uint64_t>("Content-Length") > (std::uint64_t{64} << 10);
-}
-
-// The methods a path of the API takes ("" for a path that is not the API's). HEAD goes with GET.
-std::string allowed_methods(const std::string& path) {
-  static const std::regex job("^/v1/jobs/[^/]+$");
-  static const std::regex job_get(
-      "^/v1/jobs/[^/]+/(events|net\\.json|net\\.svg|net\\.pdf|mesh\\.glb|pages/[0-9]{1,6}|"
-      "textures/[0-9]{1,6})$");
-  if (path == "/v1/jobs") return "GET, HEAD, POST";
-  if (std::regex_match(path, job)) return "GET, HEAD, DELETE";
-  if (path == "/healthz" || path == "/readyz" || path == "/metrics" || path == "/v1/openapi.json" ||
-      std::regex_match(path, job_get))
-    return "GET, HEAD";
-  return "";
-}
-
-bool method_allowed(const std::string& allowed, const std::string& method) {
-  std::size_t from = 0;
-  while (from < allowed.size()) {
-    std::size_t to = allowed.find(", ", from);
-    if (to == std::string::npos) to = allowed.size();
-    if (allowed.compare(from, to - from, method) == 0) return true;
-    from = to + 2;
-  }
-  return false;
-}
-
-// CORS (ServerConfig::cors_origins): what Access-Control-Allow-Origin says to this request's
-// Origin ("" = nothing: no Origin, or one not listed).
-std::string cors_origin(const ServerConfig& config, const httplib::Request& req) {
-  const std::string origin = req.get_header_value("Origin");
-  if (origin.empty()) return "";
-  for (const std::string& o : config.cors_origins)
-    if (o == "*" || o == origin) return o;
-  return "";
-}
-
-// Adds the CORS headers of an API answer; true when `req` is a preflight, answered here
-// (204, or 403 origin_not_allowed for an origin not listed).
-bool answer_cors(const ServerConfig& config, const std::string& allowed,
-                 const httplib::Request& req, httplib::Response& res) {
-  if (config.cors_origins.empty()) return false;
-  const std::string origin = cors_origin(config, req);
-  if (origin != "*") res.set_header("Vary", "Origin");  // caches keep one answer per origin
-  if (!origin.empty()) {
-    res.set_header("Access-Control-Allow-Origin", origin);
-    res.set_header("Access-Control-Expose-Headers",
-                   "Location, Retry-After, X-Papernet-Level, Allow, Idempotent-Replayed, "
-                   "Content-Disposition");
-  }
-  if (req.method != "OPTIONS" || !req.has_header("Origin") ||
-      !req.has_header("Access-Control-Request-Method"))
-    return false;
-  if (origin.empty()) {
-    send_problem(res,
-                 make_problem("origin_not_allowed",
-                              "the origin " + req.get_header_value("Origin").substr(0, 128) +
-                                  " may not call this API from a browser (see --cors-origins)"),
-                 req.path);
-    return true;
-  }
-  res.status = 204;
-  res.set_header("Access-Control-Allow-Methods", allowed);
-  res.set_header("Access-Control-Allow-Headers",
-                 "Authorization, Content-Type, Idempotency-Key, Last-Event-ID");
-  res.set_header("Access-Control-Max-Age", "600");
-  return true;
 }
 
 // How long an Idempotency-Key stands for its first request.
@@ -516,8 +450,18 @@ void install_routes(httplib::Server& http, JobService& service, const ServerConf
     request_queue_share = 1;
     Problem p;
     const std::string allowed = allowed_methods(req.path);
-    if (!allowed.empty() && answer_cors(config, allowed, req, res))
-      return httplib::Server::HandlerResponse::Handled;
+    if (!allowed.empty()) {
+      const std::optional<std::string> origin =
+          req.has_header("Origin") ? std::optional(req.get_header_value("Origin")) : std::nullopt;
+      const CorsAnswer cors = answer_cors(config, allowed, req.method, origin,
+                                          req.has_header("Access-Control-Request-Method"));
+      for (const auto& [name, value] : cors.headers) res.set_header(name, value);
+      if (cors.refused) send_problem(res, *cors.refused, req.path);
+      if (cors.preflight) {
+        if (!cors.refused) res.status = 204;
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    }
     if (keys && !allowed.empty() && req.path.rfind("/v1/jobs", 0) == 0)
       if (std::optional<Problem> refused = authenticate(*keys, *limiter, req)) {
         if (refused->status == 401) res.set_header("WWW-Authenticate", "Bearer realm=\"papernet\"");
