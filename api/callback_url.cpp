@@ -1,12 +1,13 @@
 // A job's callback URL (api/options.h, `parse_callback_url`): checked when the options are
 // read, so that one that can never be sent is refused before a job exists, and taken apart
 // again by the webhook's sender at each attempt.
+#include "api/options.h"
+
 #include <algorithm>
 #include <charconv>
 #include <string>
 #include <string_view>
 
-#include "api/options.h"
 #include "core/ascii.h"
 
 namespace papernet {

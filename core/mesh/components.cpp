@@ -1,11 +1,12 @@
 // A mesh's loose parts (core/mesh/repair.h, `split_components`): faces joined through shared
 // vertices, each part a mesh of its own.
+#include "core/mesh/repair.h"
+
 #include <algorithm>
 #include <array>
 #include <numeric>
 #include <vector>
 
-#include "core/mesh/repair.h"
 #include "core/union_find.h"
 
 namespace papernet {
