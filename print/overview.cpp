@@ -156,18 +156,36 @@ struct FlowSize {
   double text = kFlowTextMm;
 };
 
+/// What an overview of several pages sets at one text size, whatever its thumbnails: the
+/// build order's columns and their steps, and the cells captioned.
+struct FlowText {
+  double text = kFlowTextMm;
+  int columns = 1;
+  std::vector<std::vector<std::string>> steps;
+  Cells cells;
+};
+
+FlowText flow_text(const PageLayout& pages, const Overview& overview, double text) {
+  const double width = pages.width - 2 * pages.margin;
+  FlowText t;
+  t.text = text;
+  t.columns = step_columns(overview, width, text, true);
+  t.steps = column_steps(overview, width, text, t.columns);
+  t.cells = cells_of(pages, overview, text);
+  return t;
+}
+
 /// The overview over several pages: rows of thumbnails shaped by `size` while they fit, then
 /// the build order's lines, continued on as many pages as they need; none where the paper is too
-/// small for it (plan_overview). `plan` holds the first page's header.
-std::optional<OverviewPlan> plan_flow(const PageLayout& pages, const Overview& overview,
-                                      OverviewPlan plan, double top, double next_top,
-                                      FlowSize size) {
+/// small for it (plan_overview). `plan` holds the first page's header; `set`, the text set at
+/// `size.text`.
+std::optional<OverviewPlan> plan_flow(const PageLayout& pages, OverviewPlan plan, double top,
+                                      double next_top, FlowSize size, const FlowText& set) {
   const double text = size.text;
   const double m = pages.margin, width = pages.width - 2 * m, bottom = pages.height - m;
   plan.text = text;
-  plan.columns = step_columns(overview, width, text, true);
-  const std::vector<std::vector<std::string>> steps =
-      column_steps(overview, width, text, plan.columns);
+  plan.columns = set.columns;
+  const std::vector<std::vector<std::string>>& steps = set.steps;
   const int count = static_cast<int>(steps.size());
   // The build order's heading on a page after the first.
   if (count > 0 && text_width(kStepsContinued, kHeadingScale * text) > width) return std::nullopt;
@@ -175,7 +193,7 @@ std::optional<OverviewPlan> plan_flow(const PageLayout& pages, const Overview& o
   // Lines of the build order a page after the first holds: its title, a line of space.
   const auto lines_below = [&](double y) { return static_cast<int>((bottom - y) / pitch) - 2; };
   if (count > 0 && lines_below(next_top) < kLeastSteps) return std::nullopt;
-  const Cells small = cells_of(pages, overview, text);
+  const Cells& small = set.cells;
   const int n = small.count();
   OverviewPlan::Part part;
   part.grid_top = top;
@@ -306,9 +324,14 @@ std::optional<OverviewPlan> plan_overview(const PageLayout& pages, const Overvie
   for (const auto& [cell, text] : kFlowSizes) sizes.push_back({columns_of(cell), 0, text});
   for (int cols = 1; cols <= std::min(n, columns_of(kLeastSmallThumbMm)); ++cols)
     for (int rows = 1; rows <= kMostSmallRows; ++rows) sizes.push_back({cols, rows, kSmallestMm});
+  // The text set once for each size (the sizes' texts are kFlowSizes').
+  std::vector<FlowText> sets;
   std::optional<OverviewPlan> fewest;
   for (const FlowSize& size : sizes) {
-    std::optional<OverviewPlan> flow = plan_flow(pages, overview, plan, top, next_top, size);
+    auto set = std::find_if(sets.begin(), sets.end(),
+                            [&](const FlowText& t) { return t.text == size.text; });
+    if (set == sets.end()) set = sets.insert(sets.end(), flow_text(pages, overview, size.text));
+    std::optional<OverviewPlan> flow = plan_flow(pages, plan, top, next_top, size, *set);
     if (flow && (!fewest || flow->parts.size() < fewest->parts.size())) fewest = std::move(flow);
   }
   return fewest;
