@@ -40,7 +40,7 @@ TSAN_TESTS ?= ^(Stores/)?(ServeTest|JobServiceTest|JobStoreTest|StaticFiles|Stre
 # 2.5 s in Release); sanitized code runs 3-10x slower, so there
 # they would test the speed of the build (and take minutes each), not its correctness. Smaller
 # unfolds of the same code run sanitized; `make check` runs these.
-SANITIZE_SKIP ?= ^(Stores/ServeTest\.(ProgressiveJobServesIntermediatesThenTheResult|ShortTimeLimitGivesAnApproximateNet|GracefulStopKeepsTheRunningJobForTheNextStart|KillNineThenRestartFinishesEveryJob)/.*|Unfold\.EveryMeshInTestData|FitSearch\.(AtDetailAutoTheScanPrintsEveryLabelLegibly|AMergedPieceMayFillTheRoomKeptForTabsWhenItsTabsFitTheSheet|TendrilsCutOffSaveASheet)|Strategies/ProgressiveStrategies\..*|TimeLimit\..*)$$
+SANITIZE_SKIP ?= ^(Stores/ServeTest\.(ProgressiveJobServesIntermediatesThenTheResult|ShortTimeLimitGivesAnApproximateNet|GracefulStopKeepsTheRunningJobForTheNextStart|KillNineThenRestartFinishesEveryJob)/.*|Unfold\.EveryMeshInTestData|FitSearch\.(AtDetailAutoTheScanPrintsEveryLabelLegibly|AMergedPieceMayFillTheRoomKeptForTabsWhenItsTabsFitTheSheet|TendrilsCutOffSaveASheet)|Merge\.UnfoldingsCompactedToFitMergeIntoFewerPieces|Strategies/ProgressiveStrategies\..*|TimeLimit\..*)$$
 # Seconds per fuzz target: `make fuzz-smoke` (CI) and `make fuzz` (the longer run).
 FUZZ_SMOKE_SECONDS ?= 20
 FUZZ_SECONDS ?= 300

@@ -100,6 +100,9 @@ struct MergeBudget {
   /// Candidate moves of the pass that makes room for tabs on a merged piece, per face of it.
   std::size_t tab_evaluations_per_face = 20;
   std::size_t tab_evaluations = kDefaultMergeBudget / 6;  ///< of all those passes
+  /// Branches hung elsewhere to make an unfolding that lies flat but does not fit the room fit
+  /// it, per face of the pair (print/internal/compact.h; 0: none).
+  std::size_t compact_evaluations_per_face = 40;
   /// When no pair merges, a piece split between two of its neighbours (one piece fewer): the
   /// shares of its faces that go to the first, tried in turn until a split unfolds (none: no
   /// splits; three shares, 0.5, 0.25 and 0.75, left as many pieces as one, more slowly:

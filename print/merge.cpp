@@ -16,6 +16,7 @@
 #include "core/unfold/net_metrics.h"
 #include "core/unfold/tabu.h"
 #include "print/fit.h"
+#include "print/internal/compact.h"
 #include "print/internal/number_pieces.h"
 
 namespace papernet {
@@ -174,7 +175,8 @@ struct Target {
 };
 
 // `together`'s faces (sorted) unfolded anew as one piece that lies flat without overlap, fits
-// the room and, with tabs, leaves room for a tab on every cut inside it: from each tree of
+// the room (its branches hung elsewhere where it sprawls past it: print/internal/compact.h)
+// and, with tabs, leaves room for a tab on every cut inside it: from each tree of
 // `starts` (indices into `together`), then from the Tabu Unfolder's starts of seeds 1 to
 // `tries`, each of at most `tests_per_face` tests per face, within `left`. No net when no
 // unfolding does, or the faces make no single piece. Depends on nothing else, so it may run on
@@ -222,7 +224,18 @@ Unfolded unfold_fitting(const Target& target, const std::vector<int>& together,
       return out;  // no single piece: faces that meet at a vertex only, or a tree that overlaps
     }
     out.tests += std::min(left.tests - out.tests, std::max<std::size_t>(result.stats.tests, 1));
-    if (!result.overlap_free || !fits(result.net)) continue;
+    if (!result.overlap_free) continue;
+    if (!fits(result.net)) {
+      // Lies flat but sprawls past the room: its branches hung elsewhere, nearer its middle.
+      print_detail::Compacted compact = print_detail::compact_to_fit(
+          both, result.net, target.scale, target.room.room,
+          target.budget.compact_evaluations_per_face * together.size(), [&] {
+            if (progress.cancelled()) throw CancelledException();  // as the Tabu Unfolder does
+            return time_up();
+          });
+      if (!compact.net || !fits(*compact.net)) continue;
+      result.net = std::move(*compact.net);
+    }
     if (target.tabs.min_height > 0 &&
         !edges_without_tab_room(both, result.net, target.tabs).empty()) {
       if (out.evaluations >= left.evaluations) {

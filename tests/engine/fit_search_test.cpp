@@ -60,8 +60,9 @@ TEST(FitSearch, SmallerPiecesNestOntoFewerSheetsThanTheLargestThatFit) {
   const Printed searched = print(unfolded, options, 60);
   ASSERT_GT(largest.pages, 1u) << "sample.obj at 200 mm needs several sheets";
   EXPECT_LT(searched.pages, largest.pages);
-  EXPECT_GT(searched.pieces, largest.pieces);
-  // A sheet saved is worth at most 20 more pieces (kPiecesPerSheet).
+  // A sheet saved is worth at most 20 more pieces (kPiecesPerSheet). Since the merge hangs the
+  // branches of an unfolding that sprawls past the room elsewhere (print/internal/compact.h), the
+  // smaller pieces merge back into as few as the largest (6, on 2 sheets instead of 3).
   EXPECT_LE(searched.pieces - largest.pieces,
             20 * static_cast<int>(largest.pages - searched.pages));
   for (const Printed* p : {&largest, &searched}) {

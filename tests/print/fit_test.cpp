@@ -11,8 +11,10 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/mesh/simplify.h"
 #include "core/tabs/tab_clearance.h"
 #include "core/unfold/net_check.h"
+#include "core/unfold/tabu.h"
 #include "core/unfold/unfolding.h"
 #include "print/arrange.h"
 #include "print/fit.h"
@@ -604,6 +606,57 @@ TEST(Merge, SplitsLeaveNoMorePiecesThanPairsOnRealMeshes) {
                 grown.pieces, pairs.pieces, split.pieces);
   }
   EXPECT_EQ(meshes, 2) << "tests/data lacks a mesh of this test";
+}
+
+// Pairs whose unfolding lies flat but sprawls past the room are made to fit by hanging its
+// branches elsewhere (print/internal/compact.h): models collapsed to 400 faces, their Tabu nets
+// cut to fit the room (the search's way at 1 and 0.7 of it) and merged, leave fewer pieces than
+// the same merge without (MergeBudget::compact_evaluations_per_face 0), each still a net of its
+// faces that fits the room, with no more cuts inside without room for a tab than the cut pieces
+// had; the same every time.
+// (Release only: the sanitized builds' floating point takes other paths, Makefile's
+// SANITIZE_SKIP.)
+TEST(Merge, UnfoldingsCompactedToFitMergeIntoFewerPieces) {
+  const std::vector<std::pair<std::string, double>> cases{{"Duck.glb", 1.0},
+                                                          {"thingi10k_134617.stl", 0.7}};
+  std::size_t found = 0;
+  for (const auto& [name, whole] : test::test_data_meshes())
+    for (const auto& [file, shrink] : cases) {
+      if (file != name) continue;
+      ++found;
+      Progress quiet;
+      SimplifyTarget target;
+      target.faces = 400;
+      const std::optional<Mesh> collapsed =
+          simplify_mesh(whole, CollapseStrategy::QQ, target, quiet);
+      ASSERT_TRUE(collapsed.has_value()) << name;
+      const Mesh& mesh = *collapsed;
+      const double scale = print_scale(mesh, {});  // 200 mm
+      const TabClearanceOptions tabs = tab_clearance_options(mesh, {});
+      const std::vector<int> one(mesh.faces.size(), 0);
+      TabuOptions options;
+      options.time_limit_seconds = 600;  // against a hang only
+      const Net net = unfold_tabu(mesh, options, quiet).net;
+      const FitPieces cut = cut_to_fit(net, one, scale, {kRoom, {}}, "A4", 200, shrink, 1);
+      MergeBudget budget;
+      budget.tests = 100'000;
+      budget.tab_evaluations = 20'000;
+      const FitPieces compacted = merge_pieces(mesh, one, cut, scale, {kRoom, {}}, tabs, budget);
+      expect_nets_that_fit(mesh, compacted, scale, name);
+      // The cut pieces keep the Tabu net's slits (no tab room pass here); a merge adds none.
+      EXPECT_LE(slits_without_tab_room(mesh, compacted, tabs),
+                slits_without_tab_room(mesh, cut, tabs))
+          << name;
+      const FitPieces again = merge_pieces(mesh, one, cut, scale, {kRoom, {}}, tabs, budget);
+      EXPECT_EQ(again.piece, compacted.piece) << name;
+      EXPECT_EQ(again.net.points, compacted.net.points) << name;
+      budget.compact_evaluations_per_face = 0;
+      const FitPieces as_unfolded = merge_pieces(mesh, one, cut, scale, {kRoom, {}}, tabs, budget);
+      EXPECT_LT(compacted.pieces, as_unfolded.pieces) << name;
+      std::printf("%s at 400 faces: %d pieces cut, %d merged, %d merged without compacting\n",
+                  name.c_str(), cut.pieces, compacted.pieces, as_unfolded.pieces);
+    }
+  EXPECT_EQ(found, cases.size()) << "tests/data lacks a mesh of this test";
 }
 
 // A piece never takes faces of two parts: an octahedron whose upper and lower halves are given
