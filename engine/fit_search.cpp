@@ -137,6 +137,11 @@ class FitSearch {
     }
     if (!best) throw std::logic_error("the fit search laid out no way");
     FitPrint chosen = std::move(kept_.at(*best));
+    // Tendrils cut before the merge as well (docs/print.md, "Tendrils cut before the merge
+    // too"): the merge's compacted pieces may keep no tendril whose cut saves the sheet that a cut
+    // before it saves. Where that cut saves one, both are merged and the cheaper kept: cut first,
+    // the sheet can cost more pieces than the merge alone leaves on as few.
+    std::optional<FitPrint> cut_first = trimmed(chosen, progress);
     merge(chosen, progress);
     // Saving pieces, the way that costs least in sheets is merged as well, and kept when it ends
     // cheaper: its pieces, more but nested tighter, may merge into as few as the chosen way's on
@@ -149,6 +154,12 @@ class FitSearch {
         chosen = std::move(other);
     }
     if (trim(chosen, progress)) merge(chosen, progress);
+    if (cut_first) {
+      merge(*cut_first, progress);
+      if (trim(*cut_first, progress)) merge(*cut_first, progress);
+      if (cut_first->cost(label_price_, print_.prefer) < chosen.cost(label_price_, print_.prefer))
+        chosen = std::move(*cut_first);
+    }
     // Its labels, where the tries (and the merge's) left them out: the same faces, tabs, strips
     // and sheets. They are moved where they print legibly while the search's time lasts after
     // the layout (as long as a try) that places them.
@@ -250,8 +261,16 @@ class FitSearch {
   // without it. Within the search's time, at the pace of its layouts, until the job is
   // cancelled. Whether it was kept.
   bool trim(FitPrint& chosen, Progress& progress) {
+    std::optional<FitPrint> cut = trimmed(chosen, progress);
+    if (!cut) return false;
+    chosen = std::move(*cut);
+    return true;
+  }
+
+  // The print `trim` makes of `chosen`, where it keeps one.
+  std::optional<FitPrint> trimmed(const FitPrint& chosen, Progress& progress) {
     const std::size_t sheets = chosen.pages.pages.size();
-    if (print_.prefer != FitGoal::Sheets || sheets <= 1 || tendril_cuts_ <= 0) return false;
+    if (print_.prefer != FitGoal::Sheets || sheets <= 1 || tendril_cuts_ <= 0) return std::nullopt;
     const auto lay_out = [&](const FitPieces& pieces) -> std::optional<FitPrint> {
       if (progress.cancelled()) throw CancelledException();
       if (elapsed() + one_more() > seconds_) return std::nullopt;
@@ -266,9 +285,10 @@ class FitSearch {
     const auto cost = [&](const FitPrint& print) { return print.cost(0, print_.prefer); };
     FitPieces pieces = chosen.pieces;
     const std::vector<TendrilCut> cuts = cut_tendrils(pieces, tendril_cuts_);
-    if (cuts.empty()) return false;
+    if (cuts.empty()) return std::nullopt;
     std::optional<FitPrint> best = lay_out(pieces);
-    if (!best || best->pages.pages.size() >= sheets || !(cost(*best) < cost(chosen))) return false;
+    if (!best || best->pages.pages.size() >= sheets || !(cost(*best) < cost(chosen)))
+      return std::nullopt;
     for (auto it = cuts.rbegin(); it != cuts.rend(); ++it) {
       FitPieces fewer = best->pieces;
       undo_tendril_cut(fewer, *it);
@@ -276,13 +296,12 @@ class FitSearch {
       if (print && cost(*print) < cost(*best)) best = std::move(print);
     }
     if (tries_ == LabelPass::Placed) {
-      if (elapsed() + one_more() > seconds_) return false;
+      if (elapsed() + one_more() > seconds_) return std::nullopt;
       lay_out_pages(mesh_, *best, print_, gap_, page_, room_.alone, LabelPass::Placed);
       if (!(best->cost(label_price_, print_.prefer) < chosen.cost(label_price_, print_.prefer)))
-        return false;
+        return std::nullopt;
     }
-    chosen = std::move(*best);
-    return true;
+    return best;
   }
 
   struct Tried {
