@@ -51,8 +51,14 @@ namespace {
 // The faces' triangles in cells of a grid over their box, to find those near a triangle.
 class FaceGrid {
  public:
-  FaceGrid(const std::vector<Triangle2>& pos, double cell) : cell_(cell) {
+  // Cells of side `cell`, or larger where there would be more than 4 per face (a sprawling net of
+  // small faces) or `cell` is no length.
+  FaceGrid(const std::vector<Triangle2>& pos, double cell) {
     for (const Triangle2& t : pos) box_.add(triangle_box(t));
+    const double four_per_face = 4.0 * static_cast<double>(pos.size());
+    cell_ = std::max({cell, std::sqrt(box_.size().x * box_.size().y / four_per_face),
+                      std::max(box_.size().x, box_.size().y) / four_per_face});
+    if (!(cell_ > 0)) cell_ = std::max({box_.size().x, box_.size().y, 1.0});
     cols_ = std::max(1, static_cast<int>(std::ceil(box_.size().x / cell_)));
     rows_ = std::max(1, static_cast<int>(std::ceil(box_.size().y / cell_)));
     cells_.resize(static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_));
@@ -91,7 +97,7 @@ class FaceGrid {
                  static_cast<std::size_t>(x)]);
   }
 
-  double cell_;
+  double cell_ = 1;
   Box2 box_ = Box2::empty();
   int cols_ = 1, rows_ = 1;
   std::vector<std::vector<int>> cells_;
