@@ -32,7 +32,8 @@ struct Compacted {
 /// to the rest of the piece, where it lies flat without overlap (core/unfold/overlap.h's test and
 /// tolerance), the move that leaves the piece nearest to fitting first, until it fits or no move
 /// brings it nearer. Each face keeps its shape; the unfold tree stays one tree. At most
-/// `max_evaluations` moves are measured, and none once `stop` says so (then no net).
+/// `max_evaluations` moves are measured, and none once `stop` says so (then no net; `stop` may
+/// instead throw, as a cancelled job's CancelledException, which then passes through).
 Compacted compact_to_fit(const Mesh& mesh, const Net& net, double scale, Vec2 room,
                          std::size_t max_evaluations, const std::function<bool()>& stop = {});
 
