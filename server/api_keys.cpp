@@ -3,6 +3,7 @@
 #include <openssl/evp.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -182,6 +183,23 @@ std::optional<ApiKey> ApiKeyRing::find(const std::string& secret) {
 std::size_t ApiKeyRing::size() {
   std::lock_guard lock(mutex_);
   return keys_->size();
+}
+
+int RateLimiter::take(const std::string& key, double rate, Clock::time_point now) {
+  if (rate <= 0) return 0;
+  std::lock_guard lock(mutex_);
+  auto [it, fresh] = buckets_.try_emplace(key, Bucket{std::max(1.0, rate), now});
+  Bucket& b = it->second;
+  if (!fresh && now > b.at) {
+    const double seconds = std::chrono::duration<double>(now - b.at).count();
+    b.tokens = std::min(std::max(1.0, rate), b.tokens + seconds * rate);
+    b.at = now;
+  }
+  if (b.tokens >= 1) {
+    b.tokens -= 1;
+    return 0;
+  }
+  return static_cast<int>(std::ceil((1 - b.tokens) / rate));
 }
 
 }  // namespace papernet::server

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <ctime>
 #include <functional>
@@ -62,6 +63,24 @@ class ApiKeyRing {
   std::timespec mtime_{};
   long long size_ = -1;
   std::time_t checked_ = 0;
+};
+
+/// Requests a second per key (ApiKey::rate): each key a bucket of max(1, rate) requests, refilled
+/// at `rate` a second. Thread-safe.
+class RateLimiter {
+ public:
+  using Clock = std::chrono::steady_clock;
+  /// 0 when a request by `key` (at `now`) may go, and it is counted; else the whole seconds to wait
+  /// for the next one. A rate of 0 or less: no limit.
+  int take(const std::string& key, double rate, Clock::time_point now = Clock::now());
+
+ private:
+  struct Bucket {
+    double tokens;
+    Clock::time_point at;
+  };
+  std::mutex mutex_;
+  std::map<std::string, Bucket> buckets_;
 };
 
 }  // namespace papernet::server

@@ -3,8 +3,6 @@
 #include <httplib.h>
 
 #include <chrono>
-#include <cmath>
-#include <map>
 #include <mutex>
 #include <optional>
 #include <regex>
@@ -102,38 +100,6 @@ JobView find_job(JobService& service, const httplib::Request& req) {
                                       "(--retention); its upload and results were removed");
   return *view;
 }
-
-// Requests a second per key (ApiKey::rate): a bucket of max(1, rate) requests, refilled at
-// `rate` a second.
-class RateLimiter {
- public:
-  /// 0 when the request may go; else the seconds to wait for the next one.
-  int take(const std::string& key, double rate) {
-    if (rate <= 0) return 0;
-    std::lock_guard lock(mutex_);
-    const auto now = Clock::now();
-    auto [it, fresh] = buckets_.try_emplace(key, Bucket{std::max(1.0, rate), now});
-    Bucket& b = it->second;
-    if (!fresh) {
-      const double seconds = std::chrono::duration<double>(now - b.at).count();
-      b.tokens = std::min(std::max(1.0, rate), b.tokens + seconds * rate);
-      b.at = now;
-    }
-    if (b.tokens >= 1) {
-      b.tokens -= 1;
-      return 0;
-    }
-    return static_cast<int>(std::ceil((1 - b.tokens) / rate));
-  }
-
- private:
-  struct Bucket {
-    double tokens;
-    Clock::time_point at;
-  };
-  std::mutex mutex_;
-  std::map<std::string, Bucket> buckets_;
-};
 
 // Who is asking, with keys configured: sets request_tenant, or returns the problem to answer.
 std::optional<Problem> authenticate(ApiKeyRing& keys, RateLimiter& limiter,

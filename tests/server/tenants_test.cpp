@@ -2,6 +2,8 @@
 // a real `papernet serve --api-keys FILE` against both stores.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "server/api_keys.h"
 #include "tests/support/paths.h"
 #include "tests/support/postgres.h"
@@ -217,6 +219,33 @@ TEST(ServeTenantsKeyFile, TheFormat) {
         std::string("a ") + kHashA + " share=2", std::string("a ") + kHashA + " rate=-1",
         std::string("a ") + kHashA + "\nb " + kHashA, std::string("# only")})
     EXPECT_THROW(parse_api_keys(bad, "keys"), ApiKeyFileError) << bad;
+}
+
+// A key's bucket holds max(1, rate) requests and fills again at `rate` a second; the wait is
+// rounded up to whole seconds (Retry-After); each key has a bucket of its own.
+TEST(ServeTenantsRateLimiter, ABucketOfRateRequestsFilledAtRateASecond) {
+  using papernet::server::RateLimiter;
+  using std::chrono::milliseconds;
+  RateLimiter limiter;
+  const RateLimiter::Clock::time_point t0{};
+  EXPECT_EQ(limiter.take("a", 2, t0), 0);
+  EXPECT_EQ(limiter.take("a", 2, t0), 0);
+  EXPECT_EQ(limiter.take("a", 2, t0), 1);  // empty: half a second to the next, said as 1
+  EXPECT_EQ(limiter.take("b", 2, t0), 0);  // another key
+  EXPECT_EQ(limiter.take("a", 2, t0 + milliseconds(499)), 1);
+  EXPECT_EQ(limiter.take("a", 2, t0 + milliseconds(501)), 0);
+  // Refilled for an hour: still no more than 2 at once.
+  const auto later = t0 + std::chrono::hours(1);
+  EXPECT_EQ(limiter.take("a", 2, later), 0);
+  EXPECT_EQ(limiter.take("a", 2, later), 0);
+  EXPECT_EQ(limiter.take("a", 2, later), 1);
+  // Under one a second: a bucket of one, a wait of 1 / rate seconds.
+  EXPECT_EQ(limiter.take("c", 0.25, t0), 0);
+  EXPECT_EQ(limiter.take("c", 0.25, t0), 4);
+  EXPECT_EQ(limiter.take("c", 0.25, t0 + std::chrono::seconds(3)), 1);
+  EXPECT_EQ(limiter.take("c", 0.25, t0 + std::chrono::seconds(4)), 0);
+  // No limit.
+  for (int i = 0; i < 100; ++i) EXPECT_EQ(limiter.take("d", 0, t0), 0);
 }
 
 // Idempotency-Key: a retried submit (same key, same mesh and options) answers 200 with the
