@@ -11,6 +11,7 @@
 #include "core/mesh/dual_graph.h"
 #include "core/unfold/net_metrics.h"
 #include "core/unfold/overlap.h"
+#include "core/unfold/overlap_grid.h"
 
 namespace papernet::print_detail {
 
@@ -48,63 +49,6 @@ double fit_ratio(const std::vector<Vec2>& hull, Vec2 room) {
 
 namespace {
 
-// The faces' triangles in cells of a grid over their box, to find those near a triangle.
-class FaceGrid {
- public:
-  // Cells of side `cell`, or larger where there would be more than 4 per face (a sprawling net of
-  // small faces) or `cell` is no length.
-  FaceGrid(const std::vector<Triangle2>& pos, double cell) {
-    for (const Triangle2& t : pos) box_.add(triangle_box(t));
-    const double four_per_face = 4.0 * static_cast<double>(pos.size());
-    cell_ = std::max({cell, std::sqrt(box_.size().x * box_.size().y / four_per_face),
-                      std::max(box_.size().x, box_.size().y) / four_per_face});
-    if (!(cell_ > 0)) cell_ = std::max({box_.size().x, box_.size().y, 1.0});
-    cols_ = std::max(1, static_cast<int>(std::ceil(box_.size().x / cell_)));
-    rows_ = std::max(1, static_cast<int>(std::ceil(box_.size().y / cell_)));
-    cells_.resize(static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_));
-    for (std::size_t f = 0; f < pos.size(); ++f)
-      for_cells(triangle_box(pos[f]),
-                [&](std::vector<int>& c) { c.push_back(static_cast<int>(f)); });
-    seen_.assign(pos.size(), 0);
-  }
-
-  /// Calls `f(face)` once for each face in a cell that `box` touches.
-  template <class F>
-  void near(const Box2& box, F&& f) {
-    ++epoch_;
-    for_cells(box, [&](std::vector<int>& c) {
-      for (int face : c)
-        if (seen_[static_cast<std::size_t>(face)] != epoch_) {
-          seen_[static_cast<std::size_t>(face)] = epoch_;
-          f(face);
-        }
-    });
-  }
-
- private:
-  template <class F>
-  void for_cells(const Box2& b, F&& f) {
-    const auto at = [&](double v, double lo, int count) {
-      return std::clamp(static_cast<int>(std::floor((v - lo) / cell_)), 0, count - 1);
-    };
-    if (b.hi.x < box_.lo.x || b.hi.y < box_.lo.y || b.lo.x > box_.hi.x || b.lo.y > box_.hi.y)
-      return;
-    const int x0 = at(b.lo.x, box_.lo.x, cols_), x1 = at(b.hi.x, box_.lo.x, cols_);
-    const int y0 = at(b.lo.y, box_.lo.y, rows_), y1 = at(b.hi.y, box_.lo.y, rows_);
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x)
-        f(cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(cols_) +
-                 static_cast<std::size_t>(x)]);
-  }
-
-  double cell_ = 1;
-  Box2 box_ = Box2::empty();
-  int cols_ = 1, rows_ = 1;
-  std::vector<std::vector<int>> cells_;
-  std::vector<unsigned> seen_;
-  unsigned epoch_ = 0;
-};
-
 // A branch hung elsewhere: the branch at `branch` (its faces a range of the pre-order), hung by
 // its face `face` across that face's edge `edge`; `ratio` the piece's fit_ratio then.
 struct Move {
@@ -126,7 +70,12 @@ Compacted compact_to_fit(const Mesh& mesh, const Net& net, double scale, Vec2 ro
   std::vector<Triangle2> pos = net.points;
   double edge_sum = 0;
   for (const Triangle2& t : pos) edge_sum += norm(t[1] - t[0]) + norm(t[2] - t[1]);
+  // The faces where they lie, updated as branches move (core's index of a net's faces, as the
+  // Tabu Unfolder keeps it: cells about an edge long, sprawling nets and slivers included).
+  OverlapGrid grid;
   const double cell = edge_sum / (2.0 * n);
+  grid.reset(cell > 0 ? cell : 1);
+  for (int f = 0; f < n; ++f) grid.insert(f, triangle_box(pos[static_cast<std::size_t>(f)]));
 
   std::vector<std::vector<int>> links(static_cast<std::size_t>(n));
   std::vector<int> order, par(static_cast<std::size_t>(n)), size(static_cast<std::size_t>(n)),
@@ -269,7 +218,6 @@ Compacted compact_to_fit(const Mesh& mesh, const Net& net, double scale, Vec2 ro
       return std::tie(x.ratio, x.branch, x.face, x.edge) <
              std::tie(y.ratio, y.branch, y.face, y.edge);
     });
-    FaceGrid grid(pos, cell);
     bool moved = false;
     for (const Move& mv : moves) {
       const Rigid m = motion(mv.face, mv.edge);
@@ -279,7 +227,7 @@ Compacted compact_to_fit(const Mesh& mesh, const Net& net, double scale, Vec2 ro
       for (int i = a; i < b && !overlaps; ++i) {
         const Triangle2& t = pos[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
         const Triangle2 there{m(t[0]), m(t[1]), m(t[2])};
-        grid.near(triangle_box(there), [&](int x) {
+        grid.query(triangle_box(there), [&](int x) {
           if (!overlaps && !in_branch(mv.branch, x) &&
               triangles_overlap(there, pos[static_cast<std::size_t>(x)], tolerance))
             overlaps = true;
@@ -287,8 +235,11 @@ Compacted compact_to_fit(const Mesh& mesh, const Net& net, double scale, Vec2 ro
       }
       if (overlaps) continue;
       for (int i = a; i < b; ++i) {
-        Triangle2& t = pos[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+        const int f = order[static_cast<std::size_t>(i)];
+        Triangle2& t = pos[static_cast<std::size_t>(f)];
         t = {m(t[0]), m(t[1]), m(t[2])};
+        grid.remove(f);
+        grid.insert(f, triangle_box(t));
       }
       // The branch hangs from `face` now: the links on its way up to the branch's first face
       // turn round.
