@@ -217,6 +217,28 @@ NetRepair small_labels_warning(const LabelSizes& labels, DetailMode detail) {
   return NetRepair{"small_labels", labels.illegible, std::move(message)};
 }
 
+// The warning that every face prints as a piece of its own because no two faces joined by a fold
+// fit a sheet together at this size (a low-poly model printed large: trimesh's BoxTextured cube
+// at 200 mm on A4, 12 pieces on 12 sheets), with the size at which they do (docs/print.md, "Fit
+// layout"); none otherwise.
+std::optional<NetRepair> faces_apart_warning(const JobOptions& options, const NetDocument& net,
+                                             const FitPieces& pieces) {
+  if (pieces.pieces < 2 || static_cast<std::size_t>(pieces.pieces) != net.mesh.faces.size())
+    return std::nullopt;
+  const FitSearchOptions search = fit_search_options(options, net.mesh);
+  const double size = std::floor(
+      largest_size_joining_faces(net.net, search.scale, search.room.room, search.model_mm));
+  if (!(size >= 1 && size < search.model_mm)) return std::nullopt;
+  char message[320];
+  std::snprintf(
+      message, sizeof message,
+      "every face prints as a piece of its own: no two faces joined by a fold fit %s "
+      "paper together, with room for their glue tabs, at %.0f mm (size_mm); at %.0f mm or "
+      "less they do, in fewer, larger pieces",
+      search.page.paper.name.c_str(), search.model_mm, size);
+  return NetRepair{"faces_apart", net.mesh.faces.size(), message};
+}
+
 }  // namespace
 
 FitSearchOptions fit_search_options(const JobOptions& options, const Mesh& mesh) {
@@ -327,6 +349,9 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   summary.small_labels = labels.illegible;
   if (labels.illegible > 0)
     outcome.net.warnings.push_back(small_labels_warning(labels, options.detail.mode));
+  if (fit)
+    if (std::optional<NetRepair> apart = faces_apart_warning(options, outcome.net, pieces))
+      outcome.net.warnings.push_back(std::move(*apart));
   if (fit && options.overview.value_or(pieces.pieces > 1)) {
     summary.overview = add_overview(pages, layout, pieces.piece, std::move(graph), mesh,
                                     view_axes(outcome.format), options.colour);

@@ -67,6 +67,21 @@ double growth_that_fits(const std::vector<Vec2>& hull, Vec2 room) {
 
 }  // namespace
 
+double largest_size_joining_faces(const Net& net, double scale, Vec2 room, double model_mm) {
+  double growth = 0;
+  for (std::size_t f = 0; f < net.parent.size(); ++f) {
+    const int p = net.parent[f];
+    if (p < 0) continue;
+    std::vector<Vec2> corners;
+    for (Vec2 c : net.points[f]) corners.push_back(scale * c);
+    for (Vec2 c : net.points[static_cast<std::size_t>(p)]) corners.push_back(scale * c);
+    const std::vector<Vec2> hull = convex_hull(std::move(corners));
+    for (std::size_t i = 0; i < hull.size(); ++i)
+      growth = std::max(growth, growth_in(box_along(hull, i), room));
+  }
+  return growth * model_mm;
+}
+
 bool hull_fits(const std::vector<Vec2>& hull, Vec2 room) {
   if (hull.size() < 3) {
     double extent = 0;

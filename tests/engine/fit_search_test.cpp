@@ -320,6 +320,45 @@ TEST(FitSearch, AFaceLargerThanTheRoomForTabsPrintsAloneTurnedAcrossTheSheet) {
               out.documents.svg_pages.size(), out.print->pieces, tabs, strips);
 }
 
+// A low-poly model printed so large that no two faces joined by a fold fit a sheet together
+// (tests/data/BoxTextured.glb, a cube of 12 faces, at 200 mm on A4): every face prints as a piece
+// of its own, and the result names the size at which faces join (docs/print.md, "Fit layout").
+// At that size they do, and the warning is gone.
+TEST(FitSearch, FacesTooLargeToJoinNameTheSizeAtWhichTheyDo) {
+  JobOptions options;
+  options.colour = false;
+  options.overview = false;
+  PipelineProgress quiet;
+  UnfoldOutcome large =
+      run_pipeline(data_file("BoxTextured.glb"), options, {}, {.svg_pages = true}, quiet);
+  ASSERT_TRUE(large.print);
+  const NetDocument doc = read_net_json(large.documents.net_json);
+  ASSERT_EQ(doc.mesh.faces.size(), 12u);
+  EXPECT_EQ(large.print->pieces, 12);
+  const NetRepair* apart = entry_of(doc.warnings, "faces_apart");
+  ASSERT_NE(apart, nullptr);
+  EXPECT_EQ(apart->count, 12u);
+  std::smatch size;
+  ASSERT_TRUE(std::regex_search(apart->message, size, std::regex("at ([0-9]+) mm or less")))
+      << apart->message;
+  options.size_mm = std::stod(size[1]);
+  EXPECT_LT(*options.size_mm, 200);
+  EXPECT_GT(*options.size_mm, 100);
+  const UnfoldOutcome joined =
+      run_pipeline(data_file("BoxTextured.glb"), options, {}, {.svg_pages = true}, quiet);
+  ASSERT_TRUE(joined.print);
+  const NetDocument at = read_net_json(joined.documents.net_json);
+  EXPECT_LT(joined.print->pieces, 12);
+  EXPECT_EQ(entry_of(at.warnings, "faces_apart"), nullptr);
+  for (const NetDocument* d : {&doc, &at}) {
+    const NetCheckReport check = check_pieces(d->mesh, d->net, d->piece);
+    EXPECT_TRUE(check.ok()) << check.summary();
+  }
+  std::printf("BoxTextured: 200 mm %d pieces on %d sheets; %.0f mm %d pieces on %d sheets\n",
+              large.print->pieces, doc.print->pages, *options.size_mm, joined.print->pieces,
+              at.print->pages);
+}
+
 // The merge after the search may make a piece larger than the room kept for tabs all round a
 // piece (docs/print.md, "Fit layout"): each merge is laid out and nested with the tabs it gets,
 // and refused when they do not fit a sheet. On A4 with 10 mm margins, 6 mm tabs, 2 mm to cut
