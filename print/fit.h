@@ -163,8 +163,9 @@ void undo_tendril_cut(FitPieces& pieces, const TendrilCut& cut);
 /// The largest size of the model (`model_mm` now, at `scale` millimetres per unit) at which two
 /// faces of `net` linked by its unfold tree, laid flat as the net lays them, fit `room` together
 /// as cut_to_fit fits a piece (the box of their convex hull along one of its edges, either way
-/// round). Where it is below `model_mm`, no two faces can share a piece at this size, and every
-/// face prints as a piece of its own. 0 when the net has no link.
+/// round). Where it is below `model_mm`, no two faces fit that room together at this size (the
+/// merge after the search may still join two whose tabs, only where they go, fit the sheet).
+/// 0 when the net has no link.
 double largest_size_joining_faces(const Net& net, double scale, Vec2 room, double model_mm);
 
 /// The area of the convex polygon `hull` (convex_hull's).
