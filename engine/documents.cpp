@@ -221,11 +221,10 @@ NetRepair small_labels_warning(const LabelSizes& labels, DetailMode detail) {
 // fit a sheet together at this size (a low-poly model printed large: trimesh's BoxTextured cube
 // at 200 mm on A4, 12 pieces on 12 sheets), with the size at which they do (docs/print.md, "Fit
 // layout"); none otherwise.
-std::optional<NetRepair> faces_apart_warning(const JobOptions& options, const NetDocument& net,
+std::optional<NetRepair> faces_apart_warning(const FitSearchOptions& search, const NetDocument& net,
                                              const FitPieces& pieces) {
   if (pieces.pieces < 2 || static_cast<std::size_t>(pieces.pieces) != net.mesh.faces.size())
     return std::nullopt;
-  const FitSearchOptions search = fit_search_options(options, net.mesh);
   const double size = std::floor(
       largest_size_joining_faces(net.net, search.scale, search.room.room, search.model_mm));
   if (!(size >= 1 && size < search.model_mm)) return std::nullopt;
@@ -292,12 +291,13 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   // strips and labels; then nesting onto sheets (fit) or tiling (tile); then drawing.
   bool fit = has_paper(options) && options.layout != PageLayoutMode::Tile;
   std::optional<FitPrint> chosen;
+  std::optional<FitSearchOptions> search;
   std::string layout_note;
   if (fit) {
-    FitSearchOptions search = fit_search_options(options, mesh);
-    search.seconds = search_seconds;
-    search.threads = search_threads;
-    FitChoice choice = search_fit(outcome.net, mesh, search, progress);
+    search = fit_search_options(options, mesh);
+    search->seconds = search_seconds;
+    search->threads = search_threads;
+    FitChoice choice = search_fit(outcome.net, mesh, *search, progress);
     chosen = std::move(choice.print);
     if (!chosen) {
       fit = false;
@@ -350,7 +350,7 @@ void write_print(const JobOptions& options, const DocumentRequest& request, Unfo
   if (labels.illegible > 0)
     outcome.net.warnings.push_back(small_labels_warning(labels, options.detail.mode));
   if (fit)
-    if (std::optional<NetRepair> apart = faces_apart_warning(options, outcome.net, pieces))
+    if (std::optional<NetRepair> apart = faces_apart_warning(*search, outcome.net, pieces))
       outcome.net.warnings.push_back(std::move(*apart));
   if (fit && options.overview.value_or(pieces.pieces > 1)) {
     summary.overview = add_overview(pages, layout, pieces.piece, std::move(graph), mesh,

@@ -53,12 +53,19 @@ double growth_in(Vec2 box, Vec2 room) {
                   std::min(room.y / box.x, room.x / box.y));
 }
 
-/// The largest factor by which the hull can grow and still fit `room` at some turn of
-/// hull_fits_turned.
-double growth_that_fits(const std::vector<Vec2>& hull, Vec2 room) {
+/// The largest factor by which the hull can grow and still fit `room` along one of its edges, as
+/// hull_fits asks.
+double growth_along_edges(const std::vector<Vec2>& hull, Vec2 room) {
   double best = 0;
   for (std::size_t i = 0; i < hull.size(); ++i)
     best = std::max(best, growth_in(box_along(hull, i), room));
+  return best;
+}
+
+/// The largest factor by which the hull can grow and still fit `room` at some turn of
+/// hull_fits_turned.
+double growth_that_fits(const std::vector<Vec2>& hull, Vec2 room) {
+  double best = growth_along_edges(hull, room);
   for (int q = 0; q < kQuarterDegrees; ++q)
     best = std::max(
         best, growth_in(box_turned(hull, q * std::numbers::pi / (2 * kQuarterDegrees)), room));
@@ -75,9 +82,7 @@ double largest_size_joining_faces(const Net& net, double scale, Vec2 room, doubl
     std::vector<Vec2> corners;
     for (Vec2 c : net.points[f]) corners.push_back(scale * c);
     for (Vec2 c : net.points[static_cast<std::size_t>(p)]) corners.push_back(scale * c);
-    const std::vector<Vec2> hull = convex_hull(std::move(corners));
-    for (std::size_t i = 0; i < hull.size(); ++i)
-      growth = std::max(growth, growth_in(box_along(hull, i), room));
+    growth = std::max(growth, growth_along_edges(convex_hull(std::move(corners)), room));
   }
   return growth * model_mm;
 }
