@@ -18,7 +18,10 @@
 #include "core/unfold/net_check.h"
 #include "engine/internal/run_progress.h"
 #include "print/arrange.h"
+#include "print/grow.h"
+#include "print/merge.h"
 #include "print/nest.h"
+#include "print/tendrils.h"
 
 namespace papernet::engine_detail {
 namespace {
@@ -193,7 +196,7 @@ class FitSearch {
     return pace() * (1 + (tries_ == LabelPass::Unplaced ? kLabelledPaces : 0));
   }
 
-  // The chosen way's pieces merged two at a time (print/fit.h, merge_pieces) where the print
+  // The chosen way's pieces merged two at a time (print/merge.h, merge_pieces) where the print
   // costs less: as many sheets or fewer, fewer pieces to cut out and glue. While the search's
   // time lasts, at the pace of its layouts, within the job's merge budget. A merged piece need
   // only fit the sheet (room_.alone), not the room kept for tabs all round it: each merge is laid
@@ -256,9 +259,9 @@ class FitSearch {
 
   // Tendrils cut off where that saves a sheet (docs/print.md, "Tendrils cut off to save a
   // sheet"): saving sheets, the chosen print's pieces cut tendril_cuts_ times where that most
-  // shrinks their hulls (print/fit.h, cut_tendrils) and laid out, kept when they print on fewer
-  // sheets at a lower cost; then each cut glued back, the last first, where the print costs less
-  // without it. Within the search's time, at the pace of its layouts, until the job is
+  // shrinks their hulls (print/tendrils.h, cut_tendrils) and laid out, kept when they print on
+  // fewer sheets at a lower cost; then each cut glued back, the last first, where the print costs
+  // less without it. Within the search's time, at the pace of its layouts, until the job is
   // cancelled. Whether it was kept.
   bool trim(FitPrint& chosen, Progress& progress) {
     std::optional<FitPrint> cut = trimmed(chosen, progress);

@@ -15,6 +15,7 @@
 #include "core/unfold/tabu.h"
 #include "engine/internal/steps.h"
 #include "print/fit.h"
+#include "print/grow.h"
 #include "print/layout.h"
 
 namespace papernet::engine_detail {

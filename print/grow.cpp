@@ -1,4 +1,4 @@
-// Pieces grown from single faces, flattest folds first (print/fit.h, grow_to_fit).
+// Pieces grown from single faces, flattest folds first (print/grow.h, grow_to_fit).
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -12,7 +12,7 @@
 #include "core/unfold/overlap.h"
 #include "core/unfold/overlap_grid.h"
 #include "core/unfold/unfold_tree.h"
-#include "print/fit.h"
+#include "print/grow.h"
 #include "print/internal/number_pieces.h"
 
 namespace papernet {

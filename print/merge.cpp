@@ -1,4 +1,4 @@
-// Pieces merged by unfolding two at a time anew (print/fit.h, merge_pieces).
+// Pieces merged by unfolding two at a time anew (print/merge.h, merge_pieces).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -18,6 +18,7 @@
 #include "print/fit.h"
 #include "print/internal/compact.h"
 #include "print/internal/number_pieces.h"
+#include "print/merge.h"
 
 namespace papernet {
 namespace {

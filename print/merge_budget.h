@@ -4,9 +4,9 @@
 
 namespace papernet {
 
-// The bounds of the merge after the fit search (print/fit.h, MergeBudget), in a header of their
+// The bounds of the merge after the fit search (print/merge.h, MergeBudget), in a header of their
 // own: the print's options (print/layout.h) need them, and most of the code includes those, while
-// only the fit layout's own files include print/fit.h.
+// only the fit layout's own files include print/merge.h.
 
 /// Moved-face tests the merge after the fit search spends at most unless a caller says otherwise
 /// (PrintOptions::merge_budget, JobOptions::merge_budget; MergeBudget::tests).

@@ -1,10 +1,11 @@
-// Tendrils of sprawling pieces cut off, to nest onto fewer sheets (print/fit.h, cut_tendrils).
+// Tendrils of sprawling pieces cut off, to nest onto fewer sheets (print/tendrils.h, cut_tendrils).
 #include <algorithm>
 #include <cstddef>
 #include <vector>
 
 #include "core/unfold/net_metrics.h"
 #include "print/fit.h"
+#include "print/tendrils.h"
 
 namespace papernet {
 namespace {

@@ -38,7 +38,7 @@ std::array<Vec2, 4> tab_trapezoid(const std::array<Vec2, 3>& face, int k, const 
 /// the outside of edge k of `face`: `hits(t0, t1, box)` says whether the tab's two triangles
 /// (their bounding box `box`) overlap an obstacle. False on an edge of length 0. The one room
 /// test of the pass (against the net), of leaf_room (against a fan) and of the print's pieces
-/// grown with room for tabs (print/fit.h, grow_to_fit).
+/// grown with room for tabs (print/grow.h, grow_to_fit).
 template <class Hits>
 bool tab_fits(const Triangle2& face, int k, const std::vector<TabShape>& shapes, double min_height,
               Hits&& hits) {

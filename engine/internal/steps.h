@@ -103,7 +103,7 @@ struct AfterUnfold {
 /// for the net it reaches (a low-poly version collapsed as `detail` says, when that collapses).
 /// When no overlap-free net in one piece is found, not even of a coarser mesh, the mesh is
 /// unfolded in several pieces instead, grown from single faces as the print grows its pieces
-/// (print/fit.h, grow_to_fit; `Piece::grown`). \throw CancelledException.
+/// (print/grow.h, grow_to_fit; `Piece::grown`). \throw CancelledException.
 Piece unfold_piece(const Mesh& part, const JobOptions& options, const SimplifyTarget& detail,
                    double seconds, const AfterUnfold& after, std::size_t input_faces,
                    Progress& progress);

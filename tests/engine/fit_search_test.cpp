@@ -18,6 +18,7 @@
 #include "engine/internal/steps.h"
 #include "engine/pipeline.h"
 #include "print/fit.h"
+#include "print/grow.h"
 #include "tests/support/job_input.h"
 #include "tests/support/meshes.h"
 #include "tests/support/paths.h"

@@ -18,7 +18,9 @@
 #include "core/unfold/unfolding.h"
 #include "print/arrange.h"
 #include "print/fit.h"
+#include "print/grow.h"
 #include "print/internal/nest_outlines.h"
+#include "print/merge.h"
 #include "print/nest.h"
 #include "print/svg.h"
 #include "tests/support/meshes.h"
@@ -278,7 +280,7 @@ void expect_nets_that_fit(const Mesh& mesh, const FitPieces& pieces, double scal
     EXPECT_TRUE(fits_at_some_turn(points[p], kRoom, 1.0)) << name << ": piece " << p;
 }
 
-// Pieces grown from single faces, flattest folds first (print/fit.h, grow_to_fit): each piece
+// Pieces grown from single faces, flattest folds first (print/grow.h, grow_to_fit): each piece
 // is a net of its faces (one tree, glued edges that meet, no overlaps: the independent checker)
 // and fits the room at some turn; the same mesh grows the same pieces.
 TEST(Grow, PiecesAreNetsOfTheirFacesThatEachFitTheSheet) {
@@ -398,7 +400,7 @@ TEST(Grow, SmallPiecesGrownAgainFaceByFaceLeaveFewerPieces) {
   EXPECT_GE(fewer, 2);
 }
 
-// Pieces merged two at a time, their faces unfolded anew together (print/fit.h, merge_pieces):
+// Pieces merged two at a time, their faces unfolded anew together (print/merge.h, merge_pieces):
 // fewer pieces than grown, each still a net of its faces (the independent checker) that fits the
 // room, with room for a tab on every cut inside; the same pieces every time. Offered to a `keep`
 // that refuses, no merge is made, and no more are offered than the budget allows; one that
@@ -412,7 +414,7 @@ TEST(Merge, PiecesMergedTwoAtATimeAreFewerNetsThatFitWithRoomForTabs) {
   const std::vector<int> one(mesh.faces.size(), 0);
   const FitPieces grown =
       grow_to_fit(mesh, one, scale, {kRoom, {}}, tabs.min_height, tabs.angle_deg, 6);
-  // Less work than the print's merge (print/fit.h): the sanitized builds run this too.
+  // Less work than the print's merge (print/merge.h): the sanitized builds run this too.
   MergeBudget budget;
   budget.tests = 50'000;
   budget.tab_evaluations = 20'000;

@@ -1,5 +1,5 @@
-// Tendrils of sprawling pieces cut off (print/fit.h, cut_tendrils; docs/print.md, "Tendrils cut
-// off to save a sheet"): each cut is the link whose cut most shrinks its piece's convex hull,
+// Tendrils of sprawling pieces cut off (print/tendrils.h, cut_tendrils; docs/print.md, "Tendrils
+// cut off to save a sheet"): each cut is the link whose cut most shrinks its piece's convex hull,
 // found here by trying every link, and undo_tendril_cut undoes it.
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 #include "core/unfold/tabu.h"
 #include "print/fit.h"
 #include "print/layout.h"
+#include "print/tendrils.h"
 #include "tests/support/meshes.h"
 #include "tests/support/polygons.h"
 
