@@ -66,7 +66,7 @@ struct PrintSummary {
   std::size_t tabs_omitted = 0;  ///< cut edges without glue (tabs none)
   std::size_t labels = 0;        ///< edge numbers printed (two per glued edge)
   double smallest_label_mm = 0;  ///< text height of the smallest (0 without labels)
-  std::size_t small_labels = 0;  ///< labels under kLegibleLabelMm (print/layout.h)
+  std::size_t small_labels = 0;  ///< labels under kLegibleLabelMm (print/labels.h)
 };
 
 /// What the pass that makes room for glue tabs did (core/tabs), and why edges stay without room.

@@ -12,6 +12,7 @@
 #include "print/internal/label_leaders.h"
 #include "print/internal/label_room.h"
 #include "print/internal/piece_labels.h"
+#include "print/labels.h"
 
 namespace papernet {
 
