@@ -1,7 +1,7 @@
-// A job's callback URL (api/options.h, `parse_callback_url`): checked when the options are
+// A job's callback URL (api/callback_url.h, `parse_callback_url`): checked when the options are
 // read, so that one that can never be sent is refused before a job exists, and taken apart
 // again by the webhook's sender at each attempt.
-#include "api/options.h"
+#include "api/callback_url.h"
 
 #include <algorithm>
 #include <charconv>
@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/ascii.h"
+#include "core/errors.h"
 
 namespace papernet {
 

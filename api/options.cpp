@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "api/callback_url.h"
 #include "core/ascii.h"
 #include "core/io/json_text.h"
 

@@ -110,17 +110,6 @@ struct JobOptions {
   std::optional<std::string> callback_url;
 };
 
-/// A callback_url's parts.
-struct CallbackUrl {
-  std::string host;  ///< lower case; an IPv6 address without its brackets
-  int port = 80;
-  std::string target = "/";  ///< path and query
-};
-
-/// Splits http://HOST[:PORT][/PATH][?QUERY] (at most 2048 bytes, no user, no fragment).
-/// \throw InvalidOptionException invalid_option_value naming callback_url.
-CallbackUrl parse_callback_url(std::string_view url);
-
 inline constexpr std::size_t kMaxTitleChars = 80;
 
 /// Limits a front end puts on options (the service's from its configuration).

@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#include "api/options.h"
+#include "api/callback_url.h"
 #include "server/config.h"
 #include "server/job_store.h"
 

@@ -1,11 +1,12 @@
-// A job's callback URL taken apart (api/options.h, `parse_callback_url`): the host in lower case
-// (an IPv6 address without its brackets), the port (80 unless given), the path and query the
+// A job's callback URL taken apart (api/callback_url.h, `parse_callback_url`): the host in lower
+// case (an IPv6 address without its brackets), the port (80 unless given), the path and query the
 // webhook asks for; and what the service cannot send to refused with a message naming why.
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "api/options.h"
+#include "api/callback_url.h"
+#include "core/errors.h"
 
 namespace papernet {
 namespace {
