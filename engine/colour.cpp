@@ -11,7 +11,7 @@
 
 #include "core/io/image.h"
 #include "core/mesh/face_tree.h"
-#include "engine/internal/steps.h"
+#include "engine/internal/colour.h"
 
 namespace papernet::engine_detail {
 namespace {

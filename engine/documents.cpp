@@ -13,6 +13,7 @@
 #include "core/io/write_mesh.h"
 #include "core/mesh/mesh.h"
 #include "core/unfold/net_metrics.h"
+#include "engine/internal/colour.h"
 #include "engine/internal/colour_pace.h"
 #include "engine/internal/fit_search.h"
 #include "engine/internal/run_progress.h"

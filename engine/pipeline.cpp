@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "core/errors.h"
+#include "engine/internal/colour.h"
 #include "engine/internal/run_progress.h"
 #include "engine/internal/steps.h"
 #include "print/layout.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/internal/steps.h"
+#include "engine/internal/colour.h"
 
 namespace papernet::engine_detail {
 namespace {
