@@ -4,7 +4,7 @@
 
 #include "core/io/json_text.h"
 #include "server/job_json.h"
-#include "server/job_store.h"
+#include "server/store_records.h"
 
 namespace papernet::server {
 

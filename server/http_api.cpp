@@ -15,8 +15,8 @@
 #include "server/http_server.h"
 #include "server/internal/methods_cors.h"
 #include "server/job_json.h"
-#include "server/job_store.h"
 #include "server/problem.h"
+#include "server/store_records.h"
 #include "server/upload.h"
 #include "server/webhooks.h"
 

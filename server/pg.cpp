@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstdio>
 
+#include "server/job_store.h"
 #include "server/metrics.h"
 
 namespace papernet::server::pg {

@@ -15,7 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "server/job_store.h"
+#include "server/store_records.h"
 
 typedef struct pg_conn PGconn;
 typedef struct pg_result PGresult;

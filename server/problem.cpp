@@ -6,7 +6,7 @@
 #include "core/errors.h"
 #include "core/mesh/validate.h"
 #include "engine/pipeline.h"
-#include "server/job_store.h"
+#include "server/store_records.h"
 
 namespace papernet::server {
 namespace {

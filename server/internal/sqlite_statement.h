@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "server/job_store.h"
+#include "server/store_records.h"
 
 namespace papernet::server::sqlite {
 
