@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "server/job_service.h"
+#include "server/service_records.h"
 
 namespace papernet::server {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "server/job_service.h"
+#include "server/service_records.h"
 
 namespace papernet::server {
 
