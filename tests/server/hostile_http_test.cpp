@@ -9,10 +9,14 @@
 #include <zlib.h>
 
 #include <atomic>
+#include <iostream>
 #include <map>
 
+#include "tests/support/files.h"
 #include "tests/support/hostile_bytes.h"
 #include "tests/support/postgres.h"
+#include "tests/support/proc_memory.h"
+#include "tests/support/serve_http.h"
 #include "tests/support/serve_process.h"
 
 using papernet::test::draco_header;

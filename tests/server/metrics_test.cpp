@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <fstream>
 
 #include "server/metrics.h"
+#include "tests/support/files.h"
 #include "tests/support/postgres.h"
+#include "tests/support/serve_http.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iostream>
 #include <map>
 #include <regex>
 #include <set>
 
+#include "tests/support/files.h"
 #include "tests/support/paths.h"
 #include "tests/support/sanitized.h"
+#include "tests/support/serve_http.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;

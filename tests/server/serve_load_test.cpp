@@ -5,11 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <iostream>
 #include <map>
 #include <mutex>
 #include <set>
 
+#include "tests/support/files.h"
 #include "tests/support/postgres.h"
+#include "tests/support/proc_memory.h"
+#include "tests/support/sanitized.h"
+#include "tests/support/serve_http.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;

@@ -6,9 +6,12 @@
 
 #include "api/net_json.h"
 #include "core/unfold/net_check.h"
+#include "tests/support/files.h"
 #include "tests/support/meshes.h"
 #include "tests/support/paths.h"
 #include "tests/support/postgres.h"
+#include "tests/support/sanitized.h"
+#include "tests/support/serve_http.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;

@@ -11,8 +11,12 @@
 
 #include <algorithm>
 #include <functional>
+#include <iostream>
 
+#include "tests/support/files.h"
 #include "tests/support/postgres.h"
+#include "tests/support/sanitized.h"
+#include "tests/support/serve_http.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 
 #include "server/api_keys.h"
+#include "tests/support/files.h"
 #include "tests/support/paths.h"
 #include "tests/support/postgres.h"
+#include "tests/support/serve_http.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;

@@ -13,6 +13,7 @@
 
 #include "server/webhooks.h"
 #include "tests/support/postgres.h"
+#include "tests/support/serve_http.h"
 #include "tests/support/serve_process.h"
 
 using namespace papernet::test;

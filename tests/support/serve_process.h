@@ -1,5 +1,5 @@
-// A real `papernet serve` process on a free loopback port, for the end-to-end tests, and the
-// HTTP helpers they share.
+// A real `papernet serve` process on a free loopback port, for the end-to-end tests. The HTTP
+// helpers they share: serve_http.h.
 #pragma once
 
 #include <fcntl.h>
@@ -11,10 +11,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
-#include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,17 +18,11 @@
 #include "tests/support/files.h"
 #include "tests/support/paths.h"
 #include "tests/support/postgres.h"
-#include "tests/support/sanitized.h"
 
 namespace papernet::test {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 using namespace std::chrono_literals;
-
-inline std::string test_mesh(const std::string& name) {
-  return read_file(fs::path(papernet::test::test_data_dir()) / name);
-}
 
 // One `papernet serve` process with its own data directory.
 class Server {
@@ -139,101 +129,5 @@ class Server {
   pid_t pid_ = -1;
   bool owns_ = true;
 };
-
-inline json body(const httplib::Result& res) { return json::parse(res->body); }
-
-inline std::string submit(const Server& s, const std::string& mesh, const std::string& type,
-                          const std::string& query = "") {
-  auto res = s.client().Post("/v1/jobs" + query, mesh, type);
-  EXPECT_TRUE(res);
-  if (!res) return "";
-  EXPECT_EQ(res->status, 202) << res->body;
-  EXPECT_EQ(res->get_header_value("Location"), "/v1/jobs/" + body(res)["id"].get<std::string>());
-  return body(res)["id"];
-}
-
-inline json wait_final(const Server& s, const std::string& id, int seconds = 60) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
-  json job;
-  while (std::chrono::steady_clock::now() < end) {
-    auto res = s.client().Get("/v1/jobs/" + id);
-    if (res && res->status == 200) {
-      job = body(res);
-      const std::string st = job["status"];
-      if (st != "queued" && st != "running") return job;
-    }
-    std::this_thread::sleep_for(20ms);
-  }
-  ADD_FAILURE() << "job " << id << " did not finish: " << job.dump();
-  return job;
-}
-
-// Polls until the job runs; tests that interrupt a running job need it caught in the act.
-inline void wait_running(const Server& s, const std::string& id) {
-  const auto end = std::chrono::steady_clock::now() + 30s;
-  std::string st;
-  while (std::chrono::steady_clock::now() < end) {
-    st = body(s.client().Get("/v1/jobs/" + id))["status"];
-    if (st != "queued") break;
-    std::this_thread::sleep_for(5ms);
-  }
-  ASSERT_EQ(st, "running") << "the test needs a job that runs for a while";
-}
-
-// Polls until the running job reports `phase` (its progress), or it ends. The wait is a
-// bound on a slow machine, not a figure: under TSan, with ctest running two server tests on two
-// cores, the Duck's colour job had not reached its pages after 60 s (2026-11-29), where the whole
-// test takes 18 s alone.
-inline void wait_phase(const Server& s, const std::string& id, const std::string& phase) {
-#ifdef PAPERNET_TEST_SANITIZED
-  const auto end = std::chrono::steady_clock::now() + 240s;
-#else
-  const auto end = std::chrono::steady_clock::now() + 60s;
-#endif
-  json job;
-  while (std::chrono::steady_clock::now() < end) {
-    job = body(s.client().Get("/v1/jobs/" + id));
-    if (job["status"] != "queued" && job["status"] != "running") break;
-    if (job["progress"].value("phase", "") == phase) return;
-    std::this_thread::sleep_for(5ms);
-  }
-  FAIL() << "the test needs a job caught in its " << phase << " phase: " << job.dump();
-}
-
-inline void expect_problem(const httplib::Result& res, int status, const std::string& code) {
-  ASSERT_TRUE(res);
-  EXPECT_EQ(res->status, status) << res->body;
-  EXPECT_EQ(res->get_header_value("Content-Type"), "application/problem+json");
-  const json doc = json::parse(res->body, nullptr, false);
-  ASSERT_TRUE(doc.is_object()) << res->body;
-  EXPECT_EQ(doc["code"], code) << res->body;
-  EXPECT_EQ(doc["status"], status);
-  EXPECT_FALSE(doc["detail"].get<std::string>().empty());
-}
-
-/// A field of /proc/PID/status in kB (VmRSS, VmHWM).
-inline std::size_t proc_status_kb(pid_t pid, const std::string& field) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(field + ":", 0) == 0) return std::stoul(line.substr(field.size() + 1));
-  ADD_FAILURE() << "no " << field << " in /proc/" << pid << "/status";
-  return 0;
-}
-
-/// Checks that a server's memory figure (kB) grew by less than `bound_kb`. Under
-/// AddressSanitizer (`make sanitize`) the figures measure ASan's allocator, which keeps freed
-/// blocks in a quarantine of up to 256 MB and adds redzones, not ours: there the bound is
-/// reported as not checked, and the plain build (`make check`) checks it.
-inline void expect_memory_growth_below(std::size_t before_kb, std::size_t after_kb,
-                                       std::size_t bound_kb, const std::string& what) {
-#ifdef PAPERNET_TEST_ASAN
-  std::cout << "[ figures  ] ASan build: memory bound (" << bound_kb << " kB, " << what
-            << ") not checked, grew " << (after_kb > before_kb ? after_kb - before_kb : 0)
-            << " kB\n";
-#else
-  EXPECT_LT(after_kb, before_kb + bound_kb) << what;
-#endif
-}
 
 }  // namespace papernet::test
