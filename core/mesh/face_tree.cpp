@@ -56,14 +56,14 @@ double FaceTree::distance2(Vec3 p, int face) const {
   return distance2_to_triangle(p, mesh_.vertices[f[0]], mesh_.vertices[f[1]], mesh_.vertices[f[2]]);
 }
 
-std::pair<double, int> FaceTree::closest(Vec3 p, int hint) const {
+std::pair<double, int> FaceTree::closest(Vec3 p, int hint, double enough2) const {
   double best = std::numeric_limits<double>::infinity();
   int best_face = -1;
   if (hint >= 0) best = distance2(p, hint), best_face = hint;
   int stack[128];
   int top = 0;
   stack[top++] = 0;
-  while (top > 0) {
+  while (top > 0 && best > enough2) {
     const Node& n = nodes_[stack[--top]];
     if (box_distance2(p, n) >= best) continue;
     if (n.count > 0) {

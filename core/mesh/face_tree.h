@@ -22,8 +22,10 @@ class FaceTree {
   double distance2(Vec3 p, int face) const;
 
   /// Closest face to p and its squared distance; `hint` (a face likely near p, or -1) primes
-  /// the search bound.
-  std::pair<double, int> closest(Vec3 p, int hint = -1) const;
+  /// the search bound. With `enough2` > 0 the search ends at the first face found within that
+  /// squared distance, which need not be the closest: a caller that only needs to know whether
+  /// p is within it (or p's distance where it is larger) saves the rest of the search.
+  std::pair<double, int> closest(Vec3 p, int hint = -1, double enough2 = 0) const;
 
  private:
   static constexpr int kLeaf = 4;

@@ -45,13 +45,19 @@ void bound(Patch& patch, const FaceTree& tree) {
 // within it.
 double one_side(const Mesh& from, const FaceTree& tree, double& attained, double rel, double abs,
                 std::size_t max_refinements, double enough) {
+  // A point within half the distance attained so far of the other surface cannot raise it, so
+  // its search may end at the first face within that half (FaceTree::closest's `enough2`):
+  // `attained` stays exact, and the bounds below, from a distance no smaller than the true one,
+  // stay bounds, exact for the points that come near the largest distance, whose triangles are
+  // refined first (docs/performance.md). On CAD plates fanned into long slivers, where one exact
+  // search measures hundreds of faces, most searches end so.
   std::vector<double> vd(from.vertices.size(), -1);
   std::vector<int> vn(from.vertices.size(), -1);
   int hint = -1;
   for (const auto& f : from.faces)
     for (int v : f) {
       if (vd[v] >= 0) continue;
-      const auto [d2, face] = tree.closest(from.vertices[v], hint);
+      const auto [d2, face] = tree.closest(from.vertices[v], hint, 0.25 * attained * attained);
       vd[v] = std::sqrt(d2);
       vn[v] = hint = face;
       attained = std::max(attained, vd[v]);
@@ -84,7 +90,7 @@ double one_side(const Mesh& from, const FaceTree& tree, double& attained, double
     std::array<int, 3> mn;
     for (int i = 0; i < 3; ++i) {
       m[i] = 0.5 * (top.p[i] + top.p[(i + 1) % 3]);
-      const auto [d2, face] = tree.closest(m[i], top.near[i]);
+      const auto [d2, face] = tree.closest(m[i], top.near[i], 0.25 * attained * attained);
       md[i] = std::sqrt(d2);
       mn[i] = face;
       attained = std::max(attained, md[i]);

@@ -38,9 +38,8 @@ HausdorffResult hausdorff_distance(const Mesh& a, const Mesh& b,
                                    const HausdorffOptions& options = {});
 
 /// Two-sided Hausdorff distance of `approximation` to `input`, relative to the input's
-/// bounding-box diagonal, with the bounded refinement that approximate results use (a few tenths
-/// of a second on most meshes; seconds where the input is fanned into long slivers, as CAD plates
-/// can be, whose closest-face queries each measure hundreds of faces: docs/performance.md).
+/// bounding-box diagonal, with the bounded refinement that approximate results use (its time on
+/// real models, CAD plates fanned into long slivers among them: docs/performance.md).
 double approximation_distance(const Mesh& input, const Mesh& approximation);
 
 /// True when approximation_distance(input, approximation) <= `distance` (relative to the input's

@@ -76,6 +76,35 @@ TEST(FaceTree, ClosestFaceOfSliversIsTheBruteForceOne) {
   expect_closest_as_brute_force(sliver_bar(200, 8, 2, 120), 3000);
 }
 
+// With `enough2`, a point within it gets a face within it (its distance, not always the least),
+// and a point farther gets the closest face, as without it.
+TEST(FaceTree, SearchEndsAtAFaceWithinEnough) {
+  const Mesh m = sliver_bar(200, 8, 2, 120);
+  const FaceTree tree(m);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> x(-10, 210), y(-4, 12), z(-3, 5);
+  int early = 0, exact = 0;
+  for (int s = 0; s < 3000; ++s) {
+    const Vec3 p{x(rng), y(rng), z(rng)};
+    const double truth = brute_force(m, p);
+    const double enough2 = 4.0;
+    const auto [d2, f] = tree.closest(p, -1, enough2);
+    ASSERT_GE(f, 0);
+    EXPECT_NEAR(tree.distance2(p, f), d2, 1e-9 * (1 + d2)) << "sample " << s;
+    if (truth <= enough2) {
+      ASSERT_LE(d2, enough2) << "sample " << s;
+      ASSERT_GE(d2, truth - 1e-9 * (1 + truth)) << "sample " << s;
+      if (d2 > truth + 1e-9 * (1 + truth)) ++early;
+    } else {
+      ASSERT_NEAR(d2, truth, 1e-9 * (1 + truth)) << "sample " << s;
+      ++exact;
+    }
+  }
+  // Both cases were met, and some searches ended before the closest face.
+  EXPECT_GT(early, 0);
+  EXPECT_GT(exact, 0);
+}
+
 TEST(FaceTree, ClosestFaceOfAMeshIsTheBruteForceOne) {
   expect_closest_as_brute_force(
       load_mesh_file(papernet::test::test_data_dir() + "/sample.obj").mesh, 2000);

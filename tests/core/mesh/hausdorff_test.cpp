@@ -118,6 +118,26 @@ TEST(Hausdorff, DecimatedMeshAgreesWithDenseSampling) {
 
 // The yes-or-no question answers as the distance does, on both sides of it: the decimated sample
 // mesh, and the nested cubes (whose farthest points are corners, found before any refinement).
+// A plate fanned into long slivers (as CAD programs export flat faces) against two triangles
+// parallel to it: every point is the offset apart, found exactly although most closest-face
+// searches end at the first sliver within the distance already attained.
+TEST(Hausdorff, SliverFannedPlatesAreTheirOffsetApart) {
+  Mesh fan;
+  const int points = 200;
+  fan.vertices = {{0, 3, 0}, {4, 3, 0}};
+  for (int i = 0; i <= points; ++i) fan.vertices.push_back({4.0 * i / points, 0, 0});
+  for (int i = 0; i < points; ++i) fan.faces.push_back({i < points / 2 ? 0 : 1, 2 + i, 3 + i});
+  fan.faces.push_back({0, 2 + points / 2, 1});
+  Mesh plate;
+  plate.vertices = {{0, 0, 0.25}, {4, 0, 0.25}, {4, 3, 0.25}, {0, 3, 0.25}};
+  plate.faces = {{0, 1, 2}, {0, 2, 3}};
+  expect_bracketed(hausdorff_distance(fan, plate), 0.25 / 5);
+  expect_bracketed(hausdorff_distance(plate, fan), 0.25 / 5);
+  EXPECT_NEAR(approximation_distance(fan, plate), 0.25 / 5, 1e-12);
+  EXPECT_TRUE(approximation_within(fan, plate, 0.0501));
+  EXPECT_FALSE(approximation_within(fan, plate, 0.0499));
+}
+
 TEST(Hausdorff, WithinADistanceAgreesWithTheDistance) {
   const Mesh input = load_mesh_file(papernet::test::test_data_dir() + "/sample.obj").mesh;
   Progress progress;
