@@ -113,14 +113,14 @@ double one_side(const Mesh& from, const FaceTree& tree, double& attained, double
 
 namespace {
 
-HausdorffResult two_sided(const Mesh& a, const Mesh& b, const HausdorffOptions& options,
-                          double enough) {
+// `tree_a` is a's face tree, `diagonal` its bounding-box diagonal.
+HausdorffResult two_sided(const Mesh& a, const FaceTree& tree_a, double diagonal, const Mesh& b,
+                          const HausdorffOptions& options, double enough) {
   if (a.faces.empty() || b.faces.empty())
     throw InvalidInputException("Hausdorff distance needs two meshes with faces");
-  const double diagonal = bounding_box_diagonal(a);
   const double scale = diagonal > 0 ? diagonal : 1;
   const double abs = options.absolute_accuracy * scale;
-  const FaceTree tree_a(a), tree_b(b);
+  const FaceTree tree_b(b);
   double attained = 0;
   enough *= scale;
   const double ab = one_side(a, tree_b, attained, options.relative_accuracy, abs,
@@ -144,17 +144,30 @@ HausdorffOptions approximation_accuracy() {
 }  // namespace
 
 HausdorffResult hausdorff_distance(const Mesh& a, const Mesh& b, const HausdorffOptions& options) {
-  return two_sided(a, b, options, std::numeric_limits<double>::infinity());
+  return two_sided(a, FaceTree(a), bounding_box_diagonal(a), b, options,
+                   std::numeric_limits<double>::infinity());
 }
 
-double approximation_distance(const Mesh& input, const Mesh& approximation) {
-  return two_sided(input, approximation, approximation_accuracy(),
+ApproximationMeasure::ApproximationMeasure(const Mesh& input)
+    : input_(input), tree_(input), diagonal_(bounding_box_diagonal(input)) {}
+
+double ApproximationMeasure::distance(const Mesh& approximation) const {
+  return two_sided(input_, tree_, diagonal_, approximation, approximation_accuracy(),
                    std::numeric_limits<double>::infinity())
       .distance;
 }
 
+bool ApproximationMeasure::within(const Mesh& approximation, double distance) const {
+  return two_sided(input_, tree_, diagonal_, approximation, approximation_accuracy(), distance)
+             .distance <= distance;
+}
+
+double approximation_distance(const Mesh& input, const Mesh& approximation) {
+  return ApproximationMeasure(input).distance(approximation);
+}
+
 bool approximation_within(const Mesh& input, const Mesh& approximation, double distance) {
-  return two_sided(input, approximation, approximation_accuracy(), distance).distance <= distance;
+  return ApproximationMeasure(input).within(approximation, distance);
 }
 
 }  // namespace papernet

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 
+#include "core/mesh/face_tree.h"
 #include "core/mesh/mesh.h"
 
 namespace papernet {
@@ -46,5 +47,21 @@ double approximation_distance(const Mesh& input, const Mesh& approximation);
 /// diagonal, as it), found with less work: it stops at the first point farther than `distance`,
 /// and refines no part of a surface known to be within it.
 bool approximation_within(const Mesh& input, const Mesh& approximation, double distance);
+
+/// approximation_distance and approximation_within of many approximations of one input, its
+/// face tree built once. Keeps a reference to `input`, which must outlive it.
+class ApproximationMeasure {
+ public:
+  explicit ApproximationMeasure(const Mesh& input);
+  /// approximation_distance(input, approximation).
+  double distance(const Mesh& approximation) const;
+  /// approximation_within(input, approximation, distance).
+  bool within(const Mesh& approximation, double distance) const;
+
+ private:
+  const Mesh& input_;
+  FaceTree tree_;
+  double diagonal_;
+};
 
 }  // namespace papernet

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -75,13 +76,19 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   // The distance allowed, relative to the diagonal (as approximation_within measures).
   const double allowed =
       diagonal > 0 ? target.max_distance / diagonal : std::numeric_limits<double>::infinity();
+  // The distance of each candidate to the input, measured against the input's face tree built
+  // once, when first needed.
+  std::optional<ApproximationMeasure> measured_from;
+  const auto measure = [&]() -> const ApproximationMeasure& {
+    if (!measured_from) measured_from.emplace(mesh);
+    return *measured_from;
+  };
   // A thin plate, its walls too narrow to fold, label or glue, is printed as one layer of card:
   // one of its sides (plate_side), when that is within the distance allowed.
   const auto one_side = [&](const Mesh& m) -> std::optional<Mesh> {
     if (!target.thin_plates) return std::nullopt;
     std::optional<Mesh> side = plate_side(m);
-    if (side && (folds_over_its_border(*side) || !approximation_within(mesh, *side, allowed)))
-      side.reset();
+    if (side && (folds_over_its_border(*side) || !measure().within(*side, allowed))) side.reset();
     return side;
   };
   // The plate's side first (the collapse would keep its walls: no collapse may join its two
@@ -95,7 +102,7 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
     Mesh m = from;
     if (target.thin_face > 0 &&
         thicken_thin_faces(m, target.thin_face, kThinFaceMove * target.max_distance) > 0 &&
-        approximation_within(mesh, m, allowed)) {
+        measure().within(m, allowed)) {
       try {
         [[maybe_unused]] const ProgressiveMesh manifold(m);  // and oriented, as `take` asks
         return m;
@@ -135,18 +142,18 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   // build are plugged on the most collapsed mesh still within it (undone in batches that double:
   // plugging the input itself took minutes on a scan of 76,840 faces), that is collapsed to the
   // faces asked, and kept when it moves the surface less.
-  if (collapse && target.max_tunnel_loop > 0 && !approximation_within(mesh, simple, allowed)) {
+  if (collapse && target.max_tunnel_loop > 0 && !measure().within(simple, allowed)) {
     ProgressiveMesh back = pm;
     for (std::size_t batch = 16; back.splits_left() > 0 && !out_of_time(); batch *= 2) {
       for (std::size_t i = 0; i < batch && back.splits_left() > 0; ++i) back.split();
-      if (approximation_within(mesh, back.compact(), allowed)) break;
+      if (measure().within(back.compact(), allowed)) break;
     }
     Mesh m = back.compact();
     if (plug_small_tunnels(m) > 0) {
       try {
         ProgressiveMesh tried = decimate(m, {strategy, target.faces}, progress);
         Mesh next = tried.compact();
-        if (approximation_distance(mesh, next) < approximation_distance(mesh, simple)) {
+        if (measure().distance(next) < measure().distance(simple)) {
           pm = std::move(tried);
           simple = std::move(next);
         }
@@ -157,7 +164,7 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
   }
   // Takes `m` for the mesh collapsed so far when it is no farther than the distance allowed.
   const auto take = [&](Mesh& m) {
-    if (!approximation_within(mesh, m, allowed)) return false;
+    if (!measure().within(m, allowed)) return false;
     try {
       pm = ProgressiveMesh(m);
     } catch (const InvalidInputException&) {
@@ -207,8 +214,7 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
         if (!p.try_collapse(gone, kept, at)) continue;  // not an edge now, or not legal
         double low = std::numeric_limits<double>::infinity();
         for (const int f : p.vertex_faces(kept)) low = std::min(low, face_height(p.mesh(), f));
-        if (low >= lowest && (!measured || approximation_within(mesh, p.compact(), allowed)))
-          return true;
+        if (low >= lowest && (!measured || measure().within(p.compact(), allowed))) return true;
         p.split();
       }
       return false;
@@ -222,7 +228,7 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
         if (one) failed = made ? 0 : failed + 1;
       }
       if (made == 0) break;
-      if (one || approximation_within(mesh, p.compact(), allowed)) {
+      if (one || measure().within(p.compact(), allowed)) {
         collapsed += made;
         next = end;
         batch = std::min(edges.size(), 2 * batch);
@@ -261,7 +267,7 @@ std::optional<Mesh> simplify_mesh(const Mesh& mesh, CollapseStrategy strategy,
       break;
     }
     Mesh next = tried.compact();
-    if (!approximation_within(mesh, next, allowed)) {
+    if (!measure().within(next, allowed)) {
       if (before / step <= 1) {
         if (unstuck()) continue;
         break;
