@@ -116,11 +116,9 @@ TEST(Hausdorff, DecimatedMeshAgreesWithDenseSampling) {
   EXPECT_GT(brute, 0.5 * r.distance);  // the dense samples see most of it
 }
 
-// The yes-or-no question answers as the distance does, on both sides of it: the decimated sample
-// mesh, and the nested cubes (whose farthest points are corners, found before any refinement).
 // A plate fanned into long slivers (as CAD programs export flat faces) against two triangles
 // parallel to it: every point is the offset apart, found exactly although most closest-face
-// searches end at the first sliver within the distance already attained.
+// searches end at the first sliver within half the distance already attained.
 TEST(Hausdorff, SliverFannedPlatesAreTheirOffsetApart) {
   Mesh fan;
   const int points = 200;
@@ -138,6 +136,8 @@ TEST(Hausdorff, SliverFannedPlatesAreTheirOffsetApart) {
   EXPECT_FALSE(approximation_within(fan, plate, 0.0499));
 }
 
+// The yes-or-no question answers as the distance does, on both sides of it: the decimated sample
+// mesh, and the nested cubes (whose farthest points are corners, found before any refinement).
 TEST(Hausdorff, WithinADistanceAgreesWithTheDistance) {
   const Mesh input = load_mesh_file(papernet::test::test_data_dir() + "/sample.obj").mesh;
   Progress progress;
