@@ -3,6 +3,7 @@
 #include <polyclipping/clipper.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -124,6 +125,12 @@ struct Shape {
   /// The mask's widest rows (row, longest run of its cells in that row), widest first: a place
   /// where the sheet's row under one of them has no free run as long is ruled out at once.
   std::vector<std::pair<int, int>> widest;
+  /// Bands of the mask: `height` rows in a row, each with a run of at least `run` cells. A sheet
+  /// without as many rows in a row, each with a free run that long, has no place for the mask.
+  struct Band {
+    int height = 0, run = 0;
+  };
+  std::vector<Band> bands;
 };
 
 // How many of a mask's widest rows a place's rows are compared with first (Shape::widest).
@@ -136,12 +143,40 @@ struct Sheet {
       : cells(cols, rows),
         free_run(static_cast<std::size_t>(rows), cols),
         widest_free(cols),
-        free(static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows)) {}
+        free(static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows)),
+        tallest(static_cast<std::size_t>(cols) + 1, rows) {}
   Bits cells;
   std::vector<int> free_run;
   int widest_free;
   std::size_t free;
+  /// tallest[run]: the most rows in a row that each have a free run of at least `run` cells.
+  std::vector<int> tallest;
 };
+
+// Sheet::tallest from Sheet::free_run. Each row, with the rows around it up to the first row of
+// a shorter free run either way, makes a stretch whose shortest free run is the row's own; the
+// stretch counts for every run up to that one. The stretches are found with a stack of rows whose
+// free runs increase.
+void find_tallest(Sheet& sheet) {
+  const auto rows = static_cast<int>(sheet.free_run.size());
+  std::fill(sheet.tallest.begin(), sheet.tallest.end(), 0);
+  std::vector<int> stack;
+  for (int r = 0; r <= rows; ++r) {
+    const int run = r < rows ? sheet.free_run[static_cast<std::size_t>(r)] : -1;
+    while (!stack.empty() && sheet.free_run[static_cast<std::size_t>(stack.back())] >= run) {
+      const int low = sheet.free_run[static_cast<std::size_t>(stack.back())];
+      stack.pop_back();
+      const int from = stack.empty() ? 0 : stack.back() + 1;
+      int& t = sheet.tallest[static_cast<std::size_t>(low)];
+      t = std::max(t, r - from);
+    }
+    stack.push_back(r);
+  }
+  for (auto run = static_cast<int>(sheet.tallest.size()) - 2; run >= 0; --run)
+    sheet.tallest[static_cast<std::size_t>(run)] =
+        std::max(sheet.tallest[static_cast<std::size_t>(run)],
+                 sheet.tallest[static_cast<std::size_t>(run) + 1]);
+}
 
 // How many cells of a mask are probed first (Shape::probes), and then (Shape::more_probes).
 constexpr std::size_t kProbes = 24;
@@ -151,7 +186,7 @@ constexpr std::size_t kMoreProbes = 256;
 // time that saves a sheet).
 constexpr int kLastSheetRounds = 3;
 
-// The mask's counts and probes (Shape::cells, widest, probes, more_probes).
+// The mask's counts, bands and probes (Shape::cells, widest, bands, probes, more_probes).
 void finish(Shape& shape) {
   const int h = shape.mask.height();
   std::vector<std::pair<int, int>> runs;                                // (row, longest run)
@@ -162,10 +197,29 @@ void finish(Shape& shape) {
     runs.emplace_back(j, shape.mask.longest_run(j, true));
   }
   shape.cells = before.back();
-  std::stable_sort(runs.begin(), runs.end(),
-                   [](const auto& a, const auto& b) { return a.second > b.second; });
-  runs.resize(std::min(runs.size(), kWidestRows));
-  shape.widest = std::move(runs);
+  // The tallest band of rows with runs of a quarter, and of half, the widest run.
+  int widest_run = 0;
+  for (const auto& [j, run] : runs) widest_run = std::max(widest_run, run);
+  for (const int share : {4, 2}) {
+    const int least = std::max(1, widest_run / share);
+    Shape::Band band;
+    for (int j = 0; j < h;) {
+      int end = j;
+      while (end < h && runs[static_cast<std::size_t>(end)].second >= least) ++end;
+      if (end - j > band.height) band = {end - j, least};
+      j = end + 1;
+    }
+    if (band.height > 1) shape.bands.push_back(band);
+  }
+  // The widest rows, the lower first among equals.
+  shape.widest.clear();
+  for (const auto& row : runs) {
+    const auto at = std::find_if(shape.widest.begin(), shape.widest.end(),
+                                 [&](const auto& w) { return w.second < row.second; });
+    if (at == shape.widest.end() && shape.widest.size() == kWidestRows) continue;
+    shape.widest.insert(at, row);
+    if (shape.widest.size() > kWidestRows) shape.widest.pop_back();
+  }
   // Every step-th cell, in rows from the first, from the middle of the first step on.
   const auto spread = [&](std::size_t count, std::vector<std::pair<int, int>>& out) {
     const std::size_t step = std::max<std::size_t>(1, shape.cells / count);
@@ -281,6 +335,17 @@ Shape rasterise(const std::vector<std::vector<IntPoint>>& polygons, std::int64_t
   return shape;
 }
 
+// Transposes a 64 x 64 block of cells: afterwards bit c of row r is what bit r of row c was.
+void transpose(std::array<std::uint64_t, 64>& rows) {
+  std::uint64_t keep = 0x00000000FFFFFFFFull;  // the low half of each bit pair swapped next
+  for (int half = 32; half != 0; half >>= 1, keep ^= keep << half)
+    for (int k = 0; k < 64; k = ((k | half) + 1) & ~half) {
+      const std::uint64_t swap = ((rows[k] >> half) ^ rows[k | half]) & keep;
+      rows[k | half] ^= swap;
+      rows[k] ^= swap << half;
+    }
+}
+
 // `shape` turned a quarter more, counter-clockwise about the origin, as `angle`: the grid maps onto
 // itself (cell (i, j) onto cell (-j - 1, i)), and so do the cells a polygon covers, but for
 // polygons whose edges run through cells' centres, which either way are a fringe kCover beyond
@@ -293,9 +358,19 @@ Shape quarter_turned(const Shape& shape, double angle) {
   out.ox = -(shape.oy + h);
   out.oy = shape.ox;
   out.mask = Bits(h, w);
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i)
-      if ((shape.mask.word(j, i / 64) >> (i % 64)) & 1) out.mask.set_span(h - 1 - j, h - 1 - j, i);
+  // Cell (i, j) goes to (h - 1 - j, i), 64 x 64 cells at a time: the rows j of the block taken
+  // from the last up are the block's columns turned.
+  std::array<std::uint64_t, 64> block;
+  for (int a = 0; a < (h + 63) / 64; ++a)
+    for (int k = 0; k < (w + 63) / 64; ++k) {
+      for (int t = 0; t < 64; ++t) {
+        const int j = h - 1 - (64 * a + t);
+        block[static_cast<std::size_t>(t)] = j >= 0 ? shape.mask.word(j, k) : 0;
+      }
+      transpose(block);
+      for (int c = 0; c < 64 && 64 * k + c < w; ++c)
+        out.mask.add(64 * k + c, a, block[static_cast<std::size_t>(c)]);
+    }
   finish(out);
   return out;
 }
@@ -322,11 +397,13 @@ void stamp(Sheet& sheet, const Shape& shape, int x, int y) {
   }
   sheet.widest_free = *std::max_element(sheet.free_run.begin(), sheet.free_run.end());
   sheet.free -= shape.cells;
+  find_tallest(sheet);
 }
 
 /// The lowest, then leftmost, place of `shape` on `sheet` where it touches nothing, no higher
-/// than row `last_y`. A sheet with fewer free cells than the shape has, or no free run as long as
-/// its widest row, is passed over at once, and so is a row where one of its widest rows would lie
+/// than row `last_y`. A sheet with fewer free cells than the shape has, no free run as long as
+/// its widest row, or fewer rows in a row with free runs as long as one of its bands needs
+/// (Sheet::tallest), is passed over at once, and so is a row where one of its widest rows would lie
 /// on a row of the sheet without a free run as long. Sixty-four places of a row at a time are then
 /// ruled out where one of the shape's probes meets a marked cell, then one of its more probes.
 std::optional<std::pair<int, int>> lowest_place(const Sheet& on, const Shape& shape, int last_y) {
@@ -334,6 +411,8 @@ std::optional<std::pair<int, int>> lowest_place(const Sheet& on, const Shape& sh
   const Bits& mask = shape.mask;
   if (shape.cells > on.free || shape.widest.empty() || shape.widest[0].second > on.widest_free)
     return std::nullopt;
+  for (const Shape::Band& band : shape.bands)
+    if (on.tallest[static_cast<std::size_t>(band.run)] < band.height) return std::nullopt;
   const int places = sheet.width() - mask.width() + 1;  // x in [0, places)
   last_y = std::min(last_y, sheet.height() - mask.height());
   for (int y = 0; y <= last_y && places > 0; ++y) {
@@ -416,6 +495,7 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
       std::fill(full.free_run.begin(), full.free_run.end(), 0);
       full.widest_free = 0;
       full.free = 0;
+      find_tallest(full);
       out[i] = {static_cast<int>(sheets.size()) - 1, 0, -lo_x, -lo_y};
     }
     return sheets.size();

@@ -825,6 +825,32 @@ TEST(Nest, APartFitsTheSheetByTheCellsItCoversNotTheirBox) {
   EXPECT_LE(deepest_overlap(placed_polygons(parts, placed, 100 * mm, 100 * mm)), 1e-6);
 }
 
+// A sheet whose rows each have room only in a slot 24 mm wide and 110 mm tall (a U of 100 x
+// 120 mm on a sheet of 102 x 122 mm, which it fits only upright, taking the rest) holds a bar
+// 18 mm wide as tall as fits in it, 109 mm, and not one of 115 mm, which goes on a sheet of its
+// own (the bars are nested after the U, the larger first). A sheet is passed over at once when
+// it has fewer rows in a row with free runs as long as a band of the part's rows needs: were
+// those counted short, or the band taller, the 109 mm bar would go on the second sheet too.
+TEST(Nest, ABarGoesIntoASlotAsTallAsItAndNoTaller) {
+  constexpr std::int64_t mm = 1000;
+  const std::int64_t w = 102 * mm, h = 122 * mm;
+  const auto box = [](std::int64_t x0, std::int64_t y0, std::int64_t x1, std::int64_t y1) {
+    return std::vector<print_detail::IntPoint>{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}};
+  };
+  const std::vector<print_detail::NestPart> parts = {
+      {box(0, 0, 100 * mm, 10 * mm), box(0, 10 * mm, 38 * mm, 120 * mm),
+       box(62 * mm, 10 * mm, 100 * mm, 120 * mm)},
+      rectangle(18 * mm, 109 * mm),
+      rectangle(18 * mm, 115 * mm)};
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(parts, 0, w, h);
+  ASSERT_EQ(placed.size(), parts.size());
+  EXPECT_EQ(placed[0].sheet, 0);
+  EXPECT_EQ(placed[1].sheet, 0) << "the 109 mm bar fits the slot";
+  EXPECT_EQ(placed[2].sheet, 1) << "the 115 mm bar does not";
+  EXPECT_LE(deepest_overlap(placed_polygons(parts, placed, w, h)), 1e-6);
+}
+
 // A part turned a quarter is held by its cells turned (the grid maps onto itself under a quarter
 // turn about the origin), which must be those of the part as turned and placed: an L 45 mm wide
 // and 90 mm tall fits a sheet 100 x 50 mm only lying down, and the three 20 mm squares after it
