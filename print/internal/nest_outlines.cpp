@@ -144,13 +144,51 @@ struct Sheet {
         free_run(static_cast<std::size_t>(rows), cols),
         widest_free(cols),
         free(static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows)),
-        tallest(static_cast<std::size_t>(cols) + 1, rows) {}
+        tallest(static_cast<std::size_t>(cols) + 1, rows),
+        leaves(static_cast<int>(std::bit_ceil(static_cast<unsigned>(std::max(rows, 1))))),
+        most(2 * static_cast<std::size_t>(leaves), -1) {
+    update_most(0, rows);
+  }
   Bits cells;
   std::vector<int> free_run;
   int widest_free;
   std::size_t free;
   /// tallest[run]: the most rows in a row that each have a free run of at least `run` cells.
   std::vector<int> tallest;
+  /// The longest free runs as a tree of maxima: most[leaves + r] is row r's, most[k] the larger of
+  /// most[2k] and most[2k + 1] (-1 past the last row), so that the next row with a free run as
+  /// long as a part's widest row needs is found in a step down the tree (next_row).
+  int leaves;
+  std::vector<int> most;
+
+  /// The tree above rows [from, to) again, after their free runs changed.
+  void update_most(int from, int to) {
+    for (int r = from; r < to; ++r)
+      most[static_cast<std::size_t>(leaves + r)] = free_run[static_cast<std::size_t>(r)];
+    for (int lo = (leaves + from) / 2, hi = (leaves + to - 1) / 2; lo >= 1; lo /= 2, hi /= 2)
+      for (int k = lo; k <= hi; ++k)
+        most[static_cast<std::size_t>(k)] = std::max(most[2 * static_cast<std::size_t>(k)],
+                                                     most[2 * static_cast<std::size_t>(k) + 1]);
+  }
+
+  /// The first row from `row` on whose free run is at least `run` cells; the rows' count when
+  /// none is.
+  int next_row(int row, int run) const {
+    const auto rows = static_cast<int>(free_run.size());
+    if (row >= rows) return rows;
+    auto k = static_cast<std::size_t>(leaves + row);
+    if (most[k] >= run) return row;
+    // Up while the subtree to the right holds no such row, then down its leftmost such leaf.
+    for (;; k /= 2) {
+      if (k == 1) return rows;
+      if (k % 2 == 0 && most[k + 1] >= run) {
+        ++k;
+        break;
+      }
+    }
+    while (k < static_cast<std::size_t>(leaves)) k = most[2 * k] >= run ? 2 * k : 2 * k + 1;
+    return std::min(static_cast<int>(k) - leaves, rows);
+  }
 };
 
 // Sheet::tallest from Sheet::free_run. Each row, with the rows around it up to the first row of
@@ -375,14 +413,73 @@ Shape quarter_turned(const Shape& shape, double angle) {
   return out;
 }
 
-bool collides(const Bits& sheet, const Bits& mask, int x, int y) {
+// The 64 bits of `v` in the reverse order.
+std::uint64_t reversed(std::uint64_t v) {
+  v = ((v >> 1) & 0x5555555555555555ull) | ((v & 0x5555555555555555ull) << 1);
+  v = ((v >> 2) & 0x3333333333333333ull) | ((v & 0x3333333333333333ull) << 2);
+  v = ((v >> 4) & 0x0F0F0F0F0F0F0F0Full) | ((v & 0x0F0F0F0F0F0F0F0Full) << 4);
+  v = ((v >> 8) & 0x00FF00FF00FF00FFull) | ((v & 0x00FF00FF00FF00FFull) << 8);
+  v = ((v >> 16) & 0x0000FFFF0000FFFFull) | ((v & 0x0000FFFF0000FFFFull) << 16);
+  return (v >> 32) | (v << 32);
+}
+
+// `shape` turned half round about the origin, as `angle`: cell (i, j) goes to (-i - 1, -j - 1),
+// so the mask's cell (i, j) is the old mask's (w - 1 - i, h - 1 - j). What finish() counts comes
+// from the shape's own: the same cells and bands; the widest rows and the probes are the same
+// cells turned (any of a mask's cells rules places out alike).
+Shape half_turned(const Shape& shape, double angle) {
+  Shape out;
+  out.angle = angle;
+  out.area = shape.area;
+  const int w = shape.mask.width(), h = shape.mask.height();
+  out.ox = -(shape.ox + w);
+  out.oy = -(shape.oy + h);
+  out.mask = Bits(w, h);
+  // Row j is the old row h - 1 - j read backwards (new cell i is old cell w - 1 - i): the old
+  // words reversed, the last first, less the `spare` cells past the row's width that lead them.
+  const int words = (w + 63) / 64, spare = 64 * words - w;
+  for (int j = 0; j < h; ++j)
+    for (int k = 0; k < words; ++k) {
+      const int last = words - 1 - k;  // the old word that, reversed, word k starts with
+      std::uint64_t v = reversed(shape.mask.word(h - 1 - j, last)) >> spare;
+      if (spare != 0 && last > 0)
+        v |= reversed(shape.mask.word(h - 1 - j, last - 1)) << (64 - spare);
+      out.mask.add(j, k, v);
+    }
+  out.cells = shape.cells;
+  out.bands = shape.bands;
+  for (const auto& [j, run] : shape.widest) out.widest.emplace_back(h - 1 - j, run);
+  std::stable_sort(out.widest.begin(), out.widest.end(), [](const auto& a, const auto& b) {
+    return a.second > b.second || (a.second == b.second && a.first < b.first);
+  });
+  // The probes in rows from the first, as finish() spreads them: the lowest rows of a part meet
+  // what lies on a sheet filled from its foot first.
+  for (auto it = shape.probes.rbegin(); it != shape.probes.rend(); ++it)
+    out.probes.emplace_back(w - 1 - it->first, h - 1 - it->second);
+  for (auto it = shape.more_probes.rbegin(); it != shape.more_probes.rend(); ++it)
+    out.more_probes.emplace_back(w - 1 - it->first, h - 1 - it->second);
+  return out;
+}
+
+// Whether the mask moved to (x, y) meets a marked cell of the sheet. Row `meets` of the mask is
+// compared first, and becomes the row where it meets one: the places beside and above a place
+// that meets one mostly meet it there too.
+bool collides(const Bits& sheet, const Bits& mask, int x, int y, int& meets) {
   const int first = x / 64, last = (x + mask.width() - 1) / 64;
   const int inner = x % 64;
-  for (int j = 0; j < mask.height(); ++j)
+  const auto row_meets = [&](int j) {
     for (int w = first; w <= last; ++w) {
       // The mask's row moved x cells right: its word w - x / 64, shifted by x % 64.
       const std::uint64_t m = mask.shifted(j, w - first, inner);
       if (m & sheet.word(y + j, w)) return true;
+    }
+    return false;
+  };
+  if (meets < mask.height() && row_meets(meets)) return true;
+  for (int j = 0; j < mask.height(); ++j)
+    if (j != meets && row_meets(j)) {
+      meets = j;
+      return true;
     }
   return false;
 }
@@ -395,7 +492,8 @@ void stamp(Sheet& sheet, const Shape& shape, int x, int y) {
       sheet.cells.add(y + j, w, mask.shifted(j, w - first, x % 64));
     sheet.free_run[static_cast<std::size_t>(y + j)] = sheet.cells.longest_run(y + j, false);
   }
-  sheet.widest_free = *std::max_element(sheet.free_run.begin(), sheet.free_run.end());
+  sheet.update_most(y, y + mask.height());
+  sheet.widest_free = sheet.most[1];
   sheet.free -= shape.cells;
   find_tallest(sheet);
 }
@@ -414,18 +512,33 @@ std::optional<std::pair<int, int>> lowest_place(const Sheet& on, const Shape& sh
   for (const Shape::Band& band : shape.bands)
     if (on.tallest[static_cast<std::size_t>(band.run)] < band.height) return std::nullopt;
   const int places = sheet.width() - mask.width() + 1;  // x in [0, places)
+  std::size_t closer = 0;                               // the probe that closed the last places
+  int meets = 0;  // the mask's row that met a marked cell last (collides)
   last_y = std::min(last_y, sheet.height() - mask.height());
   for (int y = 0; y <= last_y && places > 0; ++y) {
+    // Up to the next row where each widest row has room, a widest row at a time: the rows
+    // passed over have no free run as long under that one.
     bool room = true;
     for (const auto& [j, run] : shape.widest)
-      if (on.free_run[static_cast<std::size_t>(y + j)] < run) room = false;
+      if (on.free_run[static_cast<std::size_t>(y + j)] < run) {
+        y = on.next_row(y + j, run) - j - 1;  // the loop's ++y then tries that row
+        room = false;
+        break;
+      }
     if (!room) continue;
     for (int x0 = 0; x0 < places; x0 += 64) {
       std::uint64_t open =
           places - x0 >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << (places - x0)) - 1;
-      for (auto [i, j] : shape.probes) {
+      // The probe that closed the last 64 places first: the places beside them, and those a row
+      // up, mostly meet the same marked cells.
+      if (closer < shape.probes.size()) {
+        const auto [i, j] = shape.probes[closer];
         open &= ~sheet.from(y + j, x0 + i);
-        if (open == 0) break;
+      }
+      for (std::size_t k = 0; open != 0 && k < shape.probes.size(); ++k) {
+        const auto [i, j] = shape.probes[k];
+        open &= ~sheet.from(y + j, x0 + i);
+        if (open == 0) closer = k;
       }
       for (std::size_t k = 0; open != 0 && k < shape.more_probes.size(); ++k) {
         const auto [i, j] = shape.more_probes[k];
@@ -433,7 +546,7 @@ std::optional<std::pair<int, int>> lowest_place(const Sheet& on, const Shape& sh
       }
       for (; open != 0; open &= open - 1) {
         const int x = x0 + std::countr_zero(open);
-        if (!collides(sheet, mask, x, y)) return std::pair{x, y};
+        if (!collides(sheet, mask, x, y, meets)) return std::pair{x, y};
       }
     }
   }
@@ -449,8 +562,9 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
   std::vector<std::vector<Shape>> shapes(parts.size());
   for (std::size_t i = 0; i < parts.size(); ++i)
     for (int q = 0; q < 4; ++q)
-      shapes[i].push_back(q == 0 ? rasterise(parts[i], grow)
-                                 : quarter_turned(shapes[i].back(), q * 0.5 * std::numbers::pi));
+      shapes[i].push_back(q == 0   ? rasterise(parts[i], grow)
+                          : q == 1 ? quarter_turned(shapes[i].back(), q * 0.5 * std::numbers::pi)
+                                   : half_turned(shapes[i][q - 2], q * 0.5 * std::numbers::pi));
   // Parts placed in `order`, each on the first sheet where it fits; how many sheets it took.
   const auto fill = [&](const std::vector<std::size_t>& order, std::vector<NestedOutline>& out) {
     std::vector<Sheet> sheets;
@@ -493,6 +607,7 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
       Sheet& full = sheets.emplace_back(cols, rows);
       for (int y = 0; y < rows; ++y) full.cells.set_span(0, cols - 1, y);
       std::fill(full.free_run.begin(), full.free_run.end(), 0);
+      full.update_most(0, rows);
       full.widest_free = 0;
       full.free = 0;
       find_tallest(full);

@@ -110,6 +110,12 @@ print_detail::NestPart rectangle(std::int64_t x, std::int64_t y) {
   return {{{0, 0}, {x, 0}, {x, y}, {0, y}, {0, 0}}};
 }
 
+/// A part: an L from the origin, `wide` along x and `tall` along y, its two bars `bar` thick (the
+/// hollow between them up and to the right), in micrometres.
+print_detail::NestPart ell(std::int64_t wide, std::int64_t tall, std::int64_t bar) {
+  return {{{0, 0}, {wide, 0}, {wide, bar}, {bar, bar}, {bar, tall}, {0, tall}, {0, 0}}};
+}
+
 /// The deepest overlap of two polygons on one sheet, in millimetres (the polygons of one part only
 /// touch, as those of two parts must).
 double deepest_overlap(const std::map<int, std::vector<std::vector<Vec2>>>& on_sheet) {
@@ -858,21 +864,67 @@ TEST(Nest, ABarGoesIntoASlotAsTallAsItAndNoTaller) {
 TEST(Nest, APartTurnedAQuarterIsHeldByItsCellsTurned) {
   constexpr std::int64_t mm = 1000;
   const std::int64_t w = 100 * mm, h = 50 * mm;
-  const std::vector<print_detail::NestPart> parts = {{{{0, 0},
-                                                       {45 * mm, 0},
-                                                       {45 * mm, 15 * mm},
-                                                       {15 * mm, 15 * mm},
-                                                       {15 * mm, 90 * mm},
-                                                       {0, 90 * mm},
-                                                       {0, 0}}},
-                                                     rectangle(20 * mm, 20 * mm),
-                                                     rectangle(20 * mm, 20 * mm),
-                                                     rectangle(20 * mm, 20 * mm)};
+  const std::vector<print_detail::NestPart> parts = {
+      ell(45 * mm, 90 * mm, 15 * mm), rectangle(20 * mm, 20 * mm), rectangle(20 * mm, 20 * mm),
+      rectangle(20 * mm, 20 * mm)};
   const std::vector<print_detail::NestedOutline> placed =
       print_detail::nest_outlines(parts, 0, w, h);
   ASSERT_EQ(placed.size(), parts.size());
   for (std::size_t i = 0; i < parts.size(); ++i) EXPECT_EQ(placed[i].sheet, 0) << "part " << i;
   EXPECT_NEAR(std::abs(std::sin(placed[0].angle)), 1, 1e-9) << "the L lies down";
+  EXPECT_LE(deepest_overlap(placed_polygons(parts, placed, w, h)), 1e-6);
+}
+
+// A part turned half round is held by its cells read from the far corner (the grid maps onto
+// itself under a half turn about the origin as well), at the place of the part as turned: on a
+// sheet 200 x 50 mm an L 85 mm wide (bars 15 mm thick) lies first in the corner, and an L of 50 x
+// 30 mm (bars 10 mm) lies lowest and leftmost after it turned half round, its upright bar down
+// beside the first L's foot and its foot over it; a bar 60 x 11 mm then lies at the sheet's foot
+// just past that upright bar. Cells turned otherwise, or moved, would place the second L over the
+// first, or elsewhere, and cells marked past the second L's would push the bar along.
+TEST(Nest, APartTurnedHalfRoundIsHeldByItsCellsTurned) {
+  constexpr std::int64_t mm = 1000;
+  const std::int64_t w = 200 * mm, h = 50 * mm;
+  const std::vector<print_detail::NestPart> parts = {
+      ell(85 * mm, 45 * mm, 15 * mm), ell(50 * mm, 30 * mm, 10 * mm), rectangle(60 * mm, 11 * mm)};
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(parts, 0, w, h);
+  ASSERT_EQ(placed.size(), parts.size());
+  EXPECT_EQ(placed[0].sheet, 0);
+  EXPECT_EQ(placed[1].sheet, 0);
+  EXPECT_NEAR(std::cos(placed[0].angle), 1, 1e-9) << "the first L lies as it comes";
+  EXPECT_NEAR(std::cos(placed[1].angle), -1, 1e-9) << "the second L lies turned half round";
+  // Turned, it spans x from dx - 50 mm to dx and y from dy - 30 mm to dy: at the sheet's foot,
+  // its upright bar (the last 10 mm of x) just past the first L's 85 mm.
+  EXPECT_LT(placed[1].dy - 30 * mm, 1 * mm);
+  EXPECT_GE(placed[1].dx - 10 * mm, 85 * mm);
+  EXPECT_LT(placed[1].dx - 10 * mm, 87 * mm);
+  EXPECT_EQ(placed[2].sheet, 0);
+  EXPECT_NEAR(std::cos(placed[2].angle), 1, 1e-9) << "the bar lies as it comes";
+  EXPECT_LT(placed[2].dy, 1 * mm);
+  EXPECT_GE(placed[2].dx, placed[1].dx);
+  EXPECT_LT(placed[2].dx, placed[1].dx + 2 * mm);
+  EXPECT_LE(deepest_overlap(placed_polygons(parts, placed, w, h)), 1e-6);
+}
+
+// A part lies on the lowest row where it fits, past the rows where no free run is as long as its
+// own (a sheet is searched from the foot, a row too narrow passed over up to the next one with
+// room: Sheet::next_row): on a sheet 100 x 50 mm, with an L 85 mm wide (bars 15 mm thick) in the
+// corner, a bar 80 x 20 mm has no room beside the L's foot (15 mm) and lies right on it.
+TEST(Nest, APartLiesOnTheLowestRowWithRoomForIt) {
+  constexpr std::int64_t mm = 1000;
+  const std::int64_t w = 100 * mm, h = 50 * mm;
+  const std::vector<print_detail::NestPart> parts = {ell(85 * mm, 45 * mm, 15 * mm),
+                                                     rectangle(80 * mm, 20 * mm)};
+  const std::vector<print_detail::NestedOutline> placed =
+      print_detail::nest_outlines(parts, 0, w, h);
+  ASSERT_EQ(placed.size(), parts.size());
+  EXPECT_EQ(placed[1].sheet, 0);
+  EXPECT_NEAR(std::cos(placed[1].angle), 1, 1e-9);
+  // The L's foot ends at placed[0].dy + 15 mm; the bar lies within two cells of it (each part's
+  // cells reach a fringe past its outline).
+  EXPECT_GE(placed[1].dy, placed[0].dy + 15 * mm);
+  EXPECT_LE(placed[1].dy, placed[0].dy + 16 * mm);
   EXPECT_LE(deepest_overlap(placed_polygons(parts, placed, w, h)), 1e-6);
 }
 
