@@ -501,9 +501,10 @@ void stamp(Sheet& sheet, const Shape& shape, int x, int y) {
 /// The lowest, then leftmost, place of `shape` on `sheet` where it touches nothing, no higher
 /// than row `last_y`. A sheet with fewer free cells than the shape has, no free run as long as
 /// its widest row, or fewer rows in a row with free runs as long as one of its bands needs
-/// (Sheet::tallest), is passed over at once, and so is a row where one of its widest rows would lie
-/// on a row of the sheet without a free run as long. Sixty-four places of a row at a time are then
-/// ruled out where one of the shape's probes meets a marked cell, then one of its more probes.
+/// (Sheet::tallest), is passed over at once, and so are the rows up to the next where each of its
+/// widest rows would lie on a row of the sheet with a free run as long (Sheet::next_row).
+/// Sixty-four places of a row at a time are then ruled out where one of the shape's probes meets a
+/// marked cell, then one of its more probes; the places left are compared cell by cell.
 std::optional<std::pair<int, int>> lowest_place(const Sheet& on, const Shape& shape, int last_y) {
   const Bits& sheet = on.cells;
   const Bits& mask = shape.mask;
