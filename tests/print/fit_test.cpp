@@ -919,6 +919,8 @@ TEST(Nest, APartLiesOnTheLowestRowWithRoomForIt) {
   const std::vector<print_detail::NestedOutline> placed =
       print_detail::nest_outlines(parts, 0, w, h);
   ASSERT_EQ(placed.size(), parts.size());
+  EXPECT_EQ(placed[0].sheet, 0);
+  EXPECT_NEAR(std::cos(placed[0].angle), 1, 1e-9) << "the L lies as it comes";
   EXPECT_EQ(placed[1].sheet, 0);
   EXPECT_NEAR(std::cos(placed[1].angle), 1, 1e-9);
   // The L's foot ends at placed[0].dy + 15 mm; the bar lies within two cells of it (each part's
