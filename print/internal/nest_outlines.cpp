@@ -142,7 +142,6 @@ struct Sheet {
   Sheet(int cols, int rows)
       : cells(cols, rows),
         free_run(static_cast<std::size_t>(rows), cols),
-        widest_free(cols),
         free(static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows)),
         tallest(static_cast<std::size_t>(cols) + 1, rows),
         leaves(static_cast<int>(std::bit_ceil(static_cast<unsigned>(std::max(rows, 1))))),
@@ -151,7 +150,6 @@ struct Sheet {
   }
   Bits cells;
   std::vector<int> free_run;
-  int widest_free;
   std::size_t free;
   /// tallest[run]: the most rows in a row that each have a free run of at least `run` cells.
   std::vector<int> tallest;
@@ -170,6 +168,9 @@ struct Sheet {
         most[static_cast<std::size_t>(k)] = std::max(most[2 * static_cast<std::size_t>(k)],
                                                      most[2 * static_cast<std::size_t>(k) + 1]);
   }
+
+  /// The longest free run of all rows (-1 on a sheet without rows).
+  int widest_free() const { return most[1]; }
 
   /// The first row from `row` on whose free run is at least `run` cells; the rows' count when
   /// none is.
@@ -493,7 +494,6 @@ void stamp(Sheet& sheet, const Shape& shape, int x, int y) {
     sheet.free_run[static_cast<std::size_t>(y + j)] = sheet.cells.longest_run(y + j, false);
   }
   sheet.update_most(y, y + mask.height());
-  sheet.widest_free = sheet.most[1];
   sheet.free -= shape.cells;
   find_tallest(sheet);
 }
@@ -508,7 +508,7 @@ void stamp(Sheet& sheet, const Shape& shape, int x, int y) {
 std::optional<std::pair<int, int>> lowest_place(const Sheet& on, const Shape& shape, int last_y) {
   const Bits& sheet = on.cells;
   const Bits& mask = shape.mask;
-  if (shape.cells > on.free || shape.widest.empty() || shape.widest[0].second > on.widest_free)
+  if (shape.cells > on.free || shape.widest.empty() || shape.widest[0].second > on.widest_free())
     return std::nullopt;
   for (const Shape::Band& band : shape.bands)
     if (on.tallest[static_cast<std::size_t>(band.run)] < band.height) return std::nullopt;
@@ -609,7 +609,6 @@ std::vector<NestedOutline> nest_outlines(const std::vector<NestPart>& parts, std
       for (int y = 0; y < rows; ++y) full.cells.set_span(0, cols - 1, y);
       std::fill(full.free_run.begin(), full.free_run.end(), 0);
       full.update_most(0, rows);
-      full.widest_free = 0;
       full.free = 0;
       find_tallest(full);
       out[i] = {static_cast<int>(sheets.size()) - 1, 0, -lo_x, -lo_y};
