@@ -236,6 +236,27 @@ std::string label_text(int number) {
   return turned == text ? text : text + ".";
 }
 
+void number_cut_edges(const std::vector<std::array<Vec2, 3>>& faces, std::vector<NetEdge>& edges) {
+  std::vector<int> cut;
+  std::vector<double> length(edges.size(), 0);
+  for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
+    if (edges[e].cut_index < 0) continue;
+    const EdgeSide a = edges[e].a;
+    length[e] = norm(faces[a.face][(a.k + 1) % 3] - faces[a.face][a.k]);
+    cut.push_back(e);
+  }
+  std::stable_sort(cut.begin(), cut.end(), [&](int x, int y) { return length[x] < length[y]; });
+  std::vector<int> numbers(cut.size());
+  std::vector<double> width(cut.size() + 1, 0);
+  for (std::size_t n = 1; n <= cut.size(); ++n) {
+    numbers[n - 1] = static_cast<int>(n);
+    width[n] = label_chars(label_text(static_cast<int>(n)));
+  }
+  std::stable_sort(numbers.begin(), numbers.end(),
+                   [&](int x, int y) { return width[x] < width[y]; });
+  for (std::size_t i = 0; i < cut.size(); ++i) edges[cut[i]].cut_index = numbers[i] - 1;
+}
+
 Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text, double max_size) {
   const Vec2 p0 = tri[side.k], p1 = tri[(side.k + 1) % 3], p2 = tri[(side.k + 2) % 3];
   const double len = norm(p1 - p0);

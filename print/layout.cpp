@@ -111,6 +111,7 @@ PrintLayout layout_net(const Mesh& mesh, const Net& net, const PrintOptions& opt
       out.faces[f][k] = out.scale * rotate(net.points[f][k], out.metrics.box.angle);
 
   out.edges = classify_edges(mesh, net, {options.flat_fold_degrees});
+  print_detail::number_cut_edges(out.faces, out.edges);
   // The label of cut edge `e` on side `s`: across pieces it names the piece its edge glues to
   // (docs/print.md).
   const auto text_of = [&](int e, EdgeSide s) {

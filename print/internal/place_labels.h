@@ -14,6 +14,13 @@ namespace papernet::print_detail {
 /// other upside down, so those end in a dot.
 std::string label_text(int number);
 
+/// Numbers the cut edges of a laid-out net (their `cut_index`, the number printed minus one) so
+/// that the shortest edge, whose label has the least room, prints the narrowest number: the
+/// edges from the shortest (ties in order of the edges), the numbers 1 to N from the narrowest
+/// text (label_text: one digit before two, a number that needs no dot before one that does;
+/// ties in order) (docs/print.md, "Labels").
+void number_cut_edges(const std::vector<std::array<Vec2, 3>>& faces, std::vector<NetEdge>& edges);
+
 /// The label for `side`, sized to fit the face: text along the edge, inside the triangle, at
 /// most `max_size` tall, turned to read upright on the page.
 Label make_label(const std::array<Vec2, 3>& tri, EdgeSide side, std::string text, double max_size);

@@ -404,8 +404,8 @@ TEST(FitSearch, AMergedPieceMayFillTheRoomKeptForTabsWhenItsTabsFitTheSheet) {
 }
 
 // Tendrils cut off the chosen print's pieces save a sheet where the search's ways and the merge
-// leave one (docs/print.md, "Tendrils cut off to save a sheet"): ADIS16480 at the defaults prints
-// on 5 sheets with them, 6 without (21 and 20 pieces). The same search but for the cuts, each
+// leave one (docs/print.md, "Tendrils cut off to save a sheet"): thingi10k 134617 at the defaults
+// prints on 3 sheets with them, 4 without (8 and 7 pieces). The same search but for the cuts, each
 // with time to spare (a search bounded by its clock tries fewer ways on a slower machine); both
 // prints pass the net checker. Release only (SANITIZE_SKIP in the Makefile): the merge's whole
 // budget, twice.
@@ -414,7 +414,7 @@ TEST(FitSearch, TendrilsCutOffSaveASheet) {
   options.colour = false;
   PipelineProgress quiet;
   const UnfoldOutcome unfolded =
-      run_pipeline(data_file("trimesh_ADIS16480_600.obj"), options, {}, {}, quiet);
+      run_pipeline(data_file("thingi10k_134617.stl"), options, {}, {}, quiet);
   const Mesh& mesh = unfolded.net.mesh;
   engine_detail::FitSearchOptions search = engine_detail::fit_search_options(options, mesh);
   search.seconds = 600;
@@ -436,7 +436,8 @@ TEST(FitSearch, TendrilsCutOffSaveASheet) {
     EXPECT_TRUE(check.ok()) << check.summary();
   }
   std::printf(
-      "ADIS16480 at the defaults: %zu sheets with %d pieces; tendrils cut off, %zu with %d\n",
+      "thingi10k 134617 at the defaults: %zu sheets with %d pieces; tendrils cut off, %zu with "
+      "%d\n",
       sheets, whole.print->pieces.pieces, fewer, cut.print->pieces.pieces);
 }
 

@@ -640,6 +640,43 @@ TEST(Labels, TwoMatchingLabelsPerCutEdgeInsideTheirFaces) {
   }
 }
 
+// The cut edges are numbered 1 to N, the shortest (whose labels have the least room) with the
+// narrowest numbers: along the edges from the shortest, a label's text never gets narrower.
+TEST(Labels, TheShortestCutEdgesPrintTheNarrowestNumbers) {
+  for (std::size_t n = 0; n < all_nets().size(); ++n) {
+    const std::string& name = all_nets()[n].name;
+    const PrintLayout& layout = all_layouts()[n];
+    std::map<int, std::string> text;  // each number's labels' text
+    for (const Label& l : layout.labels) text[layout.edges[l.edge].cut_index + 1] = l.text;
+    std::vector<std::pair<double, int>> cut;  // printed length, number
+    for (const NetEdge& e : layout.edges) {
+      if (e.cut_index < 0) continue;
+      const auto& tri = layout.faces[e.a.face];
+      cut.emplace_back(norm(tri[(e.a.k + 1) % 3] - tri[e.a.k]), e.cut_index + 1);
+    }
+    ASSERT_FALSE(cut.empty()) << name;
+    ASSERT_EQ(text.size(), cut.size()) << name;
+    std::vector<int> numbers;
+    for (const auto& c : cut) numbers.push_back(c.second);
+    std::sort(numbers.begin(), numbers.end());
+    for (std::size_t i = 0; i < numbers.size(); ++i) ASSERT_EQ(numbers[i], static_cast<int>(i) + 1);
+    std::sort(cut.begin(), cut.end());
+    // Lengths measured here and where the edges were numbered may differ in their last bits.
+    const double tolerance = 1e-9 * cut.back().first;
+    double widest = 0;  // the widest text of the edges shorter than edge i by the tolerance
+    for (std::size_t i = 0, shorter = 0; i < cut.size(); ++i) {
+      for (; cut[shorter].first < cut[i].first - tolerance; ++shorter)
+        widest = std::max(widest, label_chars(text[cut[shorter].second]));
+      EXPECT_GE(label_chars(text[cut[i].second]), widest)
+          << name << ": edge " << cut[i].second << " (" << cut[i].first
+          << " mm) prints a narrower number than a shorter edge";
+    }
+    const auto one =
+        std::find_if(cut.begin(), cut.end(), [](const auto& c) { return c.second == 1; });
+    EXPECT_LE(one->first, cut.front().first + tolerance) << name << ": 1 is not the shortest edge";
+  }
+}
+
 // The labels of one face, as their face holds them, stand apart by 0.15 of the smaller one's
 // height: touching at the face's corner, two labels read as one ("4→P260→P2": the Duck at the
 // defaults had 32 such pairs). (A label moved to the legible size only keeps clear of the others'
